@@ -1,0 +1,44 @@
+# surfwave: two commands set everything up on a fresh machine.
+#   make reproduce   build .venv from environment.lock (if missing or stale), run snakemake -j2
+#   make test        build the same environment and run the test suite
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.surfwave-stamp
+JOBS ?= 2
+
+.PHONY: env reproduce test bench lint lock clean-results help
+
+help:
+	@echo "make reproduce | make test | make bench | make lint | make lock | make clean-results"
+
+# The environment is rebuilt only when the lock or the project metadata change.
+$(STAMP): environment.lock pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --require-hashes -r environment.lock
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	touch $(STAMP)
+
+env: $(STAMP)
+
+reproduce: $(STAMP)
+	$(BIN)/snakemake -j$(JOBS)
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -n 2 -q
+
+bench: $(STAMP)
+	$(BIN)/snakemake -j$(JOBS) benchmarks
+
+lint: $(STAMP)
+	$(BIN)/snakemake --lint
+	$(BIN)/snakefmt --check Snakefile workflow/rules
+
+# Regenerate the lock from requirements.in (needs network access to PyPI).
+lock:
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet pip-tools
+	$(BIN)/pip-compile --quiet --generate-hashes --allow-unsafe --strip-extras -o environment.lock requirements.in
+
+clean-results:
+	rm -rf results

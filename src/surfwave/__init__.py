@@ -1,0 +1,4 @@
+"""surfwave: Rayleigh waves in prestressed crystals."""
+from __future__ import annotations
+
+__version__ = "0.1.0"

@@ -1,0 +1,311 @@
+"""Prestressed crystal geometries in the lab frame of PHYSICS.md.
+
+Lab frame: x = propagation direction, y = surface normal pointing into the crystal,
+z = in-plane direction normal to x (3D only). Lengths in units of the rest length d0.
+
+Supported (lattice, loading, direction):
+
+* ``("triangular", "uniaxial", "[10]")``: rows along x with in-row spacing 2 d_x and row
+  spacing d_y; inclined bonds at rest length, d_x^2 + d_y^2 = 1, so sigma_yy = 0.
+  ``d_over_d0`` = 2 d_x, allowed in (0, 2).
+* ``("fcc", "in_plane_hydrostatic", "[100]" | "[110]")``: (001) surface; the in-plane cube
+  edges scaled by s = d/d0, the normal one by t = sqrt(2 - s^2) (out-of-plane bonds at d0).
+  Allowed s in (0, sqrt 2).
+* ``("fcc", "uniaxial", "[100]" | "[110]")``: stretch s along x; the stretches along y and z
+  solved numerically from sigma_yy = sigma_zz = 0 (needs the potential).
+
+``d_over_d0`` is always the stretch of the lattice along the propagation direction x.
+
+Examples
+--------
+>>> from surfwave.lattices import build
+>>> c = build("fcc", "in_plane_hydrostatic", "[110]", [0.9, 1.0])
+>>> c.bonds.shape, c.volume.shape
+((2, 6, 3), (2,))
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from .errors import GeometryError, InputError
+from .potentials import PairPotential, get_potential
+
+Lattice = Literal["fcc", "triangular"]
+Loading = Literal["uniaxial", "in_plane_hydrostatic"]
+Direction = Literal["[100]", "[110]", "[10]"]
+
+LATTICES: dict[str, dict] = {
+    "fcc": {"dim": 3, "loadings": ("in_plane_hydrostatic", "uniaxial"),
+            "directions": ("[100]", "[110]")},
+    "triangular": {"dim": 2, "loadings": ("uniaxial",), "directions": ("[10]",)},
+}
+
+#: Vacuum padding (in d0) of the 3D cell that wraps the 2D triangular lattice for spglib/phonopy.
+TRIANGULAR_VACUUM = 10.0
+
+# FCC with nearest-neighbour distance 1: cube edge a = sqrt 2. Half of the 12 neighbours
+# (one of each +/- pair), in crystal axes.
+_A_FCC = np.sqrt(2.0)
+_FCC_HALF_NEIGHBOURS = 0.5 * _A_FCC * np.array(
+    [[1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1], [0, 1, 1], [0, 1, -1]], dtype=float
+)
+_FCC_PRIMITIVE = 0.5 * _A_FCC * np.array([[0, 1, 1], [1, 0, 1], [1, 1, 0]], dtype=float)
+
+# Rows: lab axes x, y, z expressed in crystal axes; the crystal [001] is the surface normal.
+_FCC_LAB_AXES = {
+    "[100]": np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]),
+    "[110]": np.array([[1.0, 1.0, 0.0], [0.0, 0.0, np.sqrt(2.0)], [1.0, -1.0, 0.0]])
+    / np.sqrt(2.0),
+}
+
+
+@dataclass(frozen=True)
+class Crystal:
+    """A prestressed Bravais crystal at several strains, in the lab frame.
+
+    Attributes
+    ----------
+    lattice, loading, direction : str
+        What was built.
+    d_over_d0 : ndarray, shape (n,)
+        Stretch along x (1 = unstressed).
+    bonds : ndarray, shape (n, nb, dim)
+        Half of the nearest-neighbour bond vectors (one of each +/- pair), so that sums
+        over them count each bond once per atom. Units of d0.
+    cell : ndarray, shape (n, dim, dim)
+        Primitive lattice vectors (rows), lab frame, units of d0.
+    volume : ndarray, shape (n,)
+        Volume (area in 2D) per atom, d0^3 (d0^2).
+    stretch : ndarray, shape (n, dim)
+        Stretches along the lab axes x, y (, z) relative to the unstressed lattice.
+    """
+
+    lattice: str
+    loading: str
+    direction: str
+    d_over_d0: np.ndarray
+    bonds: np.ndarray
+    cell: np.ndarray
+    volume: np.ndarray
+    stretch: np.ndarray
+
+    @property
+    def dim(self) -> int:
+        """Spatial dimension (2 or 3)."""
+        return self.bonds.shape[-1]
+
+    @property
+    def density(self) -> np.ndarray:
+        """Mass density rho = m / V, shape (n,), in m / d0^dim."""
+        return 1.0 / self.volume
+
+    def cell3d(self) -> np.ndarray:
+        """Primitive cell as 3D vectors, shape (n, 3, 3); 2D lattices padded with vacuum along z."""
+        if self.dim == 3:
+            return self.cell.copy()
+        n = self.cell.shape[0]
+        out = np.zeros((n, 3, 3))
+        out[:, :2, :2] = self.cell
+        out[:, 2, 2] = TRIANGULAR_VACUUM
+        return out
+
+
+def check_combination(lattice: str, loading: str, direction: str) -> None:
+    """Raise :class:`InputError` unless (lattice, loading, direction) is supported."""
+    if lattice not in LATTICES:
+        raise InputError(f"unknown lattice {lattice!r}; known lattices: {sorted(LATTICES)}")
+    spec = LATTICES[lattice]
+    if loading not in spec["loadings"]:
+        raise InputError(
+            f"loading {loading!r} is not available for lattice {lattice!r}; "
+            f"choose one of {list(spec['loadings'])}"
+        )
+    if direction not in spec["directions"]:
+        raise InputError(
+            f"direction {direction!r} is not available for lattice {lattice!r}; "
+            f"choose one of {list(spec['directions'])}"
+        )
+
+
+def d_over_d0_range(lattice: str, loading: str) -> tuple[float, float]:
+    """Open interval of d/d0 values the geometry can take (before stability is asked)."""
+    if lattice == "triangular":
+        return (0.0, 2.0)
+    if loading == "in_plane_hydrostatic":
+        return (0.0, float(np.sqrt(2.0)))
+    return (0.0, np.inf)  # uniaxial FCC: limited only by the lateral solve
+
+
+def _as_strain_array(d_over_d0) -> np.ndarray:
+    s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    if s.ndim != 1:
+        raise InputError(f"d_over_d0 must be a scalar or a 1-D array, got shape {s.shape}")
+    if not np.all(np.isfinite(s)):
+        raise InputError(f"d_over_d0 must be finite, got {s[~np.isfinite(s)][:5]}")
+    return s
+
+
+def check_d_over_d0(lattice: str, loading: str, d_over_d0) -> np.ndarray:
+    """Return d_over_d0 as a 1-D array, or raise :class:`GeometryError` naming the bad value."""
+    s = _as_strain_array(d_over_d0)
+    lo, hi = d_over_d0_range(lattice, loading)
+    bad = s[(s <= lo) | (s >= hi)]
+    if bad.size:
+        why = {
+            "triangular": "the inclined bonds cannot stay at rest length unless 0 < d/d0 < 2",
+            "fcc": "t^2 = 2 - (d/d0)^2 must be positive, so 0 < d/d0 < sqrt 2",
+        }[lattice]
+        if lattice == "fcc" and loading == "uniaxial":
+            why = "a stretch must be positive"
+        raise GeometryError(
+            f"impossible geometry for {lattice} {loading}: d/d0 = {bad[0]:.6g} ({why})"
+        )
+    return s
+
+
+def _deform(vectors: np.ndarray, stretch: np.ndarray) -> np.ndarray:
+    """Apply diagonal stretches (n, dim) to lab-frame vectors (m, dim) -> (n, m, dim)."""
+    return vectors[None, :, :] * stretch[:, None, :]
+
+
+def _fcc_lab(direction: str) -> tuple[np.ndarray, np.ndarray]:
+    axes = _FCC_LAB_AXES[direction]
+    return _FCC_HALF_NEIGHBOURS @ axes.T, _FCC_PRIMITIVE @ axes.T
+
+
+def _lateral_stress(bonds0: np.ndarray, stretch: np.ndarray, pot: PairPotential) -> np.ndarray:
+    """V sigma_yy and V sigma_zz, shape (n, 2), for lab stretches (n, 3)."""
+    r = _deform(bonds0, stretch) if bonds0.ndim == 2 else bonds0 * stretch[:, None, :]
+    length = np.linalg.norm(r, axis=-1)
+    w = pot.dphi(length) / length
+    return np.stack([(r[..., 1] ** 2 * w).sum(-1), (r[..., 2] ** 2 * w).sum(-1)], axis=-1)
+
+
+def solve_lateral_stretch(
+    direction: str,
+    s: np.ndarray,
+    potential: str | PairPotential,
+    tol: float = 1e-13,
+    max_iter: int = 60,
+) -> np.ndarray:
+    """Stretches (t_y, t_z) with sigma_yy = sigma_zz = 0 for FCC stretched by s along x.
+
+    Newton's method vectorised over s, started from the unstressed lattice and continued
+    along the strain path, so the branch connected to the unstressed crystal is found.
+
+    Parameters
+    ----------
+    direction : {"[100]", "[110]"}
+    s : ndarray, shape (n,)
+        Stretch along x.
+    potential : str or PairPotential
+    tol : float
+        Convergence threshold on |V sigma| in K d0^2.
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        t_y, t_z.
+
+    Raises
+    ------
+    GeometryError
+        Naming the first d/d0 whose solve does not converge or ends at a non-positive stretch.
+    """
+    pot = get_potential(potential)
+    bonds0, _ = _fcc_lab(direction)
+    s = np.asarray(s, dtype=float)
+    # Continuation: march from s = 1 towards each target in a few steps.
+    t = np.ones((s.size, 2))
+    steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
+    h = 1e-7
+    converged = np.zeros(s.size, dtype=bool)
+    for k in range(1, steps + 1):
+        s_k = 1.0 + (s - 1.0) * k / steps
+        for _ in range(max_iter):
+            full = np.column_stack([s_k, t])
+            f = _lateral_stress(bonds0, full, pot)
+            converged = np.all(np.abs(f) < tol, axis=-1)
+            if converged.all():
+                break
+            jac = np.empty((s.size, 2, 2))
+            for j in range(2):
+                dp = full.copy()
+                dp[:, j + 1] += h
+                dm = full.copy()
+                dm[:, j + 1] -= h
+                jac[:, :, j] = (_lateral_stress(bonds0, dp, pot) - _lateral_stress(bonds0, dm, pot)) / (2 * h)
+            with np.errstate(all="ignore"):
+                step = np.linalg.solve(jac, f[..., None])[..., 0]
+            step = np.where(np.isfinite(step), step, 0.0)
+            t = t - np.clip(step, -0.2, 0.2)
+            if np.any(t <= 0):
+                break
+    bad = ~converged | np.any(t <= 0, axis=-1) | ~np.all(np.isfinite(t), axis=-1)
+    if bad.any():
+        raise GeometryError(
+            f"fcc uniaxial {direction} with potential {pot.name!r}: the lateral stretches "
+            f"(sigma_yy = sigma_zz = 0) could not be solved at d/d0 = {s[bad][0]:.6g}"
+        )
+    return t
+
+
+def build(
+    lattice: Lattice,
+    loading: Loading,
+    direction: Direction,
+    d_over_d0,
+    potential: str | PairPotential | None = None,
+) -> Crystal:
+    """Build the prestressed crystal at one or several stretches.
+
+    Parameters
+    ----------
+    lattice : {"fcc", "triangular"}
+    loading : {"uniaxial", "in_plane_hydrostatic"}
+    direction : {"[100]", "[110]", "[10]"}
+    d_over_d0 : float or array_like, shape (n,)
+        Stretch along the propagation direction x (1 = unstressed).
+    potential : str or PairPotential, optional
+        Needed only for FCC uniaxial loading (the lateral stretches depend on it).
+
+    Returns
+    -------
+    Crystal
+
+    Raises
+    ------
+    InputError
+        Unknown or unsupported names.
+    GeometryError
+        A geometry that cannot exist, naming the offending d/d0.
+    """
+    check_combination(lattice, loading, direction)
+    s = check_d_over_d0(lattice, loading, d_over_d0)
+    if lattice == "triangular":
+        dx = 0.5 * s
+        dy = np.sqrt(1.0 - dx**2)
+        bonds = np.stack(
+            [np.column_stack([2 * dx, 0 * dx]), np.column_stack([dx, dy]), np.column_stack([-dx, dy])],
+            axis=1,
+        )
+        cell = np.stack([np.column_stack([2 * dx, 0 * dx]), np.column_stack([dx, dy])], axis=1)
+        volume = 2.0 * dx * dy
+        stretch = np.column_stack([s, dy / np.sqrt(0.75)])
+        return Crystal(lattice, loading, direction, s, bonds, cell, volume, stretch)
+
+    bonds0, cell0 = _fcc_lab(direction)
+    if loading == "in_plane_hydrostatic":
+        t = np.sqrt(2.0 - s**2)
+        stretch = np.column_stack([s, t, s])  # lab y is the crystal [001] normal
+    else:
+        if potential is None:
+            raise InputError("fcc uniaxial loading needs the potential to solve the lateral stretches")
+        stretch = np.column_stack([s, solve_lateral_stretch(direction, s, potential)])
+    bonds = _deform(bonds0, stretch)
+    cell = _deform(cell0, stretch)
+    volume = np.abs(np.linalg.det(cell))
+    return Crystal(lattice, loading, direction, s, bonds, cell, volume, stretch)
