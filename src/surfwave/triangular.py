@@ -1,0 +1,77 @@
+"""Row-by-row lattice dynamics of the prestressed triangular lattice (nearest neighbours).
+
+Atoms of row I, column J sit at x = (I + 2J) d_x, y = I d_y (row 0 is the surface, y points
+into the crystal). For a wave exp(i k x) along the rows with theta = k d_x, the equations of
+motion (m = 1, reduced units) of row amplitudes U_I (shape (2,): u along x, v along y) read
+
+    omega^2 U_I = A0 U_I + A1 U_{I+1} + A1^H U_{I-1}          (bulk rows, I >= 1)
+    omega^2 U_0 = A0_surface U_0 + A1 U_1                      (free surface row)
+
+with the bond force constant Phi_b = phi''(r) r^r^ + (phi'(r)/r)(1 - r^r^) (PHYSICS.md):
+
+    A0 = 2 Phi_row (1 - cos 2 theta) + 2 Phi_up + 2 Phi_um,
+    A0_surface = 2 Phi_row (1 - cos 2 theta) + Phi_up + Phi_um,
+    A1 = -(Phi_up e^{+i theta} + Phi_um e^{-i theta}),
+
+where "row" is the in-row bond (2 d_x, 0), "up" the bond (d_x, d_y) and "um" (-d_x, d_y).
+All functions are vectorised: strain axis first, theta axis second.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .lattices import build
+from .potentials import PairPotential, get_potential
+
+
+def bond_force_constants(potential: str | PairPotential, d_over_d0) -> np.ndarray:
+    """Force-constant matrices of the three bond types.
+
+    Parameters
+    ----------
+    potential : str or PairPotential
+    d_over_d0 : float or array_like, shape (n,)
+        2 d_x / d0.
+
+    Returns
+    -------
+    ndarray, shape (n, 3, 2, 2)
+        Phi for the bonds (2 d_x, 0), (d_x, d_y), (-d_x, d_y), in K (units of phi'').
+    """
+    pot = get_potential(potential)
+    crystal = build("triangular", "uniaxial", "[10]", d_over_d0)
+    r = crystal.bonds  # (n, 3, 2)
+    length = np.linalg.norm(r, axis=-1)  # (n, 3)
+    rhat = r / length[..., None]
+    outer = rhat[..., :, None] * rhat[..., None, :]
+    eye = np.eye(2)
+    k_par = pot.d2phi(length)[..., None, None]
+    k_perp = (pot.dphi(length) / length)[..., None, None]
+    return k_par * outer + k_perp * (eye - outer)
+
+
+def row_matrices(
+    potential: str | PairPotential, d_over_d0, theta
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Row matrices A0 (bulk), A0_surface and A1 of the row equations (module docstring).
+
+    Parameters
+    ----------
+    potential : str or PairPotential
+    d_over_d0 : float or array_like, shape (n,)
+    theta : float or array_like, shape (m,)
+        k d_x in radians.
+
+    Returns
+    -------
+    A0, A0_surface, A1 : ndarray, shape (n, m, 2, 2), complex
+        In units of K/m (omega^2 units). A0 and A0_surface are real symmetric.
+    """
+    phi = bond_force_constants(potential, d_over_d0)[:, None]  # (n, 1, 3, 2, 2)
+    th = np.atleast_1d(np.asarray(theta, dtype=float))[None, :, None, None]  # (1, m, 1, 1)
+    row, up, um = phi[:, :, 0], phi[:, :, 1], phi[:, :, 2]
+    in_row = 2.0 * row * (1.0 - np.cos(2.0 * th))
+    a0 = (in_row + 2.0 * up + 2.0 * um).astype(complex)
+    a0_surface = (in_row + up + um).astype(complex)
+    a1 = -(up * np.exp(1j * th) + um * np.exp(-1j * th))
+    return a0, a0_surface, a1
