@@ -1,0 +1,138 @@
+"""The library's front door: one call per question.
+
+:func:`point` answers "what are the bulk speeds and the Rayleigh speed of this prestressed
+model crystal at these strains?"; :func:`material` answers the same for a real cubic
+crystal from measured elastic constants.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import elastic, rayleigh
+from .errors import InputError
+from .lattices import _FCC_LAB_AXES, build
+
+#: Accuracy of the long-wave stability search (directions on the half sphere).
+STABILITY_DIRECTIONS = 400
+
+
+def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:
+    """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
+
+    Parameters
+    ----------
+    lattice : {"fcc", "triangular"}
+    loading : {"uniaxial", "in_plane_hydrostatic"}
+    potential : str
+        A registered potential (``"harmonic"``, ``"lj"``, ...).
+    direction : {"[100]", "[110]", "[10]"}
+        Propagation direction (``"[10]"``: the close-packed rows of the triangular lattice).
+    d_over_d0 : float or array_like, shape (n,)
+        Stretch along the propagation direction (1 = unstressed).
+
+    Returns
+    -------
+    dict
+        Arrays with leading axis n (a scalar input still gives shape (1,)):
+        ``stress`` (sigma_xx V / K d0^2), ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``,
+        ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (all in K d0^2 / m), ``wave_type``,
+        ``reason``, ``stable`` (long-wave stability in every direction),
+        ``min_acoustic_eig``, ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame),
+        ``volume`` and ``d_over_d0``.
+
+    Raises
+    ------
+    InputError, GeometryError
+        Unknown names or an impossible geometry (the message names the value).
+
+    Examples
+    --------
+    >>> import surfwave
+    >>> r = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[110]", 1.0)
+    >>> round(float(r["c2_R"][0]), 4)   # Table I: 0.3596
+    0.3596
+    """
+    crystal = build(lattice, loading, direction, d_over_d0, potential)
+    sigma = elastic.stress(crystal.bonds, potential)
+    C = elastic.elastic_constants(crystal.bonds, potential)
+    S = elastic.stress_derivatives(sigma, C)
+    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume,
+                 "stress": sigma[:, 0, 0]}
+    out.update(elastic.sound_speeds(S))
+    stable, min_eig, _ = elastic.long_wave_stability(C, sigma, STABILITY_DIRECTIONS)
+    out["stable"] = stable
+    out["min_acoustic_eig"] = min_eig
+    ray = rayleigh.solve(S, 1.0, out["c2_SH"])
+    out["c2_R"] = ray["c2_R"]
+    out["wave_type"] = ray["wave_type"]
+    out["reason"] = ray["reason"]
+    out["C"] = C
+    out["S"] = S
+    return out
+
+
+def cubic_tensor(C11: float, C12: float, C44: float) -> np.ndarray:
+    """Full C_ijkl (shape (3, 3, 3, 3)) of a cubic crystal in its cube axes, from Voigt constants."""
+    C = np.zeros((3, 3, 3, 3))
+    for i in range(3):
+        for j in range(3):
+            C[i, i, j, j] = C12
+        C[i, i, i, i] = C11
+    for i in range(3):
+        for j in range(3):
+            if i != j:
+                C[i, j, i, j] = C[i, j, j, i] = C44
+    return C
+
+
+def material(C11: float, C12: float, C44: float, rho: float, direction: str, stress: float = 0.0) -> dict:
+    """Rayleigh and bulk speeds of a real cubic crystal on its (001) surface.
+
+    Parameters
+    ----------
+    C11, C12, C44 : float
+        Measured elastic constants in GPa (taken as the stressed crystal's C).
+    rho : float
+        Density in kg/m^3.
+    direction : {"[100]", "[110]"}
+        Propagation direction in the (001) surface.
+    stress : float
+        In-plane uniaxial stress sigma_xx along the propagation direction, GPa (negative
+        = compression). Enters through Eq. (A11).
+
+    Returns
+    -------
+    dict of float
+        ``c_R``, ``c_L_par``, ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (m/s; NaN
+        where imaginary), ``wave_type``, ``reason``, ``stable``.
+
+    Examples
+    --------
+    >>> r = material(2.0, 1.0, 1.0, 1e9, "[100]")   # nearest-neighbour FCC ratios
+    >>> round(r["c_R"] ** 2 / 1.0, 6)               # (3 - sqrt 3)/2 C44/rho, m^2/s^2
+    0.633975
+    """
+    if direction not in _FCC_LAB_AXES:
+        raise InputError(f"direction {direction!r} not supported; choose '[100]' or '[110]'")
+    for name, value in (("C11", C11), ("C12", C12), ("C44", C44), ("rho", rho), ("stress", stress)):
+        if not np.isfinite(value):
+            raise InputError(f"{name} must be finite, got {value!r}")
+    if rho <= 0:
+        raise InputError(f"density rho must be positive, got {rho!r} kg/m^3")
+    R = _FCC_LAB_AXES[direction]
+    C = np.einsum("ai,bj,ck,dl,ijkl->abcd", R, R, R, R, cubic_tensor(C11, C12, C44))
+    sigma = np.diag([stress, 0.0, 0.0])
+    S = elastic.stress_derivatives(sigma, C) * 1e9  # Pa
+    speeds = elastic.sound_speeds(S[None], rho)
+    ray = rayleigh.solve(S[None], rho)
+    stable, _, _ = elastic.long_wave_stability(C[None], sigma[None])
+    out = {}
+    for key, value in speeds.items():
+        v = float(value[0])
+        out["c" + key[2:]] = float(np.sqrt(v)) if v > 0 else float("nan")
+    c2 = float(ray["c2_R"][0])
+    out["c_R"] = float(np.sqrt(c2)) if c2 > 0 else float("nan")
+    out["wave_type"] = str(ray["wave_type"][0])
+    out["reason"] = str(ray["reason"][0])
+    out["stable"] = bool(stable[0])
+    return out

@@ -1,0 +1,252 @@
+"""Persistent parameter database: expensive per-point results, computed once.
+
+One small ``.npz`` file per (kind, point) under ``<root>/<kind>/``, named by the sha256 of
+everything that determines the value: the caller's key (lattice, loading, potential,
+direction, method, accuracy settings, ...), the point's d/d0 and the surfwave version.
+Writes go to a temporary file in the same directory and are renamed into place
+(``os.replace``), so a reader never sees a partial entry, two jobs writing the same entry
+both leave a valid one, and a killed job leaves at most a stray temporary file (ignored,
+removed by :func:`clear`). An entry that cannot be read or does not match its key is
+treated as missing and recomputed.
+
+Examples
+--------
+>>> import numpy as np, tempfile
+>>> root = tempfile.mkdtemp()
+>>> f = lambda d: {"y": d**2}
+>>> cached_points("demo", {"a": 1}, np.array([1.0, 2.0]), f, root)["y"]
+array([1., 4.])
+>>> info(root)["entries"]
+2
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+import time
+import zipfile
+from pathlib import Path
+from typing import Callable, Mapping
+
+import numpy as np
+
+from . import __version__
+from .errors import InputError
+
+#: Default location, relative to the working directory of the workflow.
+DEFAULT_ROOT = Path("results") / "cache"
+_STATS = "stats"
+_RUN_MARKER = "RUN"
+
+
+def _canonical(obj):
+    """JSON-able, deterministic form of a key (floats by repr, arrays as lists)."""
+    if isinstance(obj, Mapping):
+        return {str(k): _canonical(v) for k, v in sorted(obj.items(), key=lambda kv: str(kv[0]))}
+    if isinstance(obj, np.ndarray):
+        return _canonical(obj.tolist())
+    if isinstance(obj, (list, tuple)):
+        return [_canonical(v) for v in obj]
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        return repr(float(obj))
+    if obj is None or isinstance(obj, str):
+        return obj
+    if hasattr(obj, "name"):  # e.g. a PairPotential: name plus parameters
+        return {"name": obj.name, "params": _canonical(getattr(obj, "params", {}))}
+    raise InputError(f"cache key value {obj!r} of type {type(obj).__name__} is not hashable")
+
+
+def point_key(kind: str, key: Mapping, d_over_d0: float) -> tuple[str, str]:
+    """(sha256 hex digest, canonical JSON) of one point: kind, key, d/d0, surfwave version."""
+    full = {"kind": kind, "key": _canonical(dict(key)), "d_over_d0": repr(round(float(d_over_d0), 12)),
+            "surfwave": __version__}
+    text = json.dumps(full, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest(), text
+
+
+def _entry_path(root: Path, kind: str, digest: str) -> Path:
+    return root / kind / f"{digest}.npz"
+
+
+def _read(path: Path, text: str) -> dict[str, np.ndarray] | None:
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            if str(z["__key__"]) != text:
+                return None
+            return {k: z[k] for k in z.files if k != "__key__"}
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+        return None
+
+
+def _atomic_write(path: Path, arrays: Mapping[str, np.ndarray], text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".npz", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            np.savez(fh, __key__=np.array(text), **arrays)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _record(root: Path, kind: str, hits: int, misses: int) -> None:
+    stats = root / _STATS
+    stats.mkdir(parents=True, exist_ok=True)
+    rec = {"time": time.time(), "kind": kind, "hits": hits, "misses": misses, "pid": os.getpid()}
+    _atomic_write_text(stats / f"{time.time_ns()}-{os.getpid()}-{kind}.json", json.dumps(rec))
+
+
+def _atomic_write_text(path: Path, text: str) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
+    with os.fdopen(fd, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
+
+
+def _as_store(a) -> np.ndarray:
+    a = np.asarray(a)
+    return a.astype(str) if a.dtype.kind in "OSU" else a
+
+
+def cached_points(
+    kind: str,
+    key: Mapping,
+    d_over_d0,
+    compute: Callable[[np.ndarray], Mapping[str, np.ndarray]],
+    root: str | Path = DEFAULT_ROOT,
+) -> dict[str, np.ndarray]:
+    """Per-point results for every d/d0, computing only the points not yet stored.
+
+    Parameters
+    ----------
+    kind : str
+        What is cached (a directory name), e.g. ``"bulk"``, ``"surface_mode"``, ``"entropy"``.
+    key : mapping
+        Everything besides d/d0 that determines the value (lattice, loading, potential,
+        direction, method, accuracy settings, theta grid, ...); JSON-able values.
+    d_over_d0 : array_like, shape (n,)
+    compute : callable
+        ``compute(d_missing) -> {name: array with leading axis len(d_missing)}``; called at
+        most once, with the missing points only (in order, without duplicates).
+    root : path
+        Directory of the store (default ``results/cache``).
+
+    Returns
+    -------
+    dict
+        name -> array with leading axis n, in the order of ``d_over_d0``.
+    """
+    if not kind or "/" in kind or kind.startswith("."):
+        raise InputError(f"cache kind must be a plain directory name, got {kind!r}")
+    root = Path(root)
+    d = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    ids = [point_key(kind, key, x) for x in d]
+    found: dict[str, dict] = {}
+    for digest, text in ids:
+        if digest not in found:
+            entry = _read(_entry_path(root, kind, digest), text)
+            if entry is not None:
+                found[digest] = entry
+    missing_idx, seen = [], set()
+    for i, (digest, _) in enumerate(ids):
+        if digest not in found and digest not in seen:
+            missing_idx.append(i)
+            seen.add(digest)
+    if missing_idx:
+        result = compute(d[missing_idx])
+        for j, i in enumerate(missing_idx):
+            arrays = {k: _as_store(v)[j] for k, v in result.items()}
+            digest, text = ids[i]
+            _atomic_write(_entry_path(root, kind, digest), arrays, text)
+            found[digest] = {k: np.asarray(v) for k, v in arrays.items()}
+    _record(root, kind, hits=len(d) - len(missing_idx), misses=len(missing_idx))
+    names = list(found[ids[0][0]])
+    return {k: np.stack([found[digest][k] for digest, _ in ids]) for k in names}
+
+
+def start_run(root: str | Path = DEFAULT_ROOT) -> None:
+    """Mark the start of a workflow run: :func:`info` counts hits and misses from here."""
+    root = Path(root)
+    (root / _STATS).mkdir(parents=True, exist_ok=True)
+    _atomic_write_text(root / _STATS / _RUN_MARKER, json.dumps({"time": time.time()}))
+
+
+def info(root: str | Path = DEFAULT_ROOT) -> dict:
+    """Summary of the store.
+
+    Returns
+    -------
+    dict
+        ``entries`` (int), ``size`` (bytes), ``kinds`` ({kind: entries}), ``hits`` and
+        ``misses`` of the last run (since the last :func:`start_run`; the last call of
+        :func:`cached_points` per kind if no run was marked), ``stale_temporary`` (files
+        left by killed jobs), ``root``.
+    """
+    root = Path(root)
+    out = {"root": str(root), "entries": 0, "size": 0, "kinds": {}, "hits": 0, "misses": 0,
+           "stale_temporary": 0}
+    if not root.is_dir():
+        return out
+    for kind_dir in sorted(p for p in root.iterdir() if p.is_dir() and p.name != _STATS):
+        n = 0
+        for f in kind_dir.iterdir():
+            if f.name.startswith(".tmp-"):
+                out["stale_temporary"] += 1
+            elif f.suffix == ".npz":
+                n += 1
+                out["size"] += f.stat().st_size
+        out["kinds"][kind_dir.name] = n
+        out["entries"] += n
+    records = []
+    stats = root / _STATS
+    if stats.is_dir():
+        for f in stats.glob("*.json"):
+            try:
+                records.append(json.loads(f.read_text()))
+            except (OSError, ValueError):
+                continue
+    marker = stats / _RUN_MARKER
+    since = None
+    if marker.exists():
+        try:
+            since = json.loads(marker.read_text())["time"]
+        except (OSError, ValueError, KeyError):
+            since = None
+    if since is not None:
+        chosen = [r for r in records if r["time"] >= since]
+    else:
+        last: dict[str, dict] = {}
+        for r in sorted(records, key=lambda r: r["time"]):
+            last[r["kind"]] = r
+        chosen = list(last.values())
+    out["hits"] = sum(r["hits"] for r in chosen)
+    out["misses"] = sum(r["misses"] for r in chosen)
+    return out
+
+
+def clear(root: str | Path = DEFAULT_ROOT) -> int:
+    """Delete every entry (and statistics and stray temporary files); return the entries removed."""
+    root = Path(root)
+    if not root.is_dir():
+        return 0
+    removed = 0
+    for kind_dir in [p for p in root.iterdir() if p.is_dir()]:
+        for f in kind_dir.iterdir():
+            if f.is_file():
+                if f.suffix == ".npz" and not f.name.startswith(".tmp-") and kind_dir.name != _STATS:
+                    removed += 1
+                f.unlink(missing_ok=True)
+        try:
+            kind_dir.rmdir()
+        except OSError:
+            pass
+    return removed

@@ -1,0 +1,219 @@
+"""Result cubes: labelled xarray Datasets with CF attributes and provenance, netCDF I/O.
+
+The cubes are the public interface (DESIGN.md): dims (potential, direction, strain),
+(potential, strain, theta[, row]) or (potential, strain); ``strain`` = d/d0 - 1 with the
+auxiliary coordinate ``d_over_d0``. Every numeric variable carries ``long_name`` and
+``units``, string and flag variables a ``long_name``. Files are written atomically
+(temporary file + ``os.replace``) with an explicit engine; complex values are native.
+
+Examples
+--------
+>>> import numpy as np
+>>> meta = {"c2_R": {"long_name": "Rayleigh speed squared", "units": "K d0^2 / m", "dims": ()}}
+>>> blocks = {("lj", "[100]"): {"c2_R": np.array([0.5, 0.6])}}
+>>> ds = build(blocks, {"potential": ["lj"], "direction": ["[100]"]}, [0.99, 1.0], meta)
+>>> ds.c2_R.dims, float(ds.strain[0])
+(('potential', 'direction', 'strain'), -0.01)
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import subprocess
+import tempfile
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from . import __version__
+from .errors import InputError
+
+#: netCDF engine used on write and read (complex numbers supported natively).
+ENGINE = "h5netcdf"
+CONVENTIONS = "CF-1.10"
+
+COORDS: dict[str, dict[str, str]] = {
+    "potential": {"long_name": "pair potential (surfwave.potentials registry name)"},
+    "direction": {"long_name": "propagation direction x (crystal axes; [10]: triangular rows)"},
+    "strain": {"long_name": "strain along the propagation direction, d/d0 - 1", "units": "1"},
+    "d_over_d0": {"long_name": "stretch along the propagation direction, d/d0", "units": "1"},
+    "theta": {"long_name": "reduced wave number theta = k d_x", "units": "rad"},
+    "row": {"long_name": "atomic row below the surface (0 = surface row)", "units": "1"},
+}
+
+
+def strain_coords(d_over_d0) -> dict[str, Any]:
+    """Coordinates ``strain`` (index, = d/d0 - 1, rounded to 12 decimals) and ``d_over_d0``."""
+    d = np.asarray(d_over_d0, dtype=float)
+    strain = np.round(d - 1.0, 12)
+    return {
+        "strain": ("strain", strain, COORDS["strain"]),
+        "d_over_d0": ("strain", d, COORDS["d_over_d0"]),
+    }
+
+
+def _as_var(values: np.ndarray):
+    a = np.asarray(values)
+    if a.dtype.kind in "OSU":
+        a = a.astype(str)
+    return a
+
+
+def build(
+    blocks: Mapping[tuple, Mapping[str, np.ndarray]],
+    outer: Mapping[str, list],
+    d_over_d0,
+    variables: Mapping[str, Mapping[str, Any]],
+    coords: Mapping[str, Any] | None = None,
+    skip: tuple[str, ...] = (),
+) -> xr.Dataset:
+    """Stack per-(outer label) results into one cube.
+
+    Parameters
+    ----------
+    blocks : mapping
+        (label, ...) -> {name: array with leading strain axis}; one key per combination of
+        the ``outer`` labels, in the order of ``outer``'s dims.
+    outer : mapping
+        Outer dims and their labels, e.g. {"potential": [...], "direction": [...]}.
+    d_over_d0 : array_like, shape (n,)
+    variables : mapping
+        name -> {"long_name", "units" (numeric only), "dims" (after the strain axis)}.
+        Every array in ``blocks`` needs an entry, unless listed in ``skip``.
+    coords : mapping, optional
+        Extra index coordinates of inner dims, e.g. {"theta": theta, "row": rows}.
+    skip : tuple of str
+        Names in ``blocks`` not to write.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims outer + ("strain",) + each variable's inner dims.
+
+    Raises
+    ------
+    InputError
+        A variable without metadata, or a block missing.
+    """
+    dims = list(outer)
+    labels = [list(outer[d]) for d in dims]
+    keys = list(np.ndindex(*[len(x) for x in labels]))
+    names = None
+    stacked: dict[str, list] = {}
+    for idx in keys:
+        key = tuple(labels[a][i] for a, i in enumerate(idx))
+        if key not in blocks:
+            raise InputError(f"no results for {dict(zip(dims, key))}")
+        block = {k: v for k, v in blocks[key].items() if k not in skip}
+        if names is None:
+            names = list(block)
+            missing = [n for n in names if n not in variables]
+            if missing:
+                raise InputError(f"variables without metadata (long_name, units, dims): {missing}")
+        for n in names:
+            stacked.setdefault(n, []).append(_as_var(block[n]))
+    data_vars = {}
+    shape = [len(x) for x in labels]
+    for n, arrays in stacked.items():
+        meta = dict(variables[n])
+        inner = tuple(meta.pop("dims", ()))
+        arr = np.stack(arrays).reshape(shape + list(arrays[0].shape))
+        vdims = tuple(dims) + ("strain",) + inner
+        if arr.ndim != len(vdims):
+            raise InputError(f"variable {n!r} has shape {arr.shape[len(dims):]}, expected dims {vdims[len(dims):]}")
+        if arr.dtype.kind in "bU":
+            meta.pop("units", None)
+        data_vars[n] = (vdims, arr, meta)
+    all_coords: dict[str, Any] = {d: (d, np.asarray(labels[a]), COORDS.get(d, {})) for a, d in enumerate(dims)}
+    all_coords.update(strain_coords(d_over_d0))
+    for name, values in (coords or {}).items():
+        all_coords[name] = (name, np.asarray(values), COORDS.get(name, {}))
+    return xr.Dataset(data_vars, coords=all_coords)
+
+
+def git_commit() -> str | None:
+    """The commit of the surfwave source tree ("-dirty" if tracked files changed), or None."""
+    here = Path(__file__).resolve().parent
+    try:
+        head = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True,
+                              text=True, timeout=5, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(here), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=5, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return head + ("-dirty" if dirty else "") if head else None
+
+
+def provenance(
+    ds: xr.Dataset,
+    *,
+    title: str,
+    params: Mapping[str, Any],
+    rule: str,
+    method: str,
+    extra: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """Set the global attributes (CF + provenance) of a cube and return it.
+
+    ``params`` are the job's parameters (:func:`surfwave.scenes.job_params`): they are
+    recorded as the ``scene`` attribute (JSON) and hashed into ``config_hash``; their
+    ``accuracy`` block is recorded as ``accuracy`` (JSON). Dicts in ``extra`` become JSON.
+    """
+    from .scenes import params_hash
+
+    chash = params_hash(dict(params))
+    now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    attrs = {
+        "Conventions": CONVENTIONS,
+        "title": title,
+        "source": f"surfwave {__version__}",
+        "history": f"{now}: written by Snakemake rule {rule!r} (surfwave {__version__}), config hash {chash}",
+        "institution": "surfwave workflow",
+        "references": "Rayleigh waves in prestressed crystals, Phys. Rev. B (seed paper); PHYSICS.md",
+        "scene": json.dumps(dict(params), sort_keys=True),
+        "scene_name": str(params.get("scene", "")),
+        "config_hash": chash,
+        "method": method,
+        "accuracy": json.dumps(params.get("accuracy", {}), sort_keys=True),
+        "units_note": "reduced units: d0 = 1, m = 1, K = phi''(d0) = 1",
+    }
+    commit = git_commit()
+    if commit:
+        attrs["git_commit"] = commit
+    for k, v in (extra or {}).items():
+        attrs[k] = json.dumps(v, sort_keys=True) if isinstance(v, (dict, list, tuple)) else v
+    ds.attrs.update(attrs)
+    return ds
+
+
+def write(ds: xr.Dataset, path: str | Path) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary file in the same directory + os.replace)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine=ENGINE)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:
+    """Open a result cube (explicit engine; complex values come back as complex).
+
+    Examples
+    --------
+    >>> ds = open_cube("results/table1/rayleigh.nc")               # doctest: +SKIP
+    >>> ds.c2_R.sel(potential="lj", direction="[110]", strain=0.0)  # doctest: +SKIP
+    """
+    ds = xr.open_dataset(path, engine=ENGINE)
+    if load:
+        with ds:
+            return ds.load()
+    return ds

@@ -1,0 +1,263 @@
+"""Rayleigh (surface) wave velocity of a prestressed crystal, long-wave limit.
+
+The sagittal problem along x on a surface normal to y, with mirror symmetry so that the
+shear-horizontal motion decouples, depends on five stress derivatives (Eq. 17):
+
+    a = S_xxxx, b = S_xyxy, c = S_xyyx, d = S_yyyy, f = S_yyxx,   X = rho c_R^2.
+
+Partial waves u ~ exp(i k x - k kappa y) (y into the crystal) have
+
+    b d kappa^4 - [b (c - X) + d (a - X) - (f + b)^2] kappa^2 + (a - X)(c - X) = 0,
+
+and the free-surface condition, after dividing out the trivial factor (kappa_1 - kappa_2), is
+
+    G(X) = A M + A N (s + p) - f M p + f N p^2 = 0,
+    A = a - X, M = f (f + b) - d A, N = d b, s = kappa_1^2 + kappa_2^2, p = kappa_1 kappa_2.
+
+Squaring away the sign of p gives the cubic Eq. (17), whose extra roots belong to p < 0
+(partial waves that grow into the crystal). We find the roots of Eq. (17) in closed form,
+keep those in 0 < X < min(a, c) whose two kappa have positive real part (complex allowed),
+and accept one only if it satisfies the *unsquared* G(X) = 0 with p > 0.
+
+The initial stress enters through S (Eq. A11); the traction condition uses C_iykl, which
+equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, PHYSICS.md).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: Metadata of the arrays this module produces.
+VARIABLES: dict[str, dict] = {
+    "c2_R": {"long_name": "squared Rayleigh (surface) wave speed, long-wave limit (Eq. 17)",
+             "units": "K d0^2 / m", "dims": ()},
+    "wave_type": {"long_name": "kind of sagittal surface wave: surface, supersonic_decoupled "
+                  "(faster than the SH bulk wave; exists by mirror symmetry) or none",
+                  "dims": ()},
+    "reason": {"long_name": "why c2_R is NaN (empty if it is not)", "dims": ()},
+    "kappa1": {"long_name": "first decay constant kappa of the surface wave (per k)",
+               "units": "1", "dims": ()},
+    "kappa2": {"long_name": "second decay constant kappa of the surface wave (per k)",
+               "units": "1", "dims": ()},
+}
+
+WAVE_TYPES = ("surface", "supersonic_decoupled", "none")
+
+REASON_SHEAR = "no surface wave: c_T,par^2 <= 0 (shear instability along the surface)"
+REASON_PERP = "no surface wave: S_yyyy <= 0 or S_xyxy <= 0 (unstable normal to the surface)"
+REASON_NOROOT = ("no root of Eq. (17) in 0 < rho c^2 < min(S_xxxx, S_xyyx) satisfies the "
+                 "unsquared boundary condition with decaying partial waves")
+
+
+def _cubic_roots(c3, c2, c1, c0) -> np.ndarray:
+    """All three complex roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3).
+
+    Closed form (Cardano with the numerically larger branch), then two Newton steps.
+    Points with a vanishing leading coefficient fall back to numpy.roots.
+    """
+    c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
+    scale = np.maximum.reduce([np.abs(c3), np.abs(c2), np.abs(c1), np.abs(c0)])
+    scale = np.where(scale > 0, scale, 1.0)
+    degenerate = np.abs(c3) < 1e-13 * scale
+    with np.errstate(all="ignore"):
+        lead = np.where(degenerate, 1.0, c3)
+        B, C, D = c2 / lead, c1 / lead, c0 / lead
+        p = C - B**2 / 3.0
+        q = 2.0 * B**3 / 27.0 - B * C / 3.0 + D
+        disc = np.sqrt((q**2 / 4.0 + p**3 / 27.0).astype(complex))
+        w1, w2 = -q / 2.0 + disc, -q / 2.0 - disc
+        w = np.where(np.abs(w1) >= np.abs(w2), w1, w2)
+        u = w ** (1.0 / 3.0)
+        omega = np.exp(2j * np.pi / 3.0)
+        roots = []
+        for k in range(3):
+            uk = u * omega**k
+            y = np.where(np.abs(uk) > 0, uk - p / (3.0 * uk), 0.0)
+            roots.append(y - B / 3.0)
+        x = np.stack(roots, axis=-1)
+        for _ in range(2):  # polish on the monic cubic
+            Bx, Cx, Dx = B[..., None], C[..., None], D[..., None]
+            f = ((x + Bx) * x + Cx) * x + Dx
+            df = (3.0 * x + 2.0 * Bx) * x + Cx
+            x = np.where(np.abs(df) > 0, x - f / df, x)
+    if degenerate.any():
+        for idx in zip(*np.nonzero(degenerate)):
+            r = np.roots([c3[idx], c2[idx], c1[idx], c0[idx]])
+            x[idx] = np.concatenate([r, np.full(3 - r.size, np.nan)])
+    return x
+
+
+def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
+    """Coefficients (c3, c2, c1, c0) of Eq. (17) as a cubic polynomial in X = rho c_R^2.
+
+    (X - c)[d (X - a) + f^2]^2 - b d (X - a)[(X - c) + b]^2.
+    """
+    g = f * f - d * a
+    h = b - c
+    c3 = d * d - b * d
+    c2 = 2 * d * g - c * d * d - b * d * (2 * h - a)
+    c1 = g * g - 2 * c * d * g - b * d * (h * h - 2 * a * h)
+    c0 = -c * g * g + b * d * a * h * h
+    return c3, c2, c1, c0
+
+
+def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
+    """The two decay constants kappa (principal square roots, Re >= 0) at X = rho c^2.
+
+    Returns
+    -------
+    kappa1, kappa2 : complex ndarray, broadcast shape of the inputs
+        Ordered so that |kappa1| >= |kappa2|.
+    """
+    X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
+    e = f + b
+    bd = b * d
+    with np.errstate(all="ignore"):
+        s = (b * (c - X) + d * (a - X) - e * e) / bd
+        p2 = (a - X) * (c - X) / bd
+        root = np.sqrt((s * s - 4 * p2).astype(complex))
+        k2a = (s + root) / 2
+        k2b = np.where(np.abs(k2a) > 0, p2 / k2a, (s - root) / 2)  # Vieta: stable small root
+    return np.sqrt(k2a.astype(complex)), np.sqrt(k2b.astype(complex))
+
+
+def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
+    """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale."""
+    X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
+    e = f + b
+    A = a - X
+    M = f * e - d * A
+    N = d * b
+    with np.errstate(all="ignore"):
+        s = (b * (c - X) + d * (a - X) - e * e) / N
+        p = np.sqrt((A * (c - X) / N).astype(complex)).real
+    terms = (A * M, A * N * (s + p), -f * M * p, f * N * p * p)
+    G = sum(terms)
+    scale = sum(np.abs(t) for t in terms)
+    return G, scale
+
+
+def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
+    """Rayleigh velocity with root selection and wave type, vectorised over leading axes.
+
+    Parameters
+    ----------
+    S : ndarray, shape (..., d, d, d, d), d = 2 or 3
+        Stress derivatives (Eq. A11) in the lab frame (x propagation, y surface normal).
+    rho : float or ndarray broadcastable to S.shape[:-4]
+        Density in the units of S (1 when S is V S and m = 1).
+    c2_SH : ndarray, optional
+        Squared SH bulk speed; defaults to S_xzzx / rho for d = 3, none for d = 2.
+    rtol : float
+        Relative tolerance on the unsquared boundary condition G(X) = 0.
+
+    Returns
+    -------
+    dict
+        ``c2_R`` (float, NaN where none), ``wave_type`` (str), ``reason`` (str, "" if fine),
+        ``kappa1``, ``kappa2`` (complex), all shape S.shape[:-4].
+    """
+    S = np.asarray(S, dtype=float)
+    rho = np.asarray(rho, dtype=float)
+    a = S[..., 0, 0, 0, 0]
+    b = S[..., 0, 1, 0, 1]
+    c = S[..., 0, 1, 1, 0]
+    d = S[..., 1, 1, 1, 1]
+    f = S[..., 1, 1, 0, 0]
+    if c2_SH is None:
+        c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(a.shape, np.nan)
+    c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), a.shape)
+
+    roots = _cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3)
+    A5 = [v[..., None] for v in (a, b, c, d, f)]
+    a_, b_, c_, d_, f_ = A5
+    upper = np.minimum(a_, c_)
+    X = roots.real
+    with np.errstate(all="ignore"):
+        real = np.abs(roots.imag) <= 1e-9 * np.maximum(np.abs(roots), np.abs(upper))
+        inside = real & (X > 0) & (X < upper) & (b_ > 0) & (d_ > 0)
+        # Polish the candidates on the unsquared condition (secant-free Newton via finite step).
+        Xs = np.where(inside, X, 0.5 * np.abs(upper))
+        for _ in range(2):
+            G, _ = boundary_function(Xs, *A5)
+            h = 1e-7 * np.maximum(np.abs(upper), 1e-30)
+            Gp, _ = boundary_function(Xs + h, *A5)
+            dG = (Gp - G) / h
+            step = np.where((dG != 0) & inside, G / dG, 0.0)
+            step = np.clip(step, -1e-3 * np.abs(upper), 1e-3 * np.abs(upper))
+            Xs = np.where(inside, Xs - step, Xs)
+        G, scale = boundary_function(Xs, *A5)
+        k1, k2 = decay_constants(Xs, *A5)
+        decaying = (k1.real > 0) & (k2.real > 0)
+        ok = inside & (Xs > 0) & (Xs < upper) & decaying & (np.abs(G) <= rtol * scale)
+    # Among admissible roots (normally exactly one), take the best boundary residual.
+    badness = np.where(ok, np.abs(G) / np.where(scale > 0, scale, 1.0), np.inf)
+    best = np.argmin(badness, axis=-1)
+    has = np.take_along_axis(ok, best[..., None], -1)[..., 0]
+    Xr = np.take_along_axis(Xs, best[..., None], -1)[..., 0]
+    K1 = np.take_along_axis(k1, best[..., None], -1)[..., 0]
+    K2 = np.take_along_axis(k2, best[..., None], -1)[..., 0]
+    c2_R = np.where(has, Xr / rho, np.nan)
+    nan_c = complex(np.nan, np.nan)
+    reason = np.full(a.shape, "", dtype=object)
+    reason = np.where(~has, REASON_NOROOT, reason)
+    reason = np.where(~has & ((b <= 0) | (d <= 0)), REASON_PERP, reason)
+    reason = np.where(~has & (c <= 0), REASON_SHEAR, reason)
+    wave_type = np.where(has, np.where(np.isfinite(c2_SH) & (c2_R >= c2_SH), "supersonic_decoupled", "surface"), "none")
+    return {
+        "c2_R": c2_R,
+        "wave_type": wave_type.astype(object),
+        "reason": reason.astype(object),
+        "kappa1": np.where(has, K1, nan_c),
+        "kappa2": np.where(has, K2, nan_c),
+    }
+
+
+def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
+    """Squared Rayleigh speed from the stress derivatives; NaN where no surface wave exists.
+
+    Parameters
+    ----------
+    S : ndarray, shape (..., d, d, d, d)
+        Lab-frame stress derivatives (Eq. A11); times V with ``rho = 1`` in reduced units.
+    rho : float or ndarray broadcastable to S.shape[:-4]
+
+    Returns
+    -------
+    ndarray, shape S.shape[:-4]
+        c_R^2 in the units of S / rho. Supersonic decoupled sagittal waves are included
+        (see :func:`solve` for the wave type).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> S = np.zeros((2, 2, 2, 2))        # isotropic, lambda = mu = 1
+    >>> S[0,0,0,0] = S[1,1,1,1] = 3.0
+    >>> S[0,1,0,1] = S[0,1,1,0] = S[1,1,0,0] = 1.0
+    >>> round(float(rayleigh_c2(S)), 6)  # 2 - 2/sqrt(3)
+    0.845299
+    """
+    return solve(S, rho)["c2_R"]
+
+
+def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
+    """Eq. (20): c_R^2 from the four sound speeds when S_xyxy = S_yyxx (pair forces, sigma_yy = 0)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return 0.5 * (c2_L_par + c2_T_par) - 0.5 * np.sqrt(
+            (c2_L_par - c2_T_par) ** 2 + 4.0 * c2_T_perp**3 / c2_L_perp
+        )
+
+
+def triangular_c2(d_over_d0) -> np.ndarray:
+    """Eq. (16): (m / K d0^2) c_R^2 of the harmonic triangular lattice, x = d_x/d0 = d_over_d0/2."""
+    x = 0.5 * np.asarray(d_over_d0, dtype=float)
+    return 5 * x**2 - x - np.sqrt(4 * x**5 + x**4 - 2 * x**3 + x**2)
+
+
+def unstressed_residual(gamma, C11, C12, C44, C22=None) -> np.ndarray:
+    """Eq. (21) residual, gamma = rho c_R^2 / C44 (Voigt constants; C22 defaults to C11).
+
+    gamma^2 (gamma - C11/C44) - (C22/C44)(gamma - 1)[gamma - C11/C44 + C12^2/(C22 C44)]^2.
+    """
+    C22 = C11 if C22 is None else C22
+    g = np.asarray(gamma, dtype=float)
+    return g**2 * (g - C11 / C44) - (C22 / C44) * (g - 1) * (g - C11 / C44 + C12**2 / (C22 * C44)) ** 2

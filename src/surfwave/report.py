@@ -1,0 +1,345 @@
+"""Reproduction report: the paper's printed numbers and claims beside ours.
+
+Everything here is computed from the result cubes (``results/<scene>/<cube>.nc``) and the
+paper's printed values in ``surfwave/data/paper_values.yaml`` (the only hand-typed numbers,
+each with its source and tolerance). A cube that is missing makes its lines read
+"not computed"; nothing here raises on missing data.
+
+Verdicts: ``PASS``, ``FAIL``, ``INCONCLUSIVE`` (the cube exists but its grid does not reach
+what the claim needs) and ``not computed``.
+
+Examples
+--------
+>>> from surfwave.report import write_report
+>>> write_report(["results/table1/elastic.nc", "results/table1/rayleigh.nc"],
+...              "results/report.md")  # doctest: +SKIP
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+from importlib import resources
+from pathlib import Path
+from typing import Iterable
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from . import report_checks as _claims
+from .report_checks import (
+    FAIL,
+    INCONCLUSIVE,
+    NOT_COMPUTED,
+    PASS,
+    Check,
+    fmt,
+    pick as _pick,
+    sel_strain,
+)
+
+CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
+
+
+# --------------------------------------------------------------------------- I/O helpers
+def load_paper_values(path: str | Path | None = None) -> dict:
+    """The paper's printed numbers (``surfwave/data/paper_values.yaml`` unless ``path``)."""
+    if path is None:
+        text = resources.files("surfwave").joinpath("data/paper_values.yaml").read_text()
+    else:
+        text = Path(path).read_text()
+    return yaml.safe_load(text)
+
+
+def open_cube(path: str | Path) -> xr.Dataset | None:
+    """Load a result cube into memory, or None when the file does not exist.
+
+    Uses ``surfwave.cube.open_cube`` when available, else h5netcdf, else netCDF4 with
+    ``auto_complex=True`` (complex variables).
+    """
+    path = Path(path)
+    if not path.is_file():
+        return None
+    try:
+        from .cube import open_cube as _open  # provided by the workflow stage
+    except ImportError:
+        _open = None
+    if _open is not None:
+        with _open(path) as ds:
+            return ds.load()
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return ds.load()
+    except Exception:  # noqa: BLE001 - fall back to the other engine
+        with xr.open_dataset(path, engine="netcdf4", auto_complex=True) as ds:
+            return ds.load()
+
+
+class Cubes:
+    """Lazy access to ``<scene>/<cube>`` result files; missing ones give None."""
+
+    def __init__(self, paths: Iterable[str | Path]):
+        self.paths = {f"{Path(p).parent.name}/{Path(p).stem}": Path(p) for p in paths}
+        self._cache: dict[str, xr.Dataset | None] = {}
+
+    @classmethod
+    def from_dir(cls, results: str | Path) -> "Cubes":
+        root = Path(results)
+        return cls(p for p in sorted(root.glob("*/*.nc")) if p.stem in CUBE_NAMES)
+
+    def get(self, scene: str, cube: str) -> xr.Dataset | None:
+        key = f"{scene}/{cube}"
+        if key not in self._cache:
+            path = self.paths.get(key)
+            self._cache[key] = open_cube(path) if path is not None else None
+        return self._cache[key]
+
+    def listing(self) -> list[tuple[str, str]]:
+        return [(k, str(p) if p.is_file() else f"{p} (missing)") for k, p in self.paths.items()]
+
+
+# --------------------------------------------------------------------------- Table I
+def table1_entries(elastic: xr.Dataset | None, rayleigh: xr.Dataset | None,
+                   paper_values: dict | None = None) -> list[dict]:
+    """Every printed entry of Table I beside ours.
+
+    Returns
+    -------
+    list of dict
+        One per printed number: ``d_over_d0``, ``key``, ``label``, ``paper``, ``ours``
+        (our [100] value, or the only direction compared), ``ours_by_direction``,
+        ``difference`` (ours - paper, the direction with the largest |difference|),
+        ``tolerance`` and ``verdict``.
+    """
+    pv = paper_values or load_paper_values()
+    spec = pv["table1"]
+    tol = float(spec["tolerance"]) + float(spec.get("slack", 0.0))
+    cubes = {"elastic": elastic, "rayleigh": rayleigh}
+    out = []
+    for row in spec["rows"]:
+        d = float(row[0])
+        for col, paper in zip(spec["columns"], row[1:]):
+            entry = {"d_over_d0": d, "key": col["key"], "label": col["label"],
+                     "paper": float(paper), "ours": None, "ours_by_direction": {},
+                     "difference": None, "tolerance": tol, "verdict": NOT_COMPUTED}
+            ds = cubes[col["cube"]]
+            if ds is not None and col["variable"] in ds:
+                da = _pick(ds[col["variable"]], "potential", spec["potential"])
+                for direction in col["directions"]:
+                    sub = None if da is None else _pick(da, "direction", direction)
+                    sub = None if sub is None else sel_strain(sub, d)
+                    if sub is not None:
+                        entry["ours_by_direction"][direction] = float(sub.values)
+            values = entry["ours_by_direction"]
+            if len(values) == len(col["directions"]):
+                diffs = [v - entry["paper"] for v in values.values()]
+                worst = max(diffs, key=lambda x: abs(x) if np.isfinite(x) else np.inf)
+                entry["ours"] = values[col["directions"][0]]
+                entry["difference"] = worst
+                ok = all(np.isfinite(x) and abs(x) <= tol for x in diffs)
+                entry["verdict"] = PASS if ok else FAIL
+            out.append(entry)
+    return out
+
+
+def table1_markdown(entries: list[dict], paper_values: dict | None = None) -> str:
+    """Table I as Markdown: paper beside ours, then ours - paper in units of 1e-4."""
+    pv = paper_values or load_paper_values()
+    cols = pv["table1"]["columns"]
+    by_row: dict[float, dict[str, dict]] = {}
+    for e in entries:
+        by_row.setdefault(e["d_over_d0"], {})[e["key"]] = e
+    head = "| d/d0 | " + " | ".join(f"{c['label']} paper | ours" for c in cols) + " |"
+    lines = ["Paper (printed) beside ours:", "", head,
+             "|" + "---|" * (1 + 2 * len(cols))]
+    for d, row in by_row.items():
+        cells = []
+        for c in cols:
+            e = row[c["key"]]
+            ours = "n/a" if e["ours"] is None else f"{e['ours']:.6f}"
+            cells += [f"{e['paper']:.4f}", ours]
+        lines.append(f"| {d:.2f} | " + " | ".join(cells) + " |")
+    lines += ["", "Ours - paper, in units of 1e-4 (a printed 4-decimal number is matched "
+              "within 0.5); failures in bold:", "",
+              "| d/d0 | " + " | ".join(c["label"] for c in cols) + " |",
+              "|" + "---|" * (1 + len(cols))]
+    for d, row in by_row.items():
+        cells = []
+        for c in cols:
+            e = row[c["key"]]
+            if e["difference"] is None:
+                cells.append("not computed")
+            else:
+                s = f"{e['difference'] * 1e4:+.2f}"
+                cells.append(f"**{s} FAIL**" if e["verdict"] == FAIL else s)
+        lines.append(f"| {d:.2f} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def table1(elastic_path, rayleigh_path, out_md, out_csv,
+           paper_values_path: str | Path | None = None) -> list[dict]:
+    """Write Table I (paper beside ours, difference, verdict) as Markdown and CSV.
+
+    Parameters
+    ----------
+    elastic_path, rayleigh_path : path
+        ``results/table1/elastic.nc`` and ``rayleigh.nc`` (missing -> "not computed").
+    out_md, out_csv : path
+        Outputs. The CSV is long-format, one printed number per line.
+
+    Returns
+    -------
+    list of dict
+        The entries (see `table1_entries`).
+    """
+    pv = load_paper_values(paper_values_path)
+    entries = table1_entries(open_cube(elastic_path), open_cube(rayleigh_path), pv)
+    n_fail = sum(e["verdict"] == FAIL for e in entries)
+    n_nc = sum(e["verdict"] == NOT_COMPUTED for e in entries)
+    title = (f"# Table I: {pv['table1']['source']}\n\n"
+             f"{len(entries)} printed numbers: {len(entries) - n_fail - n_nc} PASS, "
+             f"{n_fail} FAIL, {n_nc} not computed.\n\n")
+    Path(out_md).write_text(title + table1_markdown(entries, pv))
+    with open(out_csv, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["d_over_d0", "quantity", "label", "paper", "ours_100", "ours_110",
+                    "difference", "tolerance", "verdict"])
+        for e in entries:
+            by = e["ours_by_direction"]
+            w.writerow([f"{e['d_over_d0']:.2f}", e["key"], e["label"], f"{e['paper']:.4f}",
+                        "" if "[100]" not in by else repr(by["[100]"]),
+                        "" if "[110]" not in by else repr(by["[110]"]),
+                        "" if e["difference"] is None else repr(e["difference"]),
+                        repr(e["tolerance"]), e["verdict"]])
+    return entries
+
+
+def _table1_check(entries: list[dict], source: str) -> Check:
+    fails = [e for e in entries if e["verdict"] == FAIL]
+    done = [e for e in entries if e["difference"] is not None]
+    if not done:
+        verdict = NOT_COMPUTED
+    else:
+        verdict = FAIL if fails else (PASS if len(done) == len(entries) else INCONCLUSIVE)
+    worst = max((abs(e["difference"]) for e in done if np.isfinite(e["difference"])),
+                default=None)
+    evidence = "; ".join(f"d/d0={e['d_over_d0']:.2f} {e['label']}: paper {e['paper']:.4f}, "
+                         f"ours {fmt(e['ours'])}" for e in fails)
+    return Check("Table I (all entries)", source, f"{len(entries)} numbers",
+                 f"{len(done)} computed, {len(fails)} outside tolerance",
+                 "" if worst is None else f"max abs {worst:.2e}",
+                 f"{entries[0]['tolerance']:.2e}" if entries else "", verdict, evidence)
+
+
+# --------------------------------------------------------------------------- report
+def build_checks(cubes: Cubes, paper_values: dict | None = None) -> tuple[list[Check], list[Check], list[dict]]:
+    """All checks: (printed-number checks, claim checks, Table I entries)."""
+    pv = paper_values or load_paper_values()
+    spec = pv["table1"]
+    entries = table1_entries(cubes.get(spec["scene"], "elastic"),
+                             cubes.get(spec["scene"], "rayleigh"), pv)
+    numbers = [_table1_check(entries, spec["source"])]
+    for name, vspec in pv["values"].items():
+        numbers += _claims.value_checks(name, vspec, cubes)
+    claims = []
+    for name, cspec in pv["claims"].items():
+        claims += _claims.claim_checks(name, cspec, cubes)
+    return numbers, claims, entries
+
+
+def _title(c: Check) -> str:
+    return f"{c.name} [{c.label}]" if c.label else c.name
+
+
+def render(numbers: list[Check], claims: list[Check], entries: list[dict], cubes: Cubes,
+           paper_values: dict) -> str:
+    """The report as Markdown."""
+    every = numbers + claims
+    verdicts = (PASS, FAIL, INCONCLUSIVE, NOT_COMPUTED)
+    counts = {v: sum(c.verdict == v for c in every) for v in verdicts}
+    out = ["# Reproduction report", "",
+           f"Paper: {paper_values['paper'].strip()}.", "",
+           "Built by `surfwave.report` from the result cubes and the paper's printed numbers "
+           "(`src/surfwave/data/paper_values.yaml`, each with its source and tolerance); "
+           "no other number is typed in. INCONCLUSIVE: the cube exists but its grid does not "
+           "reach what the check needs.", "",
+           "Summary: " + ", ".join(f"{n} {v}" for v, n in counts.items()) + ".", "",
+           "## Printed numbers", "",
+           "| Check | Paper | Ours | Ours - paper | Tolerance | Verdict |",
+           "|---|---|---|---|---|---|"]
+    for c in numbers:
+        out.append(f"| {_title(c)} | {c.paper} | {c.ours} | {c.difference} | "
+                   f"{c.tolerance} | {c.verdict} |")
+    out += ["", "Sources and evidence:", ""]
+    seen = set()
+    for c in numbers:
+        if c.name not in seen:
+            seen.add(c.name)
+            out.append(f"- {c.name}: {c.source}")
+        if c.evidence:
+            out.append(f"  - {_title(c)}: {c.evidence}")
+    out += ["", "## Table I", "", table1_markdown(entries, paper_values),
+            "## Claims of the paper", ""]
+    groups: dict[str, list[Check]] = {}
+    for c in claims:
+        groups.setdefault(c.name, []).append(c)
+    for name, items in groups.items():
+        out += [f"### {name}", "", f"Paper: {items[0].source}", "",
+                f"Criterion: {items[0].tolerance}", "",
+                "| Case | Verdict | Evidence |", "|---|---|---|"]
+        out += [f"| {c.label or '-'} | {c.verdict} | {c.evidence} |" for c in items] + [""]
+    out += ["## Where we disagree with the paper", ""]
+    fails = [c for c in every if c.verdict == FAIL]
+    out += [f"- **{_title(c)}** ({c.source}): {c.evidence or c.ours}" for c in fails] or ["None."]
+    out += ["", "## Cubes read", ""] + [f"- `{k}`: {p}" for k, p in cubes.listing()]
+    return "\n".join(out) + "\n"
+
+
+def write_report(cube_paths: Iterable[str | Path], out_md: str | Path,
+                 paper_values_path: str | Path | None = None) -> list[Check]:
+    """Write ``results/report.md`` from the given cubes; returns every check made."""
+    pv = load_paper_values(paper_values_path)
+    cubes = Cubes(cube_paths)
+    numbers, claims, entries = build_checks(cubes, pv)
+    Path(out_md).write_text(render(numbers, claims, entries, cubes, pv))
+    return numbers + claims
+
+
+def report_inputs(scenes: dict, results: str = "results") -> list[str]:
+    """The cubes the default report reads that the given scenes produce.
+
+    Parameters
+    ----------
+    scenes : dict
+        ``config["scenes"]``: scene name -> {"quantities": [...], ...}.
+    """
+    pv = load_paper_values()
+    wanted = {pv["table1"]["scene"]: {"elastic", "rayleigh"}}
+    for group in ("values", "claims"):
+        for spec in pv[group].values():
+            for scene in (spec.get("scene"), spec.get("reference_scene")):
+                if scene:
+                    wanted.setdefault(scene, set()).update(_claims.CUBES_NEEDED)
+    out = []
+    for scene, cubes in wanted.items():
+        have = set(scenes.get(scene, {}).get("quantities", []))
+        out += [f"{results}/{scene}/{c}.nc" for c in CUBE_NAMES if c in cubes and c in have]
+    return sorted(set(out))
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m surfwave.report [RESULTS] [--out results/report.md]``."""
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("results", nargs="?", default="results")
+    p.add_argument("--out", default=None)
+    a = p.parse_args(argv)
+    cubes = Cubes.from_dir(a.results)
+    out = a.out or str(Path(a.results) / "report.md")
+    write_report(cubes.paths.values(), out)
+    print(f"wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,506 @@
+"""The checks behind the reproduction report (`surfwave.report`).
+
+Each check reads the cubes through a ``Cubes`` object (``.get(scene, cube)`` -> Dataset or
+None) and a spec from ``paper_values.yaml`` and returns `Check` lines; missing data gives
+"not computed", never an exception. Criteria are stated in the YAML and repeated in the
+report.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+PASS, FAIL, INCONCLUSIVE, NOT_COMPUTED = "PASS", "FAIL", "INCONCLUSIVE", "not computed"
+CUBES_NEEDED = {"elastic", "rayleigh", "dispersion", "displacements", "entropy"}
+STRAIN_MATCH = 1e-6  # |d/d0 - wanted| below which a grid point is "the" point
+FCC_DIRECTIONS = ("[100]", "[110]")
+
+
+@dataclass
+class Check:
+    """One line of the report; ``paper``/``ours``/``difference`` are formatted strings."""
+
+    name: str
+    source: str
+    paper: str
+    ours: str
+    difference: str
+    tolerance: str
+    verdict: str
+    evidence: str = ""
+    label: str = ""
+
+
+def fmt(x, digits: int = 6) -> str:
+    """Format a number for the report ("n/a" for None/NaN)."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "n/a"
+    x = float(x)
+    return f"{x:.{digits}g}" if abs(x) >= 1e-3 or x == 0 else f"{x:.3e}"
+
+
+def d_over_d0(da: xr.DataArray) -> np.ndarray:
+    """The d/d0 values of ``da``'s strain axis."""
+    if "d_over_d0" in da.coords:
+        return np.asarray(da["d_over_d0"].values, dtype=float)
+    return np.asarray(da["strain"].values, dtype=float) + 1.0
+
+
+def sel_strain(da: xr.DataArray, value: float) -> xr.DataArray | None:
+    """The slice of ``da`` at d/d0 == ``value`` (within 1e-6), or None if not on the grid."""
+    hits = np.flatnonzero(np.abs(d_over_d0(da) - value) < STRAIN_MATCH)
+    return None if hits.size == 0 else da.isel(strain=int(hits[0]))
+
+
+def pick(da: xr.DataArray, dim: str, label: str) -> xr.DataArray | None:
+    """``da`` at the string label ``label`` of ``dim`` (None when absent)."""
+    if dim not in da.dims:
+        return da
+    labels = [str(v) for v in da[dim].values]
+    return da.isel({dim: labels.index(label)}) if label in labels else None
+
+
+def _potentials(ds: xr.Dataset) -> list[str]:
+    return [str(p) for p in ds["potential"].values] if "potential" in ds.dims else [""]
+
+
+def _nc(name: str, spec: dict, why: str = "") -> Check:
+    paper = fmt(spec["value"], 10) if "value" in spec and not isinstance(spec["value"], dict) else ""
+    return Check(name, spec.get("source", ""), paper, NOT_COMPUTED, "", "", NOT_COMPUTED, why)
+
+
+def _compare(name, spec, ours, evidence="", label="") -> Check:
+    paper = float(spec["value"])
+    tol = float(spec.get("tolerance", 0.0)) + float(spec.get("slack", 1e-12))
+    title = name
+    if ours is None or not np.isfinite(ours):
+        return Check(title, spec["source"], fmt(paper, 10), "n/a", "", f"{tol:.3g}", NOT_COMPUTED,
+                     evidence or "no finite value in the cube", label)
+    diff = float(ours) - paper
+    ok = ours >= paper - tol if spec.get("comparison") == "at_least" else abs(diff) <= tol
+    tol_s = (f">= {fmt(paper)}" if spec.get("comparison") == "at_least" else f"{tol:.3g}")
+    if spec.get("tolerance_reason"):
+        tol_s += f" ({spec['tolerance_reason'].strip()})"
+    return Check(title, spec["source"], fmt(paper, 10), fmt(ours, 10), f"{diff:+.3e}", tol_s,
+                 PASS if ok else FAIL, evidence, label)
+
+
+# --------------------------------------------------------------------------- printed values
+def _theta_c(ds: xr.Dataset) -> xr.DataArray | None:
+    """theta_c(potential, strain): from the cube, else the first theta where q is complex."""
+    if "theta_c" in ds:
+        return ds["theta_c"]
+    if "q1" not in ds or "q2" not in ds:
+        return None
+    cplx = (np.abs(ds["q1"].imag) > 1e-9) | (np.abs(ds["q2"].imag) > 1e-9)
+    theta = ds["theta"]
+    return theta.where(cplx).min("theta")
+
+
+def value_checks(name: str, spec: dict, cubes) -> list[Check]:
+    """Checks of one printed value (``values:`` in paper_values.yaml), one per potential."""
+    ds = cubes.get(spec["scene"], spec["cube"])
+    if ds is None:
+        return [_nc(name, spec, f"cube {spec['scene']}/{spec['cube']}.nc not computed")]
+    out = []
+    for pot in _potentials(ds):
+        sub = ds.sel(potential=pot) if pot else ds
+        try:
+            ours, evidence = _VALUE_GETTERS.get(name, _plain_value)(sub, spec)
+        except KeyError as exc:  # a variable or label the cube lacks
+            ours, evidence = None, f"not in the cube: {exc}"
+        out.append(_compare(name, spec, ours, evidence, pot))
+    return out
+
+
+def _plain_value(ds: xr.Dataset, spec: dict):
+    var = ds[spec["variable"]]
+    for dim, label in spec.get("select", {}).items():
+        if dim == "strain":
+            var = sel_strain(var, 1.0 + float(label))
+        else:
+            var = pick(var, dim, label)
+        if var is None:
+            raise KeyError(f"{dim}={label}")
+    ev = ""
+    err = f"{spec['variable']}_error"
+    if err in ds:
+        e = ds[err]
+        e = sel_strain(e, 1.0 + float(spec.get("select", {}).get("strain", 0.0))) if "strain" in e.dims else e
+        if e is not None:
+            ev = f"our error estimate {fmt(float(e.values))}"
+    return float(var.values), ev
+
+
+def _eq16_all(ds: xr.Dataset, spec: dict):
+    c2 = pick(ds[spec["variable"]], "direction", "[10]")
+    if c2 is None:
+        raise KeyError("direction=[10]")
+    x = d_over_d0(c2) / 2.0
+    eq16 = 5 * x**2 - x - np.sqrt(4 * x**5 + x**4 - 2 * x**3 + x**2)
+    dev = np.abs(np.asarray(c2.values, dtype=float) - eq16)
+    ok = np.isfinite(dev)
+    if not ok.any():
+        return None, "no finite c_R^2"
+    i = int(np.nanargmax(np.where(ok, dev, -1)))
+    return float(dev[ok].max()), (f"{ok.sum()} strain points; worst at d/d0 = "
+                                  f"{d_over_d0(c2)[i]:.4g}")
+
+
+def _theta_c_value(ds: xr.Dataset, spec: dict):
+    tc = _theta_c(ds)
+    if tc is None:
+        raise KeyError("theta_c (or q1, q2)")
+    tc0 = sel_strain(tc, 1.0)
+    if tc0 is None:
+        raise KeyError("strain=0")
+    ev = ""
+    if "theta" in ds.dims:
+        th = np.sort(np.asarray(ds["theta"].values, dtype=float))
+        ev = f"theta grid step {fmt(float(np.diff(th).max()), 3)} rad" if th.size > 1 else ""
+    val = float(tc0.values)
+    return val, f"theta_c = {val / math.pi:.4f} pi; {ev}".strip("; ")
+
+
+def _nine_layers(ds: xr.Dataset, spec: dict):
+    if "u" not in ds or "v" not in ds:
+        raise KeyError("u, v")
+    amp = np.sqrt(np.abs(ds["u"]) ** 2 + np.abs(ds["v"]) ** 2)
+    amp = sel_strain(amp, 1.0)
+    if amp is None:
+        raise KeyError("strain=0")
+    theta = np.asarray(amp["theta"].values, dtype=float)
+    it = int(np.argmin(np.abs(theta - float(spec["theta"]))))
+    rows = np.asarray(amp["row"].values)
+    row = int(spec["row"])
+    if row not in rows or 0 not in rows:
+        raise KeyError(f"row={row}")
+    a = amp.isel(theta=it)
+    ratio = float(a.sel(row=row).values / a.sel(row=0).values)
+    return ratio, (f"at theta = {theta[it] / math.pi:.4f} pi (nearest grid point to pi/20), "
+                   f"row {row} amplitude / surface amplitude")
+
+
+_VALUE_GETTERS = {
+    "eq16_all_strains": _eq16_all,
+    "theta_c_zero_stress": _theta_c_value,
+    "nine_layers_pi_over_20": _nine_layers,
+}
+
+
+# --------------------------------------------------------------------------- FCC curves
+def _fcc_curves(cubes, scene: str):
+    """Curves of an FCC scene: {(potential, direction): dict of 1D arrays sorted by strain}."""
+    el, ra = cubes.get(scene, "elastic"), cubes.get(scene, "rayleigh")
+    if el is None or ra is None:
+        return None
+    out = {}
+    for pot in _potentials(ra):
+        for direction in FCC_DIRECTIONS:
+            r = pick(ra.sel(potential=pot) if pot else ra, "direction", direction)
+            e = pick(el.sel(potential=pot) if pot else el, "direction", direction)
+            if r is None or e is None:
+                continue
+            s = d_over_d0(r) - 1.0
+            order = np.argsort(s)
+            curve = {"strain": s[order], "c2_R": np.asarray(r["c2_R"].values, float)[order]}
+            for k in ("c2_T_par", "stress", "stable"):
+                if k in e:
+                    curve[k] = np.asarray(e[k].values)[order]
+            out[(pot, direction)] = curve
+    return out
+
+
+def compressive_zero(strain: np.ndarray, y: np.ndarray) -> float | None:
+    """Strain (< 0) where ``y`` first reaches 0 (or stops being finite) going into compression.
+
+    Linear interpolation between grid points; when ``y`` turns NaN, linear extrapolation of
+    the last two positive points, clamped to the grid interval. None if ``y`` stays positive.
+    """
+    comp = np.flatnonzero(strain <= 1e-12)[::-1]  # from the smallest compression outwards
+    prev = None
+    for n, i in enumerate(comp):
+        if np.isfinite(y[i]) and y[i] > 0:
+            prev = i
+            continue
+        if prev is None:
+            return float(strain[i])
+        s1, y1 = strain[prev], y[prev]
+        if np.isfinite(y[i]):
+            return float(s1 + (strain[i] - s1) * y1 / (y1 - y[i]))
+        if n >= 2 and np.isfinite(y[comp[n - 2]]):
+            s2, y2 = strain[comp[n - 2]], y[comp[n - 2]]
+            if y2 != y1:
+                z = s1 - y1 * (s2 - s1) / (y2 - y1)
+                return float(min(max(z, strain[i]), s1))
+        return float(0.5 * (s1 + strain[i]))
+    return None
+
+
+def _stability_limit(c: dict) -> tuple[float | None, str]:
+    """Compressive stability limit: the first of c_T,par^2 = 0 and ``stable`` = False."""
+    limits, words = [], []
+    if "c2_T_par" in c:
+        z = compressive_zero(c["strain"], c["c2_T_par"])
+        if z is not None:
+            limits.append(z)
+            words.append(f"c_T,par^2 = 0 at strain {z:+.4f}")
+    if "stable" in c:
+        z = compressive_zero(c["strain"], np.where(c["stable"].astype(bool), 1.0, -1.0))
+        if z is not None:
+            limits.append(z)
+            words.append(f"bulk stability lost near strain {z:+.4f}")
+    return (max(limits) if limits else None), "; ".join(words)
+
+
+def _value_at_zero(c: dict, key: str) -> float | None:
+    i = np.flatnonzero(np.abs(c["strain"]) < STRAIN_MATCH)
+    return None if i.size == 0 else float(c[key][i[0]])
+
+
+def _softening(c: dict):
+    """(relative drop of c_R^2 at the largest tensile strain, min over tension, c0, s_end)."""
+    c0 = _value_at_zero(c, "c2_R")
+    t = (c["strain"] > STRAIN_MATCH) & np.isfinite(c["c2_R"])
+    if c0 is None or not t.any():
+        return None
+    y, s = c["c2_R"][t], c["strain"][t]
+    return (c0 - y[-1]) / c0, float(np.min(y)), c0, float(s[-1])
+
+
+# --------------------------------------------------------------------------- claims
+def claim_checks(name: str, spec: dict, cubes) -> list[Check]:
+    """Checks of one qualitative claim (``claims:`` in paper_values.yaml)."""
+    return _CLAIMS[name](name, spec, cubes)
+
+
+def _claim(name, spec, verdict, evidence, label="") -> Check:
+    return Check(name, spec["source"], "", "", "", spec.get("criterion", "").strip(),
+                 verdict, evidence, label)
+
+
+def _curves_or_nc(name, spec, cubes):
+    curves = _fcc_curves(cubes, spec["scene"])
+    if curves is None:
+        return None, [_claim(name, spec, NOT_COMPUTED,
+                             f"cubes {spec['scene']}/elastic.nc, rayleigh.nc not computed")]
+    return curves, []
+
+
+def _vanish(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    out = []
+    for (pot, d), c in curves.items():
+        s_r = compressive_zero(c["strain"], c["c2_R"])
+        s_t = compressive_zero(c["strain"], c.get("c2_T_par", np.full_like(c["c2_R"], np.nan)))
+        if s_r is None or s_t is None:
+            out.append(_claim(name, spec, INCONCLUSIVE, "grid does not reach c_R^2 = 0 "
+                              f"(got {fmt(s_r)}) and c_T,par^2 = 0 (got {fmt(s_t)})", f"{pot} {d}"))
+            continue
+        gap = s_r - s_t
+        ok = gap >= -1e-6 and gap <= spec["max_relative_gap"] * abs(s_t)
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"c_R^2 = 0 at strain {s_r:+.4f}, c_T,par^2 = 0 at {s_t:+.4f}: gap "
+                          f"{gap:.4f} = {abs(gap / s_t):.0%} of the instability strain",
+                          f"{pot} {d}"))
+    return out
+
+
+def _max_strain(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    out = []
+    for (pot, d), c in curves.items():
+        if pot not in spec["value"]:
+            continue
+        paper = float(spec["value"][pot])
+        lim, words = _stability_limit(c)
+        s_r = compressive_zero(c["strain"], c["c2_R"])
+        extra = f"; c_R^2 = 0 at strain {s_r:+.4f}" if s_r is not None else ""
+        if lim is None:
+            out.append(_claim(name, spec, INCONCLUSIVE, "no instability within the grid", f"{pot} {d}"))
+            continue
+        ok = abs(abs(lim) - paper) <= float(spec["tolerance"])
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"paper about {paper:.0%}; ours {abs(lim):.1%} ({words}){extra}",
+                          f"{pot} {d}"))
+    return out
+
+
+def _tension(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    out = []
+    for (pot, d), c in curves.items():
+        if pot not in spec["softens"]:
+            continue
+        soft = _softening(c)
+        if soft is None:
+            out.append(_claim(name, spec, INCONCLUSIVE, "no zero-stress point or no tension in the grid",
+                              f"{pot} {d}"))
+            continue
+        drop, ymin, c0, s_end = soft
+        softens = drop > spec["min_relative_drop"]
+        never_below = ymin >= c0 - 1e-9
+        ok = softens if spec["softens"][pot] else never_below
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"paper: {'softens' if spec['softens'][pot] else 'does not soften'}; "
+                          f"c_R^2 = {c0:.4f} at zero stress, {c0 * (1 - drop):.4f} at strain "
+                          f"{s_end:+.3f} ({-drop:+.0%}), minimum under tension {ymin:.4f}",
+                          f"{pot} {d}"))
+    return out
+
+
+def _faster_110(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    out = []
+    for pot in sorted({p for p, _ in curves}):
+        a, b = curves.get((pot, "[100]")), curves.get((pot, "[110]"))
+        if a is None or b is None or not np.array_equal(a["strain"], b["strain"]):
+            out.append(_claim(name, spec, NOT_COMPUTED, "needs [100] and [110] on one grid", pot))
+            continue
+        m = (a["strain"] < -STRAIN_MATCH) & (a["c2_R"] > 0) & (b["c2_R"] > 0)
+        if not m.any():
+            out.append(_claim(name, spec, INCONCLUSIVE, "no compressed point with both waves", pot))
+            continue
+        ratio = np.sqrt(b["c2_R"][m] / a["c2_R"][m])
+        big = a["c2_R"][m] >= 0.05
+        rmax = float(ratio[big].max()) if big.any() else float("nan")
+        ok = bool(ratio.min() >= 1 - 1e-9) and not (rmax > spec["max_ratio"])
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"c_R[110]/c_R[100] over {m.sum()} compressed points: min "
+                          f"{ratio.min():.4f}, max {rmax:.4f} (where c_R[100]^2 >= 0.05)", pot))
+    return out
+
+
+def _rapid_110(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    pot = spec["potential"]
+    a, b = curves.get((pot, "[100]")), curves.get((pot, "[110]"))
+    sa = None if a is None else _softening(a)
+    sb = None if b is None else _softening(b)
+    if sa is None or sb is None:
+        return [_claim(name, spec, NOT_COMPUTED, "needs both directions, zero stress and tension", pot)]
+    ok = sb[0] > sa[0]
+    return [_claim(name, spec, PASS if ok else FAIL,
+                   f"relative drop of c_R^2 at the largest tensile strain: [110] {sb[0]:.0%} "
+                   f"(strain {sb[3]:+.3f}), [100] {sa[0]:.0%} (strain {sa[3]:+.3f})", pot)]
+
+
+def _upper_bound(name, spec, cubes):
+    curves, nc = _curves_or_nc(name, spec, cubes)
+    if curves is None:
+        return nc
+    out = []
+    for (pot, d), c in curves.items():
+        if "c2_T_par" not in c:
+            out.append(_claim(name, spec, NOT_COMPUTED, "no c2_T_par", f"{pot} {d}"))
+            continue
+        m = np.isfinite(c["c2_R"]) & np.isfinite(c["c2_T_par"])
+        excess = c["c2_R"][m] - c["c2_T_par"][m]
+        worst = float(excess.max()) if m.any() else float("nan")
+        ok = m.any() and worst <= 1e-9
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"{m.sum()} points; max(c_R^2 - c_T,par^2) = {fmt(worst)}", f"{pot} {d}"))
+    return out
+
+
+def _eq15(name, spec, cubes):
+    disp, ray = cubes.get(spec["scene"], "dispersion"), cubes.get(spec["scene"], "rayleigh")
+    if disp is None or ray is None or "omega_lattice" not in disp:
+        return [_claim(name, spec, NOT_COMPUTED, f"{spec['scene']}/dispersion.nc or rayleigh.nc not computed")]
+    out = []
+    for pot in _potentials(disp):
+        c2 = pick(ray["c2_R"].sel(potential=pot) if pot else ray["c2_R"], "direction", "[10]")
+        om = disp["omega_lattice"].sel(potential=pot) if pot else disp["omega_lattice"]
+        if c2 is None:
+            out.append(_claim(name, spec, NOT_COMPUTED, "no [10] c_R^2", pot))
+            continue
+        worst, n = 0.0, 0
+        for s in d_over_d0(om):
+            o, c = sel_strain(om, s), sel_strain(c2, s)
+            if c is None:
+                continue
+            model = np.sqrt(float(c.values)) / (s / 2.0) * np.sin(np.asarray(om["theta"].values, float))
+            ok = np.isfinite(o.values) & (model > 0)
+            if ok.any():
+                worst = max(worst, float(np.max(np.abs(o.values[ok] / model[ok] - 1.0))))
+                n += int(ok.sum())
+        verdict = INCONCLUSIVE if n == 0 else (PASS if worst <= spec["max_relative_deviation"] else FAIL)
+        out.append(_claim(name, spec, verdict, f"{n} (theta, strain) points; max relative "
+                          f"deviation {worst:.2e}", pot))
+    return out
+
+
+def _theta_c_trend(name, spec, cubes):
+    disp = cubes.get(spec["scene"], "dispersion")
+    tc = None if disp is None else _theta_c(disp)
+    if tc is None:
+        return [_claim(name, spec, NOT_COMPUTED, f"{spec['scene']}/dispersion.nc not computed")]
+    out = []
+    for pot in _potentials(disp):
+        t = tc.sel(potential=pot) if pot else tc
+        s = d_over_d0(t) - 1.0
+        order = np.argsort(s)
+        s, v = s[order], np.asarray(t.values, float)[order]
+        m = (s <= STRAIN_MATCH) & np.isfinite(v)
+        if m.sum() < 2 or not (np.abs(s[m]) < STRAIN_MATCH).any():
+            out.append(_claim(name, spec, INCONCLUSIVE, "needs zero stress and compression", pot))
+            continue
+        sv, vv = s[m], v[m]
+        step = float(np.diff(np.sort(np.asarray(disp["theta"].values, float))).max())
+        monotone = bool(np.all(np.diff(vv) <= step * 1e-6 + 1e-12))
+        ok = monotone and vv[0] > vv[-1]
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"theta_c = {vv[-1] / math.pi:.4f} pi at zero stress, "
+                          f"{vv[0] / math.pi:.4f} pi at strain {sv[0]:+.3f}; "
+                          f"{'monotone' if monotone else 'not monotone'}", pot))
+    return out
+
+
+def _uniaxial_same(name, spec, cubes):
+    uni = _fcc_curves(cubes, spec["scene"])
+    hyd = _fcc_curves(cubes, spec["reference_scene"])
+    if uni is None or hyd is None:
+        return [_claim(name, spec, NOT_COMPUTED,
+                       f"needs {spec['scene']} and {spec['reference_scene']} elastic/rayleigh cubes")]
+    out = []
+    for key in sorted(set(uni) & set(hyd)):
+        feats = []
+        for c in (uni[key], hyd[key]):
+            soft = _softening(c)
+            c0 = _value_at_zero(c, "c2_R")
+            comp = c["c2_R"][c["strain"] < -STRAIN_MATCH]  # sorted: most compressed first
+            # no surface wave (NaN) at the most compressed point counts as softened to 0
+            y_comp = None if comp.size == 0 else (comp[0] if np.isfinite(comp[0]) else 0.0)
+            feats.append((None if c0 is None or y_comp is None else bool(y_comp < c0),
+                          None if soft is None else bool(soft[0] > 0.05)))
+        ok = feats[0] == feats[1]
+        out.append(_claim(name, spec, PASS if ok else FAIL,
+                          f"(c_R^2 lower at the most compressed point, softens under tension): uniaxial "
+                          f"{feats[0]}, hydrostatic {feats[1]}", " ".join(key)))
+    return out
+
+
+_CLAIMS = {
+    "vanish_before_shear_instability": _vanish,
+    "max_compressive_strain": _max_strain,
+    "tension_softening": _tension,
+    "faster_110_under_compression": _faster_110,
+    "rapid_decrease_110_tension": _rapid_110,
+    "c_T_par_upper_bound": _upper_bound,
+    "eq15_sine_dispersion": _eq15,
+    "theta_c_later_under_compression": _theta_c_trend,
+    "uniaxial_same_as_hydrostatic": _uniaxial_same,
+}

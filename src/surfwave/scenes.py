@@ -1,0 +1,324 @@
+"""Scenes: the workflow's configuration, validated and expanded before any job runs.
+
+A scene names a lattice, a loading, potentials, directions, a strain grid (d/d0), a theta
+grid, the quantities wanted and per-method accuracy knobs (``config/config.yaml``,
+``workflow/schemas/config.schema.yaml``). :func:`validate_config` fills the schema's
+defaults into the config in place, checks it against the schema and against what the
+lattices can physically take, and returns the expanded scenes. Every error names the
+scene, the key and the offending value.
+
+:func:`job_params` gives the exact parameters a workflow job uses (and nothing else), so
+that Snakemake reruns a job when, and only when, something it depends on changes.
+
+Examples
+--------
+>>> cfg = {"scenes": {"s": {"lattice": "fcc", "loading": "in_plane_hydrostatic",
+...        "potentials": ["lj"], "d_over_d0": {"start": 0.98, "stop": 1.0, "step": 0.01},
+...        "quantities": ["elastic"]}}}
+>>> scenes = validate_config(cfg)
+>>> scenes["s"]["d_over_d0"], scenes["s"]["directions"]
+([0.98, 0.99, 1.0], ['[100]', '[110]'])
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+
+from .errors import SurfwaveError, InputError
+from .lattices import LATTICES, build, check_combination, check_d_over_d0
+from .potentials import get_potential
+
+#: The schema shipped with the workflow (repository layout; pass a path to override).
+SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+
+#: Result cube written for each quantity, under results/<scene>/.
+CUBES = {
+    "elastic": "elastic.nc",
+    "bulk": "bulk.nc",
+    "rayleigh": "rayleigh.nc",
+    "dispersion": "dispersion.nc",
+    "displacements": "displacements.nc",
+    "entropy": "entropy.nc",
+}
+#: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
+TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
+#: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
+DECIMALS = 12
+MAX_POINTS = 100_000
+
+
+class SceneError(SurfwaveError, ValueError):
+    """A configuration that cannot be run; the message names scene, key and value."""
+
+
+def _where(path) -> str:
+    parts = list(path)
+    if len(parts) >= 2 and parts[0] == "scenes":
+        key = "/".join(str(p) for p in parts[2:]) or "(scene)"
+        return f"scene {parts[1]!r}, key {key!r}"
+    return f"key {'/'.join(str(p) for p in parts) or '(top level)'!r}"
+
+
+def load_schema(path: str | Path | None = None) -> dict:
+    """Read the JSON schema (YAML file) of the config."""
+    import yaml
+
+    with open(path or SCHEMA_PATH) as fh:
+        return yaml.safe_load(fh)
+
+
+def _validator_with_defaults(schema: dict):
+    import jsonschema
+
+    base = jsonschema.Draft202012Validator
+
+    def set_defaults(validator, properties, instance, schema):
+        if isinstance(instance, dict):
+            for name, sub in properties.items():
+                if isinstance(sub, dict) and "default" in sub:
+                    instance.setdefault(name, copy.deepcopy(sub["default"]))
+        yield from base.VALIDATORS["properties"](validator, properties, instance, schema)
+
+    cls = jsonschema.validators.extend(base, {"properties": set_defaults})
+    return cls(schema)
+
+
+def validate_schema(config: dict, schema: dict | str | Path | None = None) -> dict:
+    """Fill defaults into ``config`` (in place) and check it against the schema.
+
+    Raises
+    ------
+    SceneError
+        Naming the scene, the key and the value of the first problem.
+    """
+    if not isinstance(schema, dict):
+        schema = load_schema(schema)
+    validator = _validator_with_defaults(schema)
+    errors = sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
+    if errors:
+        err = errors[0]
+        hint = err.schema.get("description", "") if isinstance(err.schema, dict) else ""
+        msg = f"config error in {_where(err.absolute_path)}: value {err.instance!r} is invalid ({err.message})"
+        if hint:
+            msg += f"; expected: {hint}"
+        raise SceneError(msg)
+    return config
+
+
+def expand_grid(spec, where: str = "grid") -> np.ndarray:
+    """Values of a grid: a list (sorted, rounded), or {start, stop, step} with stop included.
+
+    The values are start + i * step rounded to :data:`DECIMALS` decimals, so a grid from
+    0.88 by 0.01 contains exactly the float 0.93 a user would type (no drift).
+
+    Raises
+    ------
+    SceneError
+        Malformed grid (stop before start, stop not on the grid, too many points,
+        duplicate values); the message starts with ``where``.
+    """
+    if isinstance(spec, dict):
+        start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
+        if not step > 0:
+            raise SceneError(f"{where}: step must be positive, got {step!r}")
+        if stop < start:
+            raise SceneError(f"{where}: stop {stop!r} lies before start {start!r}")
+        n = (stop - start) / step
+        k = int(round(n))
+        if abs(n - k) > 1e-9 * max(1.0, abs(n)):
+            raise SceneError(
+                f"{where}: stop - start = {stop - start:.12g} is not a multiple of step {step!r}"
+            )
+        if k + 1 > MAX_POINTS:
+            raise SceneError(f"{where}: {k + 1} points exceed the limit of {MAX_POINTS}")
+        values = np.round(start + step * np.arange(k + 1), DECIMALS)
+    else:
+        values = np.round(np.sort(np.asarray(spec, dtype=float)), DECIMALS)
+        if values.ndim != 1 or values.size == 0:
+            raise SceneError(f"{where}: expected a non-empty list of numbers, got {spec!r}")
+        dup = values[1:][np.diff(values) == 0]
+        if dup.size:
+            raise SceneError(f"{where}: value {dup[0]!r} appears twice")
+    if not np.all(np.isfinite(values)):
+        raise SceneError(f"{where}: values must be finite, got {spec!r}")
+    return values
+
+
+def theta_grid(spec, where: str = "theta") -> np.ndarray:
+    """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi)."""
+    if isinstance(spec, dict):
+        n = int(spec["n"])
+        return (np.arange(n) + 0.5) * np.pi / n
+    values = expand_grid(spec, where)
+    bad = values[(values <= 0) | (values >= np.pi)]
+    if bad.size:
+        raise SceneError(f"{where}: theta = {bad[0]!r} lies outside (0, pi)")
+    return values
+
+
+def _check_scene(name: str, raw: dict) -> dict:
+    where = f"scene {name!r}"
+    lattice, loading = raw["lattice"], raw["loading"]
+    for pot in raw["potentials"]:
+        try:
+            get_potential(pot)
+        except InputError as exc:
+            raise SceneError(f"{where}, key 'potentials': value {pot!r}: {exc}") from None
+    directions = list(raw.get("directions") or LATTICES[lattice]["directions"])
+    for direction in directions:
+        try:
+            check_combination(lattice, loading, direction)
+        except InputError as exc:
+            key = "loading" if "loading" in str(exc) else "directions"
+            raise SceneError(f"{where}, key {key!r}: {exc}") from None
+    for q in raw["quantities"]:
+        if q in TRIANGULAR_ONLY and lattice != "triangular":
+            raise SceneError(
+                f"{where}, key 'quantities': value {q!r} needs lattice 'triangular', not {lattice!r}"
+            )
+    d = expand_grid(raw["d_over_d0"], f"{where}, key 'd_over_d0'")
+    try:
+        check_d_over_d0(lattice, loading, d)
+        if lattice == "fcc" and loading == "uniaxial":
+            for pot in raw["potentials"]:  # the lateral solve must succeed for every point
+                for direction in directions:
+                    build(lattice, loading, direction, d, pot)
+    except SurfwaveError as exc:
+        raise SceneError(f"{where}, key 'd_over_d0': {exc}") from None
+    theta = theta_grid(raw["theta"], f"{where}, key 'theta'")
+    return {
+        "name": name,
+        "lattice": lattice,
+        "loading": loading,
+        "potentials": list(raw["potentials"]),
+        "directions": directions,
+        "d_over_d0": [float(x) for x in d],
+        "theta": [float(x) for x in theta],
+        "quantities": list(raw["quantities"]),
+        "accuracy": copy.deepcopy(raw["accuracy"]),
+    }
+
+
+def validate_config(config: dict, schema: dict | str | Path | None = None) -> dict[str, dict]:
+    """Validate the whole config (defaults filled in place) and expand every scene.
+
+    Returns
+    -------
+    dict
+        Scene name -> expanded scene (JSON-able dict: d_over_d0 and theta as lists of
+        floats, directions filled in).
+
+    Raises
+    ------
+    SceneError
+        Schema violations, unknown potentials, unsupported lattice/loading/direction
+        combinations, impossible d/d0, malformed grids, unknown scene names in ``run``.
+    """
+    validate_schema(config, schema)
+    scenes = {name: _check_scene(name, raw) for name, raw in config["scenes"].items()}
+    for name in config.get("run", []):
+        if name not in scenes:
+            raise SceneError(
+                f"key 'run': value {name!r} is not a scene; known scenes: {sorted(scenes)}"
+            )
+    return scenes
+
+
+def selected(config: dict, scenes: dict[str, dict]) -> list[str]:
+    """Names of the scenes rule ``all`` builds: ``config['run']``, or every scene if empty."""
+    return list(config.get("run") or scenes)
+
+
+def targets(scenes: dict[str, dict], names, results: str = "results") -> list[str]:
+    """The cube paths the named scenes ask for (crystal.nc always; one cube per quantity)."""
+    out = []
+    for name in names:
+        out.append(f"{results}/{name}/crystal.nc")
+        out += [f"{results}/{name}/{CUBES[q]}" for q in scenes[name]["quantities"]]
+    return out
+
+
+_STAGE_KEYS = {
+    "crystal": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "elastic": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "rayleigh": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "bulk": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "dispersion": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
+    "displacements": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
+    "entropy": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+}
+_STAGE_ACCURACY = {"crystal": "symmetry", "bulk": "bulk", "dispersion": "dispersion",
+                   "displacements": "displacements", "entropy": "entropy"}
+
+
+def job_params(scene: dict, stage: str) -> dict[str, Any]:
+    """Everything a stage's job reads from the config, and nothing more (JSON-able).
+
+    Passing exactly this through Snakemake ``params:`` makes a job rerun when, and only
+    when, a value it uses changes.
+    """
+    if stage not in _STAGE_KEYS:
+        raise InputError(f"unknown stage {stage!r}; known stages: {sorted(_STAGE_KEYS)}")
+    params = {"scene": scene["name"], "stage": stage}
+    params.update({k: copy.deepcopy(scene[k]) for k in _STAGE_KEYS[stage]})
+    acc = _STAGE_ACCURACY.get(stage)
+    params["accuracy"] = copy.deepcopy(scene["accuracy"].get(acc, {})) if acc else {}
+    return params
+
+
+def params_hash(params: dict) -> str:
+    """sha256 (hex, 16 characters) of the canonical JSON of a job's parameters."""
+    text = json.dumps(params, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def load_config(paths=("config/config.yaml",)) -> dict:
+    """Read and merge YAML config files the way Snakemake does (later files win, dicts merge)."""
+    import yaml
+
+    def merge(a, b):
+        for k, v in b.items():
+            if isinstance(v, dict) and isinstance(a.get(k), dict):
+                merge(a[k], v)
+            else:
+                a[k] = v
+        return a
+
+    config: dict = {}
+    for p in paths:
+        with open(p) as fh:
+            merge(config, yaml.safe_load(fh) or {})
+    return config
+
+
+def standalone(stage: str, argv=None, inputs: dict | None = None) -> SimpleNamespace:
+    """A stand-in for Snakemake's ``snakemake`` object, to run a stage script by hand.
+
+    ``python workflow/scripts/<stage>.py SCENE [CONFIGFILE ...]`` (from the repository root)
+    runs the stage for one scene of ``config/config.yaml`` (plus the given files), writes
+    ``results/<scene>/<stage>.nc`` and logs to the terminal. Useful for debugging with pdb.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv:
+        raise SystemExit(f"usage: python workflow/scripts/{stage}.py SCENE [CONFIGFILE ...]")
+    name, files = argv[0], ["config/config.yaml", *argv[1:]]
+    config = load_config(files)
+    scenes = validate_config(config)
+    if name not in scenes:
+        raise SystemExit(f"unknown scene {name!r}; known scenes: {sorted(scenes)}")
+    inputs = {k: v.format(scene=name) for k, v in (inputs or {}).items()}
+    return SimpleNamespace(
+        input=SimpleNamespace(**inputs),
+        output=[f"results/{name}/{stage}.nc"],
+        log=["/dev/stderr"],
+        params=SimpleNamespace(job=job_params(scenes[name], stage)),
+        wildcards=SimpleNamespace(scene=name),
+        rule=stage,
+    )
