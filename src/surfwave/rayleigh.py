@@ -48,40 +48,42 @@ REASON_NOROOT = ("no root of Eq. (17) in 0 < rho c^2 < min(S_xxxx, S_xyyx) satis
                  "unsquared boundary condition with decaying partial waves")
 
 
-def _cubic_roots(c3, c2, c1, c0) -> np.ndarray:
-    """All three complex roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3).
+def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
+    """Real roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3), NaN-padded.
 
-    Closed form (Cardano with the numerically larger branch), then two Newton steps.
-    Points with a vanishing leading coefficient fall back to numpy.roots.
+    Real arithmetic only: the trigonometric form where there are three real roots, Cardano's
+    with real cube roots where there is one; then two Newton steps on the cubic. Points with
+    a vanishing leading coefficient fall back to numpy.roots (rare: S_yyyy = S_xyxy).
     """
     c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
-    scale = np.maximum.reduce([np.abs(c3), np.abs(c2), np.abs(c1), np.abs(c0)])
-    scale = np.where(scale > 0, scale, 1.0)
-    degenerate = np.abs(c3) < 1e-13 * scale
+    scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
+    degenerate = np.abs(c3) <= 1e-13 * scale
     with np.errstate(all="ignore"):
         lead = np.where(degenerate, 1.0, c3)
         B, C, D = c2 / lead, c1 / lead, c0 / lead
-        p = C - B**2 / 3.0
-        q = 2.0 * B**3 / 27.0 - B * C / 3.0 + D
-        disc = np.sqrt((q**2 / 4.0 + p**3 / 27.0).astype(complex))
-        w1, w2 = -q / 2.0 + disc, -q / 2.0 - disc
-        w = np.where(np.abs(w1) >= np.abs(w2), w1, w2)
-        u = w ** (1.0 / 3.0)
-        omega = np.exp(2j * np.pi / 3.0)
-        roots = []
-        for k in range(3):
-            uk = u * omega**k
-            y = np.where(np.abs(uk) > 0, uk - p / (3.0 * uk), 0.0)
-            roots.append(y - B / 3.0)
-        x = np.stack(roots, axis=-1)
-        for _ in range(2):  # polish on the monic cubic
-            Bx, Cx, Dx = B[..., None], C[..., None], D[..., None]
+        shift = B / 3.0
+        p = C - B * shift
+        q = (2.0 / 27.0) * B**3 - C * shift + D
+        delta = 0.25 * q * q + p**3 / 27.0
+        one = delta > 0
+        sq = np.sqrt(np.where(one, delta, 0.0))
+        y1 = np.cbrt(-0.5 * q + sq) + np.cbrt(-0.5 * q - sq)
+        m = 2.0 * np.sqrt(np.where(one, 0.0, -p / 3.0))
+        cos_arg = np.where(m > 0, 3.0 * q / (p * np.where(m > 0, m, 1.0)), 0.0)
+        phi = np.arccos(np.clip(cos_arg, -1.0, 1.0)) / 3.0
+        k = np.arange(3) * (2.0 * np.pi / 3.0)
+        three = m[..., None] * np.cos(phi[..., None] - k)
+        x = np.where(one[..., None], np.stack([y1, np.full_like(y1, np.nan), np.full_like(y1, np.nan)], -1), three)
+        x = x - shift[..., None]
+        Bx, Cx, Dx = B[..., None], C[..., None], D[..., None]
+        for _ in range(2):  # Newton polish on the monic cubic
             f = ((x + Bx) * x + Cx) * x + Dx
             df = (3.0 * x + 2.0 * Bx) * x + Cx
-            x = np.where(np.abs(df) > 0, x - f / df, x)
+            x = np.where(df != 0, x - f / df, x)
     if degenerate.any():
         for idx in zip(*np.nonzero(degenerate)):
             r = np.roots([c3[idx], c2[idx], c1[idx], c0[idx]])
+            r = r[np.abs(r.imag) <= 1e-12 * np.maximum(1.0, np.abs(r))].real
             x[idx] = np.concatenate([r, np.full(3 - r.size, np.nan)])
     return x
 
@@ -136,6 +138,33 @@ def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     return G, scale
 
 
+def _sagittal_components(S: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(a, b, c, d, f) = (S_xxxx, S_xyxy, S_xyyx, S_yyyy, S_yyxx), each shape S.shape[:-4]."""
+    return S[..., 0, 0, 0, 0], S[..., 0, 1, 0, 1], S[..., 0, 1, 1, 0], S[..., 1, 1, 1, 1], S[..., 1, 1, 0, 0]
+
+
+def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists (module docstring)."""
+    X = _real_cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3), NaN if not real
+    A5 = [v[..., None] for v in (a, b, c, d, f)]
+    a_, b_, c_, d_, f_ = A5
+    with np.errstate(all="ignore"):
+        inside = (X > 0) & (X < np.minimum(a_, c_)) & (b_ > 0) & (d_ > 0)
+        # Both kappa have positive real part iff kappa^2 are complex conjugates or both positive
+        # (p^2 > 0 holds inside); then p = kappa_1 kappa_2 = +sqrt(p^2) in G.
+        bd = b_ * d_
+        s_ = (b_ * (c_ - X) + d_ * (a_ - X) - (f_ + b_) ** 2) / bd
+        p2 = (a_ - X) * (c_ - X) / bd
+        decaying = (s_ * s_ < 4.0 * p2) | (s_ > 0)
+        G, scale = boundary_function(X, *A5)
+        ok = inside & decaying & (np.abs(G) <= rtol * scale)
+        # Among admissible roots (normally exactly one), take the best boundary residual.
+        badness = np.where(ok, np.abs(G) / scale, np.inf)
+    best = np.argmin(badness, axis=-1)[..., None]
+    has = np.take_along_axis(ok, best, -1)[..., 0]
+    return np.take_along_axis(X, best, -1)[..., 0], has
+
+
 def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
     """Rayleigh velocity with root selection and wave type, vectorised over leading axes.
 
@@ -158,44 +187,12 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
     """
     S = np.asarray(S, dtype=float)
     rho = np.asarray(rho, dtype=float)
-    a = S[..., 0, 0, 0, 0]
-    b = S[..., 0, 1, 0, 1]
-    c = S[..., 0, 1, 1, 0]
-    d = S[..., 1, 1, 1, 1]
-    f = S[..., 1, 1, 0, 0]
+    a, b, c, d, f = _sagittal_components(S)
     if c2_SH is None:
         c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(a.shape, np.nan)
     c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), a.shape)
-
-    roots = _cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3)
-    A5 = [v[..., None] for v in (a, b, c, d, f)]
-    a_, b_, c_, d_, f_ = A5
-    upper = np.minimum(a_, c_)
-    X = roots.real
-    with np.errstate(all="ignore"):
-        real = np.abs(roots.imag) <= 1e-9 * np.maximum(np.abs(roots), np.abs(upper))
-        inside = real & (X > 0) & (X < upper) & (b_ > 0) & (d_ > 0)
-        # Polish the candidates on the unsquared condition (secant-free Newton via finite step).
-        Xs = np.where(inside, X, 0.5 * np.abs(upper))
-        for _ in range(2):
-            G, _ = boundary_function(Xs, *A5)
-            h = 1e-7 * np.maximum(np.abs(upper), 1e-30)
-            Gp, _ = boundary_function(Xs + h, *A5)
-            dG = (Gp - G) / h
-            step = np.where((dG != 0) & inside, G / dG, 0.0)
-            step = np.clip(step, -1e-3 * np.abs(upper), 1e-3 * np.abs(upper))
-            Xs = np.where(inside, Xs - step, Xs)
-        G, scale = boundary_function(Xs, *A5)
-        k1, k2 = decay_constants(Xs, *A5)
-        decaying = (k1.real > 0) & (k2.real > 0)
-        ok = inside & (Xs > 0) & (Xs < upper) & decaying & (np.abs(G) <= rtol * scale)
-    # Among admissible roots (normally exactly one), take the best boundary residual.
-    badness = np.where(ok, np.abs(G) / np.where(scale > 0, scale, 1.0), np.inf)
-    best = np.argmin(badness, axis=-1)
-    has = np.take_along_axis(ok, best[..., None], -1)[..., 0]
-    Xr = np.take_along_axis(Xs, best[..., None], -1)[..., 0]
-    K1 = np.take_along_axis(k1, best[..., None], -1)[..., 0]
-    K2 = np.take_along_axis(k2, best[..., None], -1)[..., 0]
+    Xr, has = _select_root(a, b, c, d, f, rtol)
+    K1, K2 = decay_constants(Xr, a, b, c, d, f)
     c2_R = np.where(has, Xr / rho, np.nan)
     nan_c = complex(np.nan, np.nan)
     reason = np.full(a.shape, "", dtype=object)
@@ -236,7 +233,9 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     >>> round(float(rayleigh_c2(S)), 6)  # 2 - 2/sqrt(3)
     0.845299
     """
-    return solve(S, rho)["c2_R"]
+    S = np.asarray(S, dtype=float)
+    X, has = _select_root(*_sagittal_components(S))
+    return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
 
 
 def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
