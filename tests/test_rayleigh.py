@@ -239,3 +239,19 @@ def test_material_stress_enters_through_A11():
     pushed = surfwave.material(100.0, 60.0, 50.0, 8000.0, "[100]", stress=-5.0)
     assert pushed["c_T_par"] ** 2 == pytest.approx(base["c_T_par"] ** 2 - 5e9 / 8000.0, rel=1e-12)
     assert pushed["c_R"] < base["c_R"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(case=st.sampled_from(LOADINGS), pot=st.sampled_from(["harmonic", "lj", "morse"]),
+       s=st.floats(0.85, 1.15))
+def test_general_solver_equals_cauchy_eq20_for_pair_forces(case, pot, s):
+    """Eq. (20) (independent closed form, valid for pair forces with sigma_yy = 0 where
+    S_xyxy = S_yyxx) equals the general Eq. (17) solver with root selection, every loading."""
+    r = surfwave.point(case[0], case[1], pot, case[2], s)
+    S = r["S"][0]
+    assert S[0, 1, 0, 1] == pytest.approx(S[1, 1, 0, 0], abs=1e-12)  # Cauchy relation
+    eq20 = rayleigh.cauchy_c2(r["c2_L_par"], r["c2_T_par"], r["c2_L_perp"], r["c2_T_perp"])[0]
+    if np.isfinite(r["c2_R"][0]):
+        assert r["c2_R"][0] == pytest.approx(eq20, rel=1e-9, abs=1e-12)
+    else:  # no surface wave: Eq. (20) gives no admissible value either
+        assert not (0 < eq20 < r["c2_T_par"][0]) or r["c2_T_perp"][0] <= 0
