@@ -69,3 +69,13 @@ def test_uniaxial_unstressed_is_identity():
         c = build("fcc", "uniaxial", direction, 1.0, "lj")
         np.testing.assert_allclose(c.stretch, 1.0, atol=1e-14)
         assert surfwave.point("fcc", "uniaxial", "lj", direction, 1.0)["stress"][0] == 0.0
+
+
+def test_uniaxial_collapse_is_an_error_naming_the_right_point():
+    """FCC uniaxial [110]: with the out-of-plane bonds at rest the y-stretch goes to 0 as
+    d/d0 -> sqrt 3 (the crystal flattens). That is an impossible geometry, and an array
+    call names the failing point, not an innocent neighbour (found by the phonopy stage)."""
+    with pytest.raises(GeometryError, match="d/d0 = 1.7315"):
+        build("fcc", "uniaxial", "[110]", [1.5, 1.6, 1.7315], "harmonic")
+    ok = build("fcc", "uniaxial", "[110]", [1.5, 1.6], "harmonic")
+    np.testing.assert_allclose(ok.stretch[:, 1], np.sqrt((3 - ok.stretch[:, 0] ** 2) / 2), rtol=1e-10)

@@ -36,7 +36,8 @@ _W = "(K/m)^(1/2)"
 VARIABLES: dict[str, dict] = {
     "omega": {"long_name": "surface-wave angular frequency, Eq. 15, omega = (c_R/d_x) sin theta",
               "units": _W, "dims": ("strain", "theta")},
-    "q1": {"long_name": "first (slower) decay constant per row, Re q1 > 0, Eq. 6a",
+    "q1": {"long_name": "first decay constant per row (rows decay as exp(-q I)), Eq. 6a; real q: the "
+                        "slower one; complex: q1 = conj(q2) (+ i pi beyond pi - theta_c)",
            "units": "1", "dims": ("strain", "theta")},
     "q2": {"long_name": "second decay constant per row, Re q2 > 0, Eq. 6a",
            "units": "1", "dims": ("strain", "theta")},
@@ -56,6 +57,9 @@ VARIABLES: dict[str, dict] = {
              "units": "K d0^2 / m", "dims": ("strain",)},
     "reason": {"long_name": "why the values at this point are NaN (empty when valid)",
                "units": "", "dims": ("strain", "theta")},
+    "boundary_residual": {"long_name": "relative residual of the unsquared free-surface condition "
+                                       "(Eqs. 7a-9a) at the Eq. 15 root", "units": "1",
+                          "dims": ("strain", "theta")},
     "u": {"long_name": "row amplitude of the x displacement, u_IJ = u_I exp(i theta (I + 2J)), "
                        "normalised so max_I |(u_I, v_I)| = 1 and v_0 / i real positive",
           "units": "1", "dims": ("strain", "theta", "row")},
@@ -146,17 +150,19 @@ def crossover_theta(lc: dict, n_grid: int = 512, n_bisect: int = 60) -> np.ndarr
     """theta_c per strain: the smallest theta in (0, pi/2] where q1, q2 turn complex, shape (n,).
 
     Grid scan of the sign of the Eq. 6a discriminant (at omega of Eq. 15) followed by a
-    vectorised bisection to ~1e-16. NaN where the strain is invalid or q stays real.
+    vectorised bisection to ~1e-16. 0 where q is complex at all wavelengths (tension), NaN
+    where the strain is invalid or q stays real up to pi/2.
     """
     W = (lc["c2_R"] / lc["dx"] ** 2)[:, None]
     grid = np.linspace(0.5 * np.pi / n_grid, 0.5 * np.pi, n_grid)[None, :]
     with np.errstate(all="ignore"):
         neg = _discriminant(lc, W, grid) < 0  # (n, n_grid)
+        # long-wave sign (the discriminant ~ theta^4 D0 is computed without cancellation)
+        always = _discriminant(lc, W, np.full((1, 1), 1e-6))[:, 0] < 0  # complex at all theta
     has = neg.any(axis=1) & lc["valid_strain"]
     first = np.argmax(neg, axis=1)
-    always = neg[:, 0]  # complex already at the first grid point: theta_c = 0
     hi = grid[0, first]
-    lo = np.where(first > 0, grid[0, np.maximum(first - 1, 0)], 0.0)
+    lo = np.where(first > 0, grid[0, np.maximum(first - 1, 0)], 1e-6)
     W1 = W[:, 0]
     for _ in range(n_bisect):
         mid = 0.5 * (lo + hi)
@@ -168,7 +174,8 @@ def crossover_theta(lc: dict, n_grid: int = 512, n_bisect: int = 60) -> np.ndarr
 
 
 def _decay_constants(lc: dict, W, th):
-    """q1, q2 (Re > 0) and cosh q - 1 at any th in (0, pi), shapes (n, m), complex.
+    """[(q1, z1, c1), (q2, z2, c2)]: decay constants (Re q > 0) at any th in (0, pi), with
+    z = sinh(q'/2), c = cosh(q'/2), q' = q (th <= pi/2) or q - i pi; shapes (n, m), complex.
 
     Uses the symmetry of Eq. 6a under theta -> pi - theta, cosh q -> -cosh q, so that
     theta > pi/2 is as accurate as theta < pi/2 (there q = q' + i pi).
@@ -187,22 +194,30 @@ def _decay_constants(lc: dict, W, th):
     y2 = np.where(D >= 0, y_real_hi + 0j, y_cplx)
     out = []
     for y in (y1, y2):
-        q = 2 * np.arcsinh(np.sqrt(0.5 * y))
-        q = np.where(q.real < 0, -q, q)
-        q = np.where(far, q + 1j * np.pi, q)
-        out.append(q)
-    return out[0], out[1]
+        z = np.sqrt(0.5 * y)  # sinh(q'/2)
+        q = 2 * np.arcsinh(z)
+        flip = q.real < 0
+        q, z = np.where(flip, -q, q), np.where(flip, -z, z)
+        ch = np.sqrt(1 + 0.5 * y)  # cosh(q'/2)
+        out.append((np.where(far, q + 1j * np.pi, q), z, ch))
+    return out
 
 
-def _ratios(lc: dict, W, th, q):
-    """R = (a/c)^(1/2) U/V of the wave exp(-q I) at omega^2 = W sin^2 th (Eq. 3a), shape (n, m)."""
+def _ratios(lc: dict, W, th, qzc):
+    """R = (a/c)^(1/2) U/V of the wave exp(-q I) at omega^2 = W sin^2 th (Eq. 3a), shape (n, m).
+
+    ``qzc`` = (q, sinh(q'/2), cosh(q'/2)) from :func:`_decay_constants`.
+    """
     a, b, c, p, t = (lc[key][:, None] for key in "abcpt")
-    s, C = np.sin(th) ** 2, np.cos(th)
-    X = np.cosh(q)
-    sh = np.sinh(q)
+    _, z, ch = qzc
+    s = np.sin(th) ** 2
+    far = th > 0.5 * np.pi  # there q = q' + i pi: use theta' = pi - theta to avoid cancellation
+    thp = np.where(far, np.pi - th, th)
+    one_m_cx = 2 * np.sin(0.5 * thp) ** 2 - np.cos(thp) * 2 * z**2  # 1 - cos(th) cosh(q)
+    sh = np.where(far, -2.0, 2.0) * z * ch  # sinh q
     w2 = W * s
-    den_x = 4 * p * s + 4 * a - w2 - 4 * a * C * X  # alpha - 4 a C X
-    num_y = -(4 * t * s + 4 * c - w2 - 4 * c * C * X)  # -(beta - 4 c C X)
+    den_x = 4 * p * s - w2 + 4 * a * one_m_cx  # alpha - 4 a C X
+    num_y = -(4 * t * s - w2 + 4 * c * one_m_cx)  # -(beta - 4 c C X)
     off = 4 * b * np.sin(th) * sh
     use_x = np.abs(den_x) >= np.abs(off)
     with np.errstate(all="ignore"):
@@ -210,20 +225,35 @@ def _ratios(lc: dict, W, th, q):
     return np.sqrt(a / c) * u_over_v
 
 
+def _boundary_rows(th, q1, q2, R1, R2):
+    """Rows (x, y) of the free-surface condition on (V1, V2), Eqs. (7a)-(8a), shape (2, 2, n, m).
+
+    Columns are scaled by |R_j e^q_j| + |e^q_j| + 1 so that the two rows compare fairly.
+    """
+    C, S = np.cos(th), np.sin(th)
+    cols = []
+    for q, R in ((q1, R1), (q2, R2)):
+        e = np.exp(q)
+        scale = np.abs(R * e) + np.abs(e) + 1
+        cols.append(((R * (e * C - 1) + e * S) / scale, (R * e * S - (e * C - 1)) / scale, scale))
+    return cols
+
+
 def _amplitude_ratio(th, q1, q2, R1, R2):
-    """Eq. (8a): V1/V2 from the x component of the free-surface condition."""
-    e1, e2, C, S = np.exp(q1), np.exp(q2), np.cos(th), np.sin(th)
-    return -(R2 * (e2 * C - 1) + e2 * S) / (R1 * (e1 * C - 1) + e1 * S)
+    """Eq. (8a): V1/V2 from the better conditioned row of the free-surface condition.
 
-
-def _boundary_residual(th, q1, q2, R1, R2, ratio):
-    """Relative residual of the y component of the surface condition (Eq. 8a, second form)."""
-    e1, e2, C, S = np.exp(q1), np.exp(q2), np.cos(th), np.sin(th)
-    t1 = ratio * (R1 * e1 * S - (e1 * C - 1))
-    t2 = R2 * e2 * S - (e2 * C - 1)
-    scale = (np.abs(ratio) * (np.abs(R1 * e1 * S) + np.abs(e1 * C) + 1)
-             + np.abs(R2 * e2 * S) + np.abs(e2 * C) + 1)
-    return np.abs(t1 + t2) / scale
+    Returns the ratio and the residual |det| / max|row|^2 of the (scaled) 2x2 boundary
+    matrix, which vanishes for a genuine surface wave (the unsquared condition, Eq. 9a).
+    """
+    (x1, y1, s1), (x2, y2, s2) = _boundary_rows(th, q1, q2, R1, R2)
+    nx = np.abs(x1) ** 2 + np.abs(x2) ** 2
+    ny = np.abs(y1) ** 2 + np.abs(y2) ** 2
+    use_x = nx >= ny
+    num = np.where(use_x, x2, y2)
+    den = np.where(use_x, x1, y1)
+    ratio = -(num * s2) / (den * s1)
+    resid = np.abs(x1 * y2 - x2 * y1) / np.maximum(nx, ny)
+    return ratio, resid
 
 
 def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndarray]:
@@ -261,7 +291,7 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
     reason[:] = lc["strain_reason"][:, None]
     bad_th = ~((th_in > 0) & (th_in < np.pi))
     reason[:, bad_th] = np.where(lc["valid_strain"][:, None], REASON_THETA, reason[:, bad_th])
-    th = np.where(bad_th, 0.5 * np.pi, th_in)[None, :] * np.ones((n, 1))
+    th = np.where(bad_th, 0.5 * np.pi, th_in)[None, :]  # (1, m), broadcasts against (n, 1)
     ok = lc["valid_strain"][:, None] & ~bad_th[None, :]
     # Invalid strains get harmless stand-in constants so no warning is raised; masked below.
     lcs = dict(lc)
@@ -270,13 +300,12 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
     c2 = np.where(lc["valid_strain"], lc["c2_R"], (3 - 3**0.5) / 4)
     dx = np.where(lc["valid_strain"], lc["dx"], 0.5)
     W = (c2 / dx**2)[:, None]
-    q1, q2 = _decay_constants(lcs, W, th)
-    R1, R2 = _ratios(lcs, W, th, q1), _ratios(lcs, W, th, q2)
+    w1, w2_ = _decay_constants(lcs, W, th)
+    q1, q2 = w1[0], w2_[0]
+    R1, R2 = _ratios(lcs, W, th, w1), _ratios(lcs, W, th, w2_)
     with np.errstate(all="ignore"):
-        ratio = _amplitude_ratio(th, q1, q2, R1, R2)
-        resid = _boundary_residual(th, q1, q2, R1, R2, ratio)
-    near_degenerate = np.abs(q1 - q2) < 1e-6 * np.abs(q1)  # ratio -> -1, residual meaningless
-    fail = ok & ((~near_degenerate & ~(resid < 1e-6)) | ~((q1.real > 0) & (q2.real > 0)))
+        ratio, resid = _amplitude_ratio(th, q1, q2, R1, R2)
+    fail = ok & (~(resid < 1e-6) | ~((q1.real > 0) & (q2.real > 0)))
     reason[fail] = REASON_BOUNDARY
     ok &= ~fail
     h = 2 * np.sin(0.5 * th) ** 2
@@ -320,7 +349,12 @@ def decay_solvent(A0, A1, omega2, q1, q2) -> np.ndarray:
     sig = (np.exp(-q1) + np.exp(-q2))[..., None, None]
     pro = np.exp(-(q1 + q2))[..., None, None]
     lhs = sig * A1 + A0 - omega2[..., None, None] * np.eye(2)
-    return np.linalg.solve(lhs, pro * A1 - np.conj(np.swapaxes(A1, -1, -2)))
+    det = lhs[..., 0, 0] * lhs[..., 1, 1] - lhs[..., 0, 1] * lhs[..., 1, 0]
+    adj = np.stack([np.stack([lhs[..., 1, 1], -lhs[..., 0, 1]], -1),
+                    np.stack([-lhs[..., 1, 0], lhs[..., 0, 0]], -1)], -2)
+    with np.errstate(all="ignore"):  # singular lhs (measure-zero points) gives NaN, not an error
+        inv = adj / det[..., None, None]
+    return inv @ (pro * A1 - np.conj(np.swapaxes(A1, -1, -2)))
 
 
 def _null_vector(S: np.ndarray) -> np.ndarray:

@@ -43,6 +43,10 @@ LATTICES: dict[str, dict] = {
     "triangular": {"dim": 2, "loadings": ("uniaxial",), "directions": ("[10]",)},
 }
 
+#: Smallest lateral stretch accepted in the uniaxial solve; below it the crystal has
+#: collapsed into a plane (e.g. FCC uniaxial [110] near d/d0 = sqrt 3).
+MIN_LATERAL_STRETCH = 0.05
+
 #: Vacuum padding (in d0) of the 3D cell that wraps the 2D triangular lattice for spglib/phonopy.
 TRIANGULAR_VACUUM = 10.0
 
@@ -218,18 +222,21 @@ def solve_lateral_stretch(
     pot = get_potential(potential)
     bonds0, _ = _fcc_lab(direction)
     s = np.asarray(s, dtype=float)
-    # Continuation: march from s = 1 towards each target in a few steps.
+    # Continuation: march every point from s = 1 to its target in steps of at most 0.02,
+    # Newton at each step; a point that fails is frozen so it cannot spoil the others.
     t = np.ones((s.size, 2))
     steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
     h = 1e-7
-    converged = np.zeros(s.size, dtype=bool)
+    failed = np.zeros(s.size, dtype=bool)
     for k in range(1, steps + 1):
         s_k = 1.0 + (s - 1.0) * k / steps
+        converged = np.zeros(s.size, dtype=bool)
         for _ in range(max_iter):
             full = np.column_stack([s_k, t])
             f = _lateral_stress(bonds0, full, pot)
             converged = np.all(np.abs(f) < tol, axis=-1)
-            if converged.all():
+            active = ~converged & ~failed
+            if not active.any():
                 break
             jac = np.empty((s.size, 2, 2))
             for j in range(2):
@@ -240,15 +247,15 @@ def solve_lateral_stretch(
                 jac[:, :, j] = (_lateral_stress(bonds0, dp, pot) - _lateral_stress(bonds0, dm, pot)) / (2 * h)
             with np.errstate(all="ignore"):
                 step = np.linalg.solve(jac, f[..., None])[..., 0]
-            step = np.where(np.isfinite(step), step, 0.0)
+            step = np.where(np.isfinite(step) & active[:, None], step, 0.0)
             t = t - np.clip(step, -0.2, 0.2)
-            if np.any(t <= 0):
-                break
-    bad = ~converged | np.any(t <= 0, axis=-1) | ~np.all(np.isfinite(t), axis=-1)
-    if bad.any():
+            failed |= np.any(t <= MIN_LATERAL_STRETCH, axis=-1) | ~np.all(np.isfinite(t), axis=-1)
+        failed |= ~converged
+    if failed.any():
         raise GeometryError(
-            f"fcc uniaxial {direction} with potential {pot.name!r}: the lateral stretches "
-            f"(sigma_yy = sigma_zz = 0) could not be solved at d/d0 = {s[bad][0]:.6g}"
+            f"fcc uniaxial {direction} with potential {pot.name!r}: no lateral stretches with "
+            f"sigma_yy = sigma_zz = 0 (the crystal collapses or the solve does not converge) "
+            f"at d/d0 = {s[failed][0]:.6g}"
         )
     return t
 

@@ -24,7 +24,11 @@ polarisation of the eigenvectors of A(x) and A(y), not by their order.
 Triangular lattice: the 2D cell is padded with vacuum along z (``Crystal.cell3d``), the
 supercell is N x N x 1 and only the in-plane (x, y) block of the dynamical matrix is used
 (the out-of-plane modes of a prestressed 2D sheet are not part of the model).
+
+Stability scans and instability limits: :mod:`surfwave.stability` (also reachable here as
+``surfwave.phonons.stability_scan``, ``instability_limits``, ``geometry_limit``).
 """
+
 from __future__ import annotations
 
 import itertools
@@ -32,37 +36,43 @@ from typing import Literal
 
 import numpy as np
 
-from .errors import SurfwaveError
+from .errors import GeometryError, InputError, SurfwaveError
 from .lattices import build, check_combination
 from .potentials import PairPotential, get_potential
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
 DEFAULT_SUPERCELL = 2
-DEFAULT_DISPLACEMENT = 1e-4
+DEFAULT_DISPLACEMENT = 3e-5
 DEFAULT_ZONE_MESH = 8
 DEFAULT_LONG_WAVE = "curvature"
 DEFAULT_SECANT_EPS = 1e-3
 #: omega^2 (K/m) or c^2 (K d0^2/m) below -TOLERANCE counts as unstable.
 TOLERANCE = 1e-7
 
-_SPEED_AXES = {  # name -> (propagation axis, polarisation axis) in the lab frame
-    "c2_L_par": (0, 0), "c2_T_par": (0, 1), "c2_SH": (0, 2),
-    "c2_L_perp": (1, 1), "c2_T_perp": (1, 0),
-}
-
-_C2 = "K d0^2 / m"
+_SPEEDS = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH")
+_C2, _S, _SX = "K d0^2 / m", ("strain",), ("strain", "xyz")
+#: CF metadata of every array :func:`bulk_speeds` returns (name -> long_name, units, dims).
 VARIABLES: dict[str, dict] = {
-    "c2_L_par_phonopy": {"long_name": "squared longitudinal sound speed along x from phonopy force constants", "units": _C2, "dims": ("strain",)},
-    "c2_T_par_phonopy": {"long_name": "squared transverse sound speed along x polarised along y, phonopy", "units": _C2, "dims": ("strain",)},
-    "c2_L_perp_phonopy": {"long_name": "squared longitudinal sound speed along y (surface normal), phonopy", "units": _C2, "dims": ("strain",)},
-    "c2_T_perp_phonopy": {"long_name": "squared transverse sound speed along y polarised along x, phonopy", "units": _C2, "dims": ("strain",)},
-    "c2_SH_phonopy": {"long_name": "squared shear-horizontal sound speed along x polarised along z, phonopy (NaN in 2D)", "units": _C2, "dims": ("strain",)},
-    "stable_phonon": {"long_name": "no imaginary phonon frequency on the zone mesh nor at long waves in any direction", "units": "1", "dims": ("strain",)},
-    "min_omega2": {"long_name": "lowest omega^2 on the zone mesh (Gamma excluded; refined locally when negative)", "units": "K / m", "dims": ("strain",)},
-    "min_omega2_q": {"long_name": "Cartesian lab-frame wave vector k of min_omega2 (phase exp(i k.r))", "units": "rad / d0", "dims": ("strain", "xyz")},
-    "min_c2_phonopy": {"long_name": "lowest acoustic-tensor eigenvalue over all directions, phonopy long-wave limit", "units": _C2, "dims": ("strain",)},
-    "min_c2_direction": {"long_name": "unit propagation direction of min_c2_phonopy, lab frame", "units": "1", "dims": ("strain", "xyz")},
-    "reason": {"long_name": "why a point has NaN phonopy values (empty if computed)", "units": "1", "dims": ("strain",)},
+    name: {"long_name": long_name, "units": units, "dims": dims}
+    for name, long_name, units, dims in [
+        ("c2_L_par_phonopy", "squared longitudinal sound speed along x (phonopy)", _C2, _S),
+        ("c2_T_par_phonopy", "squared transverse sound speed along x polarised along y (phonopy)", _C2, _S),
+        ("c2_L_perp_phonopy", "squared longitudinal sound speed along y, the normal (phonopy)", _C2, _S),
+        ("c2_T_perp_phonopy", "squared transverse sound speed along y polarised along x (phonopy)", _C2, _S),
+        ("c2_SH_phonopy", "squared sound speed along x polarised along z (phonopy; NaN in 2D)", _C2, _S),
+        ("stable_phonon", "no imaginary frequency on the zone mesh nor at long waves", "1", _S),
+        ("min_omega2", "lowest omega^2 on the zone mesh, Gamma excluded (refined if < 0)", "K / m", _S),
+        (
+            "min_omega2_q",
+            "Cartesian lab-frame wave vector k of min_omega2, phase exp(i k.r)",
+            "rad / d0",
+            _SX,
+        ),
+        ("min_c2_phonopy", "lowest acoustic-tensor eigenvalue over all directions (phonopy)", _C2, _S),
+        ("min_c2_direction", "unit propagation direction of min_c2_phonopy, lab frame", "1", _SX),
+        ("supercell_used", "N of the N^dim supercell used (raised if images are ambiguous)", "1", _S),
+        ("reason", "why a point has NaN phonopy values (empty if computed)", "1", _S),
+    ]
 }
 
 
@@ -321,8 +331,9 @@ def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.
     from scipy.optimize import minimize
 
     nz = mesh if dim == 3 else 1
-    phonon.run_mesh([mesh, mesh, nz], is_gamma_center=True, is_mesh_symmetry=False,
-                    with_eigenvectors=(dim == 2))
+    phonon.run_mesh(
+        [mesh, mesh, nz], is_gamma_center=True, is_mesh_symmetry=False, with_eigenvectors=(dim == 2)
+    )
     res = phonon.mesh
     q = np.asarray(res.qpoints)
     f = np.asarray(res.frequencies)
@@ -335,13 +346,18 @@ def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.
     best = float(w2[i_q].min())
     k_best = 2 * np.pi * np.linalg.solve(cell, q[i_q])
     if best < 0:
+
         def lowest(kv):
             k3 = np.zeros(3)
             k3[:dim] = kv
             return np.linalg.eigvalsh(dynamical_matrix(phonon, k3, cell)[:dim, :dim])[0]
 
-        opt = minimize(lowest, k_best[:dim], method="Nelder-Mead",
-                       options={"xatol": 1e-6, "fatol": 1e-12, "maxiter": 400})
+        opt = minimize(
+            lowest,
+            k_best[:dim],
+            method="Nelder-Mead",
+            options={"xatol": 1e-6, "fatol": 1e-12, "maxiter": 400},
+        )
         if opt.fun < best:
             best = float(opt.fun)
             k_best = np.zeros(3)
@@ -350,9 +366,29 @@ def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.
 
 
 # --------------------------------------------------------------------------- public API
+#: Larger supercells tried when phonopy's shortest images are not the bonds (strong strain).
+MAX_EXTRA_SUPERCELL = 2
+
+
+def _checked_crystal(lattice, loading, direction, d, pot):
+    """Build one point; a collapsed geometry (a stretch or the volume ~ 0) is a GeometryError."""
+    crystal = build(lattice, loading, direction, [d], potential=pot)
+    if crystal.stretch.min() < 1e-6 or crystal.volume[0] < 1e-6:
+        raise GeometryError(
+            f"degenerate geometry at d/d0 = {d:.6g}: lab stretches {np.round(crystal.stretch[0], 8)}"
+        )
+    return crystal
+
+
 def _point(crystal, index, pot, supercell, displacement, zone_mesh, long_wave, secant_eps):
-    phonon, bonds = make_phonopy(crystal, index, pot, supercell, displacement)
-    check_images(phonon, bonds)
+    for sc in range(supercell, supercell + MAX_EXTRA_SUPERCELL + 1):
+        phonon, bonds = make_phonopy(crystal, index, pot, sc, displacement)
+        try:
+            check_images(phonon, bonds)
+            break
+        except PhonopyPointError:
+            if sc == supercell + MAX_EXTRA_SUPERCELL:
+                raise
     dim = crystal.dim
     cell = crystal.cell3d()[index]
     w = long_wave_tensor(phonon)
@@ -363,11 +399,17 @@ def _point(crystal, index, pot, supercell, displacement, zone_mesh, long_wave, s
         a_perp = secant_tensor(phonon, cell, [0, 1.0, 0], secant_eps)
     par = assign_polarisation(a_par[:dim, :dim])
     perp = assign_polarisation(a_perp[:dim, :dim])
-    out = {"c2_L_par": par[0], "c2_T_par": par[1], "c2_L_perp": perp[1], "c2_T_perp": perp[0],
-           "c2_SH": par[2] if dim == 3 else np.nan}
+    out = {
+        "c2_L_par": par[0],
+        "c2_T_par": par[1],
+        "c2_L_perp": perp[1],
+        "c2_T_perp": perp[0],
+        "c2_SH": par[2] if dim == 3 else np.nan,
+    }
     out["min_c2_phonopy"], out["min_c2_direction"] = min_acoustic(w, dim)
     out["min_omega2"], out["min_omega2_q"] = zone_scan(phonon, cell, dim, zone_mesh)
     out["stable_phonon"] = bool(out["min_omega2"] > -TOLERANCE and out["min_c2_phonopy"] > -TOLERANCE)
+    out["supercell_used"] = sc
     return out
 
 
@@ -418,148 +460,51 @@ def bulk_speeds(
     """
     check_combination(lattice, loading, direction)
     pot = get_potential(potential)
+    if long_wave not in ("curvature", "secant"):
+        raise InputError(f"long_wave must be 'curvature' or 'secant', got {long_wave!r}")
+    if int(supercell) != supercell or supercell < 2 or not displacement > 0 or int(zone_mesh) < 2:
+        raise InputError(
+            f"need an integer supercell >= 2, displacement > 0 and zone_mesh >= 2; got "
+            f"supercell={supercell!r}, displacement={displacement!r}, zone_mesh={zone_mesh!r}"
+        )
     s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
     n = s.size
-    out = {f"{k}_phonopy": np.full(n, np.nan) for k in _SPEED_AXES}
-    out.update(stable_phonon=np.zeros(n, bool), min_omega2=np.full(n, np.nan),
-               min_omega2_q=np.full((n, 3), np.nan), min_c2_phonopy=np.full(n, np.nan),
-               min_c2_direction=np.full((n, 3), np.nan), reason=np.full(n, "", dtype=object))
+    out = {f"{k}_phonopy": np.full(n, np.nan) for k in _SPEEDS}
+    out.update(
+        stable_phonon=np.zeros(n, bool),
+        min_omega2=np.full(n, np.nan),
+        min_omega2_q=np.full((n, 3), np.nan),
+        min_c2_phonopy=np.full(n, np.nan),
+        min_c2_direction=np.full((n, 3), np.nan),
+        supercell_used=np.zeros(n, int),
+        reason=np.full(n, "", dtype=object),
+    )
     for i, si in enumerate(s):
         try:
-            crystal = build(lattice, loading, direction, [si], potential=pot)
+            crystal = _checked_crystal(lattice, loading, direction, si, pot)
             res = _point(crystal, 0, pot, supercell, displacement, zone_mesh, long_wave, secant_eps)
         except Exception as exc:  # noqa: BLE001 - recorded per point, never raised mid-array
             out["reason"][i] = f"{type(exc).__name__}: {exc}"
             continue
-        for k in _SPEED_AXES:
+        for k in _SPEEDS:
             out[f"{k}_phonopy"][i] = res[k]
-        for k in ("stable_phonon", "min_omega2", "min_omega2_q", "min_c2_phonopy", "min_c2_direction"):
+        for k in (
+            "stable_phonon",
+            "min_omega2",
+            "min_omega2_q",
+            "min_c2_phonopy",
+            "min_c2_direction",
+            "supercell_used",
+        ):
             out[k][i] = res[k]
     out["reason"] = out["reason"].astype(str)
     return out
 
 
-# --------------------------------------------------------------------------- stability
-def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
-    """Analytic long-wave stability per point (``surfwave.point(...)["stable"]``).
+def __getattr__(name: str):
+    """Stability helpers live in :mod:`surfwave.stability`; re-exported here lazily."""
+    if name in ("stability_scan", "instability_limits", "geometry_limit"):
+        from . import stability
 
-    Computed point by point so the result is separable; a point whose geometry cannot be
-    built is reported unstable-unknown as False.
-    """
-    from .api import point
-
-    flags = np.zeros(s.size, bool)
-    for i, si in enumerate(s):
-        try:
-            flags[i] = bool(np.asarray(point(lattice, loading, potential, direction, [si])["stable"])[0])
-        except Exception:  # noqa: BLE001 - geometry failures end the stable range
-            flags[i] = False
-    return flags
-
-
-def stability_scan(
-    lattice: str,
-    loading: str,
-    potential: str | PairPotential,
-    direction: str,
-    d_over_d0,
-    supercell: int = DEFAULT_SUPERCELL,
-    displacement: float = DEFAULT_DISPLACEMENT,
-    zone_mesh: int = DEFAULT_ZONE_MESH,
-) -> dict[str, np.ndarray]:
-    """Long-wave and full-zone stability flags at each strain.
-
-    Parameters
-    ----------
-    lattice, loading, potential, direction : str
-    d_over_d0 : array_like, shape (n,)
-    supercell, displacement, zone_mesh
-        Phonopy knobs, as in :func:`bulk_speeds`.
-
-    Returns
-    -------
-    dict
-        ``stable_long_wave`` (n,) bool: analytic acoustic tensor Q(n) positive for every
-        direction (:func:`surfwave.point`); ``stable_full_zone`` (n,) bool: phonopy's
-        ``stable_phonon`` (zone mesh and long-wave limit of the force constants);
-        ``min_omega2`` (n,) K/m, ``min_omega2_q`` (n, 3) rad/d0, ``min_c2_phonopy`` (n,)
-        K d0^2/m, ``reason`` (n,) str. Points that cannot be built are False in both flags.
-    """
-    s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
-    bulk = bulk_speeds(lattice, loading, potential, direction, s, supercell=supercell,
-                       displacement=displacement, zone_mesh=zone_mesh)
-    return {
-        "d_over_d0": s,
-        "stable_long_wave": _long_wave_flags(lattice, loading, potential, direction, s),
-        "stable_full_zone": bulk["stable_phonon"] & (bulk["reason"] == ""),
-        "min_omega2": bulk["min_omega2"],
-        "min_omega2_q": bulk["min_omega2_q"],
-        "min_c2_phonopy": bulk["min_c2_phonopy"],
-        "reason": bulk["reason"],
-    }
-
-
-def _flag(lattice, loading, potential, direction, kind, d, knobs) -> bool:
-    if kind == "long_wave":
-        return bool(_long_wave_flags(lattice, loading, potential, direction, np.array([d]))[0])
-    r = bulk_speeds(lattice, loading, potential, direction, [d], **knobs)
-    return bool(r["stable_phonon"][0] and r["reason"][0] == "")
-
-
-def instability_limits(
-    lattice: str,
-    loading: str,
-    potential: str | PairPotential,
-    direction: str,
-    kind: Literal["long_wave", "full_zone"] = "long_wave",
-    step: float = 0.01,
-    tol: float = 1e-4,
-    search: tuple[float, float] = (0.3, 2.0),
-    **knobs,
-) -> tuple[float, float]:
-    """First unstable d/d0 in compression and in tension, walking out from d/d0 = 1.
-
-    Steps of ``step`` from 1 until the flag turns False, then bisection of the last
-    stable / first unstable bracket down to ``tol``; the unstable end is returned. A
-    geometry that cannot be built counts as unstable (e.g. in-plane hydrostatic FCC at
-    d/d0 -> sqrt 2). NaN if the crystal stays stable up to the ``search`` bound.
-
-    Parameters
-    ----------
-    kind : {"long_wave", "full_zone"}
-        Analytic acoustic-tensor criterion, or phonopy's full-zone criterion.
-    step, tol : float
-        Walk step and bisection tolerance in d/d0.
-    search : (float, float)
-        Lowest and highest d/d0 examined.
-    **knobs
-        Phonopy knobs for ``kind="full_zone"`` (supercell, displacement, zone_mesh).
-
-    Returns
-    -------
-    (d_compress, d_tension) : tuple of float
-        d/d0 of the first instability below and above 1 (accurate to ``tol``).
-    """
-    if kind not in ("long_wave", "full_zone"):
-        raise ValueError(f"kind must be 'long_wave' or 'full_zone', got {kind!r}")
-    limits = []
-    for sign, bound in ((-1.0, search[0]), (1.0, search[1])):
-        stable, unstable = 1.0, None
-        n_steps = int(np.floor(abs(bound - 1.0) / step + 1e-9))
-        for j in range(1, n_steps + 1):
-            d = 1.0 + sign * j * step
-            if not _flag(lattice, loading, potential, direction, kind, d, knobs):
-                unstable = d
-                break
-            stable = d
-        if unstable is None:
-            limits.append(np.nan)
-            continue
-        while abs(unstable - stable) > tol:
-            mid = 0.5 * (stable + unstable)
-            if _flag(lattice, loading, potential, direction, kind, mid, knobs):
-                stable = mid
-            else:
-                unstable = mid
-        limits.append(float(unstable))
-    return limits[0], limits[1]
+        return getattr(stability, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -15,8 +15,11 @@ after the half crystal on one side is eliminated). Then, per row and per surface
 * a slab of N rows: ln det H_N = N B + X + o(1) with
   X = 2 ln det(1 - S^{-1} dA) - ln det(1 - S^{-1} A1 St^{-1} A1^H),
   dA = A0 - A0_surface (the bonds a surface row lacks) and St = M S M the fixed point seen
-  from the other side (M = diag(-1, 1), the mirror x -> -x). The second term is Widom's
-  constant of the block Toeplitz matrix (a clamped surface); the first is freeing it.
+  from the other side (M = diag(-1, 1), the mirror x -> -x). The second term is ln E,
+  E = 1/det(1 - S^{-1} A1 St^{-1} A1^H) the Widom constant of the block Toeplitz matrix
+  (both surfaces clamped; scalar analogue E = 1/(1 - a1^2/S^2)); the first frees the two
+  surfaces, one term each (the top one reads det(1 - St^{-1} dA), equal since M dA M = dA).
+  The split is checked against finite-slab determinants in tests/test_entropy.py.
 * hence the surface entropy per surface atom at theta, in k_B:
   s(theta) = -X / 4 = -(1/2) ln det(1 - S^{-1} dA) + (1/4) ln det(1 - S^{-1} A1 St^{-1} A1^H).
 
@@ -48,6 +51,11 @@ def inv2(m: np.ndarray) -> np.ndarray:
     out[..., 1, 0] = -m[..., 1, 0]
     with np.errstate(all="ignore"):
         return out / det2(m)[..., None, None]
+
+
+def _fro(m: np.ndarray) -> np.ndarray:
+    """Frobenius norm of the last two axes."""
+    return np.sqrt((np.abs(m) ** 2).sum(axis=(-1, -2)))
 
 
 def hermitian(m: np.ndarray) -> np.ndarray:
@@ -135,6 +143,8 @@ def theta_log_dets(
         ``free_log_det`` ln det(1 - S^{-1} dA) (freeing a clamped surface);
         ``clamp_log_det`` ln det(1 - S^{-1} A1 St^{-1} A1^H) (minus Widom's constant);
         ``s_theta`` the surface entropy per surface atom at theta, k_B;
+        ``s_rounding``: first-order bound of the rounding error of ``s_theta`` (k_B), from
+        the conditioning of the two near-singular blocks at small theta;
         ``bulk_ok``, ``surface_ok`` (bool): stability at theta (bulk: every block positive
         definite; surface: S - dA positive definite, i.e. no surface mode with omega^2 <= 0).
         Values are NaN where not ok.
@@ -149,7 +159,13 @@ def theta_log_dets(
     with np.errstate(all="ignore"):
         det_s = det2(s).real
         free = det2(surf_block).real / det_s
-        clamp = det2(eye - si @ a1 @ st_inv @ hermitian(a1)).real
+        clamp_block = eye - si @ a1 @ st_inv @ hermitian(a1)
+        clamp = det2(clamp_block).real
+        # |d ln det X| <= |X^-1| |dX| with |dX| ~ (levels) eps |S| (|S^-1| |S| for the clamp)
+        norm_s = _fro(s)
+        cond_s = norm_s * _fro(si)
+        rounding = 8.0 * _EPS * (0.5 * norm_s * _fro(inv2(surf_block))
+                                 + 0.25 * cond_s * _fro(inv2(clamp_block)))
         good = surface_ok & (clamp > 0) & (free > 0)
         bulk = np.where(bulk_ok, np.log(np.where(bulk_ok, det_s, 1.0)), np.nan)
         free_ld = np.where(good, np.log(np.where(good, free, 1.0)), np.nan)
@@ -159,6 +175,7 @@ def theta_log_dets(
         "free_log_det": free_ld,
         "clamp_log_det": clamp_ld,
         "s_theta": -0.5 * free_ld + 0.25 * clamp_ld,
+        "s_rounding": np.where(good, rounding, np.nan),
         "bulk_ok": bulk_ok,
         "surface_ok": good,
     }

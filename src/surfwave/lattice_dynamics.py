@@ -1,0 +1,297 @@
+"""Numerical surface lattice dynamics of the triangular lattice (independent of Eqs. 6a-16).
+
+The semi-infinite crystal is solved with the row equations of :mod:`surfwave.triangular`
+(bulk rows: omega^2 U_I = A0 U_I + A1 U_{I+1} + A1^H U_{I-1}; surface row with A0_surface)
+by renormalisation-group decimation (Lopez Sancho et al., J. Phys. F 15, 851 (1985)): each
+step eliminates every second row, so after K steps the surface row is coupled exactly to a
+crystal 2^K rows deep and the neglected coupling decays like exp(-2^K Re q). The effective
+surface matrix E_s(omega^2) then gives the surface-mode condition
+
+    f(omega^2) = det(omega^2 - E_s(omega^2)) = 0,   0 < omega^2 < omega_bulk_min^2,
+
+searched below the bottom of the bulk continuum at the same theta (bound, i.e. localised,
+states only: every root there is a surface mode; plate modes and slab buckling cannot occur).
+No formula of :mod:`surfwave.dispersion` is used. In the basis (U, V) with u = U, v = iV the
+row matrices are real, so f is real and the roots are bracketed by sign changes.
+
+Units: m = K = d0 = 1; omega in (K/m)^(1/2), omega^2 in K/m.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import InputError
+from .lattices import build
+from .potentials import PairPotential, get_potential
+from .triangular import row_matrices
+
+_W = "(K/m)^(1/2)"
+#: Metadata of every array :func:`surface_mode` returns (CF attributes).
+VARIABLES: dict[str, dict] = {
+    "omega_lattice": {"long_name": "surface-wave angular frequency from the numerical semi-infinite "
+                                   "lattice-dynamics solve (decimation)", "units": _W,
+                      "dims": ("strain", "theta")},
+    "omega_lattice_error": {"long_name": "error estimate of omega_lattice (extrapolated decimation "
+                                         "truncation, root bracket and rounding)", "units": _W,
+                            "dims": ("strain", "theta")},
+    "omega_bulk_min": {"long_name": "bottom of the bulk continuum at this k d_x", "units": _W,
+                       "dims": ("strain", "theta")},
+    "omega_sine_law": {"long_name": "(c_R/d_x) sin theta with c_R^2 from the long-wave elastic "
+                                    "constants (Eq. 20)", "units": _W, "dims": ("strain", "theta")},
+    "sine_law_deviation": {"long_name": "omega_lattice / omega_sine_law - 1", "units": "1",
+                           "dims": ("strain", "theta")},
+    "c2_R_long_wave": {"long_name": "squared Rayleigh speed from Eq. 20 and bond sums (Eq. A12)",
+                       "units": "K d0^2 / m", "dims": ("strain",)},
+    "depth": {"long_name": "rows of crystal the decimation coupled to the surface (2^steps)",
+              "units": "1", "dims": ("strain", "theta")},
+    "n_surface_modes": {"long_name": "number of bound surface modes below the bulk continuum",
+                        "units": "1", "dims": ("strain", "theta")},
+    "polarisation": {"long_name": "|v_0|^2 / (|u_0|^2 + |v_0|^2) of the surface row (1 = normal)",
+                     "units": "1", "dims": ("strain", "theta")},
+    "reason_lattice": {"long_name": "why omega_lattice is NaN (empty when valid)", "units": "",
+               "dims": ("strain", "theta")},
+}
+
+_D = np.diag([1.0, -1j])  # U' = D U: (u, v) -> (U, V) with v = i V
+
+
+def _real_basis(M: np.ndarray) -> np.ndarray:
+    """D M D^-1: the row matrices in the (U, V) basis, where they are real."""
+    return (_D @ M @ np.conj(_D)).real
+
+
+def _inv2(M: np.ndarray) -> np.ndarray:
+    det = M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
+    adj = np.stack([np.stack([M[..., 1, 1], -M[..., 0, 1]], -1),
+                    np.stack([-M[..., 1, 0], M[..., 0, 0]], -1)], -2)
+    return adj / det[..., None, None]
+
+
+def _det2(M: np.ndarray) -> np.ndarray:
+    return M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
+
+
+def bulk_band_bottom(A0: np.ndarray, A1: np.ndarray, n_grid: int = 129, n_golden: int = 60) -> np.ndarray:
+    """Lowest bulk omega^2 at fixed theta: min over kappa of eig(A0 + A1 e^ik + A1^H e^-ik).
+
+    Parameters
+    ----------
+    A0, A1 : ndarray, shape (..., 2, 2), complex, K/m
+
+    Returns
+    -------
+    ndarray, shape (...), K/m (negative where the bulk is unstable along this line).
+    """
+    def lowest(kap):
+        M = A0[..., None, :, :] + A1[..., None, :, :] * np.exp(1j * kap)[..., None, None] \
+            + np.conj(np.swapaxes(A1, -1, -2))[..., None, :, :] * np.exp(-1j * kap)[..., None, None]
+        h11, h22, h12 = M[..., 0, 0].real, M[..., 1, 1].real, M[..., 0, 1]
+        return 0.5 * (h11 + h22) - np.sqrt(0.25 * (h11 - h22) ** 2 + np.abs(h12) ** 2)
+
+    grid = np.linspace(0.0, np.pi, n_grid)
+    vals = lowest(np.broadcast_to(grid, A0.shape[:-2] + (n_grid,)))
+    i = np.argmin(vals, axis=-1)
+    step = grid[1]
+    lo, hi = np.maximum(grid[i] - step, 0.0), np.minimum(grid[i] + step, np.pi)
+    g = 0.5 * (np.sqrt(5.0) - 1.0)
+    for _ in range(n_golden):  # golden section on the bracketing cell
+        x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+        f1, f2 = lowest(x1[..., None])[..., 0], lowest(x2[..., None])[..., 0]
+        hi, lo = np.where(f1 < f2, x2, hi), np.where(f1 < f2, lo, x1)
+    best = lowest(0.5 * (lo + hi)[..., None])[..., 0]
+    return np.minimum(best, vals.min(axis=-1))
+
+
+def surface_matrix(E, A0r, A0sr, A1r, tol: float = 1e-10, n_steps: int | None = None,
+                   max_steps: int = 64, active=None):
+    """Effective surface matrix E_s(E) of the semi-infinite crystal by decimation.
+
+    Parameters
+    ----------
+    E : ndarray, shape (...), omega^2 (K/m), below the bulk continuum.
+    A0r, A0sr, A1r : ndarray, shape (..., 2, 2), real (U, V) basis.
+    tol : float
+        Stop when |alpha_K| <= tol |A1| everywhere (the neglected coupling to row 2^K).
+    n_steps : int, optional
+        Fixed number of decimation steps instead (benchmark knob).
+    active : ndarray of bool, shape (...), optional
+        Points that must converge (others, e.g. invalid stand-ins, are ignored).
+
+    Returns
+    -------
+    Es, Es_prev, Es_prev2 : ndarray, shape (..., 2, 2)
+        After the last step, one and two steps before it (for the error estimate).
+    steps : int
+    contraction : ndarray, shape (...)
+        |alpha_K| / |alpha_{K-1}| ~ exp(-2^(K-1) Re q): the ratio by which the next step's
+        correction shrinks (>= 0.5 means the decimation has not started to converge).
+    """
+    eye = np.eye(2)
+    Ee = E[..., None, None] * eye
+    alpha, beta = A1r.copy(), np.swapaxes(A1r, -1, -2).copy()
+    eps, eps_s = A0r.copy(), A0sr.copy()
+    scale = np.abs(A1r).max(axis=(-1, -2)) + 1e-300
+    prev = prev2 = eps_s
+    a_now = a_prev = np.abs(alpha).max(axis=(-1, -2))
+    steps = 0
+    limit = max_steps if n_steps is None else n_steps
+    while steps < limit:
+        small = np.abs(alpha).max(axis=(-1, -2)) <= tol * scale
+        if n_steps is None and np.all(small | (False if active is None else ~active)):
+            break
+        g = _inv2(Ee - eps)
+        ag, bg = alpha @ g, beta @ g
+        prev2, prev = prev, eps_s
+        eps_s = eps_s + ag @ beta
+        eps = eps + ag @ beta + bg @ alpha
+        alpha, beta = ag @ alpha, bg @ beta
+        a_prev, a_now = a_now, np.abs(alpha).max(axis=(-1, -2))
+        steps += 1
+    with np.errstate(all="ignore"):
+        contraction = np.where(a_now == 0, 0.0, a_now / a_prev)
+    return eps_s, prev, prev2, steps, contraction
+
+
+def _c2_R_long_wave(pot: PairPotential, d_over_d0) -> np.ndarray:
+    """Eq. (20) with sound speeds from the bond sums (Eqs. A7, A11, A12), shape (n,)."""
+    r = build("triangular", "uniaxial", "[10]", d_over_d0).bonds  # (n, 3, 2), each bond once
+    L = np.linalg.norm(r, axis=-1)
+    w_c = (L**2 * pot.d2phi(L) - L * pot.dphi(L)) / L**4
+    x, y = r[..., 0], r[..., 1]
+    s_xx = (x * x * pot.dphi(L) / L).sum(-1)  # V sigma_xx (sigma_yy = 0)
+    c_xxxx, c_yyyy, c_xyxy = ((w_c * x**4).sum(-1), (w_c * y**4).sum(-1), (w_c * x**2 * y**2).sum(-1))
+    cl_par, ct_par, cl_perp, ct_perp = s_xx + c_xxxx, s_xx + c_xyxy, c_yyyy, c_xyxy  # V S / m
+    with np.errstate(all="ignore"):
+        return 0.5 * (cl_par + ct_par) - 0.5 * np.sqrt((cl_par - ct_par) ** 2 + 4 * ct_perp**3 / cl_perp)
+
+
+def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 1e-10,
+                 n_steps: int | None = None, n_scan: int = 24, rtol_root: float = 1e-15) -> dict:
+    """Surface-wave frequency of the triangular lattice by a numerical semi-infinite solve.
+
+    Parameters
+    ----------
+    potential : str or PairPotential
+        Any registered pair potential.
+    d_over_d0 : array_like, shape (n,)
+        2 d_x / d0 in (0, 2).
+    theta : array_like, shape (m,)
+        k d_x, radians; NaN with a reason outside (0, pi).
+    tol : float
+        Decimation tolerance on the neglected coupling (relative to |A1|).
+    n_steps : int, optional
+        Fixed number of decimation steps (depth 2^n_steps rows) instead of ``tol``.
+    n_scan : int
+        Points of the sign scan of f below the bulk continuum (counts the bound modes).
+    rtol_root : float
+        Relative width at which the bisection/regula-falsi bracket on omega^2 stops.
+
+    Returns
+    -------
+    dict
+        ``omega_lattice``, ``omega_lattice_error``, ``omega_bulk_min``, ``omega_sine_law``,
+        ``sine_law_deviation``, ``polarisation`` (n, m) float; ``depth``,
+        ``n_surface_modes`` (n, m) int; ``c2_R_long_wave`` (n,); ``reason_lattice`` (n, m)
+        str (named so that it does not clash with the ``reason`` of dispersion.solve).
+        If several bound modes exist, the one selected is the one continuous with the long-wave
+        Rayleigh wave: the root closest to omega_sine_law (reported in ``n_surface_modes``).
+    """
+    pot = get_potential(potential)
+    th_in = np.atleast_1d(np.asarray(theta, dtype=float))
+    if th_in.ndim != 1 or not np.all(np.isfinite(th_in)):
+        raise InputError(f"theta must be a finite 1-D array, got {th_in!r}")
+    bad_th = ~((th_in > 0) & (th_in < np.pi))
+    th = np.where(bad_th, 0.5 * np.pi, th_in)
+    A0, A0s, A1 = row_matrices(pot, d_over_d0, th)
+    n, m = A0.shape[:2]
+    A0r, A0sr, A1r = _real_basis(A0), _real_basis(A0s), _real_basis(A1)
+    e_min = bulk_band_bottom(A0, A1)
+    reason = np.full((n, m), "", dtype=object)
+    reason[e_min <= 0] = "bulk unstable: bulk continuum reaches omega^2 <= 0 at this theta"
+    reason[:, bad_th] = "theta outside (0, pi)"
+    ok = reason == ""
+    top = np.where(ok, e_min, 1.0)
+
+    def f(r, steps=None):
+        Es, Ep, Ep2, k, con = surface_matrix(r * top, A0r, A0sr, A1r, tol=tol,
+                                             n_steps=steps if steps else n_steps, active=ok)
+        E = (r * top)[..., None, None] * np.eye(2)
+        return _det2(E - Es), _det2(E - Ep), _det2(E - Ep2), k, con
+
+    # Scan for sign changes (bound modes) on r = omega^2 / omega_bulk_min^2 in (0, 1).
+    r_grid = 1.0 - np.geomspace(1.0, 1e-7, n_scan)  # dense towards the band bottom
+    r_grid[0] = 1e-9
+    with np.errstate(all="ignore"):
+        fs = np.stack([f(np.full((n, m), r))[0] for r in r_grid], axis=-1)
+    change = np.signbit(fs[..., :-1]) != np.signbit(fs[..., 1:])
+    n_modes = change.sum(axis=-1)
+    reason[ok & (n_modes == 0)] = "no bound surface mode below the bulk continuum"
+    ok &= n_modes > 0
+    # Pick the bracket closest to the long-wave sine law (continuity with the Rayleigh wave).
+    c2 = _c2_R_long_wave(pot, d_over_d0)
+    dx = 0.5 * np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    with np.errstate(all="ignore"):
+        w_sine = np.sqrt(c2)[:, None] / dx[:, None] * np.sin(th)[None, :]
+        r_sine = w_sine**2 / top
+    mid = 0.5 * (r_grid[:-1] + r_grid[1:])
+    dist = np.where(change, np.abs(mid - np.nan_to_num(r_sine, nan=0.5)[..., None]), np.inf)
+    j = np.argmin(dist, axis=-1)
+    lo, hi = r_grid[j], r_grid[j + 1]
+    flo = np.take_along_axis(fs, j[..., None], -1)[..., 0]
+    fhi = np.take_along_axis(fs, j[..., None] + 1, -1)[..., 0]
+    side = np.zeros((n, m), dtype=int)
+    for _ in range(200):  # Illinois regula falsi, vectorised; bisection when it stalls
+        if np.all(~ok | (hi - lo <= rtol_root * hi)):
+            break
+        with np.errstate(all="ignore"):
+            x = (lo * fhi - hi * flo) / (fhi - flo)
+        x = np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
+        x = np.where(np.abs(side) >= 3, 0.5 * (lo + hi), x)
+        with np.errstate(all="ignore"):
+            fx = f(x)[0]
+        left = np.signbit(fx) == np.signbit(flo)
+        lo, flo = np.where(left, x, lo), np.where(left, fx, flo)
+        hi, fhi = np.where(left, hi, x), np.where(left, fhi, fx)
+        fhi = np.where(left & (side > 0), 0.5 * fhi, fhi)
+        flo = np.where(~left & (side < 0), 0.5 * flo, flo)
+        side = np.where(left, np.maximum(side, 0) + 1, np.minimum(side, 0) - 1)
+    root = 0.5 * (lo + hi)
+    with np.errstate(all="ignore"):
+        f_now, _, _, steps, _ = f(root)
+        f_next, _, _, _, con = f(root, steps=steps + 1)  # one step more than the model used
+        h = 1e-6 * root  # Illinois halves flo/fhi, so take the slope afresh
+        slope = (f(root + h)[0] - f(root - h)[0]) / (2 * h)
+        d_next = np.abs(f_next - f_now) / np.abs(slope)  # root change that step would cause
+        E = root * top
+        Es = surface_matrix(E, A0r, A0sr, A1r, tol=tol, n_steps=n_steps, active=ok)[0]
+        S = E[..., None, None] * np.eye(2) - Es
+        u = np.where((np.abs(S[..., 0, :]).sum(-1) >= np.abs(S[..., 1, :]).sum(-1))[..., None],
+                     np.stack([-S[..., 0, 1], S[..., 0, 0]], -1), np.stack([S[..., 1, 1], -S[..., 1, 0]], -1))
+        pol = u[..., 1] ** 2 / (u**2).sum(-1)
+    omega = np.sqrt(E)
+    # Rounding: the row matrices carry absolute errors ~eps |A0| that the acoustic cancellation
+    # (omega^2 ~ theta^2) does not reduce, so omega^2 is known to ~eps |A0| at best.
+    rounding = 8 * np.finfo(float).eps * np.abs(A0r).max(axis=(-1, -2))
+    # Truncation: d_next = root change one more decimation step (a crystal twice as deep) would
+    # cause; later steps shrink by ~con = |alpha_K+1|/|alpha_K| each (doubly exponential), so the
+    # remaining error is <= d_next/(1 - con) (safety factor 10). If con >= 0.5 the decimation has
+    # not started to converge and the error is only bounded by the gap below the continuum.
+    with np.errstate(all="ignore"):
+        trunc = np.where(con < 0.5, 10 * d_next / (1 - con), 1.0)
+    trunc = np.where(ok, np.nan_to_num(trunc, nan=1.0), 0.0) * top
+    err_e2 = trunc + (hi - lo) * top + rounding
+    err = err_e2 / (2 * omega)
+    nan = np.nan
+    out = {
+        "omega_lattice": np.where(ok, omega, nan),
+        "omega_lattice_error": np.where(ok, err, nan),
+        "omega_bulk_min": np.where(e_min > 0, np.sqrt(np.abs(e_min)), nan),
+        "omega_sine_law": np.where(ok, w_sine, nan),
+        "sine_law_deviation": np.where(ok, omega / w_sine - 1, nan),
+        "c2_R_long_wave": c2,
+        "depth": np.where(ok, 2.0**steps, 0.0),
+        "n_surface_modes": np.where(ok, n_modes, 0),
+        "polarisation": np.where(ok, pol, nan),
+        "reason_lattice": reason,
+    }
+    return out

@@ -1,0 +1,184 @@
+"""Figures of the triangular-lattice surface waves (matplotlib, Agg backend, PNG files).
+
+Every function takes either the dict returned by :func:`surfwave.dispersion.solve` /
+:func:`surfwave.dispersion.displacements` together with the coordinates (``d_over_d0``,
+``theta``), or an xarray Dataset holding the same variables with coordinates ``theta`` and
+``d_over_d0`` (or ``strain`` = d/d0 - 1) and no other dimension (select a potential first),
+plus the output path. They return the path written.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .errors import InputError  # noqa: E402
+
+
+def _get(data, name: str):
+    if isinstance(data, dict):
+        if name not in data:
+            raise InputError(f"missing {name!r} in the data; have {sorted(data)}")
+        return np.asarray(data[name])
+    if name in data.variables:
+        return np.asarray(data[name].values)
+    raise InputError(f"missing {name!r} in the Dataset; have {sorted(data.variables)}")
+
+
+def _coords(data, d_over_d0=None, theta=None):
+    """(d_over_d0 (n,), theta (m,)) from the arguments, dict keys or Dataset coordinates."""
+    if isinstance(data, dict):
+        d_over_d0 = data.get("d_over_d0", d_over_d0) if d_over_d0 is None else d_over_d0
+        theta = data.get("theta", theta) if theta is None else theta
+    if d_over_d0 is None and not isinstance(data, dict):
+        if "d_over_d0" in data.variables:
+            d_over_d0 = data["d_over_d0"].values
+        elif "strain" in data.coords:
+            d_over_d0 = 1.0 + data["strain"].values
+    if theta is None and not isinstance(data, dict) and "theta" in data.coords:
+        theta = data["theta"].values
+    if d_over_d0 is None or theta is None:
+        raise InputError("pass d_over_d0 and theta (or a Dataset with those coordinates)")
+    return np.atleast_1d(np.asarray(d_over_d0, float)), np.atleast_1d(np.asarray(theta, float))
+
+
+def _save(fig, path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, max_curves: int = 5,
+                    title: str = "") -> Path:
+    """omega(theta) of the surface wave at several strains with the bulk band edges.
+
+    Parameters
+    ----------
+    data : dict or xarray.Dataset
+        ``omega``, ``omega_L``, ``omega_T`` of shape (strain, theta), (K/m)^(1/2); optional
+        ``omega_bulk_min`` (bottom of the bulk continuum) and ``omega_lattice`` (numerical check).
+    path : str or Path
+        PNG file to write.
+    d_over_d0, theta : array_like, shapes (n,), (m,), optional with a Dataset.
+    numerical : dict, optional
+        Output of :func:`surfwave.lattice_dynamics.surface_mode` on the same grid (its
+        ``omega_lattice`` is drawn as markers and ``omega_bulk_min`` shades the continuum).
+    max_curves : int
+        At most this many strains are drawn (evenly picked).
+    """
+    d, th = _coords(data, d_over_d0, theta)
+    omega, wl, wt = _get(data, "omega"), _get(data, "omega_L"), _get(data, "omega_T")
+    bottom = lattice = None
+    src = numerical if numerical is not None else data
+    if isinstance(src, dict) and "omega_bulk_min" in src or (not isinstance(src, dict) and "omega_bulk_min" in src.variables):
+        bottom = _get(src, "omega_bulk_min")
+    if isinstance(src, dict) and "omega_lattice" in src or (not isinstance(src, dict) and "omega_lattice" in src.variables):
+        lattice = _get(src, "omega_lattice")
+    pick = np.unique(np.linspace(0, d.size - 1, min(max_curves, d.size)).round().astype(int))
+    fig, axes = plt.subplots(1, len(pick), figsize=(3.2 * len(pick), 3.4), sharey=True, squeeze=False)
+    for ax, i in zip(axes[0], pick):
+        x = th / np.pi
+        if bottom is not None:
+            ax.fill_between(x, bottom[i], np.nanmax(wl) * 1.05, color="0.9", label="bulk continuum")
+        ax.plot(x, wl[i], "C1--", lw=1, label=r"$\omega_L$ (Eq. 4a)")
+        ax.plot(x, wt[i], "C2--", lw=1, label=r"$\omega_T$ (Eq. 4a)")
+        ax.plot(x, omega[i], "C0-", lw=1.8, label=r"$\omega = (c_R/d_x)\sin\theta$")
+        if lattice is not None:
+            every = max(1, th.size // 25)
+            ax.plot(x[::every], lattice[i, ::every], "k.", ms=4, label="lattice dynamics")
+        ax.set_title(f"d/d0 = {d[i]:.3g}", fontsize=9)
+        ax.set_xlabel(r"$\theta / \pi = k d_x / \pi$")
+        ax.set_xlim(0, 1)
+    axes[0, 0].set_ylabel(r"$\omega$ / (K/m)$^{1/2}$")
+    axes[0, 0].legend(fontsize=7, loc="upper left")
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return _save(fig, path)
+
+
+def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: int | None = None,
+                       n_columns: int = 8, scale: float = 0.35, title: str = "") -> Path:
+    """Fig. 3 of the paper: displacement patterns of the surface wave, one panel per theta.
+
+    Atoms of rows I = 0 (surface, top) downwards sit at x = (I + 2J) d_x, y = I d_y (crosses);
+    each atom's trajectory Re[(u_I, v_I) exp(i theta (I + 2J) - i omega t)] over one period is
+    drawn as an ellipse (scaled by ``scale``; y into the crystal drawn downwards), the dot marks
+    t = 0.
+
+    Parameters
+    ----------
+    data : dict or xarray.Dataset
+        ``u``, ``v`` of shape (strain, theta, row) (from :func:`surfwave.dispersion.displacements`).
+    path : str or Path
+    d_over_d0, theta : array_like, optional with a Dataset.
+    strain_index : int, optional
+        Which strain to draw; default the one closest to d/d0 = 1 (zero stress, as the paper).
+    n_columns : int
+        Atoms per row drawn.
+    scale : float
+        Drawn length (units of d0) of a unit displacement.
+    """
+    d, th = _coords(data, d_over_d0, theta)
+    u, v = _get(data, "u"), _get(data, "v")
+    i = int(np.argmin(np.abs(d - 1.0))) if strain_index is None else strain_index
+    dx, dy = 0.5 * d[i], np.sqrt(1 - (0.5 * d[i]) ** 2)
+    rows = np.arange(u.shape[-1])
+    width = 2 * dx * n_columns
+    panel_h = 2.8 * (rows[-1] * dy + 1.4) / (width + 0.5)
+    fig, axes = plt.subplots(1, th.size, figsize=(2.8 * th.size, panel_h + 0.8), squeeze=False)
+    t = np.linspace(0, 2 * np.pi, 41)
+    for ax, k in zip(axes[0], range(th.size)):
+        # atoms with 0 <= x < width in every row (J shifted so that the panel is rectangular)
+        I = np.repeat(rows, n_columns + 1)
+        JJ = np.tile(np.arange(n_columns + 1), rows.size) - (I + 1) // 2
+        x, y = (I + 2 * JJ) * dx, I * dy
+        keep = (x > -1e-9) & (x < width - 1e-9)
+        I, JJ, x, y = I[keep], JJ[keep], x[keep], y[keep]
+        phase = np.exp(1j * th[k] * (I + 2 * JJ))
+        cu, cv = u[i, k][I] * phase, v[i, k][I] * phase
+        # trajectory over one period (ellipse) and the position at t = 0 (dot)
+        tx = x[:, None] + scale * (cu[:, None] * np.exp(-1j * t)).real
+        ty = -y[:, None] - scale * (cv[:, None] * np.exp(-1j * t)).real
+        ax.plot(x, -y, "+", color="0.6", ms=3)
+        ax.plot(tx.T, ty.T, "-", color="C0", lw=0.8)
+        ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2)
+        ax.set_title(rf"$\theta = {th[k] / np.pi:.3g}\,\pi$", fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlim(-0.5, width)
+        ax.set_ylim(-(rows[-1] + 0.7) * dy, 0.7)
+        ax.axis("off")
+    fig.suptitle(title or f"surface-wave displacements, d/d0 = {d[i]:.3g} (row 0 = surface, top)", fontsize=10)
+    return _save(fig, path)
+
+
+def plot_theta_c(data, path, *, d_over_d0=None, title: str = "", potential_labels=None) -> Path:
+    """Crossover theta_c (q complex above it) against d/d0.
+
+    Parameters
+    ----------
+    data : dict, xarray.Dataset, or a list of them (one curve each, e.g. per potential)
+        Holding ``theta_c`` of shape (strain,) (a dict may also hold ``d_over_d0``).
+    path : str or Path
+    d_over_d0 : array_like, shape (n,), optional with a Dataset.
+    potential_labels : list of str, optional
+        Legend labels when ``data`` is a list.
+    """
+    items = data if isinstance(data, (list, tuple)) else [data]
+    labels = potential_labels or [None] * len(items)
+    fig, ax = plt.subplots(figsize=(4.5, 3.4))
+    for item, label in zip(items, labels):
+        d, _ = _coords(item, d_over_d0, theta=[0.0])
+        ax.plot(d, _get(item, "theta_c") / np.pi, ".-", label=label)
+    ax.axhline(1 / 8, color="0.5", lw=0.8, ls=":", label=r"$\pi/8$ (paper, zero stress)")
+    ax.set_xlabel("d/d0 = 2 d_x / d0")
+    ax.set_ylabel(r"$\theta_c / \pi$")
+    ax.legend(fontsize=8)
+    if title:
+        ax.set_title(title, fontsize=10)
+    return _save(fig, path)
