@@ -1,6 +1,6 @@
 """Reproduction of the paper's Table I (FCC, LJ, in-plane hydrostatic) to the printed 4 decimals.
 
-Reference: Table I of the seed paper, transcribed in src/surfwave/data/table1.csv.
+Reference: Table I of the seed paper, transcribed in src/surfwave/data/paper_values.yaml.
 """
 from __future__ import annotations
 

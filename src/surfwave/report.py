@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import json
 import math
 from importlib import resources
 from pathlib import Path
@@ -28,6 +29,7 @@ import xarray as xr
 import yaml
 
 from . import report_checks as _claims
+from .report_targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
 from .report_checks import (
     FAIL,
     INCONCLUSIVE,
@@ -38,9 +40,6 @@ from .report_checks import (
     pick as _pick,
     sel_strain,
 )
-
-CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
-
 
 # --------------------------------------------------------------------------- I/O helpers
 def load_paper_values(path: str | Path | None = None) -> dict:
@@ -306,26 +305,114 @@ def write_report(cube_paths: Iterable[str | Path], out_md: str | Path,
     return numbers + claims
 
 
-def report_inputs(scenes: dict, results: str = "results") -> list[str]:
-    """The cubes the default report reads that the given scenes produce.
+# --------------------------------------------------------------------------- benchmarks
+BENCH_CONVENTION = """\
+Benchmark cube convention (benchmarks/bench_*.py OUTDIR -> OUTDIR/<name>.nc + PNG):
+global attributes `method`, `knob` (name of the swept dimension), `default` (the chosen
+knob value), `default_reason` (why); data variables `error` (with `units`) and `time`
+(seconds) along the knob dimension. Pure timings: attribute `kind = "timing"` and a
+variable `time` along any one dimension, one table row per label. A cube may instead give
+its rows itself: attribute `readme_rows`, a JSON list of [method, knob, error, time, default
+and why]. Anything else is summarised generically (per dimension: the ranges of variables
+named *error*/*dev* and *time*, and the `default*` attributes)."""
 
-    Parameters
-    ----------
-    scenes : dict
-        ``config["scenes"]``: scene name -> {"quantities": [...], ...}.
-    """
-    pv = load_paper_values()
-    wanted = {pv["table1"]["scene"]: {"elastic", "rayleigh"}}
-    for group in ("values", "claims"):
-        for spec in pv[group].values():
-            for scene in (spec.get("scene"), spec.get("reference_scene")):
-                if scene:
-                    wanted.setdefault(scene, set()).update(_claims.CUBES_NEEDED)
-    out = []
-    for scene, cubes in wanted.items():
-        have = set(scenes.get(scene, {}).get("quantities", []))
-        out += [f"{results}/{scene}/{c}.nc" for c in CUBE_NAMES if c in cubes and c in have]
-    return sorted(set(out))
+
+def _span(values) -> str:
+    values = np.asarray(values)
+    if values.dtype.kind in "iuf" and values.size > 1:
+        return f"[{_fmt_cell(values.min())}, {_fmt_cell(values.max())}]"
+    labels = [str(v) for v in values]
+    return ", ".join(labels[:4]) + (", ..." if len(labels) > 4 else "")
+
+
+def _generic_rows(ds: xr.Dataset, name: str) -> list[list[str]]:
+    a = ds.attrs
+    method = str(a.get("method") or a.get("title") or name)
+    defaults = "; ".join(f"{k}: {v}" for k, v in a.items() if k.startswith("default") or k == "target")
+    rows = []
+    for dim in ds.dims:
+        errs = [v for v in ds.data_vars if dim in ds[v].dims and ("error" in v or "dev" in v)
+                and "reported" not in v]
+        times = [v for v in ds.data_vars if dim in ds[v].dims and "time" in v]
+        if not errs and not times:
+            continue
+
+        def rng(names, unit_default=""):
+            return "; ".join(f"{v}: {_fmt_cell(float(ds[v].min()))} .. {_fmt_cell(float(ds[v].max()))}"
+                             f" {ds[v].attrs.get('units', unit_default)}".strip() for v in names)
+
+        rows.append([method, f"{dim} in {_span(ds[dim].values) if dim in ds.coords else ds.sizes[dim]}",
+                     rng(errs), rng(times, "s"), defaults if not rows else "(see above)"])
+    return rows or [[method, "?", "see " + name, "see " + name, defaults]]
+
+
+def _fmt_cell(x) -> str:
+    try:
+        return fmt(float(x), 3)
+    except (TypeError, ValueError):
+        return str(x)
+
+
+def benchmark_rows(path: str | Path) -> list[list[str]]:
+    """Table rows [method, knob, error, time, default and why] of one benchmark cube."""
+    ds = open_cube(path)
+    name = Path(path).name
+    if ds is None:
+        return [[name, "", "", "", "not computed"]]
+    a = ds.attrs
+    method = str(a.get("method", Path(path).stem))
+    if "readme_rows" in a:
+        return [[str(c) for c in row] for row in json.loads(a["readme_rows"])]
+    if a.get("kind") == "timing" and "time" in ds:
+        t = ds["time"]
+        dim = t.dims[0] if t.dims else None
+        if dim is None:
+            return [[method, "", "", f"{float(t):.3g} s", str(a.get("default_reason", ""))]]
+        return [[method, f"{dim} = {lab}", "", f"{float(v):.3g} s", str(a.get("default_reason", ""))]
+                for lab, v in zip(t[dim].values, t.values)]
+    knob = str(a.get("knob", ""))
+    if "error" not in ds or "time" not in ds or knob not in ds["error"].dims:
+        return _generic_rows(ds, name)
+    err, tim = ds["error"], ds["time"]
+    values = ds[knob].values
+    default = a.get("default")
+    i = 0
+    if default is not None:
+        try:
+            i = int(np.argmin(np.abs(np.asarray(values, float) - float(default))))
+        except (TypeError, ValueError):
+            labels = [str(v) for v in values]
+            i = labels.index(str(default)) if str(default) in labels else 0
+    others = [d for d in err.dims if d != knob]
+    e_def = err.isel({knob: i}).max(others) if others else err.isel({knob: i})
+    t_def = tim.isel({knob: i}).max([d for d in tim.dims if d != knob]) if tim.ndim > 1 else tim.isel({knob: i})
+    units = err.attrs.get("units", "")
+    span = f"{knob} in [{_fmt_cell(values.min())}, {_fmt_cell(values.max())}]" if values.dtype.kind in "iuf" else knob
+    why = f"{knob} = {_fmt_cell(values[i])}: {a.get('default_reason', '')}".strip(": ")
+    return [[method, span, f"{_fmt_cell(float(e_def))} {units}".strip() +
+             f" (range {_fmt_cell(float(err.min()))} .. {_fmt_cell(float(err.max()))})",
+             f"{float(t_def):.3g} s (range {float(tim.min()):.3g} .. {float(tim.max()):.3g} s)", why]]
+
+
+def benchmark_table(dirs: Iterable[str | Path], out_md: str | Path) -> str:
+    """Write the README's benchmark table from every ``*.nc`` in ``dirs``; returns the text."""
+    lines = ["| Method | Knob | Error at default (range) | Time at default (range) | Default chosen and why |",
+             "|---|---|---|---|---|"]
+    pngs = []
+    for d in dirs:
+        d = Path(d)
+        files = sorted(d.glob("*.nc")) if d.is_dir() else []
+        if not files:
+            lines.append(f"| {d.name} | | | | not computed |")
+        for f in files:
+            lines += ["| " + " | ".join(c.replace("|", "/") for c in row) + " |"
+                      for row in benchmark_rows(f)]
+        pngs += sorted(d.glob("*.png")) if d.is_dir() else []
+    text = "\n".join(lines) + "\n"
+    if pngs:
+        text += "\nPlots: " + ", ".join(f"`{p}`" for p in pngs) + "\n"
+    Path(out_md).write_text(text)
+    return text
 
 
 def main(argv: list[str] | None = None) -> int:

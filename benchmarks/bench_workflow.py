@@ -1,0 +1,98 @@
+"""Wall time of the full reproduction and of the no-op rerun.
+
+Usage: python benchmarks/bench_workflow.py OUTDIR   -> OUTDIR/workflow_timing.nc, .png
+
+Copies the repository (without results/, .snakemake/, .git/, .venv/) to a temporary
+directory and runs ``snakemake -j2`` there from an empty results/ (the parameter cache
+starts empty too), then again (must print "Nothing to be done"). Targets (issue 3):
+full reproduction < 20 s, no-op rerun < 2 s, on the 2-core machine.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+import surfwave  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+IGNORE = shutil.ignore_patterns("results", ".snakemake", ".git", ".venv", "__pycache__",
+                                ".pytest_cache", "*.egg-info")
+RUNS = ["full reproduction (empty results, -j2)", "no-op rerun"]
+TARGETS = np.array([20.0, 2.0])
+
+
+def _snakemake() -> str:
+    exe = Path(sys.executable).with_name("snakemake")
+    return str(exe) if exe.exists() else "snakemake"
+
+
+def run_once(workdir: Path, log) -> tuple[float, str]:
+    t0 = time.perf_counter()
+    # the copy's own src/ first, so the rules' code inputs are the copy's (not a tree that
+    # others may be editing while the benchmark runs)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(workdir / "src"), *filter(None, [os.environ.get("PYTHONPATH")])]))
+    proc = subprocess.run([_snakemake(), "-j2"], cwd=workdir, capture_output=True, text=True,
+                          env=env)
+    dt = time.perf_counter() - t0
+    log.write(proc.stdout + proc.stderr)
+    if proc.returncode != 0:
+        raise SystemExit(f"snakemake failed in {workdir} (exit {proc.returncode}):\n"
+                         + proc.stderr[-3000:])
+    return dt, proc.stdout + proc.stderr
+
+
+def main(outdir: str) -> Path:
+    out = Path(outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="surfwave-bench-") as tmp:
+        work = Path(tmp, "repo")
+        shutil.copytree(ROOT, work, ignore=IGNORE)
+        with open(out / "snakemake_output.log", "w") as log:
+            t_full, _ = run_once(work, log)
+            t_noop, text = run_once(work, log)
+        n_jobs = len(list((work / "results").rglob("*.nc")))
+    nothing = "Nothing to be done" in text  # else the log says which jobs reran and why
+    times = np.array([t_full, t_noop])
+    for run, t, target in zip(RUNS, times, TARGETS):
+        print(f"{run}: {t:.2f} s (target < {target:g} s)")
+    ds = xr.Dataset(
+        {"time": ("run", times, {"long_name": "wall time", "units": "s"}),
+         "target": ("run", TARGETS, {"long_name": "target wall time (issue 3)", "units": "s"})},
+        coords={"run": ("run", RUNS)},
+        attrs={"Conventions": "CF-1.10", "title": "surfwave benchmark: workflow wall time",
+               "source": f"surfwave {surfwave.__version__}",
+               "history": f"{time.ctime()}: bench_workflow.py", "kind": "timing",
+               "method": "snakemake -j2, default config",
+               "default_reason": (f"targets < 20 s (full) and < 2 s (no-op); no-op printed "
+                                  f"'Nothing to be done': {nothing}; {n_jobs} cubes written"),
+               "nothing_to_be_done": int(nothing)},
+    )
+    nc = out / "workflow_timing.nc"
+    ds.to_netcdf(nc, engine="h5netcdf")
+    fig, ax = plt.subplots(figsize=(5.5, 3))
+    ax.barh(RUNS, times, color=["tab:blue", "tab:green"])
+    ax.scatter(TARGETS, RUNS, marker="|", s=400, color="tab:red", label="target")
+    ax.set_xlabel("wall time (s), 2 cores")
+    ax.set_title("Full reproduction and no-op rerun")
+    ax.legend()
+    fig.savefig(out / "workflow_timing.png", dpi=150, bbox_inches="tight")
+    return nc
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        raise SystemExit(__doc__.split("\n\n")[1])
+    main(sys.argv[1])

@@ -1,0 +1,59 @@
+"""Which figures and report inputs a set of scenes allows (light: imported by the Snakefile).
+
+Kept free of matplotlib and xarray so that parsing the workflow stays fast.
+"""
+from __future__ import annotations
+
+from importlib import resources
+
+import yaml
+
+CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
+#: cubes the report's checks can read (bulk.nc is not used)
+REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
+
+
+def speeds_scenes(scenes: dict, names) -> list[str]:
+    """Names (of ``names``) of the FCC scenes that make elastic and rayleigh cubes (Fig. 2)."""
+    return [n for n in names if scenes[n]["lattice"] == "fcc"
+            and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
+
+
+def figure_targets(scenes: dict, names, results: str = "results") -> list[str]:
+    """PNGs of the triangular-lattice figures the named scenes' cubes allow.
+
+    dispersion -> dispersion_<potential>.png and theta_c.png; displacements ->
+    fig3_displacements_<potential>.png; entropy -> entropy_vs_strain.png.
+    """
+    out = []
+    for n in names:
+        q, pots = set(scenes[n]["quantities"]), scenes[n]["potentials"]
+        if "dispersion" in q:
+            out += [f"{results}/{n}/dispersion_{p}.png" for p in pots] + [f"{results}/{n}/theta_c.png"]
+        if "displacements" in q:
+            out += [f"{results}/{n}/fig3_displacements_{p}.png" for p in pots]
+        if "entropy" in q:
+            out.append(f"{results}/{n}/entropy_vs_strain.png")
+    return out
+
+
+def report_inputs(scenes: dict, results: str = "results") -> list[str]:
+    """The cubes the report reads that the given scenes produce.
+
+    Parameters
+    ----------
+    scenes : dict
+        ``config["scenes"]``: scene name -> {"quantities": [...], ...}.
+    """
+    pv = yaml.safe_load(resources.files("surfwave").joinpath("data/paper_values.yaml").read_text())
+    wanted = {pv["table1"]["scene"]: {"elastic", "rayleigh"}}
+    for group in ("values", "claims"):
+        for spec in pv[group].values():
+            for scene in (spec.get("scene"), spec.get("reference_scene")):
+                if scene:
+                    wanted.setdefault(scene, set()).update(REPORT_CUBES)
+    out = []
+    for scene, cubes in wanted.items():
+        have = set(scenes.get(scene, {}).get("quantities", []))
+        out += [f"{results}/{scene}/{c}.nc" for c in CUBE_NAMES if c in cubes and c in have]
+    return sorted(set(out))

@@ -1,0 +1,77 @@
+# Speed/accuracy benchmarks: `snakemake -j2 benchmarks` (or `make bench`). Each
+# benchmarks/bench_<name>.py that exists runs on one core into results/benchmarks/<name>/
+# (a cube and a PNG); bench_workflow times the full reproduction and the no-op rerun and
+# takes both cores. README_table.md collects them for the README.
+from pathlib import Path
+
+# benchmark -> library modules it exercises (inputs, so a code change reruns it)
+BENCH_MODULES = {
+    "rayleigh": ("api", "rayleigh"),
+    "phonons": ("phonons",),
+    "dispersion": ("dispersion", "lattice_dynamics"),
+    "entropy": ("entropy",),
+}
+BENCH_METHODS = [
+    name
+    for name in BENCH_MODULES
+    if Path(workflow.basedir, "benchmarks", f"bench_{name}.py").exists()
+]
+BENCH_DIRS = [f"results/benchmarks/{name}" for name in BENCH_METHODS]
+if Path(workflow.basedir, "benchmarks", "bench_workflow.py").exists():
+    BENCH_DIRS.append("results/benchmarks/workflow")
+
+
+wildcard_constraints:
+    bench="|".join(BENCH_MODULES),
+
+
+rule benchmarks:
+    """Every benchmark, the README table and the (phonopy) stability map."""
+    input:
+        BENCH_DIRS,
+        "results/benchmarks/README_table.md",
+        "results/stability_map/stability_map.png",
+
+
+rule benchmark_method:
+    """One method's speed/accuracy sweep (one core, BLAS threads pinned to 1)."""
+    input:
+        script="benchmarks/bench_{bench}.py",
+        code=lambda wildcards: code(*BENCH_MODULES[wildcards.bench]),
+    output:
+        directory("results/benchmarks/{bench}"),
+    log:
+        "results/benchmarks/logs/{bench}.log",
+    threads: 1
+    script:
+        "../scripts/benchmark_run.py"
+
+
+rule benchmark_workflow:
+    """Wall time of the full reproduction (empty results, -j2) and of the no-op rerun."""
+    input:
+        script="benchmarks/bench_workflow.py",
+    output:
+        directory("results/benchmarks/workflow"),
+    log:
+        "results/benchmarks/logs/workflow.log",
+    threads: 2
+    script:
+        "../scripts/benchmark_run.py"
+
+
+rule benchmark_table:
+    """Markdown table (method, knob, error, time, default and why) for the README."""
+    input:
+        dirs=BENCH_DIRS,
+        code=code("report"),
+    output:
+        report(
+            "results/benchmarks/README_table.md",
+            caption="../report/benchmark_table.rst",
+            category="Benchmarks",
+        ),
+    log:
+        "results/benchmarks/logs/README_table.log",
+    script:
+        "../scripts/benchmark_table.py"

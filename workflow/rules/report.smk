@@ -1,0 +1,24 @@
+# The reproduction report: every printed number of the paper beside ours, and each claim
+# tested against the cubes (surfwave.report). Reads only the cubes the selected scenes make;
+# missing ones are reported as "not computed". REPORT_TARGETS is what rule `all` builds.
+from surfwave.report_targets import report_inputs
+
+REPORT_TARGETS = ["results/report.md"]
+
+
+rule report_md:
+    """results/report.md from the cubes and src/surfwave/data/paper_values.yaml."""
+    input:
+        cubes=report_inputs({name: SCENES[name] for name in selected(config, SCENES)}),
+        values="src/surfwave/data/paper_values.yaml",
+        code=code("report"),
+    output:
+        report(
+            "results/report.md",
+            caption="../report/report_md.rst",
+            category="Reproduction report",
+        ),
+    log:
+        "results/logs/report.log",
+    script:
+        "../scripts/report.py"

@@ -1,0 +1,13 @@
+"""Rule `figure_displacements`: Fig. 3, displacement patterns at zero stress, a few theta."""
+import sys
+
+from surfwave.cube import open_cube
+from surfwave.plots import FIG3_ROWS, FIG3_THETA, nearest_indices
+from surfwave.plots_dispersion import plot_displacements
+
+sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
+pot = snakemake.wildcards.potential  # noqa: F821
+ds = open_cube(snakemake.input.cube).sel(potential=pot)  # noqa: F821
+ds = ds.isel(theta=nearest_indices(ds["theta"].values, FIG3_THETA), row=slice(0, FIG3_ROWS))
+plot_displacements(ds, snakemake.output[0],  # noqa: F821
+                   title=f"Fig. 3: triangular lattice, {pot}, zero stress")
