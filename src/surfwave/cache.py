@@ -173,6 +173,22 @@ def cached_points(
     return {k: np.stack([found[digest][k] for digest, _ in ids]) for k in names}
 
 
+def code_version(*modules: str) -> str:
+    """sha256 (16 hex) of the source of surfwave modules and everything they import.
+
+    Put it in a key (``{"code": code_version("phonons"), ...}``) so that entries computed
+    by older code are never reused, even while the package version stays the same.
+    """
+    from .scenes import module_closure
+
+    h = hashlib.sha256()
+    for path in module_closure(*modules):
+        p = Path(path)
+        h.update(p.name.encode())
+        h.update(p.read_bytes() if p.exists() else b"<missing>")
+    return h.hexdigest()[:16]
+
+
 def start_run(root: str | Path = DEFAULT_ROOT) -> None:
     """Mark the start of a workflow run: :func:`info` counts hits and misses from here."""
     root = Path(root)

@@ -18,6 +18,7 @@ Examples
 from __future__ import annotations
 
 import datetime as _dt
+import hashlib
 import json
 import os
 import subprocess
@@ -120,6 +121,8 @@ def build(
     for n, arrays in stacked.items():
         meta = dict(variables[n])
         inner = tuple(meta.pop("dims", ()))
+        if inner[:1] == ("strain",):  # some modules list the leading strain axis too
+            inner = inner[1:]
         arr = np.stack(arrays).reshape(shape + list(arrays[0].shape))
         vdims = tuple(dims) + ("strain",) + inner
         if arr.ndim != len(vdims):
@@ -132,6 +135,36 @@ def build(
     for name, values in (coords or {}).items():
         all_coords[name] = (name, np.asarray(values), COORDS.get(name, {}))
     return xr.Dataset(data_vars, coords=all_coords)
+
+
+def add_space_group(ds: xr.Dataset, crystal: xr.Dataset) -> xr.Dataset:
+    """Attach ``space_group`` from a crystal cube as a non-index coordinate of ``ds``.
+
+    ``crystal`` has dims (potential, direction, strain); a ``ds`` without a direction dim
+    (triangular cubes) gets the single direction's values.
+    """
+    sg = crystal["space_group"].sel(potential=ds["potential"].values)
+    sg = sg.sel(strain=ds["strain"].values, method="nearest")
+    if "direction" in ds.dims:
+        sg = sg.sel(direction=ds["direction"].values)
+    else:
+        sg = sg.isel(direction=0, drop=True)
+    sg = sg.drop_vars([c for c in sg.coords if c not in sg.dims])
+    return ds.assign_coords(space_group=(sg.dims, sg.values.astype(str), dict(crystal["space_group"].attrs)))
+
+
+def params_hash(params: Mapping[str, Any]) -> str:
+    """sha256 (hex, first 16 characters) of the canonical JSON of a job's parameters."""
+    text = json.dumps(dict(params), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def documented(result: Mapping[str, np.ndarray], variables: Mapping[str, Any], log=None) -> dict:
+    """The arrays of ``result`` that have metadata in ``variables``; the others are reported to ``log``."""
+    dropped = sorted(k for k in result if k not in variables)
+    if dropped and log is not None:
+        print(f"not written (no metadata in VARIABLES): {dropped}", file=log)
+    return {k: v for k, v in result.items() if k in variables}
 
 
 def git_commit() -> str | None:
@@ -162,8 +195,6 @@ def provenance(
     recorded as the ``scene`` attribute (JSON) and hashed into ``config_hash``; their
     ``accuracy`` block is recorded as ``accuracy`` (JSON). Dicts in ``extra`` become JSON.
     """
-    from .scenes import params_hash
-
     chash = params_hash(dict(params))
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     attrs = {

@@ -22,8 +22,7 @@ Examples
 from __future__ import annotations
 
 import copy
-import hashlib
-import json
+import functools
 import sys
 from pathlib import Path
 from types import SimpleNamespace
@@ -273,12 +272,6 @@ def job_params(scene: dict, stage: str) -> dict[str, Any]:
     return params
 
 
-def params_hash(params: dict) -> str:
-    """sha256 (hex, 16 characters) of the canonical JSON of a job's parameters."""
-    text = json.dumps(params, sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-
 def load_config(paths=("config/config.yaml",)) -> dict:
     """Read and merge YAML config files the way Snakemake does (later files win, dicts merge)."""
     import yaml
@@ -322,3 +315,48 @@ def standalone(stage: str, argv=None, inputs: dict | None = None) -> SimpleNames
         wildcards=SimpleNamespace(scene=name),
         rule=stage,
     )
+
+
+def module_closure(*modules: str, package_dir: str | Path | None = None) -> list[str]:
+    """Source files of surfwave modules and of every surfwave module they import (transitively).
+
+    Imports are read statically (``ast``), including imports inside functions, so a rule that
+    lists ``module_closure("rayleigh")`` as inputs reruns when any code it runs changes.
+    ``__init__.py`` (the version) is always included, but its re-exports are not followed:
+    they are conveniences for users, and each module imports what it needs explicitly
+    (otherwise every stage would depend on every module). A listed module that does not exist is
+    still returned, so Snakemake reports it as a missing input.
+    """
+    pkg = Path(package_dir or Path(__file__).resolve().parent)
+    todo, seen = list(modules), {"__init__"}
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        path = pkg / f"{name}.py"
+        if path.exists():
+            todo += _imported_modules(str(path), path.stat().st_mtime_ns)
+    return sorted(str(pkg / f"{m}.py") for m in seen
+                  if (pkg / f"{m}.py").exists() or m in modules)
+
+
+@functools.lru_cache(maxsize=None)
+def _imported_modules(path: str, mtime_ns: int) -> tuple[str, ...]:
+    """surfwave modules one source file imports (parsed once per file version)."""
+    import ast
+
+    found: list[str] = []
+    for node in ast.walk(ast.parse(Path(path).read_text(), path)):
+        if isinstance(node, ast.ImportFrom):
+            if node.level == 1 and node.module:  # from .x import y
+                found.append(node.module.split(".")[0])
+            elif node.level == 1:  # from . import x, y
+                found += [a.name for a in node.names]
+            elif node.level == 0 and node.module and node.module.split(".")[0] == "surfwave":
+                parts = node.module.split(".")
+                found += [parts[1]] if len(parts) > 1 else [a.name for a in node.names]
+        elif isinstance(node, ast.Import):
+            found += [a.name.split(".")[1] for a in node.names
+                      if a.name.startswith("surfwave.")]
+    return tuple(found)

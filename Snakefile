@@ -1,0 +1,51 @@
+# surfwave: Rayleigh waves in prestressed crystals.
+#   snakemake -j2                          every scene of config/config.yaml (or those in `run:`)
+#   snakemake -j2 --configfile my.yaml     add your scenes (merged with the defaults)
+#   snakemake -j2 --config 'run=[my_scene]' --configfile my.yaml   only your scene
+import re
+from pathlib import Path
+
+from snakemake.utils import min_version
+
+from surfwave import cache
+from surfwave.scenes import validate_config
+
+min_version("9.13.1")
+
+
+configfile: "config/config.yaml"
+
+
+# Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
+SCENES = validate_config(
+    config, Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml")
+)
+
+
+wildcard_constraints:
+    scene="|".join(re.escape(name) for name in SCENES),
+
+
+onstart:
+    cache.start_run(cache.DEFAULT_ROOT)  # `surfwave cache info` counts hits from here
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/crystal.smk"
+include: "workflow/rules/elastic.smk"
+include: "workflow/rules/rayleigh.smk"
+include: "workflow/rules/bulk.smk"
+include: "workflow/rules/dispersion.smk"
+include: "workflow/rules/entropy.smk"
+# Figures, report, benchmarks: they define FIGURE_TARGETS and REPORT_TARGETS.
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/report.smk"
+include: "workflow/rules/benchmarks.smk"
+
+
+rule all:
+    default_target: True
+    input:
+        scene_targets(),
+        globals().get("FIGURE_TARGETS", []),
+        globals().get("REPORT_TARGETS", []),

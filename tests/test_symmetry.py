@@ -1,0 +1,58 @@
+"""Space groups (spglib 2.x) of the prestressed cells and the mirror planes of Eq. (17)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import spglib.error
+
+from surfwave import symmetry
+from surfwave.errors import SymmetryError
+from surfwave.lattices import build
+
+
+def test_new_error_handling_is_on():
+    assert spglib.error.OLD_ERROR_HANDLING is False
+
+
+@pytest.mark.parametrize(
+    "lattice, loading, direction, groups",
+    [
+        # Issue 3 / PHYSICS.md: FCC Fm-3m unstressed, I4/mmm under in-plane hydrostatic stress.
+        ("fcc", "in_plane_hydrostatic", "[100]", ["I4/mmm", "Fm-3m", "I4/mmm"]),
+        ("fcc", "in_plane_hydrostatic", "[110]", ["I4/mmm", "Fm-3m", "I4/mmm"]),
+        # Uniaxial along a cube axis keeps a 4-fold axis; along [110] the cell is orthorhombic.
+        ("fcc", "uniaxial", "[100]", ["I4/mmm", "Fm-3m", "I4/mmm"]),
+        ("fcc", "uniaxial", "[110]", ["Immm", "Fm-3m", "Immm"]),
+        # Triangular lattice in its vacuum-padded cell: hexagonal, then centred rectangular.
+        ("triangular", "uniaxial", "[10]", ["Cmmm", "P6/mmm", "Cmmm"]),
+    ],
+)
+def test_space_groups_and_mirrors(lattice, loading, direction, groups):
+    r = symmetry.crystal_symmetry(lattice, loading, direction, [0.95, 1.0, 1.05], "lj")
+    assert r["space_group"].tolist() == groups
+    assert r["mirror_x"].all() and r["mirror_z"].all()
+    assert r["cell"].shape == (3, 3, 3)
+    symmetry.require_mirrors(r, [0.95, 1.0, 1.05])  # no error
+
+
+def test_space_group_numbers():
+    r = symmetry.crystal_symmetry("fcc", "in_plane_hydrostatic", "[100]", [1.0, 0.9])
+    assert r["space_group_number"].tolist() == [225, 139]
+
+
+def test_rotated_frame_lacks_mirrors_and_raises():
+    """Propagation 17 degrees off [100] is not in a mirror plane: Eq. (17) does not apply."""
+    cell = build("fcc", "in_plane_hydrostatic", "[100]", [0.95]).cell3d()
+    a = np.deg2rad(17.0)
+    rot = np.array([[np.cos(a), 0, -np.sin(a)], [0, 1, 0], [np.sin(a), 0, np.cos(a)]])
+    r = symmetry.analyse(cell @ rot.T)
+    assert r["space_group"][0] == "I4/mmm"  # same crystal, rotated lab frame
+    assert not r["mirror_x"][0]
+    with pytest.raises(SymmetryError, match="d/d0 = 0.95.*x -> -x"):
+        symmetry.require_mirrors(r, [0.95])
+
+
+def test_cartesian_rotations_identity_frame():
+    cell = np.diag([1.0, 2.0, 3.0])
+    rots = np.array([np.diag([-1, 1, 1])], dtype=float)
+    np.testing.assert_allclose(symmetry.cartesian_rotations(cell, rots)[0], np.diag([-1.0, 1, 1]))

@@ -1,0 +1,175 @@
+"""The real Snakemake workflow on tiny scenes in a temporary directory (marker `workflow`).
+
+Checks (issue 3): outputs pass the interface checker, values match the library, the no-op
+rerun does nothing, a scene change reruns only that scene (and computes only new points),
+a bad config fails before any job with a message naming scene, key and value, code
+provenance (rayleigh.py is an input of the rayleigh jobs, not of the crystal jobs), and a
+dry-run with the SLURM profile.
+"""
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import surfwave
+from surfwave import cache
+from surfwave.cube import open_cube
+
+# One module-scoped build shared by the tests below: with pytest-xdist, run with
+# `--dist loadgroup` so that they land on one worker (otherwise each worker builds once).
+pytestmark = [pytest.mark.workflow, pytest.mark.xdist_group("workflow")]
+
+REPO = Path(__file__).resolve().parents[1]
+SNAKEMAKE = Path(sys.executable).with_name("snakemake")
+# CI has the interface checker at ../shared/tools relative to the repository.
+CHECKER = next((p for p in (REPO.parent / "shared" / "tools" / "check_cubes.py",
+                            REPO / "shared" / "tools" / "check_cubes.py") if p.exists()), None)
+
+TINY = """
+run: []
+scenes:
+  tiny_fcc:
+    lattice: fcc
+    loading: in_plane_hydrostatic
+    potentials: [lj]
+    directions: ["[100]", "[110]"]
+    d_over_d0: {start: 0.98, stop: 1.02, step: 0.02}
+    quantities: [elastic, rayleigh, bulk]
+    accuracy: {bulk: {zone_mesh: 4}}
+  tiny_tri:
+    lattice: triangular
+    loading: uniaxial
+    potentials: [harmonic]
+    d_over_d0: [0.95, 1.0]
+    theta: {n: 4}
+    quantities: [dispersion, displacements, entropy]
+    accuracy: {displacements: {n_rows: 6}}
+"""
+
+
+def make_workdir(path: Path, config: str = TINY) -> Path:
+    """A copy of the workflow with a tiny config; src/ and benchmarks/ linked (repo-relative paths)."""
+    shutil.copy(REPO / "Snakefile", path / "Snakefile")
+    for d in ("workflow", "profiles"):
+        shutil.copytree(REPO / d, path / d)
+    for d in ("src", "benchmarks"):
+        if (REPO / d).exists():
+            (path / d).symlink_to(REPO / d)
+    (path / "config").mkdir()
+    (path / "config" / "config.yaml").write_text(config)
+    return path
+
+
+def smk(workdir: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    proc = subprocess.run([str(SNAKEMAKE), "--directory", str(workdir), *args], cwd=workdir,
+                          capture_output=True, text=True, env=env, timeout=300)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-3000:]}\n{proc.stderr[-6000:]}")
+    return proc
+
+
+def scheduled(proc: subprocess.CompletedProcess) -> list[tuple[str, str]]:
+    """(rule, scene) of every job a (dry) run lists."""
+    text = proc.stdout + proc.stderr
+    jobs = re.findall(r"^\s*(?:local)?rule (\w+):\n(?:.*\n)*?\s*wildcards: scene=(\w+)", text, re.M)
+    return jobs
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    wd = make_workdir(tmp_path_factory.mktemp("wf"))
+    smk(wd, "-j2")
+    return wd
+
+
+def test_outputs_pass_interface_checker_and_match_library(built):
+    res = built / "results"
+    for scene, cubes in {"tiny_fcc": ["crystal", "elastic", "rayleigh", "bulk"],
+                         "tiny_tri": ["crystal", "dispersion", "displacements", "entropy"]}.items():
+        for c in cubes:
+            assert (res / scene / f"{c}.nc").exists(), (scene, c)
+    assert not (res / "tiny_tri" / "elastic.nc").exists()  # only what the scene asks for
+    if CHECKER is None:
+        pytest.skip("check_cubes.py not found at ../shared/tools (interface check not run)")
+    proc = subprocess.run([sys.executable, str(CHECKER), str(res)], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_values_and_provenance(built):
+    ray = open_cube(built / "results" / "tiny_fcc" / "rayleigh.nc")
+    ref = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[110]", [0.98, 1.0, 1.02])
+    np.testing.assert_allclose(ray.c2_R.sel(potential="lj", direction="[110]").values, ref["c2_R"], rtol=1e-12)
+    assert ray.strain.values.tolist() == [-0.02, 0.0, 0.02]
+    assert ray.space_group.sel(potential="lj", direction="[100]").values.tolist() == ["I4/mmm", "Fm-3m", "I4/mmm"]
+    assert ray.attrs["source"] == f"surfwave {surfwave.__version__}"
+    assert "rule 'rayleigh'" in ray.attrs["history"] and ray.attrs["config_hash"] in ray.attrs["history"]
+    el = open_cube(built / "results" / "tiny_fcc" / "elastic.nc")
+    np.testing.assert_allclose(el.stress.sel(potential="lj", direction="[110]").values, ref["stress"])
+    bulk = open_cube(built / "results" / "tiny_fcc" / "bulk.nc")
+    assert '"zone_mesh": 4' in bulk.attrs["accuracy"]
+    assert float(abs(bulk.c2_L_par_deviation).max()) < 1e-4
+    disp = open_cube(built / "results" / "tiny_tri" / "displacements.nc")
+    assert disp.u.dims == ("potential", "strain", "theta", "row") and disp.u.dtype.kind == "c"
+    assert disp.sizes["row"] == 6 and disp.sizes["theta"] == 4
+
+
+def test_noop_scene_change_and_code_provenance(built):
+    # 1. No-op rerun.
+    proc = smk(built, "-j2")
+    assert "Nothing to be done" in proc.stdout + proc.stderr
+    # 2. A scene that gains a strain point reruns only that scene's jobs ...
+    extra = built / "more.yaml"
+    extra.write_text("scenes:\n  tiny_tri:\n    d_over_d0: [0.95, 1.0, 1.05]\n")
+    dry = smk(built, "-n", "--configfile", "config/config.yaml", str(extra))
+    jobs = scheduled(dry)
+    assert jobs and {scene for _, scene in jobs} == {"tiny_tri"}, jobs
+    # ... and, run for real, computes only the new point in the cached stages.
+    fcc_mtime = (built / "results" / "tiny_fcc" / "rayleigh.nc").stat().st_mtime_ns
+    smk(built, "-j2", "--configfile", "config/config.yaml", str(extra))
+    info = cache.info(built / "results" / "cache")
+    assert info["misses"] == 2 and info["hits"] == 4, info  # surface_mode + entropy: 1 new, 2 old each
+    assert (built / "results" / "tiny_fcc" / "rayleigh.nc").stat().st_mtime_ns == fcc_mtime
+    assert open_cube(built / "results" / "tiny_tri" / "entropy.nc").sizes["strain"] == 3
+    # 3. Library modules are inputs exactly where they are used.
+    summary = smk(built, "--detailed-summary", "--configfile", "config/config.yaml", str(extra)).stdout
+    rows = {line.split("\t")[0]: line for line in summary.splitlines() if line.startswith("results/")}
+    assert "rayleigh.py" in rows["results/tiny_fcc/rayleigh.nc"]
+    assert "symmetry.py" in rows["results/tiny_fcc/crystal.nc"]
+    assert "rayleigh.py" not in rows["results/tiny_fcc/crystal.nc"]
+    assert "phonons.py" not in rows["results/tiny_fcc/rayleigh.nc"]
+
+
+@pytest.mark.parametrize(
+    "scene, words",
+    [
+        ("{lattice: bcc, loading: uniaxial, potentials: [lj], d_over_d0: [1.0], quantities: [elastic]}",
+         ["scene 'bad'", "lattice", "'bcc'"]),
+        ("{lattice: fcc, loading: in_plane_hydrostatic, potentials: [lj], d_over_d0: [1.0, 1.5],"
+         " quantities: [elastic]}", ["scene 'bad'", "d_over_d0", "1.5"]),
+    ],
+)
+def test_bad_config_fails_before_any_job(tmp_path, scene, words):
+    wd = make_workdir(tmp_path)
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(f"scenes:\n  bad: {scene}\n")
+    proc = smk(wd, "-j2", "--configfile", "config/config.yaml", str(bad), check=False)
+    text = proc.stdout + proc.stderr
+    assert proc.returncode != 0
+    for w in words:
+        assert w in text, text[-2000:]
+    assert not (wd / "results").exists()  # no job ran
+
+
+def test_slurm_profile_dry_run(tmp_path):
+    wd = make_workdir(tmp_path)
+    proc = smk(wd, "-n", "--profile", "profiles/slurm")
+    jobs = scheduled(proc)
+    assert ("rayleigh", "tiny_fcc") in jobs and ("entropy", "tiny_tri") in jobs

@@ -1,0 +1,15 @@
+rule bulk:
+    """phonopy sound speeds and full-zone stability, compared with elastic.nc (cached per point)."""
+    input:
+        crystal="results/{scene}/crystal.nc",
+        elastic="results/{scene}/elastic.nc",
+        code=code("phonons", "cache", "cube"),
+    output:
+        "results/{scene}/bulk.nc",
+    log:
+        "results/{scene}/logs/bulk.log",
+    params:
+        job=params_for("bulk"),
+        cache=str(cache.DEFAULT_ROOT),
+    script:
+        "../scripts/bulk.py"

@@ -1,0 +1,18 @@
+# Helpers shared by the rules. Logic lives in surfwave.scenes; this file only wires it up.
+from surfwave import cache
+from surfwave.scenes import job_params, module_closure, selected, targets
+
+
+def scene_targets():
+    """Cubes of the selected scenes (config `run`, default every scene), built by `all`."""
+    return targets(SCENES, selected(config, SCENES))
+
+
+def params_for(stage):
+    """Params of a stage's job: exactly the config values it uses (surfwave.scenes.job_params)."""
+    return lambda wildcards: job_params(SCENES[wildcards.scene], stage)
+
+
+def code(*modules):
+    """Library files a stage runs (transitive surfwave imports), as inputs: code changes rerun it."""
+    return module_closure(*modules)

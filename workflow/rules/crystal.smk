@@ -1,0 +1,12 @@
+rule crystal:
+    """Prestressed cells, spglib space groups and the mirror planes Eq. (17) assumes."""
+    input:
+        code=code("symmetry", "cube"),
+    output:
+        "results/{scene}/crystal.nc",
+    log:
+        "results/{scene}/logs/crystal.log",
+    params:
+        job=params_for("crystal"),
+    script:
+        "../scripts/crystal.py"

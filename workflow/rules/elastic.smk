@@ -1,0 +1,13 @@
+rule elastic:
+    """Stress, C, S, bulk sound speeds and long-wave stability (analytic)."""
+    input:
+        crystal="results/{scene}/crystal.nc",
+        code=code("api", "cube"),
+    output:
+        "results/{scene}/elastic.nc",
+    log:
+        "results/{scene}/logs/elastic.log",
+    params:
+        job=params_for("elastic"),
+    script:
+        "../scripts/elastic.py"

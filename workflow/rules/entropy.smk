@@ -1,0 +1,14 @@
+rule entropy:
+    """Surface entropy of the triangular lattice: Eq. (25) estimate and exact (cached per point)."""
+    input:
+        crystal="results/{scene}/crystal.nc",
+        code=code("entropy", "cache", "cube"),
+    output:
+        "results/{scene}/entropy.nc",
+    log:
+        "results/{scene}/logs/entropy.log",
+    params:
+        job=params_for("entropy"),
+        cache=str(cache.DEFAULT_ROOT),
+    script:
+        "../scripts/entropy.py"

@@ -1,0 +1,13 @@
+rule rayleigh:
+    """Rayleigh speed c_R^2 from Eq. (17) with root selection, and the wave type."""
+    input:
+        crystal="results/{scene}/crystal.nc",
+        code=code("api", "rayleigh", "cube"),
+    output:
+        "results/{scene}/rayleigh.nc",
+    log:
+        "results/{scene}/logs/rayleigh.log",
+    params:
+        job=params_for("rayleigh"),
+    script:
+        "../scripts/rayleigh.py"

@@ -1,0 +1,31 @@
+"""Rule `crystal`: space group and mirror planes of every prestressed cell of a scene.
+
+By hand (from the repository root): python workflow/scripts/crystal.py SCENE [CONFIGFILE ...]
+"""
+import sys
+
+from surfwave import cube, symmetry
+
+if "snakemake" not in globals():  # standalone run for debugging
+    from surfwave.scenes import standalone
+
+    snakemake = standalone("crystal")
+sys.stderr = open(snakemake.log[0], "w")
+
+job = snakemake.params.job
+blocks = {}
+for pot in job["potentials"]:
+    for direction in job["directions"]:
+        r = symmetry.crystal_symmetry(job["lattice"], job["loading"], direction, job["d_over_d0"],
+                                      pot, **job["accuracy"])
+        symmetry.require_mirrors(r, job["d_over_d0"], f"scene {job['scene']!r}, {job['lattice']} "
+                                 f"{job['loading']} {direction}, potential {pot!r}: ")
+        groups = {g: int((r["space_group"] == g).sum()) for g in dict.fromkeys(r["space_group"].tolist())}
+        print(f"{pot} {direction}: space groups (points) {groups}; mirrors x, z present", file=sys.stderr)
+        blocks[(pot, direction)] = r
+ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
+                job["d_over_d0"], symmetry.VARIABLES)
+ds = cube.provenance(ds, title=f"surfwave crystal cube, scene {job['scene']}", params=job,
+                     rule=snakemake.rule, method="spglib space group of the one-atom primitive cell "
+                     "(2D lattices padded with vacuum); lab-frame mirrors x->-x, z->-z required")
+cube.write(ds, snakemake.output[0])

@@ -1,0 +1,33 @@
+"""Rule `displacements`: row amplitudes u, v of the triangular surface wave (Fig. 3).
+
+By hand (from the repository root): python workflow/scripts/displacements.py SCENE [CONFIGFILE ...]
+"""
+import sys
+
+import numpy as np
+
+from surfwave import cube, dispersion
+
+if "snakemake" not in globals():  # standalone run for debugging
+    from surfwave.scenes import standalone
+
+    snakemake = standalone("displacements", inputs={"crystal": "results/{scene}/crystal.nc"})
+sys.stderr = open(snakemake.log[0], "w")
+
+job = snakemake.params.job
+theta = np.asarray(job["theta"])
+results = {(pot,): dispersion.displacements(pot, job["d_over_d0"], theta, job["accuracy"]["n_rows"])
+           for pot in job["potentials"]}
+# Row counts sized from the decay length may differ between potentials: pad with NaN.
+n_rows = max(r["u"].shape[-1] for r in results.values())
+for r in results.values():
+    pad = [(0, 0)] * (r["u"].ndim - 1) + [(0, n_rows - r["u"].shape[-1])]
+    for name in ("u", "v"):
+        r[name] = np.pad(r[name], pad, constant_values=np.nan)
+ds = cube.build(results, {"potential": job["potentials"]}, job["d_over_d0"], dispersion.VARIABLES,
+                coords={"theta": theta, "row": np.arange(n_rows)}, skip=("row",))
+ds = cube.add_space_group(ds, cube.open_cube(snakemake.input.crystal))
+ds = cube.provenance(ds, title=f"surfwave displacements cube, scene {job['scene']}", params=job,
+                     rule=snakemake.rule, method="row amplitudes U_I = Lambda^I U_0 from the exact "
+                     "decay constants q1, q2 (Eq. 6a) and omega (Eq. 15)")
+cube.write(ds, snakemake.output[0])
