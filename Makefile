@@ -25,7 +25,7 @@ reproduce: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS)
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -n 2 -q
+	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 bench: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS) benchmarks

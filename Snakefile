@@ -2,6 +2,7 @@
 #   snakemake -j2                          every scene of config/config.yaml (or those in `run:`)
 #   snakemake -j2 --configfile my.yaml     add your scenes (merged with the defaults)
 #   snakemake -j2 --config 'run=[my_scene]' --configfile my.yaml   only your scene
+import os
 import re
 from pathlib import Path
 
@@ -11,6 +12,15 @@ from surfwave import cache
 from surfwave.scenes import validate_config
 
 min_version("9.13.1")
+
+# Jobs (also under --sdm conda or on a cluster) import this checkout's library.
+os.environ.update(
+    PYTHONPATH=os.pathsep.join(
+        p
+        for p in (str(Path(workflow.basedir, "src")), os.environ.get("PYTHONPATH"))
+        if p
+    )
+)
 
 
 configfile: "config/config.yaml"

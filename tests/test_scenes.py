@@ -134,3 +134,17 @@ def test_default_config_is_valid():
     out = validate_config(cfg)
     assert {"table1", "fig2", "fig2_uniaxial", "triangular", "entropy"} <= set(out)
     assert len(out["table1"]["d_over_d0"]) == 23
+
+
+def test_theta_grid_with_exact_pi_fractions():
+    """{n, pi_fractions}: midpoints plus exact multiples of pi (the paper's Fig. 3 values);
+    a coinciding midpoint is not duplicated; fractions outside (0, 1) are refused."""
+    from surfwave.scenes import SceneError, theta_grid
+
+    th = theta_grid({"n": 30, "pi_fractions": [0.05, 0.125, 0.25, 0.5]})
+    for f in (0.05, 0.125, 0.25, 0.5):
+        assert np.any(th == f * np.pi)
+    assert np.all(np.diff(th) > 1e-9)
+    assert th.size == 30 + 4 - 2  # pi/20 and pi/4 are midpoints (2i+1) pi/60 already
+    with pytest.raises(SceneError, match="pi_fractions"):
+        theta_grid({"n": 4, "pi_fractions": [1.5]})

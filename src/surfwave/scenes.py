@@ -151,10 +151,18 @@ def expand_grid(spec, where: str = "grid") -> np.ndarray:
 
 
 def theta_grid(spec, where: str = "theta") -> np.ndarray:
-    """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi)."""
+    """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi),
+    optionally with ``pi_fractions: [f, ...]`` adding the exact values f * pi (e.g. 0.125 for pi/8)."""
     if isinstance(spec, dict):
         n = int(spec["n"])
-        return (np.arange(n) + 0.5) * np.pi / n
+        grid = (np.arange(n) + 0.5) * np.pi / n
+        extra = np.asarray(spec.get("pi_fractions", []), dtype=float) * np.pi
+        bad = extra[(extra <= 0) | (extra >= np.pi)]
+        if bad.size:
+            raise SceneError(f"{where}: pi_fractions value {bad[0] / np.pi!r} lies outside (0, 1)")
+        # An added value replaces a midpoint it coincides with (no near-duplicate columns).
+        keep = np.all(np.abs(grid[:, None] - extra[None, :]) > 1e-12, axis=1)
+        return np.sort(np.concatenate([grid[keep], extra]))
     values = expand_grid(spec, where)
     bad = values[(values <= 0) | (values >= np.pi)]
     if bad.size:

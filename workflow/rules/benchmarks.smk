@@ -42,6 +42,8 @@ rule benchmark_method:
         directory("results/benchmarks/{bench}"),
     log:
         "results/benchmarks/logs/{bench}.log",
+    conda:
+        CONDA_ENV
     threads: 1
     script:
         "../scripts/benchmark_run.py"
@@ -55,6 +57,8 @@ rule benchmark_workflow:
         directory("results/benchmarks/workflow"),
     log:
         "results/benchmarks/logs/workflow.log",
+    conda:
+        CONDA_ENV
     threads: 2
     script:
         "../scripts/benchmark_run.py"
@@ -73,5 +77,7 @@ rule benchmark_table:
         ),
     log:
         "results/benchmarks/logs/README_table.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/benchmark_table.py"

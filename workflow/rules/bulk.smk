@@ -8,6 +8,8 @@ rule bulk:
         "results/{scene}/bulk.nc",
     log:
         "results/{scene}/logs/bulk.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("bulk"),
         cache=str(cache.DEFAULT_ROOT),

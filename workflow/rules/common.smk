@@ -2,6 +2,9 @@
 from surfwave import cache
 from surfwave.scenes import job_params, module_closure, selected, targets
 
+#: Software of every rule under `--sdm conda` (the default route is the .venv from the lock).
+CONDA_ENV = "../envs/surfwave.yaml"
+
 
 def scene_targets():
     """Cubes of the selected scenes (config `run`, default every scene), built by `all`."""

@@ -6,6 +6,8 @@ rule crystal:
         "results/{scene}/crystal.nc",
     log:
         "results/{scene}/logs/crystal.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("crystal"),
     script:

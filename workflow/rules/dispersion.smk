@@ -7,6 +7,8 @@ rule dispersion:
         "results/{scene}/dispersion.nc",
     log:
         "results/{scene}/logs/dispersion.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("dispersion"),
         cache=str(cache.DEFAULT_ROOT),
@@ -23,6 +25,8 @@ rule displacements:
         "results/{scene}/displacements.nc",
     log:
         "results/{scene}/logs/displacements.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("displacements"),
     script:

@@ -7,6 +7,8 @@ rule elastic:
         "results/{scene}/elastic.nc",
     log:
         "results/{scene}/logs/elastic.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("elastic"),
     script:

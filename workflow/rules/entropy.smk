@@ -7,6 +7,8 @@ rule entropy:
         "results/{scene}/entropy.nc",
     log:
         "results/{scene}/logs/entropy.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("entropy"),
         cache=str(cache.DEFAULT_ROOT),

@@ -40,6 +40,8 @@ rule figure_speeds:
         ),
     log:
         "results/{scene}/logs/figure_speeds.log",
+    conda:
+        CONDA_ENV
     params:
         lattice=lambda wildcards: SCENES[wildcards.scene]["lattice"],
         loading=lambda wildcards: SCENES[wildcards.scene]["loading"],
@@ -64,6 +66,8 @@ rule figure_table1:
         ),
     log:
         f"results/{TABLE1_SCENE}/logs/figure_table1.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/figure_table1.py"
 
@@ -82,6 +86,8 @@ rule figure_dispersion:
         ),
     log:
         "results/{scene}/logs/figure_dispersion_{potential}.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/figure_dispersion.py"
 
@@ -100,6 +106,8 @@ rule figure_theta_c:
         ),
     log:
         "results/{scene}/logs/figure_theta_c.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/figure_theta_c.py"
 
@@ -118,6 +126,8 @@ rule figure_displacements:
         ),
     log:
         "results/{scene}/logs/figure_displacements_{potential}.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/figure_displacements.py"
 
@@ -136,6 +146,8 @@ rule figure_entropy:
         ),
     log:
         "results/{scene}/logs/figure_entropy.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/figure_entropy.py"
 
@@ -154,6 +166,8 @@ rule figure_stability_map:
         ),
     log:
         "results/stability_map/logs/stability_map.log",
+    conda:
+        CONDA_ENV
     threads: 1
     script:
         "../scripts/figure_stability_map.py"

@@ -7,6 +7,8 @@ rule rayleigh:
         "results/{scene}/rayleigh.nc",
     log:
         "results/{scene}/logs/rayleigh.log",
+    conda:
+        CONDA_ENV
     params:
         job=params_for("rayleigh"),
     script:

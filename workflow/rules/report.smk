@@ -20,5 +20,7 @@ rule report_md:
         ),
     log:
         "results/logs/report.log",
+    conda:
+        CONDA_ENV
     script:
         "../scripts/report.py"
