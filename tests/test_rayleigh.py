@@ -178,25 +178,33 @@ def test_unsquared_condition_rejects_spurious_roots():
     assert n_spurious > 0  # the test exercises real spurious roots
 
 
+def _kappa_discriminant(d_over_d0):
+    """s^2 - 4 p^2 of the kappa^2 quadratic at the Rayleigh root (0 where kappa_1 = kappa_2)."""
+    r = surfwave.point("triangular", "uniaxial", "harmonic", "[10]", d_over_d0)
+    S = r["S"]
+    a, b, c, d, f = S[:, 0, 0, 0, 0], S[:, 0, 1, 0, 1], S[:, 0, 1, 1, 0], S[:, 1, 1, 1, 1], S[:, 1, 1, 0, 0]
+    X = r["c2_R"]
+    s = (b * (c - X) + d * (a - X) - (f + b) ** 2) / (b * d)
+    p2 = (a - X) * (c - X) / (b * d)
+    return s * s - 4 * p2
+
+
 def test_nearly_equal_decay_constants():
-    """Extreme: at kappa_1 = kappa_2 the boundary function stays finite (the trivial factor
-    kappa_1 - kappa_2 is divided out analytically) and the solver returns a clean root nearby."""
-    # Isotropic with c_L -> c_T gives kappa_L -> kappa_T; take a near-degenerate orthotropic S.
-    S = isotropic_S(1.0, 1.0)
-    k1, k2 = rayleigh.decay_constants(0.5, 3.0, 1.0, 1.0, 3.0, 1.0)
-    G, scale = rayleigh.boundary_function(np.linspace(0.01, 0.99, 50), 3.0, 1.0, 1.0, 3.0, 1.0)
-    assert np.all(np.isfinite(G)) and np.all(np.isfinite(k1)) and np.all(np.isfinite(k2))
-    # Orthotropic S where the discriminant in kappa^2 vanishes at some X: roots coalesce there.
-    a, b, c, d, f = 2.0, 1.0, 1.0, 2.0, 0.0
-    X = np.linspace(0.0, 0.999, 1001)
-    k1, k2 = rayleigh.decay_constants(X, a, b, c, d, f)
-    gap = np.abs(k1 - k2)
-    assert gap.min() < 1e-6 * gap.max() or np.all(np.isfinite(gap))
-    S2 = np.zeros((2, 2, 2, 2))
-    S2[0, 0, 0, 0], S2[0, 1, 0, 1], S2[0, 1, 1, 0], S2[1, 1, 1, 1], S2[1, 1, 0, 0] = a, b, c, d, f
-    S2[1, 0, 1, 0], S2[1, 0, 0, 1], S2[0, 0, 1, 1] = b, c, f
-    out = rayleigh.solve(S2)
-    assert np.isfinite(out["c2_R"]) and 0 < out["c2_R"] < 1.0
+    """Extreme: kappa_1 = kappa_2 (the long-wave end of the real-to-complex crossover of the
+    decay constants; harmonic triangular lattice near d/d0 = 1.043, where theta_c -> 0).
+    The boundary condition divides out (kappa_1 - kappa_2) analytically, so c_R stays exact
+    there. Reference: Eq. (16) closed form."""
+    d_star = brentq(lambda x: _kappa_discriminant([x])[0], 1.0, 1.2, xtol=1e-15)
+    assert 1.03 < d_star < 1.06
+    d = d_star + np.array([-1e-3, -1e-7, -1e-12, 0.0, 1e-12, 1e-7, 1e-3])
+    r = surfwave.point("triangular", "uniaxial", "harmonic", "[10]", d)
+    np.testing.assert_allclose(r["c2_R"], rayleigh.triangular_c2(d), rtol=1e-12)
+    out = rayleigh.solve(r["S"])
+    k1, k2 = out["kappa1"], out["kappa2"]
+    assert np.all(np.isfinite(k1)) and np.all(k1.real > 0) and np.all(k2.real > 0)
+    assert abs(k1[3] - k2[3]) < 1e-6 * abs(k1[3])     # coalesced at d_star
+    assert np.all(np.abs(k1.imag[:2]) == 0)            # real pair on one side ...
+    assert np.all(np.abs(k1.imag[-2:]) > 0)            # ... complex-conjugate pair on the other
 
 
 def test_no_root_gives_nan_with_reason_not_crash():

@@ -10,10 +10,7 @@ import numpy as np
 
 from . import elastic, rayleigh
 from .errors import InputError
-from .lattices import _FCC_LAB_AXES, build
-
-#: Accuracy of the long-wave stability search (directions on the half sphere).
-STABILITY_DIRECTIONS = 400
+from .lattices import _FCC_LAB_AXES
 
 
 def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:
@@ -52,22 +49,9 @@ def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0)
     >>> round(float(r["c2_R"][0]), 4)   # Table I: 0.3596
     0.3596
     """
-    crystal = build(lattice, loading, direction, d_over_d0, potential)
-    sigma = elastic.stress(crystal.bonds, potential)
-    C = elastic.elastic_constants(crystal.bonds, potential)
-    S = elastic.stress_derivatives(sigma, C)
-    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume,
-                 "stress": sigma[:, 0, 0]}
-    out.update(elastic.sound_speeds(S))
-    stable, min_eig, _ = elastic.long_wave_stability(C, sigma, STABILITY_DIRECTIONS)
-    out["stable"] = stable
-    out["min_acoustic_eig"] = min_eig
-    ray = rayleigh.solve(S, 1.0, out["c2_SH"])
-    out["c2_R"] = ray["c2_R"]
-    out["wave_type"] = ray["wave_type"]
-    out["reason"] = ray["reason"]
-    out["C"] = C
-    out["S"] = S
+    out = elastic.properties(lattice, loading, potential, direction, d_over_d0)
+    ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
+    out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
     return out
 
 

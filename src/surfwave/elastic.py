@@ -15,7 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from .lattices import build
 from .potentials import PairPotential, get_potential
+
+#: Accuracy of the long-wave stability search (directions on the half sphere).
+STABILITY_DIRECTIONS = 400
 
 #: Metadata of the arrays this module produces (used to build the netCDF cubes).
 VARIABLES: dict[str, dict] = {
@@ -240,3 +244,34 @@ def long_wave_stability(
         e_best = np.where(better, e_j, e_best)
         step *= 0.5
     return e_best > 0.0, e_best, n_best
+
+
+def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0) -> dict:
+    """Stress, C, S, bulk sound speeds and long-wave stability of a prestressed crystal.
+
+    The elastic half of :func:`surfwave.point` (which adds the Rayleigh speed); the workflow's
+    ``elastic`` stage calls this so that Rayleigh-solver changes do not rerun it.
+
+    Parameters
+    ----------
+    lattice, loading, potential, direction
+        As for :func:`surfwave.lattices.build`.
+    d_over_d0 : float or array_like, shape (n,)
+
+    Returns
+    -------
+    dict
+        ``d_over_d0``, ``volume``, ``stress``, ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``,
+        ``c2_T_perp``, ``c2_SH`` (shape (n,)), ``stable``, ``min_acoustic_eig`` (shape (n,)),
+        ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame).
+    """
+    crystal = build(lattice, loading, direction, d_over_d0, potential)
+    sigma = stress(crystal.bonds, potential)
+    C = elastic_constants(crystal.bonds, potential)
+    S = stress_derivatives(sigma, C)
+    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[:, 0, 0]}
+    out.update(sound_speeds(S))
+    out["stable"], out["min_acoustic_eig"], _ = long_wave_stability(C, sigma, STABILITY_DIRECTIONS)
+    out["C"] = C
+    out["S"] = S
+    return out

@@ -1,8 +1,8 @@
 rule rayleigh:
     """Rayleigh speed c_R^2 from Eq. (17) with root selection, and the wave type."""
     input:
-        crystal="results/{scene}/crystal.nc",
-        code=code("api", "rayleigh", "cube"),
+        elastic="results/{scene}/elastic.nc",
+        code=code("rayleigh", "cube"),
     output:
         "results/{scene}/rayleigh.nc",
     log:
