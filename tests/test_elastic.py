@@ -131,3 +131,32 @@ def test_sound_speeds_definitions():
     assert r["c2_T_par"][0] == pytest.approx(C[0, 1, 1, 0] + r["stress"][0])
     assert r["c2_L_par"][0] == pytest.approx(C[0, 0, 0, 0] + r["stress"][0])
     assert r["c2_SH"][0] == pytest.approx(S[0, 2, 2, 0])
+
+
+@settings(max_examples=25, deadline=None)
+@given(case=st.sampled_from(CASES), pot=st.sampled_from(["harmonic", "lj"]), s=st.floats(0.9, 1.1))
+def test_A11_matches_finite_differences_of_the_stress(case, pot, s):
+    """Route through the stress itself: deform the prestressed crystal by F = 1 + H, take the
+    Cauchy stress of the deformed bonds (same bond sum, no new physics), convert it to the
+    nominal stress V0 P = (V' sigma') F^-T, and differentiate numerically: dP_ij/dH_kl = A_ijkl.
+    The acoustic tensor from S (Eq. A11) must match A_ijkl n_j n_l."""
+    c = build(case[0], case[1], case[2], s, pot)
+    bonds = c.bonds[0]
+    dim = bonds.shape[-1]
+    h = 1e-6
+
+    def nominal(H):
+        F = np.eye(dim) + H
+        return elastic.stress(bonds @ F.T, pot) @ np.linalg.inv(F).T
+
+    A = np.empty((dim, dim, dim, dim))
+    for k in range(dim):
+        for m in range(dim):
+            E = np.zeros((dim, dim))
+            E[k, m] = h
+            A[:, :, k, m] = (nominal(E) - nominal(-E)) / (2 * h)
+    S = elastic.stress_derivatives(elastic.stress(bonds, pot), elastic.elastic_constants(bonds, pot))
+    n = np.random.default_rng(1).normal(size=(10, dim))
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    np.testing.assert_allclose(np.einsum("jikl,nj,nl->nik", S, n, n),
+                               np.einsum("ijkl,nj,nl->nik", A, n, n), rtol=1e-6, atol=1e-8)
