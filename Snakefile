@@ -4,12 +4,18 @@
 #   snakemake -j2 --config 'run=[my_scene]' --configfile my.yaml   only your scene
 import os
 import re
+import sys
 from pathlib import Path
 
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
+# This checkout's library, even when another surfwave is installed in the environment
+# (the module paths below become rule inputs, so they must be this checkout's files).
+sys.path.insert(0, str(Path(workflow.basedir, "src")))
+
 from surfwave import cache
-from surfwave.scenes import validate_config
+from surfwave.scenes import SceneError, validate_config
 
 min_version("9.13.1")
 
@@ -27,9 +33,12 @@ configfile: "config/config.yaml"
 
 
 # Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
-SCENES = validate_config(
-    config, Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml")
-)
+try:
+    SCENES = validate_config(
+        config, Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml")
+    )
+except SceneError as exc:
+    raise WorkflowError(str(exc)) from None
 
 
 wildcard_constraints:

@@ -157,3 +157,43 @@ def test_code_version_tracks_the_computing_modules():
     v = cache.code_version("phonons")
     assert v == cache.code_version("phonons") and len(v) == 16
     assert v != cache.code_version("symmetry")
+
+
+def test_entries_are_readable_by_others_and_stats_reset_per_run(tmp_path):
+    """mkstemp makes 0600 files; a cache shared by users (or a cluster) needs the umask's mode.
+    start_run drops the hit/miss records of earlier runs (they would pile up forever)."""
+    import os
+    import stat
+
+    old = os.umask(0o022)
+    try:
+        cache.cached_points("bulk", KEY, [1.0], Counter(), tmp_path)
+    finally:
+        os.umask(old)
+    (entry,) = (tmp_path / "bulk").glob("*.npz")
+    assert stat.S_IMODE(entry.stat().st_mode) == 0o644
+    assert len(list((tmp_path / "stats").glob("*.json"))) == 1
+    cache.start_run(tmp_path)
+    assert list((tmp_path / "stats").glob("*.json")) == []
+    cache.cached_points("bulk", KEY, [1.0, 1.01], Counter(), tmp_path)
+    info = cache.info(tmp_path)
+    assert (info["hits"], info["misses"], info["entries"]) == (1, 1, 2)
+
+
+def test_chunks_are_stored_as_they_finish(tmp_path):
+    """With chunk=2 a compute that dies on the third chunk leaves the first two stored; the
+    rerun computes only the rest."""
+    class Dies(Counter):
+        def __call__(self, d):
+            if self.calls == 2:
+                raise KeyboardInterrupt("killed")
+            return super().__call__(d)
+
+    d = [0.95, 0.96, 0.97, 0.98, 0.99, 1.0]
+    with pytest.raises(KeyboardInterrupt):
+        cache.cached_points("bulk", KEY, d, Dies(), tmp_path, chunk=2)
+    assert cache.info(tmp_path)["entries"] == 4 and cache.info(tmp_path)["stale_temporary"] == 0
+    f = Counter()
+    r = cache.cached_points("bulk", KEY, d, f, tmp_path, chunk=2)
+    assert (f.calls, f.points) == (1, 2)
+    np.testing.assert_allclose(r["y"], np.square(d))

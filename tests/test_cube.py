@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import json
+import os
+import stat
 
 import numpy as np
 import pytest
@@ -90,6 +92,40 @@ def test_failed_write_leaves_nothing(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError):
         cube.write(ds, tmp_path / "x.nc")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_write_mode_and_stale_temporaries(tmp_path):
+    """A killed earlier write leaves `.x.nc.*.tmp`; the next write of x.nc removes it, and the
+    cube is readable by others as an ordinary file would be (mkstemp alone gives 0600)."""
+    ds = cube.build(blocks(), {"potential": ["harmonic", "lj"], "direction": ["[100]", "[110]"]}, D, META)
+    (tmp_path / ".x.nc.abc123.tmp").write_bytes(b"half a netCDF")
+    (tmp_path / ".y.nc.abc123.tmp").write_bytes(b"another file's")
+    old = os.umask(0o022)
+    try:
+        path = cube.write(ds, tmp_path / "x.nc")
+    finally:
+        os.umask(old)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".y.nc.abc123.tmp", "x.nc"]
+    assert stat.S_IMODE(path.stat().st_mode) == 0o644
+
+
+def test_finish_writes_space_group_and_provenance(tmp_path):
+    from types import SimpleNamespace
+
+    crystal = cube.build({(p, d): {"space_group": np.array(["I4/mmm", "Fm-3m", "I4/mmm"])}
+                          for p in ("harmonic", "lj") for d in ("[100]", "[110]")},
+                         {"potential": ["harmonic", "lj"], "direction": ["[100]", "[110]"]}, D,
+                         {"space_group": {"long_name": "space group", "dims": ()}})
+    cube.write(crystal, tmp_path / "crystal.nc")
+    ds = cube.build(blocks(), {"potential": ["harmonic", "lj"], "direction": ["[100]", "[110]"]}, D, META)
+    job = {"scene": "s", "stage": "rayleigh", "accuracy": {}}
+    ctx = SimpleNamespace(params=SimpleNamespace(job=job), rule="rayleigh",
+                          output=[str(tmp_path / "rayleigh.nc")])
+    back = cube.open_cube(cube.finish(ds, ctx, what="rayleigh", method="m",
+                                      crystal=tmp_path / "crystal.nc"))
+    assert back.space_group.sel(potential="lj", direction="[110]").values[1] == "Fm-3m"
+    assert back.attrs["title"] == "surfwave rayleigh cube, scene s" and back.attrs["method"] == "m"
+    assert "'rayleigh'" in back.attrs["history"]
 
 
 def test_add_space_group():

@@ -12,9 +12,8 @@ import numpy as np
 import pytest
 
 from surfwave import dispersion as D
+from surfwave import elastic, rayleigh
 from surfwave.errors import GeometryError
-from surfwave.lattices import build
-from surfwave.potentials import get_potential
 from surfwave.triangular import row_matrices
 
 TH = np.array([1e-3, np.pi / 20, np.pi / 8, np.pi / 4, 1.3, np.pi / 2, 2.2, np.pi - 1e-3])
@@ -28,17 +27,12 @@ def eq16(d):
     return 5 * x**2 - x - np.sqrt(4 * x**5 + x**4 - 2 * x**3 + x**2)
 
 
-def eq20_bond_sums(name, d):
-    """Eq. (20) with S from the bond sums of Eq. (A12) and Eq. (A11) (sigma_yy = 0)."""
-    pot = get_potential(name)
-    r = build("triangular", "uniaxial", "[10]", d).bonds
-    L = np.linalg.norm(r, axis=-1)
-    w = (L**2 * pot.d2phi(L) - L * pot.dphi(L)) / L**4
-    x, y = r[..., 0], r[..., 1]
-    sxx = (x * x * pot.dphi(L) / L).sum(-1)
-    cxxxx, cyyyy, cxyxy = (w * x**4).sum(-1), (w * y**4).sum(-1), (w * x * x * y * y).sum(-1)
-    lp, tp, lq, tq = sxx + cxxxx, sxx + cxyxy, cyyyy, cxyxy
-    return 0.5 * (lp + tp) - 0.5 * np.sqrt((lp - tp) ** 2 + 4 * tq**3 / lq)
+def eq20_elastic(name, d):
+    """Eq. (20) (``rayleigh.cauchy_c2``) with the long-wave speeds of the bond sums, Eqs. (A7,
+    A11, A12) (``elastic.properties``, checked against Table I in test_table1.py): a route
+    through the elastic constants only, independent of the row equations."""
+    sp = elastic.properties("triangular", "uniaxial", name, "[10]", d)
+    return rayleigh.cauchy_c2(sp["c2_L_par"], sp["c2_T_par"], sp["c2_L_perp"], sp["c2_T_perp"])
 
 
 def plug_in_residual(pot, d, th, u, v, omega):
@@ -54,6 +48,30 @@ def plug_in_residual(pot, d, th, u, v, omega):
     return np.abs(surf).max(), np.abs(bulk).max()
 
 
+@pytest.mark.parametrize("d", [0.75, 1.0, 1.4])
+def test_row_matrices_are_eq2a(d):
+    """The row matrices of surfwave.triangular against the corrected Eq. (2a) of PHYSICS.md
+    (harmonic, hand-written): the y-equation
+    -v''_00 = [1 - 1/(2 d_x)](2v_00 - v_01 - v_0-1) + d_y^2 (4v_00 - v_10 - v_-10 - v_1-1 - v_-11)
+              - d_x d_y (u_10 + u_-10 - u_1-1 - u_-11)
+    and its x-partner (in-row spring phi''(2 d_x) = 1, inclined bonds d_x^2, d_x d_y), with
+    u_IJ = U_I exp(i theta (I + 2J)); the free surface row lacks the neighbours of row -1."""
+    th = np.array([1e-3, 0.4, 1.3, 2.9])
+    dx = d / 2
+    dy = np.sqrt(1 - dx**2)
+    A0, A0s, A1 = row_matrices("harmonic", [d], th)
+    ep, em = np.exp(1j * th), np.exp(-1j * th)
+    ring = 2 - 2 * np.cos(2 * th)  # 2 - e^{2i theta} - e^{-2i theta} from v_0,+-1
+    z = np.zeros_like(th)
+    a0 = np.array([[ring + 4 * dx**2, z], [z, (1 - 1 / (2 * dx)) * ring + 4 * dy**2]])
+    a0s = np.array([[ring + 2 * dx**2, z], [z, (1 - 1 / (2 * dx)) * ring + 2 * dy**2]])
+    # neighbours in row +1: (1, 0) at (d_x, d_y), phase e^{i theta}; (1, -1) at (-d_x, d_y), e^{-i theta}
+    a1 = np.array([[-dx**2 * (ep + em), -dx * dy * (ep - em)], [-dx * dy * (ep - em), -dy**2 * (ep + em)]])
+    np.testing.assert_allclose(A0[0], np.moveaxis(a0, -1, 0), atol=1e-14)
+    np.testing.assert_allclose(A0s[0], np.moveaxis(a0s, -1, 0), atol=1e-14)
+    np.testing.assert_allclose(A1[0], np.moveaxis(a1, -1, 0), atol=1e-14)
+
+
 def test_c2R_matches_eq16_harmonic():
     """Closed form: Eq. (16), and (3 - sqrt 3)/4 at zero stress (PHYSICS.md)."""
     d = np.linspace(0.72, 1.95, 30)
@@ -66,8 +84,9 @@ def test_c2R_matches_eq16_harmonic():
                                     ("morse", np.linspace(0.85, 1.2, 8)),
                                     ("harmonic", np.linspace(0.71, 1.9, 8))])
 def test_c2R_matches_long_wave_eq20(name, d):
-    """The lattice quadratic's c_R^2 equals Eq. (20) built from elastic constants (Eq. A12)."""
-    np.testing.assert_allclose(D.solve(name, d, [0.5])["c2_R"], eq20_bond_sums(name, d), rtol=1e-11)
+    """The lattice quadratic's c_R^2 (row equations) equals Eq. (20) built from the elastic
+    constants of the bond sums (Eq. A12): two independent routes to the long-wave limit."""
+    np.testing.assert_allclose(D.solve(name, d, [0.5])["c2_R"], eq20_elastic(name, d), rtol=1e-11)
 
 
 @pytest.mark.parametrize("name,d", [("harmonic", [0.7093, 0.8, 1.0, 1.4]), ("lj", [0.9, 1.0, 1.1])])
@@ -203,6 +222,30 @@ def test_no_warning_or_nan_inside_valid_range():
     for key in ("omega", "q1", "q2", "R1", "R2", "amplitude_ratio", "omega_L", "omega_T", "theta_c"):
         assert np.isfinite(r[key]).all(), key
     assert np.all(r["omega"][:, th < np.pi / 2] < r["omega_T"][:, th < np.pi / 2])
+
+
+@pytest.mark.parametrize("name,d", [("harmonic", [0.7085 * 1.0001, 1.0, 1.99]),
+                                    ("lj", [0.8937 * 1.0001, 1.0, 1.1139])])
+def test_extreme_theta_is_finite_and_exact(name, d):
+    """theta down to 1e-12 from 0 and from pi, at the edges of the stable range: Eq. (15) is
+    finite (the valid range is the open interval), the unsquared surface condition holds to
+    rounding (its rows are formed with expm1 and pi - theta to full precision). Displacements
+    are finite there and satisfy the row equations (same plug-in reference as above) to 1e-10
+    down to theta = 1e-6 from either end; closer, the propagator Lambda inverts an
+    O(theta)-singular matrix and the residual grows like eps / theta (documented limit)."""
+    th = np.array([1e-12, 1e-9, 1e-6, np.pi - 1e-6, np.pi - 1e-9, np.pi - 1e-12])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = D.solve(name, d, th)
+        disp = D.displacements(name, d, th, n_rows=12)
+    assert (r["reason"] == "").all()
+    for key in ("omega", "q1", "q2", "R1", "R2", "amplitude_ratio"):
+        assert np.isfinite(r[key]).all(), key
+    assert np.isfinite(disp["u"]).all() and np.isfinite(disp["v"]).all()
+    assert r["boundary_residual"].max() < 1e-12
+    mid = [2, 3]  # theta = 1e-6 and pi - 1e-6
+    surf, bulk = plug_in_residual(name, d, th[mid], disp["u"][:, mid], disp["v"][:, mid], r["omega"][:, mid])
+    assert surf < 1e-10 and bulk < 1e-10
 
 
 def test_variables_metadata_covers_outputs():

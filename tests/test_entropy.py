@@ -45,6 +45,7 @@ def test_zero_stress_harmonic_reference_values():
     assert abs(r["bulk_mean_log_omega"][0] - HUCKABY) < 5e-8 + r["bulk_mean_log_omega_error"][0]
     assert r["bulk_mean_log_omega_error"][0] < 1e-8
     assert abs(r["S_surface_estimate"][0] - eq26) < 1e-6
+    assert abs(r["S_surface_estimate"][0] - 0.711075) < 1e-6  # issue 6's acceptance value
     assert r["S_surface_exact_error"][0] < 1e-8
     assert r["reason"][0] == ""
     # the paper's numerical lattice dynamics (Ref. 23) gives 0.66, cell cluster 0.62
@@ -205,11 +206,13 @@ def test_rayleigh_speed_eq16_and_eq15_for_lj():
         np.testing.assert_allclose(np.sqrt(lo), eq15, rtol=1e-7)
 
 
-def test_rayleigh_matches_library_point_if_present():
-    """Eq. (20) here against the lead's general Eq. (17) solver with root selection."""
-    api = pytest.importorskip("surfwave.api")
+def test_rayleigh_matches_general_eq17_solver():
+    """Eq. (20) here against the general Eq. (17) solver with root selection by the unsquared
+    boundary condition (``surfwave.point``, surfwave.rayleigh)."""
+    import surfwave
+
     grid = np.array([0.9, 1.0, 1.1])
-    ref = api.point("triangular", "uniaxial", "lj", "[10]", grid)["c2_R"]
+    ref = surfwave.point("triangular", "uniaxial", "lj", "[10]", grid)["c2_R"]
     np.testing.assert_allclose([rayleigh_c2("lj", d) for d in grid], ref, rtol=1e-6)
 
 
@@ -311,11 +314,13 @@ def test_bad_inputs_raise():
 
 
 def test_timing_target():
-    """Issue target: S_surface_exact to 1e-8 in under 0.5 s per strain on one core."""
+    """Issue target: S_surface_exact to 1e-8 in under 0.5 s per strain on one core (CPU time
+    of this process, so that a loaded machine running other tests does not make it flaky)."""
     import time
-    t0 = time.perf_counter()
-    surface_entropy("lj", np.linspace(0.9, 1.1, 5), tol=1e-8)
-    assert (time.perf_counter() - t0) / 5 < 0.5
+    t0 = time.process_time()
+    r = surface_entropy("lj", np.linspace(0.9, 1.1, 5), tol=1e-8)
+    assert (time.process_time() - t0) / 5 < 0.5
+    assert (r["S_surface_exact_error"] < 1e-8).all()
 
 
 def test_entropy_figure_is_written(tmp_path):

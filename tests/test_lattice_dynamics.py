@@ -15,6 +15,10 @@ from surfwave import dispersion as D
 from surfwave import lattice_dynamics as L
 from surfwave.triangular import row_matrices
 
+#: LJ surface instabilities (c_R^2 = 0 of the lattice quadratic, surfwave.dispersion), found by
+#: bisection; the LJ bulk goes unstable only beyond them (0.8930277 and 1.1141848).
+LJ_SURFACE = (0.89361985602, 1.11392551139)
+
 D_SURFACE_HARMONIC = 0.70849737787  # c_R^2 = 0 of Eq. (16) (root found by brentq, checked below)
 
 
@@ -52,6 +56,69 @@ def test_harmonic_agrees_with_eq15_everywhere():
     assert np.all(np.abs(r["omega_lattice"] - ref) <= r["omega_lattice_error"])
     assert np.all(r["n_surface_modes"] == 1)
     assert np.all(r["omega_lattice"] < r["omega_bulk_min"])
+
+
+def test_triangular_scene_acceptance():
+    """Acceptance of issue 5 on the ``triangular`` scene of config/config.yaml (its strains,
+    theta grid and tolerance, both potentials), with theta 1e-3 from 0 and pi, theta_c +- 1e-3
+    and strains 1% inside both surface instabilities added: omega_lattice agrees with Eq. (15)
+    (``dispersion.solve``, c_R from the lattice quadratic; Eq. 16 for springs) to 1e-6,
+    within its own error estimate, with a single bound mode below the bulk continuum."""
+    from pathlib import Path
+
+    from surfwave import scenes
+
+    cfg = scenes.load_config([Path(__file__).resolve().parents[1] / "config" / "config.yaml"])
+    scene = scenes.validate_config(cfg)["triangular"]
+    assert "dispersion" in scene["quantities"]
+    tol = scene["accuracy"]["dispersion"]["tol"]
+    extra = {"harmonic": [D_SURFACE_HARMONIC * 1.01], "lj": [LJ_SURFACE[0] * 1.01, LJ_SURFACE[1] * 0.99]}
+    for name in scene["potentials"]:
+        d = np.concatenate([scene["d_over_d0"], extra[name]])
+        th = np.unique(np.concatenate([scene["theta"], scene_theta(name, d)]))
+        r = L.surface_mode(name, d, th, tol=tol)
+        ref = D.solve(name, d, th)["omega"]
+        assert np.isfinite(ref).all()
+        dev = np.abs(r["omega_lattice"] / ref - 1)
+        assert np.isfinite(dev).all() and dev.max() < 1e-6, name
+        assert np.all(np.abs(r["omega_lattice"] - ref) <= r["omega_lattice_error"]), name
+        assert np.all(r["n_surface_modes"] == 1), name
+
+
+def test_row_matrices_equal_phonopy_bulk_dynamical_matrix():
+    """The row matrices (surfwave.triangular, which both the analytic and the numerical solve
+    use) against phonopy's bulk dynamical matrix from finite displacements of our pair forces
+    (surfwave.phonons): A0 + A1 e^{ip} + A1^H e^{-ip} = D(k) at k = (theta/d_x, p/d_y), for a
+    stressed LJ lattice where the prestress term phi'/r (1 - r^r^) of the in-row bond matters."""
+    from surfwave.lattices import build
+    from surfwave.phonons import dynamical_matrix, make_phonopy
+    from surfwave.potentials import get_potential
+
+    pot = get_potential("lj")
+    for d in (0.95, 1.08):
+        crystal = build("triangular", "uniaxial", "[10]", [d], potential=pot)
+        phonon, _ = make_phonopy(crystal, 0, pot, 3, 1e-4)
+        dx, dy = d / 2, np.sqrt(1 - (d / 2) ** 2)
+        th, p = np.array([0.3, 1.1, 2.6]), np.array([0.0, 0.7, -2.0])
+        A0, _, A1 = row_matrices(pot, [d], th)
+        for j, (t, q) in enumerate(zip(th, p)):
+            rows = A0[0, j] + A1[0, j] * np.exp(1j * q) + A1[0, j].conj().T * np.exp(-1j * q)
+            dyn = dynamical_matrix(phonon, np.array([t / dx, q / dy, 0.0]), crystal.cell3d()[0])
+            np.testing.assert_allclose(rows, dyn[:2, :2], atol=1e-7)
+
+
+def test_extreme_theta_nan_with_rounding_reason():
+    """theta within 1e-9 of 0 or pi: omega^2 ~ theta^2 is below the rounding of the O(1) row
+    matrices, so the numerical solve cannot decide; it must say so (NaN with that reason),
+    not claim a bulk instability, and stay exact (Eq. 15) at 1e-3 from the ends."""
+    th = np.array([1e-9, 1e-3, np.pi - 1e-3, np.pi - 1e-9])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = L.surface_mode("harmonic", [1.0], th)
+    assert np.isnan(r["omega_lattice"][0, [0, 3]]).all()
+    assert all(x.startswith("theta too close to 0 or pi") for x in r["reason_lattice"][0, [0, 3]])
+    ref = D.solve("harmonic", [1.0], th[1:3])["omega"]
+    np.testing.assert_allclose(r["omega_lattice"][:, 1:3], ref, rtol=1e-8)
 
 
 @pytest.mark.parametrize("name,d", [("lj", [0.8937 * 1.001, 0.95, 1.0, 1.05, 1.11]), ("morse", [0.9, 1.0, 1.2])])

@@ -221,3 +221,28 @@ def test_benchmark_table(tmp_path):
     assert lines[3] == ("| odd | k in [1, 2] | max_dev: 1.000e-05 .. 0.001 | time_k: 1 .. 2 s "
                         "| default_k: 2 |")
     assert "| c | | | | not computed |" in lines[4]
+
+
+def test_rapid_110_compares_both_directions_at_one_strain():
+    """[110] ends (NaN) early at a small drop, [100] runs on to a large one: comparing each
+    at its own last point would say [100] falls faster; at a common strain [110] does."""
+    from surfwave.report_checks import claim_checks
+
+    d = np.array([1.0, 1.05, 1.10, 1.20])
+    r100 = [0.30, 0.29, 0.28, 0.05]  # -7 % at +0.10, -83 % at +0.20
+    r110 = [0.35, 0.30, 0.25, np.nan]  # -29 % at +0.10, no surface wave beyond
+    coords = {"potential": ["lj"], "direction": ["[100]", "[110]"], "strain": d - 1,
+              "d_over_d0": ("strain", d)}
+    ra = xr.Dataset({"c2_R": (DIMS, np.array([[r100, r110]]))}, coords=coords)
+    el = xr.Dataset({"c2_T_par": (DIMS, np.full((1, 2, 4), 0.5))}, coords=coords)
+
+    class Cubes:
+        def get(self, scene, cube):
+            return {"elastic": el, "rayleigh": ra}[cube]
+
+    spec = {"source": "s", "scene": "fig2", "potential": "lj"}
+    (check,) = claim_checks("rapid_decrease_110_tension", spec, Cubes())
+    assert check.verdict == PASS and "strain +0.100" in check.evidence
+    ra["c2_R"][0, 1, 2] = 0.34  # [110] barely falls at the common strain: now it fails
+    (check,) = claim_checks("rapid_decrease_110_tension", spec, Cubes())
+    assert check.verdict == FAIL

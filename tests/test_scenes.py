@@ -45,7 +45,7 @@ def test_user_accuracy_keeps_other_defaults():
     cfg = base(accuracy={"bulk": {"supercell": 3}})
     validate_config(cfg)
     assert cfg["scenes"]["s1"]["accuracy"]["bulk"] == {
-        "supercell": 3, "displacement": 1e-4, "zone_mesh": 8, "long_wave": "curvature"}
+        "supercell": 3, "displacement": 3e-5, "zone_mesh": 8, "long_wave": "curvature"}
 
 
 @pytest.mark.parametrize(
@@ -127,6 +127,40 @@ def test_module_closure_separates_stages():
     assert {"symmetry.py", "lattices.py", "potentials.py", "cube.py", "__init__.py"} <= crystal
     assert "rayleigh.py" not in crystal
     assert "rayleigh.py" in names("api")
+
+
+def test_module_closure_skips_lazy_reexports(tmp_path):
+    """A module-level __getattr__ that imports a module lazily (PEP 562 re-export) does not make
+    that module a dependency; an import inside an ordinary function does."""
+    (tmp_path / "__init__.py").write_text("")
+    (tmp_path / "a.py").write_text(
+        "def f():\n    from . import b\n\n"
+        "def __getattr__(name):\n    from . import c\n    return getattr(c, name)\n")
+    for m in ("b", "c"):
+        (tmp_path / f"{m}.py").write_text("")
+    got = {p.rsplit("/", 1)[-1] for p in scenes.module_closure("a", package_dir=tmp_path)}
+    assert got == {"__init__.py", "a.py", "b.py"}
+
+
+@pytest.mark.parametrize(
+    "over, words",
+    [
+        ({"potential": ["lj"]}, ["'s1'", "unknown key 'potential'", "potentials"]),
+        ({"accuracy": {"bulk": {"displacment": 1e-3}}}, ["'s1'", "accuracy/bulk/displacment",
+                                                          "unknown key", "displacement"]),
+        ({"accuracy": {"bulk": {"displacement": "1e-3"}}}, ["'s1'", "displacement", "'1e-3'",
+                                                             "decimal point"]),
+        ({"d_over_d0": {"start": 0.9, "stop": 1.0}}, ["'s1'", "d_over_d0/step", "missing"]),
+        ({"theta": [0.0, 1.0]}, ["'s1'", "theta/0", "0.0"]),
+    ],
+)
+def test_schema_messages_name_the_offending_key(over, words):
+    cfg = base(**over)
+    with pytest.raises(SceneError) as err:
+        validate_config(cfg)
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+    assert "{'lattice'" not in str(err.value)  # never the whole scene dumped
 
 
 def test_default_config_is_valid():

@@ -11,6 +11,8 @@ from surfwave.lattices import build
 
 
 def test_new_error_handling_is_on():
+    """spglib 2.x: with OLD_ERROR_HANDLING = False failures raise instead of warning
+    (STYLE.md, phonopy / spglib facts); surfwave.symmetry sets it on import."""
     assert spglib.error.OLD_ERROR_HANDLING is False
 
 
@@ -28,6 +30,11 @@ def test_new_error_handling_is_on():
     ],
 )
 def test_space_groups_and_mirrors(lattice, loading, direction, groups):
+    """Expected groups by hand (one-atom cells): FCC is Fm-3m; stretching the two in-plane cube
+    axes equally (or one cube axis) keeps the 4-fold axis: body-centred tetragonal I4/mmm;
+    stretching along [110] leaves three orthogonal 2-fold axes: Immm. The 2D triangular
+    lattice padded with vacuum is P6/mmm, uniaxially stretched centred rectangular Cmmm.
+    Every one has the lab-frame mirrors x -> -x and z -> -z that Eq. (17) needs."""
     r = symmetry.crystal_symmetry(lattice, loading, direction, [0.95, 1.0, 1.05], "lj")
     assert r["space_group"].tolist() == groups
     assert r["mirror_x"].all() and r["mirror_z"].all()
@@ -36,6 +43,7 @@ def test_space_groups_and_mirrors(lattice, loading, direction, groups):
 
 
 def test_space_group_numbers():
+    """International Tables numbers: Fm-3m = 225, I4/mmm = 139."""
     r = symmetry.crystal_symmetry("fcc", "in_plane_hydrostatic", "[100]", [1.0, 0.9])
     assert r["space_group_number"].tolist() == [225, 139]
 
@@ -53,6 +61,8 @@ def test_rotated_frame_lacks_mirrors_and_raises():
 
 
 def test_cartesian_rotations_identity_frame():
+    """For an orthorhombic cell along the lab axes, fractional and Cartesian rotations are the
+    same matrix (R_cart = L^T R L^-T with diagonal L)."""
     cell = np.diag([1.0, 2.0, 3.0])
     rots = np.array([np.diag([-1, 1, 1])], dtype=float)
     np.testing.assert_allclose(symmetry.cartesian_rotations(cell, rots)[0], np.diag([-1.0, 1, 1]))

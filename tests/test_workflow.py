@@ -8,6 +8,7 @@ dry-run with the SLURM profile.
 """
 from __future__ import annotations
 
+import fcntl
 import os
 import re
 import shutil
@@ -84,10 +85,36 @@ def scheduled(proc: subprocess.CompletedProcess) -> list[tuple[str, str]]:
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    wd = make_workdir(tmp_path_factory.mktemp("wf"))
-    smk(wd, "-j2")
+def built(tmp_path_factory, request):
+    """The tiny workflow, built once per test session.
+
+    With pytest-xdist the tests using it may land on different workers (`--dist loadgroup`
+    does not keep the `xdist_group` together with pytest 9 / xdist 3.8), so the build goes
+    to the session's shared temporary directory under a file lock: the first worker builds,
+    the others wait and reuse it. Read-only tests use it as is; tests that rerun Snakemake
+    work on a copy (`own_copy`).
+    """
+    worker = getattr(request.config, "workerinput", {}).get("workerid")
+    if worker is None:  # no xdist: a private build
+        wd = make_workdir(tmp_path_factory.mktemp("wf"))
+        smk(wd, "-j2")
+        return wd
+    root = tmp_path_factory.getbasetemp().parent  # shared by the workers of this session
+    wd = root / "wf_shared"
+    with open(root / "wf_shared.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (root / "wf_shared.done").exists():
+            shutil.rmtree(wd, ignore_errors=True)
+            wd.mkdir()
+            smk(make_workdir(wd), "-j2")
+            (root / "wf_shared.done").touch()
     return wd
+
+
+def own_copy(built: Path, dest: Path) -> Path:
+    """A copy of the built workflow (modification times and Snakemake metadata kept)."""
+    shutil.copytree(built, dest, symlinks=True)
+    return dest
 
 
 def test_outputs_pass_interface_checker_and_match_library(built):
@@ -121,7 +148,8 @@ def test_values_and_provenance(built):
     assert disp.sizes["row"] == 6 and disp.sizes["theta"] == 4
 
 
-def test_noop_scene_change_and_code_provenance(built):
+def test_noop_scene_change_and_code_provenance(built, tmp_path):
+    built = own_copy(built, tmp_path / "wf")  # this test reruns the workflow
     # 1. No-op rerun.
     proc = smk(built, "-j2")
     assert "Nothing to be done" in proc.stdout + proc.stderr

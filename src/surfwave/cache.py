@@ -37,6 +37,9 @@ from .errors import InputError
 
 #: Default location, relative to the working directory of the workflow.
 DEFAULT_ROOT = Path("results") / "cache"
+#: Points computed and stored at a time by the workflow's stages (a killed job keeps the
+#: chunks it finished; at 3-20 ms per point a chunk is well under a second of work).
+CHUNK = 32
 _STATS = "stats"
 _RUN_MARKER = "RUN"
 
@@ -92,6 +95,7 @@ def _atomic_write(path: Path, arrays: Mapping[str, np.ndarray], text: str) -> No
             np.savez(fh, __key__=np.array(text), **arrays)
             fh.flush()
             os.fsync(fh.fileno())
+        os.chmod(tmp, _file_mode())  # mkstemp makes 0600; a shared cache must be readable
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -107,9 +111,21 @@ def _record(root: Path, kind: str, hits: int, misses: int) -> None:
 
 def _atomic_write_text(path: Path, text: str) -> None:
     fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-    with os.fdopen(fd, "w") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
+    try:
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+        os.chmod(tmp, _file_mode())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _file_mode() -> int:
+    """Permissions of a new file under the current umask (mkstemp alone gives 0600)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def _as_store(a) -> np.ndarray:
@@ -123,6 +139,7 @@ def cached_points(
     d_over_d0,
     compute: Callable[[np.ndarray], Mapping[str, np.ndarray]],
     root: str | Path = DEFAULT_ROOT,
+    chunk: int | None = None,
 ) -> dict[str, np.ndarray]:
     """Per-point results for every d/d0, computing only the points not yet stored.
 
@@ -135,10 +152,14 @@ def cached_points(
         direction, method, accuracy settings, theta grid, ...); JSON-able values.
     d_over_d0 : array_like, shape (n,)
     compute : callable
-        ``compute(d_missing) -> {name: array with leading axis len(d_missing)}``; called at
-        most once, with the missing points only (in order, without duplicates).
+        ``compute(d_missing) -> {name: array with leading axis len(d_missing)}``; called
+        with the missing points only (in order, without duplicates): once, or once per
+        ``chunk`` of them.
     root : path
         Directory of the store (default ``results/cache``).
+    chunk : int, optional
+        Compute and store the missing points this many at a time, so that a job killed
+        mid-way keeps the points it finished (a rerun resumes there). None: all at once.
 
     Returns
     -------
@@ -161,9 +182,11 @@ def cached_points(
         if digest not in found and digest not in seen:
             missing_idx.append(i)
             seen.add(digest)
-    if missing_idx:
-        result = compute(d[missing_idx])
-        for j, i in enumerate(missing_idx):
+    step = len(missing_idx) if not chunk else int(chunk)
+    for start in range(0, len(missing_idx), max(step, 1)):
+        part = missing_idx[start:start + step]
+        result = compute(d[part])
+        for j, i in enumerate(part):
             arrays = {k: _as_store(v)[j] for k, v in result.items()}
             digest, text = ids[i]
             _atomic_write(_entry_path(root, kind, digest), arrays, text)
@@ -189,11 +212,26 @@ def code_version(*modules: str) -> str:
     return h.hexdigest()[:16]
 
 
+def job_key(job: Mapping, module: str, method: str, **point) -> dict:
+    """Cache key of a workflow job's points: the computing code, lattice, loading, method,
+    plus ``point`` (potential, direction, accuracy knobs, ...); d/d0 is added per point.
+
+    ``job`` is :func:`surfwave.scenes.job_params` output; ``module`` the surfwave module that
+    computes the values (its :func:`code_version` goes in the key, so entries of older code
+    are never reused).
+    """
+    return {"code": code_version(module), "lattice": job["lattice"], "loading": job["loading"],
+            "method": method, **point}
+
+
 def start_run(root: str | Path = DEFAULT_ROOT) -> None:
     """Mark the start of a workflow run: :func:`info` counts hits and misses from here."""
     root = Path(root)
-    (root / _STATS).mkdir(parents=True, exist_ok=True)
-    _atomic_write_text(root / _STATS / _RUN_MARKER, json.dumps({"time": time.time()}))
+    stats = root / _STATS
+    stats.mkdir(parents=True, exist_ok=True)
+    for old in stats.glob("*.json"):  # records of earlier runs: info() no longer counts them
+        old.unlink(missing_ok=True)
+    _atomic_write_text(stats / _RUN_MARKER, json.dumps({"time": time.time()}))
 
 
 def info(root: str | Path = DEFAULT_ROOT) -> dict:

@@ -220,14 +220,60 @@ def provenance(
     return ds
 
 
+def finish(ds: xr.Dataset, job_context, *, what: str, method: str,
+           crystal: str | Path | None = None) -> Path:
+    """The common end of every stage script: space groups, provenance, atomic write.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The cube (from :func:`build`).
+    job_context : object
+        Snakemake's ``snakemake`` object (or :func:`surfwave.scenes.standalone`): uses
+        ``params.job`` (:func:`surfwave.scenes.job_params`), ``rule`` and ``output[0]``.
+    what : str
+        Cube name for the title, e.g. ``"elastic"``.
+    method : str
+        How the values were computed (the ``method`` attribute).
+    crystal : path, optional
+        The scene's ``crystal.nc``: its ``space_group`` becomes a coordinate of ``ds``.
+
+    Returns
+    -------
+    pathlib.Path
+        The written file.
+    """
+    job = job_context.params.job
+    if crystal is not None:
+        ds = add_space_group(ds, open_cube(crystal))
+    ds = provenance(ds, title=f"surfwave {what} cube, scene {job['scene']}", params=job,
+                    rule=job_context.rule, method=method)
+    return write(ds, job_context.output[0])
+
+
+def _file_mode() -> int:
+    """Permissions of a new file under the current umask (what ``open(..., "w")`` gives)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
 def write(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write ``ds`` to ``path`` atomically (temporary file in the same directory + os.replace)."""
+    """Write ``ds`` to ``path`` atomically (temporary file in the same directory + os.replace).
+
+    Readers never see a half-written cube and a killed job never leaves one at ``path``;
+    temporary files of an earlier, killed write of the same path are removed first. The file gets the
+    permissions of an ordinary new file under the current umask.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    for stale in path.parent.glob(f".{path.name}.*.tmp"):  # left by a killed writer of this
+        stale.unlink(missing_ok=True)                       # file (one job writes each path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
         ds.to_netcdf(tmp, engine=ENGINE)
+        os.chmod(tmp, _file_mode())  # mkstemp makes 0600; results are for everyone to read
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

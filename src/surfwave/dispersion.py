@@ -29,6 +29,7 @@ import numpy as np
 
 from .errors import InputError
 from .potentials import PairPotential, get_potential
+from .surface_green import inv2, null_vector2
 from .triangular import bond_force_constants, row_matrices
 
 _W = "(K/m)^(1/2)"
@@ -73,6 +74,17 @@ REASON_SURFACE = "surface unstable: c_R^2 <= 0 (the free surface buckles before 
 REASON_BULK = "bulk unstable: a long-wave sound speed squared is <= 0"
 REASON_PRESTRESS = "analytic solution needs stress-free inclined bonds, phi'(d0) = 0"
 REASON_BOUNDARY = "root of Eq. 14 fails the unsquared free-surface condition"
+
+
+#: pi - float(np.pi): adding it makes pi - theta exact to rounding for theta near pi.
+_PI_LO = 1.2246467991473532e-16
+
+
+def _fold(th):
+    """(far, theta') with far = theta > pi/2 and theta' = min(theta, pi - theta), the latter
+    computed with the low part of pi so that sin(theta') = sin(theta) to rounding near pi."""
+    far = th > 0.5 * np.pi
+    return far, np.where(far, (np.pi - th) + _PI_LO, th)
 
 
 def _as_1d(x, name: str) -> np.ndarray:
@@ -152,6 +164,18 @@ def crossover_theta(lc: dict, n_grid: int = 512, n_bisect: int = 60) -> np.ndarr
     Grid scan of the sign of the Eq. 6a discriminant (at omega of Eq. 15) followed by a
     vectorised bisection to ~1e-16. 0 where q is complex at all wavelengths (tension), NaN
     where the strain is invalid or q stays real up to pi/2.
+
+    Parameters
+    ----------
+    lc : dict
+        From :func:`lattice_constants` (arrays of shape (n,)).
+    n_grid, n_bisect : int
+        Points of the sign scan on (0, pi/2] and bisection steps.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        theta_c in rad; by symmetry q is complex on theta_c < theta < pi - theta_c.
     """
     W = (lc["c2_R"] / lc["dx"] ** 2)[:, None]
     grid = np.linspace(0.5 * np.pi / n_grid, 0.5 * np.pi, n_grid)[None, :]
@@ -180,8 +204,7 @@ def _decay_constants(lc: dict, W, th):
     Uses the symmetry of Eq. 6a under theta -> pi - theta, cosh q -> -cosh q, so that
     theta > pi/2 is as accurate as theta < pi/2 (there q = q' + i pi).
     """
-    far = th > 0.5 * np.pi
-    thp = np.where(far, np.pi - th, th)
+    far, thp = _fold(th)
     A, B, Cc = _y_quadratic(lc, W, thp)
     D = B**2 - 4 * A * Cc
     sq = np.sqrt(np.abs(D))
@@ -211,8 +234,7 @@ def _ratios(lc: dict, W, th, qzc):
     a, b, c, p, t = (lc[key][:, None] for key in "abcpt")
     _, z, ch = qzc
     s = np.sin(th) ** 2
-    far = th > 0.5 * np.pi  # there q = q' + i pi: use theta' = pi - theta to avoid cancellation
-    thp = np.where(far, np.pi - th, th)
+    far, thp = _fold(th)  # there q = q' + i pi: use theta' = pi - theta to avoid cancellation
     one_m_cx = 2 * np.sin(0.5 * thp) ** 2 - np.cos(thp) * 2 * z**2  # 1 - cos(th) cosh(q)
     sh = np.where(far, -2.0, 2.0) * z * ch  # sinh q
     w2 = W * s
@@ -225,27 +247,34 @@ def _ratios(lc: dict, W, th, qzc):
     return np.sqrt(a / c) * u_over_v
 
 
-def _boundary_rows(th, q1, q2, R1, R2):
+def _boundary_rows(th, w1, w2, R1, R2):
     """Rows (x, y) of the free-surface condition on (V1, V2), Eqs. (7a)-(8a), shape (2, 2, n, m).
 
-    Columns are scaled by |R_j e^q_j| + |e^q_j| + 1 so that the two rows compare fairly.
+    ``w1``, ``w2`` = (q, sinh(q'/2), cosh(q'/2)) from :func:`_decay_constants`. Columns are
+    scaled by |R_j e^q_j| + |e^q_j| + 1 so that the two rows compare fairly.
+    e^q cos(theta) - 1 = expm1(q') cos(theta') - 2 sin^2(theta'/2) with
+    expm1(q') = 2 sinh(q'/2) (cosh(q'/2) + sinh(q'/2)) (q' = q, theta' = theta, or q - i pi,
+    pi - theta beyond pi/2) is formed without cancellation, so the residual stays at rounding
+    level as theta -> 0 or pi (where q' -> 0).
     """
-    C, S = np.cos(th), np.sin(th)
+    _, thp = _fold(th)
+    S, h, Cp = np.sin(th), 2 * np.sin(0.5 * thp) ** 2, np.cos(thp)
     cols = []
-    for q, R in ((q1, R1), (q2, R2)):
+    for (q, z, ch), R in ((w1, R1), (w2, R2)):
         e = np.exp(q)
+        ecm1 = 2 * z * (ch + z) * Cp - h  # e^q cos(theta) - 1
         scale = np.abs(R * e) + np.abs(e) + 1
-        cols.append(((R * (e * C - 1) + e * S) / scale, (R * e * S - (e * C - 1)) / scale, scale))
+        cols.append(((R * ecm1 + e * S) / scale, (R * e * S - ecm1) / scale, scale))
     return cols
 
 
-def _amplitude_ratio(th, q1, q2, R1, R2):
+def _amplitude_ratio(th, w1, w2, R1, R2):
     """Eq. (8a): V1/V2 from the better conditioned row of the free-surface condition.
 
     Returns the ratio and the residual |det| / max|row|^2 of the (scaled) 2x2 boundary
     matrix, which vanishes for a genuine surface wave (the unsquared condition, Eq. 9a).
     """
-    (x1, y1, s1), (x2, y2, s2) = _boundary_rows(th, q1, q2, R1, R2)
+    (x1, y1, s1), (x2, y2, s2) = _boundary_rows(th, w1, w2, R1, R2)
     nx = np.abs(x1) ** 2 + np.abs(x2) ** 2
     ny = np.abs(y1) ** 2 + np.abs(y2) ** 2
     use_x = nx >= ny
@@ -304,7 +333,7 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
     q1, q2 = w1[0], w2_[0]
     R1, R2 = _ratios(lcs, W, th, w1), _ratios(lcs, W, th, w2_)
     with np.errstate(all="ignore"):
-        ratio, resid = _amplitude_ratio(th, q1, q2, R1, R2)
+        ratio, resid = _amplitude_ratio(th, w1, w2_, R1, R2)
     fail = ok & (~(resid < 1e-6) | ~((q1.real > 0) & (q2.real > 0)))
     reason[fail] = REASON_BOUNDARY
     ok &= ~fail
@@ -349,20 +378,8 @@ def decay_solvent(A0, A1, omega2, q1, q2) -> np.ndarray:
     sig = (np.exp(-q1) + np.exp(-q2))[..., None, None]
     pro = np.exp(-(q1 + q2))[..., None, None]
     lhs = sig * A1 + A0 - omega2[..., None, None] * np.eye(2)
-    det = lhs[..., 0, 0] * lhs[..., 1, 1] - lhs[..., 0, 1] * lhs[..., 1, 0]
-    adj = np.stack([np.stack([lhs[..., 1, 1], -lhs[..., 0, 1]], -1),
-                    np.stack([-lhs[..., 1, 0], lhs[..., 0, 0]], -1)], -2)
-    with np.errstate(all="ignore"):  # singular lhs (measure-zero points) gives NaN, not an error
-        inv = adj / det[..., None, None]
-    return inv @ (pro * A1 - np.conj(np.swapaxes(A1, -1, -2)))
-
-
-def _null_vector(S: np.ndarray) -> np.ndarray:
-    """Null vector of singular 2x2 matrices S (..., 2, 2), from the row of larger norm."""
-    r0 = np.stack([-S[..., 0, 1], S[..., 0, 0]], axis=-1)
-    r1 = np.stack([S[..., 1, 1], -S[..., 1, 0]], axis=-1)
-    use0 = np.linalg.norm(r0, axis=-1) >= np.linalg.norm(r1, axis=-1)
-    return np.where(use0[..., None], r0, r1)
+    # singular lhs (measure-zero points) gives NaN, not an error (inv2 suppresses the warning)
+    return inv2(lhs) @ (pro * A1 - np.conj(np.swapaxes(A1, -1, -2)))
 
 
 def default_rows(q1, q2, floor: float = 1e-3, minimum: int = 10, maximum: int = 400) -> int:
@@ -396,6 +413,13 @@ def displacements(potential: str | PairPotential, d_over_d0, theta, n_rows: int 
         positive imaginary (the paper's (U, iV) form: u real, v imaginary while q is real);
         if |v_0| < 1e-12 then u_0 is real positive. NaN where :func:`solve` is NaN.
         ``row``: (rows,) int. ``reason``: (n, m) as in :func:`solve`.
+
+    Notes
+    -----
+    Lambda inverts a matrix that becomes singular like theta as theta -> 0 or pi, so the
+    row equations hold to ~1e-11 down to theta = 1e-6 (from either end) but only to
+    ~eps / theta below (measured: 1e-5 at theta = 1e-12). omega, q and R from :func:`solve`
+    stay exact to rounding there.
     """
     sol = solve(potential, d_over_d0, theta)
     ok = sol["reason"] == ""
@@ -413,7 +437,7 @@ def displacements(potential: str | PairPotential, d_over_d0, theta, n_rows: int 
     with np.errstate(all="ignore"):
         lam = np.where(ok[..., None, None], decay_solvent(A0, A1, w2, q1, q2), 0.0)
         S = w2[..., None, None] * np.eye(2) - A0s - A1 @ lam
-    U = _null_vector(S)
+    U = null_vector2(S)
     rows = [U]
     for _ in range(n_rows - 1):
         rows.append((lam @ rows[-1][..., None])[..., 0])

@@ -43,7 +43,7 @@ VARIABLES: dict[str, dict] = {
           "units": "K d0^2", "dims": ("i", "j", "k", "l")},
     "S": {"long_name": "stress derivatives (Eq. A11) times volume per atom, V S_ijkl, lab frame",
           "units": "K d0^2", "dims": ("i", "j", "k", "l")},
-    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^dim", "dims": ()},
+    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^3 (d0^2 for the 2D triangular lattice)", "dims": ()},
 }
 
 

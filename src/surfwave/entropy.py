@@ -50,7 +50,7 @@ import numpy as np
 from .lattices import build
 from .potentials import PairPotential, get_potential
 from .surface_green import positive_definite2, theta_log_dets
-from .triangular import bond_force_constants, row_matrices
+from .triangular import bond_force_constants, long_wave, row_matrices
 
 _STRAIN = ("strain",)
 _ESTIMATE_NOTE = (
@@ -154,37 +154,10 @@ def theta_integrals(
             "bulk_ok": bulk_ok, "surface_ok": surface_ok}
 
 
-def _acoustic_min_eig(potential: PairPotential, d_over_d0: float) -> tuple[float, dict]:
-    """Long-wave stability and sound speeds from the bond sums (Eq. A12, A11, A7).
-
-    Returns the lowest eigenvalue of V Q(n) = V (C_ijkl + sigma_jl delta_ik) n_j n_l over
-    720 directions (K d0^2) and the four squared speeds (K d0^2/m) as a dict.
-    """
-    crystal = build("triangular", "uniaxial", "[10]", [d_over_d0])
-    r = crystal.bonds[0]  # (3, 2)
-    length = np.linalg.norm(r, axis=-1)
-    rh = r / length[:, None]
-    dphi, d2phi = potential.dphi(length), potential.d2phi(length)
-    sig = np.einsum("b,bi,bj->ij", length * dphi, rh, rh)  # V sigma
-    cc = np.einsum("b,bi,bj,bk,bl->ijkl", length**2 * d2phi - length * dphi, rh, rh, rh, rh)
-    eye = np.eye(2)
-    s = (np.einsum("ad,bc->abcd", sig, eye) + np.einsum("bd,ac->abcd", sig, eye)
-         - np.einsum("ab,cd->abcd", sig, eye) + cc)  # V S, Eq. (A11)
-    phi = np.linspace(0.0, np.pi, 720, endpoint=False)
-    n = np.column_stack([np.cos(phi), np.sin(phi)])
-    q = np.einsum("ijkl,nj,nl->nik", cc, n, n) + np.einsum("jl,nj,nl->n", sig, n, n)[:, None, None] * eye
-    speeds = {"c2_L_par": s[0, 0, 0, 0], "c2_T_par": s[0, 1, 1, 0],
-              "c2_L_perp": s[1, 1, 1, 1], "c2_T_perp": s[0, 1, 0, 1]}
-    return float(np.linalg.eigvalsh(q)[:, 0].min()), speeds
-
-
 def _cauchy_root(potential: PairPotential, d_over_d0: float) -> tuple[float, float]:
-    """Eq. (20) root and c_T,par^2 (both K d0^2 / m), no validity check."""
-    _, c = _acoustic_min_eig(potential, d_over_d0)
-    with np.errstate(all="ignore"):
-        root = 0.5 * (c["c2_L_par"] + c["c2_T_par"]) - 0.5 * np.sqrt(
-            (c["c2_L_par"] - c["c2_T_par"]) ** 2 + 4.0 * c["c2_T_perp"] ** 3 / c["c2_L_perp"])
-    return float(root), float(c["c2_T_par"])
+    """Eq. (20) root and c_T,par^2 (both K d0^2 / m), no validity check (:func:`long_wave`)."""
+    lw = long_wave(potential, [d_over_d0])
+    return float(lw["c2_R_cauchy"][0]), float(lw["c2_T_par"][0])
 
 
 def rayleigh_c2(potential: str | PairPotential, d_over_d0: float) -> float:
@@ -252,7 +225,7 @@ def stability(potential: str | PairPotential, d_over_d0: float, n_grid: int = ZO
     bulk_reason, surface_reason : str
     """
     pot = get_potential(potential)
-    min_eig, _ = _acoustic_min_eig(pot, d_over_d0)
+    min_eig = float(long_wave(pot, [d_over_d0])["min_acoustic_eig"][0])
     if not min_eig > 0.0:
         return (f"bulk unstable at d/d0 = {d_over_d0:.6g}: long-wave acoustic tensor eigenvalue "
                 f"{min_eig:.3g} <= 0"), ""

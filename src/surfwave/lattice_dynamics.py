@@ -21,9 +21,9 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import InputError
-from .lattices import build
 from .potentials import PairPotential, get_potential
-from .triangular import row_matrices
+from .surface_green import det2, inv2, null_vector2
+from .triangular import long_wave, row_matrices
 
 _W = "(K/m)^(1/2)"
 #: Metadata of every array :func:`surface_mode` returns (CF attributes).
@@ -40,7 +40,8 @@ VARIABLES: dict[str, dict] = {
                                     "constants (Eq. 20)", "units": _W, "dims": ("strain", "theta")},
     "sine_law_deviation": {"long_name": "omega_lattice / omega_sine_law - 1", "units": "1",
                            "dims": ("strain", "theta")},
-    "c2_R_long_wave": {"long_name": "squared Rayleigh speed from Eq. 20 and bond sums (Eq. A12)",
+    "c2_R_long_wave": {"long_name": "squared Rayleigh speed from Eq. 20 with the long-wave sound speeds "
+                                    "of the bond sums (Eqs. A7, A11, A12)",
                        "units": "K d0^2 / m", "dims": ("strain",)},
     "depth": {"long_name": "rows of crystal the decimation coupled to the surface (2^steps)",
               "units": "1", "dims": ("strain", "theta")},
@@ -52,23 +53,17 @@ VARIABLES: dict[str, dict] = {
                "dims": ("strain", "theta")},
 }
 
+REASON_ROUNDING = ("theta too close to 0 or pi: the bulk band bottom omega^2 (~theta^2) is within "
+                   "rounding of 0, stability undecidable in double precision")
+REASON_UNRESOLVED = ("theta too close to 0 or pi: the error estimate of omega_lattice exceeds omega "
+                     "(rounding of the row matrices swamps omega^2 ~ theta^2)")
+
 _D = np.diag([1.0, -1j])  # U' = D U: (u, v) -> (U, V) with v = i V
 
 
 def _real_basis(M: np.ndarray) -> np.ndarray:
     """D M D^-1: the row matrices in the (U, V) basis, where they are real."""
     return (_D @ M @ np.conj(_D)).real
-
-
-def _inv2(M: np.ndarray) -> np.ndarray:
-    det = M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
-    adj = np.stack([np.stack([M[..., 1, 1], -M[..., 0, 1]], -1),
-                    np.stack([-M[..., 1, 0], M[..., 0, 0]], -1)], -2)
-    return adj / det[..., None, None]
-
-
-def _det2(M: np.ndarray) -> np.ndarray:
-    return M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
 
 
 def bulk_band_bottom(A0: np.ndarray, A1: np.ndarray, n_grid: int = 129, n_golden: int = 60) -> np.ndarray:
@@ -139,7 +134,7 @@ def surface_matrix(E, A0r, A0sr, A1r, tol: float = 1e-10, n_steps: int | None = 
         small = np.abs(alpha).max(axis=(-1, -2)) <= tol * scale
         if n_steps is None and np.all(small | (False if active is None else ~active)):
             break
-        g = _inv2(Ee - eps)
+        g = inv2(Ee - eps)
         ag, bg = alpha @ g, beta @ g
         prev2, prev = prev, eps_s
         eps_s = eps_s + ag @ beta
@@ -150,19 +145,6 @@ def surface_matrix(E, A0r, A0sr, A1r, tol: float = 1e-10, n_steps: int | None = 
     with np.errstate(all="ignore"):
         contraction = np.where(a_now == 0, 0.0, a_now / a_prev)
     return eps_s, prev, prev2, steps, contraction
-
-
-def _c2_R_long_wave(pot: PairPotential, d_over_d0) -> np.ndarray:
-    """Eq. (20) with sound speeds from the bond sums (Eqs. A7, A11, A12), shape (n,)."""
-    r = build("triangular", "uniaxial", "[10]", d_over_d0).bonds  # (n, 3, 2), each bond once
-    L = np.linalg.norm(r, axis=-1)
-    w_c = (L**2 * pot.d2phi(L) - L * pot.dphi(L)) / L**4
-    x, y = r[..., 0], r[..., 1]
-    s_xx = (x * x * pot.dphi(L) / L).sum(-1)  # V sigma_xx (sigma_yy = 0)
-    c_xxxx, c_yyyy, c_xyxy = ((w_c * x**4).sum(-1), (w_c * y**4).sum(-1), (w_c * x**2 * y**2).sum(-1))
-    cl_par, ct_par, cl_perp, ct_perp = s_xx + c_xxxx, s_xx + c_xyxy, c_yyyy, c_xyxy  # V S / m
-    with np.errstate(all="ignore"):
-        return 0.5 * (cl_par + ct_par) - 0.5 * np.sqrt((cl_par - ct_par) ** 2 + 4 * ct_perp**3 / cl_perp)
 
 
 def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 1e-10,
@@ -195,6 +177,14 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
         str (named so that it does not clash with the ``reason`` of dispersion.solve).
         If several bound modes exist, the one selected is the one continuous with the long-wave
         Rayleigh wave: the root closest to omega_sine_law (reported in ``n_surface_modes``).
+
+    Notes
+    -----
+    omega^2 ~ theta^2 is computed from O(1) row matrices, so its absolute rounding error is
+    ~eps |A0|: the relative error grows like eps / (theta^2 c_R^2) (measured: <= 4e-9 at
+    theta = 1e-3 a percent inside the instabilities; honest ``omega_lattice_error`` always).
+    Where the error estimate exceeds omega (theta ~< 1e-6 from 0 or pi), or the band bottom
+    is within rounding of 0, the result is NaN with a "theta too close to 0 or pi" reason.
     """
     pot = get_potential(potential)
     th_in = np.atleast_1d(np.asarray(theta, dtype=float))
@@ -206,17 +196,22 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     n, m = A0.shape[:2]
     A0r, A0sr, A1r = _real_basis(A0), _real_basis(A0s), _real_basis(A1)
     e_min = bulk_band_bottom(A0, A1)
+    # Rounding: the row matrices carry absolute errors ~eps |A0| that the acoustic cancellation
+    # (omega^2 ~ theta^2) does not reduce, so omega^2 is known to ~eps |A0| at best.
+    rounding = 8 * np.finfo(float).eps * np.abs(A0r).max(axis=(-1, -2))
     reason = np.full((n, m), "", dtype=object)
     reason[e_min <= 0] = "bulk unstable: bulk continuum reaches omega^2 <= 0 at this theta"
+    reason[np.abs(e_min) <= rounding] = REASON_ROUNDING
     reason[:, bad_th] = "theta outside (0, pi)"
     ok = reason == ""
     top = np.where(ok, e_min, 1.0)
 
     def f(r, steps=None):
-        Es, Ep, Ep2, k, con = surface_matrix(r * top, A0r, A0sr, A1r, tol=tol,
-                                             n_steps=steps if steps else n_steps, active=ok)
+        """(det(E - E_s(E)), decimation steps used, contraction) at E = r * top."""
+        Es, _, _, k, con = surface_matrix(r * top, A0r, A0sr, A1r, tol=tol,
+                                          n_steps=steps if steps else n_steps, active=ok)
         E = (r * top)[..., None, None] * np.eye(2)
-        return _det2(E - Es), _det2(E - Ep), _det2(E - Ep2), k, con
+        return det2(E - Es), k, con
 
     # Scan for sign changes (bound modes) on r = omega^2 / omega_bulk_min^2 in (0, 1).
     r_grid = 1.0 - np.geomspace(1.0, 1e-7, n_scan)  # dense towards the band bottom
@@ -228,7 +223,7 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     reason[ok & (n_modes == 0)] = "no bound surface mode below the bulk continuum"
     ok &= n_modes > 0
     # Pick the bracket closest to the long-wave sine law (continuity with the Rayleigh wave).
-    c2 = _c2_R_long_wave(pot, d_over_d0)
+    c2 = long_wave(pot, d_over_d0)["c2_R_cauchy"]
     dx = 0.5 * np.atleast_1d(np.asarray(d_over_d0, dtype=float))
     with np.errstate(all="ignore"):
         w_sine = np.sqrt(c2)[:, None] / dx[:, None] * np.sin(th)[None, :]
@@ -257,21 +252,17 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
         side = np.where(left, np.maximum(side, 0) + 1, np.minimum(side, 0) - 1)
     root = 0.5 * (lo + hi)
     with np.errstate(all="ignore"):
-        f_now, _, _, steps, _ = f(root)
-        f_next, _, _, _, con = f(root, steps=steps + 1)  # one step more than the model used
+        f_now, steps, _ = f(root)
+        f_next, _, con = f(root, steps=steps + 1)  # one step more than the model used
         h = 1e-6 * root  # Illinois halves flo/fhi, so take the slope afresh
         slope = (f(root + h)[0] - f(root - h)[0]) / (2 * h)
         d_next = np.abs(f_next - f_now) / np.abs(slope)  # root change that step would cause
         E = root * top
         Es = surface_matrix(E, A0r, A0sr, A1r, tol=tol, n_steps=n_steps, active=ok)[0]
         S = E[..., None, None] * np.eye(2) - Es
-        u = np.where((np.abs(S[..., 0, :]).sum(-1) >= np.abs(S[..., 1, :]).sum(-1))[..., None],
-                     np.stack([-S[..., 0, 1], S[..., 0, 0]], -1), np.stack([S[..., 1, 1], -S[..., 1, 0]], -1))
+        u = null_vector2(S)
         pol = u[..., 1] ** 2 / (u**2).sum(-1)
     omega = np.sqrt(E)
-    # Rounding: the row matrices carry absolute errors ~eps |A0| that the acoustic cancellation
-    # (omega^2 ~ theta^2) does not reduce, so omega^2 is known to ~eps |A0| at best.
-    rounding = 8 * np.finfo(float).eps * np.abs(A0r).max(axis=(-1, -2))
     # Truncation: d_next = root change one more decimation step (a crystal twice as deep) would
     # cause; later steps shrink by ~con = |alpha_K+1|/|alpha_K| each (doubly exponential), so the
     # remaining error is <= d_next/(1 - con) (safety factor 10). If con >= 0.5 the decimation has
@@ -281,6 +272,9 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     trunc = np.where(ok, np.nan_to_num(trunc, nan=1.0), 0.0) * top
     err_e2 = trunc + (hi - lo) * top + rounding
     err = err_e2 / (2 * omega)
+    unresolved = ok & ~(err < omega)  # rounding swamps omega^2 ~ theta^2 c_R^2 (theta -> 0, pi)
+    reason[unresolved] = REASON_UNRESOLVED
+    ok &= ~unresolved
     nan = np.nan
     out = {
         "omega_lattice": np.where(ok, omega, nan),

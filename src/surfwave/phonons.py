@@ -36,6 +36,7 @@ from typing import Literal
 
 import numpy as np
 
+from .elastic import STABILITY_DIRECTIONS, long_wave_stability
 from .errors import GeometryError, InputError, SurfwaveError
 from .lattices import build, check_combination
 from .potentials import PairPotential, get_potential
@@ -144,6 +145,19 @@ def pair_forces(
 # --------------------------------------------------------------------------- phonopy
 def make_phonopy(crystal, index: int, potential: PairPotential, supercell: int, displacement: float):
     """Phonopy object with force constants for strain point ``index`` of ``crystal``.
+
+    Parameters
+    ----------
+    crystal : surfwave.lattices.Crystal
+        Built by :func:`surfwave.lattices.build`; its ``cell3d()`` (d0) is the unit cell.
+    index : int
+        Strain point of ``crystal`` to use.
+    potential : PairPotential
+        Supplies the forces (:func:`pair_forces`).
+    supercell : int
+        N of the N x N x N supercell (N x N x 1 in 2D).
+    displacement : float
+        Finite-displacement amplitude, d0.
 
     Returns
     -------
@@ -261,58 +275,33 @@ def assign_polarisation(a: np.ndarray) -> np.ndarray:
     return val[list(best)]
 
 
-def _directions(dim: int, n: int = 600) -> np.ndarray:
-    """Unit vectors over half the circle/sphere, high-symmetry ones included, shape (k, 3)."""
-    if dim == 2:
-        a = np.linspace(0.0, np.pi, n, endpoint=False)
-        return np.column_stack([np.cos(a), np.sin(a), 0 * a])
-    i = np.arange(n) + 0.5
-    z = i / n
-    ph = np.pi * (1 + 5**0.5) * i
-    fib = np.column_stack([np.sqrt(1 - z**2) * np.cos(ph), np.sqrt(1 - z**2) * np.sin(ph), z])
-    sym = np.array([p for p in itertools.product((-1, 0, 1), repeat=3) if any(p)], float)
-    return np.vstack([sym / np.linalg.norm(sym, axis=1, keepdims=True), fib])
-
-
-def min_acoustic(w: np.ndarray, dim: int, rounds: int = 14) -> tuple[float, np.ndarray]:
+def min_acoustic(w: np.ndarray, dim: int) -> tuple[float, np.ndarray]:
     """Lowest eigenvalue of A(n) = W_ikjl n_j n_l over all directions n, and its n.
 
-    A direction grid, then a shrinking local pattern search from the best direction.
-    In 2D only the in-plane block and in-plane directions count.
+    The direction search (grid of directions, then a shrinking local pattern search) is
+    :func:`surfwave.elastic.long_wave_stability`, fed with C'_ijkl = W_ikjl and zero stress
+    (W already holds the prestress term). In 2D only the in-plane block and in-plane
+    directions count.
+
+    Parameters
+    ----------
+    w : ndarray, shape (3, 3, 3, 3)
+        From :func:`long_wave_tensor`, K d0^2 / m.
+    dim : int
+        2 or 3.
 
     Returns
     -------
     min_c2 : float
         K d0^2 / m.
     n : ndarray, shape (3,)
+        Unit direction (lab frame; z = 0 in 2D).
     """
-    w = w[:dim, :dim, :dim, :dim]
-
-    def lowest(ns):
-        return np.linalg.eigvalsh(np.einsum("ikjl,nj,nl->nik", w, ns[:, :dim], ns[:, :dim]))[:, 0]
-
-    grid = _directions(dim)
-    e = lowest(grid)
-    best = grid[np.argmin(e)]
-    e_best = e.min()
-    step = 0.1
-    for _ in range(rounds):
-        if dim == 2:
-            ang = np.arctan2(best[1], best[0]) + step * np.array([-1.0, 1.0])
-            cand = np.column_stack([np.cos(ang), np.sin(ang), 0 * ang])
-        else:
-            t1 = np.cross(best, [1.0, 0, 0] if abs(best[0]) < 0.9 else [0, 1.0, 0])
-            t1 /= np.linalg.norm(t1)
-            t2 = np.cross(best, t1)
-            off = np.array([(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1) if a or b], float)
-            cand = best + step * (off[:, :1] * t1 + off[:, 1:] * t2)
-            cand /= np.linalg.norm(cand, axis=1, keepdims=True)
-        ec = lowest(cand)
-        if ec.min() < e_best:
-            e_best, best = ec.min(), cand[np.argmin(ec)]
-        else:
-            step *= 0.5
-    return float(e_best), best
+    c = np.swapaxes(w[:dim, :dim, :dim, :dim], 1, 2)[None]  # C'_ijkl = W_ikjl
+    _, e_min, n_min = long_wave_stability(c, np.zeros((1, dim, dim)), STABILITY_DIRECTIONS)
+    n = np.zeros(3)
+    n[:dim] = n_min[0]
+    return float(e_min[0]), n
 
 
 def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.ndarray]:

@@ -22,7 +22,6 @@ import xarray as xr  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from .cube import open_cube  # noqa: E402
-from .report_targets import figure_targets, speeds_scenes  # noqa: E402,F401 (re-exported)
 
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"

@@ -190,7 +190,15 @@ def stability_map(
 
 
 def plot_stability_map(ds: xr.Dataset, path) -> None:
-    """One panel per potential; a coloured band per (loading, direction) over d/d0."""
+    """One panel per potential; a coloured band per (loading, direction) over d/d0.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`stability_map` (``state``, ``d_limit`` and the d/d0 coordinate).
+    path : str or Path
+        PNG file to write.
+    """
     import matplotlib
 
     matplotlib.use("Agg")

@@ -29,6 +29,7 @@ import xarray as xr
 import yaml
 
 from . import report_checks as _claims
+from .cube import open_cube as _open_cube
 from .report_targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
 from .report_checks import (
     FAIL,
@@ -52,27 +53,10 @@ def load_paper_values(path: str | Path | None = None) -> dict:
 
 
 def open_cube(path: str | Path) -> xr.Dataset | None:
-    """Load a result cube into memory, or None when the file does not exist.
-
-    Uses ``surfwave.cube.open_cube`` when available, else h5netcdf, else netCDF4 with
-    ``auto_complex=True`` (complex variables).
-    """
+    """Load a result cube into memory (:func:`surfwave.cube.open_cube`), or None when the
+    file does not exist."""
     path = Path(path)
-    if not path.is_file():
-        return None
-    try:
-        from .cube import open_cube as _open  # provided by the workflow stage
-    except ImportError:
-        _open = None
-    if _open is not None:
-        with _open(path) as ds:
-            return ds.load()
-    try:
-        with xr.open_dataset(path, engine="h5netcdf") as ds:
-            return ds.load()
-    except Exception:  # noqa: BLE001 - fall back to the other engine
-        with xr.open_dataset(path, engine="netcdf4", auto_complex=True) as ds:
-            return ds.load()
+    return _open_cube(path) if path.is_file() else None
 
 
 class Cubes:

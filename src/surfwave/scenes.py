@@ -102,13 +102,37 @@ def validate_schema(config: dict, schema: dict | str | Path | None = None) -> di
     validator = _validator_with_defaults(schema)
     errors = sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
     if errors:
-        err = errors[0]
-        hint = err.schema.get("description", "") if isinstance(err.schema, dict) else ""
-        msg = f"config error in {_where(err.absolute_path)}: value {err.instance!r} is invalid ({err.message})"
-        if hint:
-            msg += f"; expected: {hint}"
-        raise SceneError(msg)
+        raise SceneError(_schema_message(errors[0]))
     return config
+
+
+def _schema_message(err) -> str:
+    """One line naming the scene, the key and the offending value of a schema error."""
+    if err.validator == "oneOf":  # a list or a grid: report the branch of the value's type
+        deeper = [e for e in err.context if e.validator != "type"]
+        if deeper:
+            err = min(deeper, key=lambda e: len(e.absolute_path))
+    path = list(err.absolute_path)
+    hint = err.schema.get("description", "") if isinstance(err.schema, dict) else ""
+    props = err.schema.get("properties", {}) if isinstance(err.schema, dict) else {}
+    if err.validator == "additionalProperties" and isinstance(err.instance, dict):
+        extra = sorted(k for k in err.instance if k not in props)
+        return (f"config error in {_where(path + extra[:1])}: unknown key {extra[0]!r} "
+                f"(allowed keys: {sorted(props)})")
+    if err.validator == "required" and isinstance(err.instance, dict):
+        missing = [k for k in err.validator_value if k not in err.instance]
+        key = missing[0] if missing else "?"
+        what = props.get(key, {}).get("description", "") if isinstance(props.get(key), dict) else ""
+        return (f"config error in {_where(path + [key])}: required key {key!r} is missing"
+                + (f"; expected: {what}" if what else ""))
+    msg = f"config error in {_where(path)}: value {err.instance!r} is invalid ({err.message})"
+    if err.validator == "type" and isinstance(err.instance, str):
+        try:
+            msg += (f"; YAML reads {err.instance} as text: write it with a decimal point, "
+                    f"e.g. {float(err.instance):.1e}")
+        except ValueError:
+            pass
+    return msg + (f"; expected: {hint}" if hint else "")
 
 
 def expand_grid(spec, where: str = "grid") -> np.ndarray:
@@ -144,7 +168,7 @@ def expand_grid(spec, where: str = "grid") -> np.ndarray:
             raise SceneError(f"{where}: expected a non-empty list of numbers, got {spec!r}")
         dup = values[1:][np.diff(values) == 0]
         if dup.size:
-            raise SceneError(f"{where}: value {dup[0]!r} appears twice")
+            raise SceneError(f"{where}: value {float(dup[0])!r} appears twice")
     if not np.all(np.isfinite(values)):
         raise SceneError(f"{where}: values must be finite, got {spec!r}")
     return values
@@ -314,12 +338,14 @@ def standalone(stage: str, argv=None, inputs: dict | None = None) -> SimpleNames
     scenes = validate_config(config)
     if name not in scenes:
         raise SystemExit(f"unknown scene {name!r}; known scenes: {sorted(scenes)}")
+    from .cache import DEFAULT_ROOT
+
     inputs = {k: v.format(scene=name) for k, v in (inputs or {}).items()}
     return SimpleNamespace(
         input=SimpleNamespace(**inputs),
         output=[f"results/{name}/{stage}.nc"],
         log=["/dev/stderr"],
-        params=SimpleNamespace(job=job_params(scenes[name], stage)),
+        params=SimpleNamespace(job=job_params(scenes[name], stage), cache=str(DEFAULT_ROOT)),
         wildcards=SimpleNamespace(scene=name),
         rule=stage,
     )
@@ -330,9 +356,10 @@ def module_closure(*modules: str, package_dir: str | Path | None = None) -> list
 
     Imports are read statically (``ast``), including imports inside functions, so a rule that
     lists ``module_closure("rayleigh")`` as inputs reruns when any code it runs changes.
-    ``__init__.py`` (the version) is always included, but its re-exports are not followed:
-    they are conveniences for users, and each module imports what it needs explicitly
-    (otherwise every stage would depend on every module). A listed module that does not exist is
+    ``__init__.py`` (the version) is always included, but its re-exports are not followed,
+    nor are the lazy re-exports of a module-level ``__getattr__``: they are conveniences for
+    users, and each module imports what it needs explicitly (otherwise every stage would
+    depend on every module). A listed module that does not exist is
     still returned, so Snakemake reports it as a missing input.
     """
     pkg = Path(package_dir or Path(__file__).resolve().parent)
@@ -354,8 +381,15 @@ def _imported_modules(path: str, mtime_ns: int) -> tuple[str, ...]:
     """surfwave modules one source file imports (parsed once per file version)."""
     import ast
 
+    tree = ast.parse(Path(path).read_text(), path)
+    # A module-level ``__getattr__`` only re-exports names lazily (PEP 562): a convenience
+    # for users, not code the module runs, so its imports are not followed (see above).
+    lazy = {id(n) for top in tree.body if isinstance(top, ast.FunctionDef)
+            and top.name == "__getattr__" for n in ast.walk(top)}
     found: list[str] = []
-    for node in ast.walk(ast.parse(Path(path).read_text(), path)):
+    for node in ast.walk(tree):
+        if id(node) in lazy:
+            continue
         if isinstance(node, ast.ImportFrom):
             if node.level == 1 and node.module:  # from .x import y
                 found.append(node.module.split(".")[0])

@@ -13,7 +13,8 @@ from typing import Literal
 
 import numpy as np
 
-from .errors import GeometryError
+from .elastic import properties
+from .errors import GeometryError, InputError
 from .phonons import (
     DEFAULT_DISPLACEMENT,
     DEFAULT_SUPERCELL,
@@ -25,18 +26,18 @@ from .potentials import PairPotential, get_potential
 
 
 def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
-    """Analytic long-wave stability per point (``surfwave.point(...)["stable"]``).
+    """Analytic long-wave stability per point (``surfwave.point(...)["stable"]``, i.e.
+    :func:`surfwave.elastic.properties`; the Rayleigh solve of ``point`` is not needed).
 
     Computed point by point so the result is separable; a point whose geometry cannot be
     built is reported unstable-unknown as False.
     """
-    from .api import point
-
+    pot = get_potential(potential)
     flags = np.zeros(s.size, bool)
     for i, si in enumerate(s):
         try:
-            _checked_crystal(lattice, loading, direction, si, get_potential(potential))
-            flags[i] = bool(np.asarray(point(lattice, loading, potential, direction, [si])["stable"])[0])
+            _checked_crystal(lattice, loading, direction, si, pot)
+            flags[i] = bool(np.asarray(properties(lattice, loading, pot, direction, [si])["stable"])[0])
         except Exception:  # noqa: BLE001 - geometry failures end the stable range
             flags[i] = False
     return flags
@@ -140,7 +141,7 @@ def instability_limits(
         d/d0 of the first instability below and above 1 (accurate to ``tol``).
     """
     if kind not in ("long_wave", "full_zone"):
-        raise ValueError(f"kind must be 'long_wave' or 'full_zone', got {kind!r}")
+        raise InputError(f"kind must be 'long_wave' or 'full_zone', got {kind!r}")
     return _walk_and_bisect(
         lambda d: _flag(lattice, loading, potential, direction, kind, d, knobs), step, tol, search
     )

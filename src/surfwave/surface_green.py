@@ -53,6 +53,17 @@ def inv2(m: np.ndarray) -> np.ndarray:
         return out / det2(m)[..., None, None]
 
 
+def null_vector2(m: np.ndarray) -> np.ndarray:
+    """Null vector of singular 2x2 blocks, shape (..., 2, 2) -> (..., 2), not normalised.
+
+    Taken perpendicular to the row of larger norm: (-m01, m00) or (m11, -m10).
+    """
+    r0 = np.stack([-m[..., 0, 1], m[..., 0, 0]], axis=-1)
+    r1 = np.stack([m[..., 1, 1], -m[..., 1, 0]], axis=-1)
+    use0 = np.linalg.norm(r0, axis=-1) >= np.linalg.norm(r1, axis=-1)
+    return np.where(use0[..., None], r0, r1)
+
+
 def _fro(m: np.ndarray) -> np.ndarray:
     """Frobenius norm of the last two axes."""
     return np.sqrt((np.abs(m) ** 2).sum(axis=(-1, -2)))
@@ -233,7 +244,8 @@ def jensen_bulk_log_det(a0: np.ndarray, a1: np.ndarray) -> np.ndarray:
     """B(theta) from the roots of det(A1 z^2 + A0 z + A1^H) (Jensen's formula).
 
     B = ln|det A1| + sum over roots with |z| > 1 of ln|z|. An independent route to
-    ln det S, used by tests and benchmarks (one polynomial root solve per theta).
+    ln det S, used by tests and benchmarks (the quartic's roots as eigenvalues of its
+    companion matrix, vectorised over theta).
 
     Parameters
     ----------
@@ -243,19 +255,17 @@ def jensen_bulk_log_det(a0: np.ndarray, a1: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (m,)
     """
-    a1h = hermitian(a1)
-    out = np.empty(a0.shape[0])
-    for i in range(a0.shape[0]):
-        # det(P0 + P1 z + P2 z^2) for 2x2 polynomial matrices, coefficients by convolution
-        p = [a1h[i], a0[i], a1[i]]  # powers 0, 1, 2
-        coef = np.zeros(5, dtype=complex)
-        for j in range(3):
-            for k in range(3):
-                coef[j + k] += p[j][0, 0] * p[k][1, 1] - p[j][0, 1] * p[k][1, 0]
-        roots = np.roots(coef[::-1])
-        mod = np.abs(roots)
-        out[i] = np.log(abs(coef[4])) + np.sum(np.log(mod[mod > 1.0]))
-    return out
+    p = [hermitian(a1), a0, a1]  # coefficients of z^0, z^1, z^2, each (m, 2, 2)
+    # det(P0 + P1 z + P2 z^2) of 2x2 polynomial matrices: coefficients by convolution
+    coef = np.zeros((a0.shape[0], 5), dtype=complex)
+    for j in range(3):
+        for k in range(3):
+            coef[:, j + k] += p[j][:, 0, 0] * p[k][:, 1, 1] - p[j][:, 0, 1] * p[k][:, 1, 0]
+    companion = np.zeros((a0.shape[0], 4, 4), dtype=complex)
+    companion[:, 0, :] = -coef[:, 3::-1] / coef[:, 4:5]  # monic, descending powers z^3 .. z^0
+    companion[:, 1:, :-1] = np.eye(3)
+    mod = np.abs(np.linalg.eigvals(companion))
+    return np.log(np.abs(coef[:, 4])) + np.sum(np.log(np.where(mod > 1.0, mod, 1.0)), axis=-1)
 
 
 def zone_grid_mean_log_omega(a0: np.ndarray, a1: np.ndarray, n_p: int) -> np.ndarray:

@@ -35,7 +35,7 @@ VARIABLES = {
     "mirror_z": {"long_name": "lab-frame reflection z -> -z is a symmetry operation (sagittal plane is a mirror)", "dims": ()},
     "cell": {"long_name": "primitive lattice vectors (rows) in the lab frame (2D lattices padded with vacuum along z)",
              "units": "d0", "dims": ("vector", "xyz")},
-    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^dim", "dims": ()},
+    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^3 (d0^2 for the 2D triangular lattice)", "dims": ()},
 }
 
 

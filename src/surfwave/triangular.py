@@ -15,11 +15,17 @@ with the bond force constant Phi_b = phi''(r) r^r^ + (phi'(r)/r)(1 - r^r^) (PHYS
 
 where "row" is the in-row bond (2 d_x, 0), "up" the bond (d_x, d_y) and "um" (-d_x, d_y).
 All functions are vectorised: strain axis first, theta axis second.
+
+:func:`long_wave` is the one place where the modules of the triangular lattice
+(:mod:`surfwave.dispersion`, :mod:`surfwave.lattice_dynamics`, :mod:`surfwave.entropy`) get the
+long-wave sound speeds, stability and the Cauchy-case Rayleigh speed, Eq. (20): from the bond
+sums of :mod:`surfwave.elastic` (Eqs. A11, A12).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from . import elastic, rayleigh
 from .lattices import build
 from .potentials import PairPotential, get_potential
 
@@ -70,8 +76,36 @@ def row_matrices(
     phi = bond_force_constants(potential, d_over_d0)[:, None]  # (n, 1, 3, 2, 2)
     th = np.atleast_1d(np.asarray(theta, dtype=float))[None, :, None, None]  # (1, m, 1, 1)
     row, up, um = phi[:, :, 0], phi[:, :, 1], phi[:, :, 2]
-    in_row = 2.0 * row * (1.0 - np.cos(2.0 * th))
+    in_row = 4.0 * row * np.sin(th) ** 2  # 2 Phi_row (1 - cos 2 theta), no cancellation at 0, pi
     a0 = (in_row + 2.0 * up + 2.0 * um).astype(complex)
     a0_surface = (in_row + up + um).astype(complex)
     a1 = -(up * np.exp(1j * th) + um * np.exp(-1j * th))
     return a0, a0_surface, a1
+
+
+def long_wave(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray]:
+    """Long-wave bulk speeds, stability and the Eq. (20) Rayleigh root of the triangular lattice.
+
+    Parameters
+    ----------
+    potential : str or PairPotential
+    d_over_d0 : float or array_like, shape (n,)
+        2 d_x / d0, in (0, 2) (else GeometryError).
+
+    Returns
+    -------
+    dict of ndarray, each shape (n,)
+        ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``, ``c2_T_perp`` (Eq. A7 with S of Eq. A11
+        from the bond sums, K d0^2/m); ``min_acoustic_eig`` (lowest eigenvalue of V Q(n) over
+        all directions, K d0^2) and ``stable`` (bool), from
+        :func:`surfwave.elastic.long_wave_stability`; ``c2_R_cauchy``: the raw root of
+        Eq. (20) (:func:`surfwave.rayleigh.cauchy_c2`; NaN where the square root is
+        imaginary), K d0^2/m, not checked to lie in (0, c2_T_par).
+    """
+    props = elastic.properties("triangular", "uniaxial", potential, "[10]", d_over_d0)
+    keys = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp")
+    out = {k: np.asarray(props[k], dtype=float) for k in keys}
+    out["min_acoustic_eig"] = np.asarray(props["min_acoustic_eig"], dtype=float)
+    out["stable"] = np.asarray(props["stable"], dtype=bool)
+    out["c2_R_cauchy"] = rayleigh.cauchy_c2(*(out[k] for k in keys))
+    return out

@@ -4,6 +4,8 @@ from surfwave.scenes import job_params, module_closure, selected, targets
 
 #: Software of every rule under `--sdm conda` (the default route is the .venv from the lock).
 CONDA_ENV = "../envs/surfwave.yaml"
+#: The paper's printed numbers (the report's and Table I's only hand-typed values).
+PAPER_VALUES = "src/surfwave/data/paper_values.yaml"
 
 
 def scene_targets():

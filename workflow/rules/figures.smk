@@ -6,7 +6,6 @@ from surfwave.report_targets import figure_targets, speeds_scenes
 from surfwave.potentials import available_potentials
 
 TABLE1_SCENE = "table1"
-PAPER_VALUES = "src/surfwave/data/paper_values.yaml"
 
 FIGURE_TARGETS = [
     f"results/{name}/speeds_vs_stress.png"

@@ -25,7 +25,6 @@ for pot in job["potentials"]:
         blocks[(pot, direction)] = r
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], symmetry.VARIABLES)
-ds = cube.provenance(ds, title=f"surfwave crystal cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method="spglib space group of the one-atom primitive cell "
-                     "(2D lattices padded with vacuum); lab-frame mirrors x->-x, z->-z required")
-cube.write(ds, snakemake.output[0])
+cube.finish(ds, snakemake, what="crystal",
+            method="spglib space group of the one-atom primitive cell (2D lattices padded with "
+            "vacuum); lab-frame mirrors x->-x, z->-z required")

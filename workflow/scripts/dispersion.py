@@ -14,7 +14,6 @@ if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.scenes import standalone
 
     snakemake = standalone("dispersion", inputs={"crystal": "results/{scene}/crystal.nc"})
-    snakemake.params.cache = str(cache.DEFAULT_ROOT)
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job
@@ -23,21 +22,19 @@ tol = job["accuracy"]["tol"]
 meta = {**dispersion.VARIABLES, **lattice_dynamics.VARIABLES,
         "omega_lattice_deviation": {"long_name": "omega_lattice minus omega (numerical minus analytic)",
                                     "units": dispersion.VARIABLES["omega"]["units"], "dims": ("theta",)}}
-code = cache.code_version("lattice_dynamics")  # entries of older code are never reused
 blocks = {}
 for pot in job["potentials"]:
     r = dispersion.solve(pot, job["d_over_d0"], theta)
-    key = {"code": code, "lattice": job["lattice"], "loading": job["loading"], "potential": pot,
-           "method": "lattice_dynamics.surface_mode", "theta": job["theta"], "tol": tol}
+    key = cache.job_key(job, "lattice_dynamics", "lattice_dynamics.surface_mode", potential=pot,
+                        theta=job["theta"], tol=tol)
     r.update(cache.cached_points(
         "surface_mode", key, job["d_over_d0"],
-        lambda d: lattice_dynamics.surface_mode(pot, d, theta, tol=tol), snakemake.params.cache))
+        lambda d: lattice_dynamics.surface_mode(pot, d, theta, tol=tol), snakemake.params.cache,
+        chunk=cache.CHUNK))
     r["omega_lattice_deviation"] = r["omega_lattice"] - r["omega"]
     blocks[(pot,)] = cube.documented(r, meta, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"]}, job["d_over_d0"], meta,
                 coords={"theta": theta})
-ds = cube.add_space_group(ds, cube.open_cube(snakemake.input.crystal))
-ds = cube.provenance(ds, title=f"surfwave dispersion cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method="analytic row-by-row solution (Eqs. 3a-15) checked "
-                     "by a numerical lattice-dynamics surface-mode solve")
-cube.write(ds, snakemake.output[0])
+cube.finish(ds, snakemake, what="dispersion", crystal=snakemake.input.crystal,
+            method="analytic row-by-row solution (Eqs. 3a-15) checked by a numerical "
+            "lattice-dynamics surface-mode solve")

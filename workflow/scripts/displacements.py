@@ -26,8 +26,6 @@ for r in results.values():
         r[name] = np.pad(r[name], pad, constant_values=np.nan)
 ds = cube.build(results, {"potential": job["potentials"]}, job["d_over_d0"], dispersion.VARIABLES,
                 coords={"theta": theta, "row": np.arange(n_rows)}, skip=("row",))
-ds = cube.add_space_group(ds, cube.open_cube(snakemake.input.crystal))
-ds = cube.provenance(ds, title=f"surfwave displacements cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method="row amplitudes U_I = Lambda^I U_0 from the exact "
-                     "decay constants q1, q2 (Eq. 6a) and omega (Eq. 15)")
-cube.write(ds, snakemake.output[0])
+cube.finish(ds, snakemake, what="displacements", crystal=snakemake.input.crystal,
+            method="row amplitudes U_I = Lambda^I U_0 from the exact decay constants q1, q2 "
+            "(Eq. 6a) and omega (Eq. 15)")

@@ -17,15 +17,14 @@ blocks = {
     (pot, direction): cube.documented(
         elastic.properties(job["lattice"], job["loading"], pot, direction, job["d_over_d0"]),
         elastic.VARIABLES,
+        sys.stderr,
     )
     for pot in job["potentials"]
     for direction in job["directions"]
 }
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], elastic.VARIABLES)
-ds = cube.add_space_group(ds, cube.open_cube(snakemake.input.crystal))
-ds = cube.provenance(ds, title=f"surfwave elastic cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method="analytic nearest-neighbour sums (PHYSICS.md Appendix, "
-                     "Eq. A11); long-wave stability from the acoustic tensor over "
-                     f"{elastic.STABILITY_DIRECTIONS} directions, refined locally")
-cube.write(ds, snakemake.output[0])
+cube.finish(ds, snakemake, what="elastic", crystal=snakemake.input.crystal,
+            method="analytic nearest-neighbour sums (PHYSICS.md Appendix, Eq. A11); long-wave "
+            f"stability from the acoustic tensor over {elastic.STABILITY_DIRECTIONS} directions, "
+            "refined locally")

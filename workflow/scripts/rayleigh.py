@@ -21,12 +21,10 @@ for pot in job["potentials"]:
         point = elastic.sel(potential=pot, direction=direction)
         # m = 1 per atom and S is V S, so rho = 1 gives c^2 in K d0^2/m.
         result = rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
-        blocks[(pot, direction)] = cube.documented(result, rayleigh.VARIABLES)
+        blocks[(pot, direction)] = cube.documented(result, rayleigh.VARIABLES, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], rayleigh.VARIABLES)
 ds = ds.assign_coords(space_group=elastic["space_group"])
-ds = cube.provenance(ds, title=f"surfwave rayleigh cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method="Eq. (17) secular equation; root in "
-                     "0 < rho c^2 < min(S_xyyx, S_xxxx) satisfying the unsquared boundary condition "
-                     "with decaying partial waves")
-cube.write(ds, snakemake.output[0])
+cube.finish(ds, snakemake, what="rayleigh",
+            method="Eq. (17) secular equation; root in 0 < rho c^2 < min(S_xyyx, S_xxxx) "
+            "satisfying the unsquared boundary condition with decaying partial waves")
