@@ -246,3 +246,26 @@ def test_rapid_110_compares_both_directions_at_one_strain():
     ra["c2_R"][0, 1, 2] = 0.34  # [110] barely falls at the common strain: now it fails
     (check,) = claim_checks("rapid_decrease_110_tension", spec, Cubes())
     assert check.verdict == FAIL
+
+
+def test_bulk_section_reports_deviation_and_both_stability_edges(tmp_path):
+    """Synthetic elastic/bulk cubes with a known phonopy deviation (2e-6 relative) and a
+    point where the full-zone criterion fails but the long-wave one does not: the section
+    shows that deviation, both unstable edges and one disagreeing point."""
+    import xarray as xr
+
+    from surfwave.report import Cubes, bulk_section
+
+    strain = np.array([-0.1, -0.05, 0.0, 0.05])
+    coords = {"potential": ["lj"], "direction": ["[100]"], "strain": strain}
+    dims = ("potential", "direction", "strain")
+    speeds = {n: (dims, np.full((1, 1, 4), 0.5)) for n in ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH")}
+    el = xr.Dataset({**speeds, "stable": (dims, np.array([[[False, True, True, True]]]))}, coords=coords)
+    bulk = xr.Dataset({f"{n}_deviation": (dims, np.full((1, 1, 4), 1e-6)) for n in speeds}
+                      | {"stable_phonon": (dims, np.array([[[False, True, True, False]]]))}, coords=coords)
+    (tmp_path / "s").mkdir()
+    el.to_netcdf(tmp_path / "s" / "elastic.nc", engine="h5netcdf")
+    bulk.to_netcdf(tmp_path / "s" / "bulk.nc", engine="h5netcdf")
+    text = "\n".join(bulk_section(Cubes([tmp_path / "s" / "elastic.nc", tmp_path / "s" / "bulk.nc"])))
+    assert "| s | lj | [100] | 2.0e-06 (3 points) | -0.100 / none | -0.100 / +0.050 | 1 |" in text
+    assert "not computed" in "\n".join(bulk_section(Cubes([])))

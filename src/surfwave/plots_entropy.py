@@ -17,10 +17,17 @@ import xarray as xr  # noqa: E402
 
 from .entropy import VARIABLES  # noqa: E402
 
-#: The paper's zero-stress values (section III.C): Eq. (26), numerical lattice dynamics
-#: (its Ref. 23) and cell-cluster theory (its Ref. 24), k_B per surface atom.
-PAPER_ZERO_STRESS = {"Eq. (26) estimate": 0.711, "lattice dynamics (Ref. 23)": 0.66,
-                     "cell cluster (Ref. 24)": 0.62}
+#: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
+#: src/surfwave/data/paper_values.yaml (the one copy of the paper's numbers).
+PAPER_ZERO_STRESS = {"Eq. (26) estimate": "eq26_entropy_estimate",
+                     "lattice dynamics (Ref. 23)": "entropy_lattice_dynamics",
+                     "cell cluster (Ref. 24)": "entropy_cell_cluster"}
+
+
+def _paper_value(key: str) -> float:
+    from .report import load_paper_values  # lazy: report imports plotting helpers
+
+    return float(load_paper_values()["values"][key]["value"])
 
 #: Knobs of the benchmark cube: (prefix, coordinate, label, the quantity whose error is shown).
 KNOBS = (
@@ -84,15 +91,17 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
         ax.plot(x, sub["S_surface_estimate"].values, "--", color=c, label=f"{pot}: estimate, Eq. (25)")
         axb.plot(x, sub["bulk_mean_log_omega"].values, "-", color=c, label=str(pot))
     markers = iter("o^s")
-    for label, value in PAPER_ZERO_STRESS.items():
-        ax.plot([0.0], [value], next(markers), color="k", mfc="none", label=f"paper: {label}")
+    for label, key in PAPER_ZERO_STRESS.items():
+        ax.plot([0.0], [_paper_value(key)], next(markers), color="k", mfc="none", label=f"paper: {label}")
     ax.set_xlabel("strain d/d0 - 1")
     ax.set_ylabel("surface entropy per surface atom (k_B)")
     ax.set_title(title or "Surface entropy, triangular lattice, uniaxial stress")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    axb.axhline(0.4126784, color="k", lw=0.5, ls=":", label="Huckaby, zero stress")
+    axb.axhline(_paper_value("huckaby_bulk_mean_log_omega"), color="k", lw=0.5, ls=":", label="Huckaby, zero stress")
     axb.set_xlabel("strain d/d0 - 1")
+    for a in (ax, axb):  # few enough ticks that the labels never overlap
+        a.xaxis.set_major_locator(plt.MaxNLocator(5))
     axb.set_ylabel("<ln(omega/omega0)> over bulk modes")
     axb.set_title("Bulk mean log frequency")
     axb.legend(fontsize=7)

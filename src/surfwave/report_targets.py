@@ -9,7 +9,7 @@ from importlib import resources
 import yaml
 
 CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
-#: cubes the report's checks can read (bulk.nc is not used)
+#: cubes the report's checks can read (bulk.nc feeds its own section, see report_inputs)
 REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
 
 
@@ -52,6 +52,9 @@ def report_inputs(scenes: dict, results: str = "results") -> list[str]:
             for scene in (spec.get("scene"), spec.get("reference_scene")):
                 if scene:
                     wanted.setdefault(scene, set()).update(REPORT_CUBES)
+    for scene, spec in scenes.items():  # the bulk section: phonopy against elastic.nc
+        if "bulk" in spec.get("quantities", []):
+            wanted.setdefault(scene, set()).update({"bulk", "elastic"})
     out = []
     for scene, cubes in wanted.items():
         have = set(scenes.get(scene, {}).get("quantities", []))
