@@ -57,3 +57,18 @@ def test_help_is_helpful(cmd):
     assert "usage: surfwave" in r.stdout
     if cmd == ["point"]:
         assert "Reduced units" in r.stdout and "examples:" in r.stdout
+
+
+def test_cache_info_and_clear(tmp_path, capsys):
+    """`surfwave cache info|clear` on a cache with two entries written through the cache API."""
+    from surfwave import cache
+
+    cache.cached_points("demo", {"what": "cli-test"}, np.array([1.0, 1.1]),
+                        lambda d: {"x": 2 * d}, tmp_path)
+    assert main(["cache", "info", "--root", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "entries: 2" in out and "bytes" in out
+    assert main(["cache", "clear", "--root", str(tmp_path)]) == 0
+    assert "removed 2" in capsys.readouterr().out
+    assert main(["cache", "info", "--root", str(tmp_path)]) == 0
+    assert "entries: 0" in capsys.readouterr().out

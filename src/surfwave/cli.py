@@ -146,6 +146,8 @@ def _cmd_cache(args) -> int:
     if args.action == "info":
         info = cache.info(args.root)
         for key, value in info.items():
+            if key == "size":
+                value = f"{value} bytes ({value / 1e6:.2f} MB)"
             print(f"{key}: {value}")
     else:
         n = cache.clear(args.root)
