@@ -1,8 +1,16 @@
 """Shared test fixtures and helpers."""
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
+from hypothesis import settings
+
+# CI runs the property tests with a fixed example sequence so a failure there reproduces
+# locally (HYPOTHESIS_PROFILE=ci); interactive runs keep exploring new examples.
+settings.register_profile("ci", derandomize=True, print_blob=True)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "default"))
 
 from surfwave.report import load_paper_values
 
