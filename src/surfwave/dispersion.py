@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import InputError
+from .lattices import as_1d
 from .potentials import PairPotential, get_potential
 from .surface_green import inv2, null_vector2
 from .triangular import bond_force_constants, row_matrices
@@ -87,15 +88,6 @@ def _fold(th):
     return far, np.where(far, (np.pi - th) + _PI_LO, th)
 
 
-def _as_1d(x, name: str) -> np.ndarray:
-    a = np.atleast_1d(np.asarray(x, dtype=float))
-    if a.ndim != 1:
-        raise InputError(f"{name} must be a scalar or 1-D array, got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:3]}")
-    return a
-
-
 def lattice_constants(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray]:
     """Geometry and force constants entering the analytic solution, each shape (n,).
 
@@ -110,7 +102,7 @@ def lattice_constants(potential: str | PairPotential, d_over_d0) -> dict[str, np
         If d_over_d0 is outside (0, 2) (the inclined bonds cannot stay at d0).
     """
     pot = get_potential(potential)
-    s = _as_1d(d_over_d0, "d_over_d0")
+    s = as_1d(d_over_d0, "d_over_d0")
     phi = bond_force_constants(pot, s)  # (n, 3, 2, 2): row, up, um
     dx = 0.5 * s
     dy = np.sqrt(1.0 - dx**2)
@@ -314,7 +306,7 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
     (1.126033, 0.316987)
     """
     lc = lattice_constants(potential, d_over_d0)
-    th_in = _as_1d(theta, "theta")
+    th_in = as_1d(theta, "theta")
     n, m = lc["dx"].size, th_in.size
     reason = np.empty((n, m), dtype=object)
     reason[:] = lc["strain_reason"][:, None]

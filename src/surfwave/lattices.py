@@ -143,18 +143,19 @@ def d_over_d0_range(lattice: str, loading: str) -> tuple[float, float]:
     return (0.0, np.inf)  # uniaxial FCC: limited only by the lateral solve
 
 
-def _as_strain_array(d_over_d0) -> np.ndarray:
-    s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
-    if s.ndim != 1:
-        raise InputError(f"d_over_d0 must be a scalar or a 1-D array, got shape {s.shape}")
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"d_over_d0 must be finite, got {s[~np.isfinite(s)][:5]}")
-    return s
+def as_1d(values, name: str = "d_over_d0") -> np.ndarray:
+    """``values`` (scalar or 1-D) as a float array, shape (n,); InputError naming ``name`` otherwise."""
+    a = np.atleast_1d(np.asarray(values, dtype=float))
+    if a.ndim != 1:
+        raise InputError(f"{name} must be a scalar or a 1-D array, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:5]}")
+    return a
 
 
 def check_d_over_d0(lattice: str, loading: str, d_over_d0) -> np.ndarray:
     """Return d_over_d0 as a 1-D array, or raise :class:`GeometryError` naming the bad value."""
-    s = _as_strain_array(d_over_d0)
+    s = as_1d(d_over_d0)
     lo, hi = d_over_d0_range(lattice, loading)
     bad = s[(s <= lo) | (s >= hi)]
     if bad.size:
