@@ -15,7 +15,8 @@ import pytest
 import xarray as xr
 
 from surfwave import plots, report
-from surfwave.report_checks import FAIL, NOT_COMPUTED, PASS, compressive_zero
+from surfwave.report_checks import FAIL, NOT_COMPUTED, PASS
+from surfwave.report_claims import compressive_zero
 
 PV = report.load_paper_values()
 COLS = PV["table1"]["columns"]
@@ -226,7 +227,7 @@ def test_benchmark_table(tmp_path):
 def test_rapid_110_compares_both_directions_at_one_strain():
     """[110] ends (NaN) early at a small drop, [100] runs on to a large one: comparing each
     at its own last point would say [100] falls faster; at a common strain [110] does."""
-    from surfwave.report_checks import claim_checks
+    from surfwave.report_claims import claim_checks
 
     d = np.array([1.0, 1.05, 1.10, 1.20])
     r100 = [0.30, 0.29, 0.28, 0.05]  # -7 % at +0.10, -83 % at +0.20

@@ -28,7 +28,8 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from . import report_checks as _claims
+from . import report_checks as _values
+from . import report_claims as _claims
 from .cube import open_cube as _open_cube
 from .report_targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
 from .report_checks import (
@@ -224,7 +225,7 @@ def build_checks(cubes: Cubes, paper_values: dict | None = None) -> tuple[list[C
                              cubes.get(spec["scene"], "rayleigh"), pv)
     numbers = [_table1_check(entries, spec["source"])]
     for name, vspec in pv["values"].items():
-        numbers += _claims.value_checks(name, vspec, cubes)
+        numbers += _values.value_checks(name, vspec, cubes)
     claims = []
     for name, cspec in pv["claims"].items():
         claims += _claims.claim_checks(name, cspec, cubes)
