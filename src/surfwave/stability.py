@@ -29,10 +29,17 @@ def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> n
     """Analytic long-wave stability per point (``surfwave.point(...)["stable"]``, i.e.
     :func:`surfwave.elastic.properties`; the Rayleigh solve of ``point`` is not needed).
 
-    Computed point by point so the result is separable; a point whose geometry cannot be
-    built is reported unstable-unknown as False.
+    Vectorised when every point can be built; otherwise point by point, a point whose
+    geometry cannot be built being reported as False. Each point's value is independent of
+    the others (the long-wave search runs per strain).
     """
     pot = get_potential(potential)
+    try:  # every point buildable (the usual case): one vectorised call
+        for si in s:
+            _checked_crystal(lattice, loading, direction, si, pot)
+        return np.asarray(properties(lattice, loading, pot, direction, s)["stable"], bool)
+    except Exception:  # noqa: BLE001 - fall back to point by point below
+        pass
     flags = np.zeros(s.size, bool)
     for i, si in enumerate(s):
         try:
