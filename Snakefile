@@ -14,8 +14,8 @@ from snakemake.utils import min_version
 # (the module paths below become rule inputs, so they must be this checkout's files).
 sys.path.insert(0, str(Path(workflow.basedir, "src")))
 
-from surfwave import cache
-from surfwave.scenes import SceneError, validate_config
+from surfwave.data import cache
+from surfwave.pipeline.scenes import SceneError, validate_config
 
 min_version("9.13.1")
 

@@ -8,7 +8,7 @@ Measured:
 * ``n_steps`` knob (decimation steps, crystal depth 2^n_steps rows) and ``tol`` knob (default
   mode: decimate until the neglected coupling is below tol): max relative error of
   ``omega_lattice`` against Eq. 15 (exact for every potential with phi'(d0) = 0, see
-  surfwave.dispersion), the max of the error estimate relative to omega, wall time, per potential.
+  surfwave.dynamics.dispersion), the max of the error estimate relative to omega, wall time, per potential.
 * wall time of ``dispersion.solve`` on an n x n (strain, theta) grid (n = 1000 by default) and
   of ``lattice_dynamics.surface_mode`` on the accuracy grid.
 * max |omega_lattice/((c_R/d_x) sin theta) - 1| (c_R from Eq. 20) per potential: the sine law.
@@ -23,8 +23,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from surfwave import __version__, dispersion, lattice_dynamics
-from surfwave.plots_dispersion import plt
+from surfwave import __version__
+from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
+from surfwave.plots.dispersion import plt
 
 POTENTIALS = ("harmonic", "lj", "morse")
 # Strain grids: from 1% inside the surface instability (c_R^2 = 0) to tension.

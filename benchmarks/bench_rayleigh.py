@@ -28,7 +28,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
-from surfwave.rayleigh import cauchy_c2  # noqa: E402
+from surfwave.continuum.rayleigh import cauchy_c2  # noqa: E402
 
 N_POINTS = 10**6
 BATCHES = [10**3, 10**4, 10**5]

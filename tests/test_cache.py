@@ -6,7 +6,7 @@ import multiprocessing as mp
 import numpy as np
 import pytest
 
-from surfwave import cache
+from surfwave.data import cache
 
 KEY = {"lattice": "fcc", "loading": "uniaxial", "potential": "lj", "direction": "[100]",
        "method": "test", "supercell": 2}

@@ -61,7 +61,7 @@ def test_help_is_helpful(cmd):
 
 def test_cache_info_and_clear(tmp_path, capsys):
     """`surfwave cache info|clear` on a cache with two entries written through the cache API."""
-    from surfwave import cache
+    from surfwave.data import cache
 
     cache.cached_points("demo", {"what": "cli-test"}, np.array([1.0, 1.1]),
                         lambda d: {"x": 2 * d}, tmp_path)

@@ -8,7 +8,8 @@ import stat
 import numpy as np
 import pytest
 
-from surfwave import __version__, cube
+from surfwave import __version__
+from surfwave.data import cube
 from surfwave.errors import InputError
 
 META = {

@@ -1,8 +1,8 @@
-"""Tests of the analytic triangular-lattice surface-wave solution (surfwave.dispersion).
+"""Tests of the analytic triangular-lattice surface-wave solution (surfwave.dynamics.dispersion).
 
 Reference values come from closed forms (Eq. 16, the paper's Eqs. 3a/6a/8a as corrected in
 PHYSICS.md, Eq. 20 with bond sums of Eq. A12) or from plugging the result back into the row
-equations of surfwave.triangular (an independent statement of the lattice dynamics).
+equations of surfwave.dynamics.triangular (an independent statement of the lattice dynamics).
 """
 from __future__ import annotations
 
@@ -11,10 +11,10 @@ import warnings
 import numpy as np
 import pytest
 
-from surfwave import dispersion as D
-from surfwave import elastic, rayleigh
+from surfwave.dynamics import dispersion as D
+from surfwave.continuum import elastic, rayleigh
 from surfwave.errors import GeometryError
-from surfwave.triangular import row_matrices
+from surfwave.dynamics.triangular import row_matrices
 
 TH = np.array([1e-3, np.pi / 20, np.pi / 8, np.pi / 4, 1.3, np.pi / 2, 2.2, np.pi - 1e-3])
 # 4 cos(80 deg) = 2 x with x^3 - 3x + 1 = 0: c_T,par^2 = 0 of the harmonic lattice (Eq. A14).
@@ -36,7 +36,7 @@ def eq20_elastic(name, d):
 
 
 def plug_in_residual(pot, d, th, u, v, omega):
-    """Max residual of the bulk and surface row equations (surfwave.triangular) for (u, v)."""
+    """Max residual of the bulk and surface row equations (surfwave.dynamics.triangular) for (u, v)."""
     A0, A0s, A1 = row_matrices(pot, d, th)
     U = np.stack([u, v], axis=-1)  # (n, m, rows, 2)
     w2 = (omega**2)[..., None]
@@ -50,7 +50,7 @@ def plug_in_residual(pot, d, th, u, v, omega):
 
 @pytest.mark.parametrize("d", [0.75, 1.0, 1.4])
 def test_row_matrices_are_eq2a(d):
-    """The row matrices of surfwave.triangular against the corrected Eq. (2a) of PHYSICS.md
+    """The row matrices of surfwave.dynamics.triangular against the corrected Eq. (2a) of PHYSICS.md
     (harmonic, hand-written): the y-equation
     -v''_00 = [1 - 1/(2 d_x)](2v_00 - v_01 - v_0-1) + d_y^2 (4v_00 - v_10 - v_-10 - v_1-1 - v_-11)
               - d_x d_y (u_10 + u_-10 - u_1-1 - u_-11)

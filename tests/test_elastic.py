@@ -13,9 +13,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import surfwave
-from surfwave import elastic
-from surfwave.lattices import build
-from surfwave.potentials import get_potential
+from surfwave.continuum import elastic
+from surfwave.continuum.lattices import build
+from surfwave.continuum.potentials import get_potential
 
 
 @pytest.mark.parametrize("pot", ["harmonic"])

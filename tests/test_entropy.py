@@ -7,16 +7,16 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from surfwave.entropy import (
+from surfwave.dynamics.entropy import (
     VARIABLES, band_edge_coefficients, estimate_terms, rayleigh_c2, surface_entropy,
     theta_integrals, theta_rule,
 )
 from surfwave.errors import GeometryError, InputError
-from surfwave.surface_green import (
+from surfwave.dynamics.surface_green import (
     bulk_schur, hermitian, jensen_bulk_log_det, positive_definite2, slab_log_det, slab_s_theta,
     theta_log_dets,
 )
-from surfwave.triangular import row_matrices
+from surfwave.dynamics.triangular import row_matrices
 
 #: Huckaby's mean of ln(omega/omega0) over the bulk modes of the unstressed harmonic
 #: triangular lattice, quoted in the paper before Eq. (26) and in PHYSICS.md.
@@ -208,7 +208,7 @@ def test_rayleigh_speed_eq16_and_eq15_for_lj():
 
 def test_rayleigh_matches_general_eq17_solver():
     """Eq. (20) here against the general Eq. (17) solver with root selection by the unsquared
-    boundary condition (``surfwave.point``, surfwave.rayleigh)."""
+    boundary condition (``surfwave.point``, surfwave.continuum.rayleigh)."""
     import surfwave
 
     grid = np.array([0.9, 1.0, 1.1])
@@ -325,7 +325,7 @@ def test_timing_target():
 
 def test_entropy_figure_is_written(tmp_path):
     """plots_entropy.entropy_vs_strain renders a cube with an unstable (NaN) point to PNG."""
-    from surfwave.plots_entropy import entropy_vs_strain, to_dataset
+    from surfwave.plots.entropy import entropy_vs_strain, to_dataset
 
     grid = np.array([0.7, 0.9, 1.0, 1.2])
     ds = to_dataset(surface_entropy("harmonic", grid), grid, "harmonic")

@@ -1,6 +1,6 @@
 """Numerical FCC (001) surface lattice dynamics versus the analytic long-wave Rayleigh speed.
 
-The slab solve of :mod:`surfwave.fcc_surface` uses only the bond force constants; it shares
+The slab solve of :mod:`surfwave.dynamics.fcc_surface` uses only the bond force constants; it shares
 no formula with Eq. (17), the S tensor (A11) or the root selection of :func:`surfwave.point`.
 """
 from __future__ import annotations
@@ -10,10 +10,10 @@ import pytest
 from scipy.sparse.linalg import eigsh
 
 import surfwave
-from surfwave.fcc_surface import (layer_matrices, long_wave_c2, sagittal_blocks, slab_matrix,
+from surfwave.dynamics.fcc_surface import (layer_matrices, long_wave_c2, sagittal_blocks, slab_matrix,
                                   surface_mode, tail_ratio)
-from surfwave.lattices import build
-from surfwave.potentials import get_potential
+from surfwave.continuum.lattices import build
+from surfwave.continuum.potentials import get_potential
 
 #: Richardson over k = 0.8, 0.4, ..., 0.05 (1/d0): measured error ~1e-8 relative.
 K_MAX, LEVELS = 0.8, 5

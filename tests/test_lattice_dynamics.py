@@ -1,4 +1,4 @@
-"""Tests of the numerical semi-infinite lattice-dynamics solve (surfwave.lattice_dynamics).
+"""Tests of the numerical semi-infinite lattice-dynamics solve (surfwave.dynamics.triangular_surface).
 
 References: Eq. (15) with c_R^2 of Eq. (16) (harmonic, closed form) or of Eq. (20) from the
 bond sums (any potential); a brute-force bulk eigenvalue scan for the band bottom; the
@@ -11,11 +11,11 @@ import warnings
 import numpy as np
 import pytest
 
-from surfwave import dispersion as D
-from surfwave import lattice_dynamics as L
-from surfwave.triangular import row_matrices
+from surfwave.dynamics import dispersion as D
+from surfwave.dynamics import triangular_surface as L
+from surfwave.dynamics.triangular import row_matrices
 
-#: LJ surface instabilities (c_R^2 = 0 of the lattice quadratic, surfwave.dispersion), found by
+#: LJ surface instabilities (c_R^2 = 0 of the lattice quadratic, surfwave.dynamics.dispersion), found by
 #: bisection; the LJ bulk goes unstable only beyond them (0.8930277 and 1.1141848).
 LJ_SURFACE = (0.89361985602, 1.11392551139)
 
@@ -66,7 +66,7 @@ def test_triangular_scene_acceptance():
     within its own error estimate, with a single bound mode below the bulk continuum."""
     from pathlib import Path
 
-    from surfwave import scenes
+    from surfwave.pipeline import scenes
 
     cfg = scenes.load_config([Path(__file__).resolve().parents[1] / "config" / "config.yaml"])
     scene = scenes.validate_config(cfg)["triangular"]
@@ -86,13 +86,13 @@ def test_triangular_scene_acceptance():
 
 
 def test_row_matrices_equal_phonopy_bulk_dynamical_matrix():
-    """The row matrices (surfwave.triangular, which both the analytic and the numerical solve
+    """The row matrices (surfwave.dynamics.triangular, which both the analytic and the numerical solve
     use) against phonopy's bulk dynamical matrix from finite displacements of our pair forces
-    (surfwave.phonons): A0 + A1 e^{ip} + A1^H e^{-ip} = D(k) at k = (theta/d_x, p/d_y), for a
+    (surfwave.continuum.phonons): A0 + A1 e^{ip} + A1^H e^{-ip} = D(k) at k = (theta/d_x, p/d_y), for a
     stressed LJ lattice where the prestress term phi'/r (1 - r^r^) of the in-row bond matters."""
-    from surfwave.lattices import build
-    from surfwave.phonons import dynamical_matrix, make_phonopy
-    from surfwave.potentials import get_potential
+    from surfwave.continuum.lattices import build
+    from surfwave.continuum.phonons import dynamical_matrix, make_phonopy
+    from surfwave.continuum.potentials import get_potential
 
     pot = get_potential("lj")
     for d in (0.95, 1.08):

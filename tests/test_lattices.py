@@ -6,7 +6,7 @@ import pytest
 
 import surfwave
 from surfwave.errors import GeometryError, InputError
-from surfwave.lattices import build
+from surfwave.continuum.lattices import build
 
 
 def test_in_plane_hydrostatic_keeps_out_of_plane_bonds_at_rest():
@@ -57,7 +57,7 @@ def test_unknown_potential_lists_known_ones():
 def test_uniaxial_lateral_solve_failure_is_clear():
     """A lateral solve that does not converge (starved of iterations here) is a GeometryError
     naming the first failing d/d0, not a silent wrong geometry."""
-    from surfwave.lattices import solve_lateral_stretch
+    from surfwave.continuum.lattices import solve_lateral_stretch
 
     with pytest.raises(GeometryError, match="d/d0 = 1.2"):
         solve_lateral_stretch("[100]", np.array([1.0, 1.2]), "lj", max_iter=1)

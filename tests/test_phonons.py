@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave.lattices import build
-from surfwave.phonons import (
+from surfwave.continuum.lattices import build
+from surfwave.continuum.phonons import (
     VARIABLES,
     bulk_speeds,
     dynamical_matrix,
@@ -21,7 +21,7 @@ from surfwave.phonons import (
     neighbour_table,
     pair_forces,
 )
-from surfwave.potentials import get_potential
+from surfwave.continuum.potentials import get_potential
 
 SPEEDS = ["c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH"]
 
@@ -71,7 +71,7 @@ def test_table1_bulk_columns(table1):
 def _scene(name):
     from pathlib import Path
 
-    from surfwave import scenes
+    from surfwave.pipeline import scenes
 
     cfg = scenes.load_config([Path(__file__).resolve().parents[1] / "config" / "config.yaml"])
     return scenes.validate_config(cfg)[name]
@@ -275,7 +275,7 @@ def test_long_wave_instability_missed_by_mesh_is_flagged():
     tensor (Eq. A11, ``surfwave.point``) has a negative eigenvalue (first long-wave
     instability at 0.553), soft only at long waves, so an 8^3 zone mesh alone sees no
     imaginary frequency; the full-zone flag must still be False. At 0.60 both are stable."""
-    from surfwave.phonons import stability_scan
+    from surfwave.continuum.phonons import stability_scan
 
     assert surfwave.point("fcc", "uniaxial", "harmonic", "[100]", [0.54])["min_acoustic_eig"][0] < 0
     r = stability_scan("fcc", "uniaxial", "harmonic", "[100]", [0.54, 0.60])

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import surfwave
-from surfwave import rayleigh
+from surfwave.continuum import rayleigh
 from surfwave.api import cubic_tensor
 
 SQ3 = np.sqrt(3.0)

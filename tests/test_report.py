@@ -14,9 +14,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from surfwave import plots, report
-from surfwave.report_checks import FAIL, NOT_COMPUTED, PASS
-from surfwave.report_claims import compressive_zero
+from surfwave.plots import speeds as plots
+from surfwave.report import reproduction as report
+from surfwave.report.checks import FAIL, NOT_COMPUTED, PASS
+from surfwave.report.claims import compressive_zero
 
 PV = report.load_paper_values()
 COLS = PV["table1"]["columns"]
@@ -227,7 +228,7 @@ def test_benchmark_table(tmp_path):
 def test_rapid_110_compares_both_directions_at_one_strain():
     """[110] ends (NaN) early at a small drop, [100] runs on to a large one: comparing each
     at its own last point would say [100] falls faster; at a common strain [110] does."""
-    from surfwave.report_claims import claim_checks
+    from surfwave.report.claims import claim_checks
 
     d = np.array([1.0, 1.05, 1.10, 1.20])
     r100 = [0.30, 0.29, 0.28, 0.05]  # -7 % at +0.10, -83 % at +0.20
@@ -255,7 +256,7 @@ def test_bulk_section_reports_deviation_and_both_stability_edges(tmp_path):
     shows that deviation, both unstable edges and one disagreeing point."""
     import xarray as xr
 
-    from surfwave.report import Cubes, bulk_section
+    from surfwave.report.reproduction import Cubes, bulk_section
 
     strain = np.array([-0.1, -0.05, 0.0, 0.05])
     coords = {"potential": ["lj"], "direction": ["[100]"], "strain": strain}

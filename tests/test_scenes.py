@@ -6,8 +6,8 @@ import copy
 import numpy as np
 import pytest
 
-from surfwave import scenes
-from surfwave.scenes import SceneError, expand_grid, job_params, validate_config
+from surfwave.pipeline import scenes
+from surfwave.pipeline.scenes import SceneError, expand_grid, job_params, validate_config
 
 
 def base(**over):
@@ -121,27 +121,6 @@ def test_job_params_hold_only_what_the_stage_uses():
     assert job_params(s2, "elastic") == el and job_params(s2, "bulk") != bulk
 
 
-def test_module_closure_separates_stages():
-    names = lambda *m: {p.rsplit("/", 1)[-1] for p in scenes.module_closure(*m)}  # noqa: E731
-    crystal = names("symmetry", "cube")
-    assert {"symmetry.py", "lattices.py", "potentials.py", "cube.py", "__init__.py"} <= crystal
-    assert "rayleigh.py" not in crystal
-    assert "rayleigh.py" in names("api")
-
-
-def test_module_closure_skips_lazy_reexports(tmp_path):
-    """A module-level __getattr__ that imports a module lazily (PEP 562 re-export) does not make
-    that module a dependency; an import inside an ordinary function does."""
-    (tmp_path / "__init__.py").write_text("")
-    (tmp_path / "a.py").write_text(
-        "def f():\n    from . import b\n\n"
-        "def __getattr__(name):\n    from . import c\n    return getattr(c, name)\n")
-    for m in ("b", "c"):
-        (tmp_path / f"{m}.py").write_text("")
-    got = {p.rsplit("/", 1)[-1] for p in scenes.module_closure("a", package_dir=tmp_path)}
-    assert got == {"__init__.py", "a.py", "b.py"}
-
-
 @pytest.mark.parametrize(
     "over, words",
     [
@@ -173,7 +152,7 @@ def test_default_config_is_valid():
 def test_theta_grid_with_exact_pi_fractions():
     """{n, pi_fractions}: midpoints plus exact multiples of pi (the paper's Fig. 3 values);
     a coinciding midpoint is not duplicated; fractions outside (0, 1) are refused."""
-    from surfwave.scenes import SceneError, theta_grid
+    from surfwave.pipeline.scenes import SceneError, theta_grid
 
     th = theta_grid({"n": 30, "pi_fractions": [0.05, 0.125, 0.25, 0.5]})
     for f in (0.05, 0.125, 0.25, 0.5):

@@ -5,14 +5,14 @@ import numpy as np
 import pytest
 import spglib.error
 
-from surfwave import symmetry
+from surfwave.continuum import symmetry
 from surfwave.errors import SymmetryError
-from surfwave.lattices import build
+from surfwave.continuum.lattices import build
 
 
 def test_new_error_handling_is_on():
     """spglib 2.x: with OLD_ERROR_HANDLING = False failures raise instead of warning
-    (STYLE.md, phonopy / spglib facts); surfwave.symmetry sets it on import."""
+    (STYLE.md, phonopy / spglib facts); surfwave.continuum.symmetry sets it on import."""
     assert spglib.error.OLD_ERROR_HANDLING is False
 
 

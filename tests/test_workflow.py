@@ -20,8 +20,8 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave import cache
-from surfwave.cube import open_cube
+from surfwave.data import cache
+from surfwave.data.cube import open_cube
 
 # One module-scoped build shared by the tests below: with pytest-xdist, run with
 # `--dist loadgroup` so that they land on one worker (otherwise each worker builds once).

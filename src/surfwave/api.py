@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import elastic, rayleigh
-from .errors import InputError
-from .lattices import _FCC_LAB_AXES
+from surfwave.continuum import elastic, rayleigh
+from surfwave.errors import InputError
+from surfwave.continuum.lattices import _FCC_LAB_AXES
 
 
 def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:

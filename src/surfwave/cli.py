@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
-from .errors import SurfwaveError
+from surfwave import __version__
+from surfwave.errors import SurfwaveError
 
 SPEED_KEYS = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH", "c2_R")
 
@@ -92,7 +92,7 @@ def _json_default(value):
 
 
 def _cmd_point(args) -> int:
-    from .api import point
+    from surfwave.api import point
 
     r = point(args.lattice, args.loading, args.potential, args.direction, args.d_over_d0)
     rows = []
@@ -117,7 +117,7 @@ def _cmd_point(args) -> int:
 
 
 def _cmd_material(args) -> int:
-    from .api import material
+    from surfwave.api import material
 
     r = material(args.C11, args.C12, args.C44, args.rho, args.direction, args.stress)
     if args.json:
@@ -133,7 +133,7 @@ def _cmd_material(args) -> int:
 
 
 def _cmd_potentials(args) -> int:
-    from .potentials import available_potentials, get_potential
+    from surfwave.continuum.potentials import available_potentials, get_potential
 
     for name in available_potentials():
         print(f"{name:>10}  {get_potential(name).description}")
@@ -141,7 +141,7 @@ def _cmd_potentials(args) -> int:
 
 
 def _cmd_cache(args) -> int:
-    from . import cache
+    from surfwave.data import cache
 
     if args.action == "info":
         info = cache.info(args.root)

@@ -6,10 +6,10 @@ from pathlib import Path
 
 # benchmark -> library modules it exercises (inputs, so a code change reruns it)
 BENCH_MODULES = {
-    "rayleigh": ("api", "rayleigh"),
-    "phonons": ("phonons",),
-    "dispersion": ("dispersion", "lattice_dynamics"),
-    "entropy": ("entropy",),
+    "rayleigh": ("api", "continuum.rayleigh"),
+    "phonons": ("continuum.phonons",),
+    "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
+    "entropy": ("dynamics.entropy",),
 }
 BENCH_METHODS = [
     name
@@ -68,7 +68,7 @@ rule benchmark_table:
     """Markdown table (method, knob, error, time, default and why) for the README."""
     input:
         dirs=BENCH_DIRS,
-        code=code("report"),
+        code=code("report.reproduction"),
     output:
         report(
             "results/benchmarks/README_table.md",

@@ -1,6 +1,7 @@
-# Helpers shared by the rules. Logic lives in surfwave.scenes; this file only wires it up.
-from surfwave import cache
-from surfwave.scenes import job_params, module_closure, selected, targets
+# Helpers shared by the rules. Logic lives in surfwave.pipeline.scenes; this file only wires it up.
+from surfwave.data import cache
+from surfwave.pipeline.provenance import module_closure
+from surfwave.pipeline.scenes import job_params, selected, targets
 
 #: Software of every rule under `--sdm conda` (the default route is the .venv from the lock).
 CONDA_ENV = "../envs/surfwave.yaml"
@@ -14,7 +15,7 @@ def scene_targets():
 
 
 def params_for(stage):
-    """Params of a stage's job: exactly the config values it uses (surfwave.scenes.job_params)."""
+    """Params of a stage's job: exactly the config values it uses (surfwave.pipeline.scenes.job_params)."""
     return lambda wildcards: job_params(SCENES[wildcards.scene], stage)
 
 

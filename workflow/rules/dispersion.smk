@@ -2,7 +2,12 @@ rule dispersion:
     """Triangular surface-wave dispersion, analytic, checked by lattice dynamics (cached per point)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("dispersion", "lattice_dynamics", "cache", "cube"),
+        code=code(
+            "dynamics.dispersion",
+            "dynamics.triangular_surface",
+            "data.cache",
+            "data.cube",
+        ),
     output:
         "results/{scene}/dispersion.nc",
     log:
@@ -20,7 +25,7 @@ rule displacements:
     """Row displacement amplitudes u, v of the triangular surface wave (Fig. 3)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("dispersion", "cube"),
+        code=code("dynamics.dispersion", "data.cube"),
     output:
         "results/{scene}/displacements.nc",
     log:

@@ -2,7 +2,7 @@ rule elastic:
     """Stress, C, S, bulk sound speeds and long-wave stability (analytic)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("elastic", "cube"),
+        code=code("continuum.elastic", "data.cube"),
     output:
         "results/{scene}/elastic.nc",
     log:

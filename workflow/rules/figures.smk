@@ -2,8 +2,8 @@
 # elastic and rayleigh cubes, Table I (paper beside ours) for the `table1` scene, and for
 # triangular scenes the dispersion, theta_c, Fig. 3 (displacements) and entropy figures.
 # FIGURE_TARGETS is what rule `all` builds.
-from surfwave.report_targets import figure_targets, speeds_scenes
-from surfwave.potentials import available_potentials
+from surfwave.pipeline.targets import figure_targets, speeds_scenes
+from surfwave.continuum.potentials import available_potentials
 
 TABLE1_SCENE = "table1"
 
@@ -29,7 +29,7 @@ rule figure_speeds:
     input:
         elastic="results/{scene}/elastic.nc",
         rayleigh="results/{scene}/rayleigh.nc",
-        code=code("plots"),
+        code=code("plots.speeds"),
     output:
         report(
             "results/{scene}/speeds_vs_stress.png",
@@ -54,7 +54,7 @@ rule figure_table1:
         elastic=f"results/{TABLE1_SCENE}/elastic.nc",
         rayleigh=f"results/{TABLE1_SCENE}/rayleigh.nc",
         values=PAPER_VALUES,
-        code=code("report", "plots"),
+        code=code("report.reproduction", "plots.speeds"),
     output:
         md=f"results/{TABLE1_SCENE}/table1.md",
         csv=f"results/{TABLE1_SCENE}/table1.csv",
@@ -75,7 +75,7 @@ rule figure_dispersion:
     """Triangular surface-wave dispersion omega(theta) at several strains, one potential."""
     input:
         cube="results/{scene}/dispersion.nc",
-        code=code("plots_dispersion", "cube"),
+        code=code("plots.dispersion", "data.cube"),
     output:
         report(
             "results/{scene}/dispersion_{potential}.png",
@@ -95,7 +95,7 @@ rule figure_theta_c:
     """Crossover theta_c (q complex above it) versus d/d0, every potential."""
     input:
         cube="results/{scene}/dispersion.nc",
-        code=code("plots_dispersion", "cube"),
+        code=code("plots.dispersion", "data.cube"),
     output:
         report(
             "results/{scene}/theta_c.png",
@@ -115,7 +115,7 @@ rule figure_displacements:
     """Fig. 3: surface-wave displacement patterns at zero stress, a few theta, one potential."""
     input:
         cube="results/{scene}/displacements.nc",
-        code=code("plots_dispersion", "cube"),
+        code=code("plots.dispersion", "data.cube"),
     output:
         report(
             "results/{scene}/fig3_displacements_{potential}.png",
@@ -135,7 +135,7 @@ rule figure_entropy:
     """Surface entropy (Eq. 25 estimate and exact) versus strain."""
     input:
         cube="results/{scene}/entropy.nc",
-        code=code("plots_entropy", "cube"),
+        code=code("plots.entropy", "data.cube"),
     output:
         report(
             "results/{scene}/entropy_vs_strain.png",
@@ -155,7 +155,7 @@ rule figure_stability_map:
     """Stability map of prestressed FCC, long-wave versus full-zone (phonopy); built by the
     benchmarks target, not by rule all (it computes its own grid)."""
     input:
-        code=code("plots_stability"),
+        code=code("plots.stability"),
     output:
         nc="results/stability_map/stability_map.nc",
         png=report(

@@ -1,14 +1,15 @@
 """Rule `bulk`: phonopy sound speeds and full-zone stability, deviation from elastic.nc.
 
-Each (potential, direction, strain) point goes through the parameter cache (surfwave.cache).
+Each (potential, direction, strain) point goes through the parameter cache (surfwave.data.cache).
 By hand (from the repository root): python workflow/scripts/bulk.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave import cache, cube, phonons
+from surfwave.data import cache, cube
+from surfwave.continuum import phonons
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("bulk", inputs={"crystal": "results/{scene}/crystal.nc",
                                            "elastic": "results/{scene}/elastic.nc"})
@@ -19,7 +20,7 @@ acc = job["accuracy"]
 blocks = {}
 for pot in job["potentials"]:
     for direction in job["directions"]:
-        key = cache.job_key(job, "phonons", "phonopy", potential=pot, direction=direction, **acc)
+        key = cache.job_key(job, "continuum.phonons", "phonopy", potential=pot, direction=direction, **acc)
         r = cache.cached_points(
             "bulk", key, job["d_over_d0"],
             lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),

@@ -4,10 +4,11 @@ By hand (from the repository root): python workflow/scripts/crystal.py SCENE [CO
 """
 import sys
 
-from surfwave import cube, symmetry
+from surfwave.data import cube
+from surfwave.continuum import symmetry
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("crystal")
 sys.stderr = open(snakemake.log[0], "w")

@@ -1,17 +1,18 @@
 """Rule `dispersion`: omega(theta), q1, q2 of the triangular lattice, checked by lattice dynamics.
 
-The analytic solution (surfwave.dispersion.solve) is cheap; the numerical lattice-dynamics
-check (surfwave.lattice_dynamics.surface_mode) goes through the parameter cache per strain.
+The analytic solution (surfwave.dynamics.dispersion.solve) is cheap; the numerical lattice-dynamics
+check (surfwave.dynamics.triangular_surface.surface_mode) goes through the parameter cache per strain.
 By hand (from the repository root): python workflow/scripts/dispersion.py SCENE [CONFIGFILE ...]
 """
 import sys
 
 import numpy as np
 
-from surfwave import cache, cube, dispersion, lattice_dynamics
+from surfwave.data import cache, cube
+from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("dispersion", inputs={"crystal": "results/{scene}/crystal.nc"})
 sys.stderr = open(snakemake.log[0], "w")
@@ -25,7 +26,7 @@ meta = {**dispersion.VARIABLES, **lattice_dynamics.VARIABLES,
 blocks = {}
 for pot in job["potentials"]:
     r = dispersion.solve(pot, job["d_over_d0"], theta)
-    key = cache.job_key(job, "lattice_dynamics", "lattice_dynamics.surface_mode", potential=pot,
+    key = cache.job_key(job, "dynamics.triangular_surface", "lattice_dynamics.surface_mode", potential=pot,
                         theta=job["theta"], tol=tol)
     r.update(cache.cached_points(
         "surface_mode", key, job["d_over_d0"],

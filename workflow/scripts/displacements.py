@@ -6,10 +6,11 @@ import sys
 
 import numpy as np
 
-from surfwave import cube, dispersion
+from surfwave.data import cube
+from surfwave.dynamics import dispersion
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("displacements", inputs={"crystal": "results/{scene}/crystal.nc"})
 sys.stderr = open(snakemake.log[0], "w")

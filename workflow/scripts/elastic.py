@@ -1,13 +1,14 @@
-"""Rule `elastic`: stress, C, S, bulk sound speeds and stability (surfwave.elastic.properties).
+"""Rule `elastic`: stress, C, S, bulk sound speeds and stability (surfwave.continuum.elastic.properties).
 
 By hand (from the repository root): python workflow/scripts/elastic.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave import cube, elastic
+from surfwave.data import cube
+from surfwave.continuum import elastic
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("elastic", inputs={"crystal": "results/{scene}/crystal.nc"})
 sys.stderr = open(snakemake.log[0], "w")

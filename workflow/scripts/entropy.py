@@ -1,14 +1,15 @@
 """Rule `entropy`: surface entropy of the triangular lattice, Eq. (25) estimate and exact value.
 
-Each (potential, strain) point goes through the parameter cache (surfwave.cache).
+Each (potential, strain) point goes through the parameter cache (surfwave.data.cache).
 By hand (from the repository root): python workflow/scripts/entropy.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave import cache, cube, entropy
+from surfwave.data import cache, cube
+from surfwave.dynamics import entropy
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("entropy", inputs={"crystal": "results/{scene}/crystal.nc"})
 sys.stderr = open(snakemake.log[0], "w")
@@ -17,7 +18,7 @@ job = snakemake.params.job
 tol = job["accuracy"]["tol"]
 blocks = {}
 for pot in job["potentials"]:
-    key = cache.job_key(job, "entropy", "entropy.surface_entropy", potential=pot, tol=tol)
+    key = cache.job_key(job, "dynamics.entropy", "entropy.surface_entropy", potential=pot, tol=tol)
     r = cache.cached_points("entropy", key, job["d_over_d0"],
                             lambda d: entropy.surface_entropy(pot, d, tol=tol), snakemake.params.cache,
                             chunk=cache.CHUNK)

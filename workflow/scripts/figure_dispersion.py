@@ -1,8 +1,8 @@
 """Rule `figure_dispersion`: omega(theta) of the triangular surface wave, one potential."""
 import sys
 
-from surfwave.cube import open_cube
-from surfwave.plots_dispersion import plot_dispersion
+from surfwave.data.cube import open_cube
+from surfwave.plots.dispersion import plot_dispersion
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 pot = snakemake.wildcards.potential  # noqa: F821

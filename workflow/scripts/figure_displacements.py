@@ -1,9 +1,9 @@
 """Rule `figure_displacements`: Fig. 3, displacement patterns at zero stress, a few theta."""
 import sys
 
-from surfwave.cube import open_cube
-from surfwave.plots import FIG3_ROWS, FIG3_THETA, nearest_indices
-from surfwave.plots_dispersion import plot_displacements
+from surfwave.data.cube import open_cube
+from surfwave.plots.speeds import FIG3_ROWS, FIG3_THETA, nearest_indices
+from surfwave.plots.dispersion import plot_displacements
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 pot = snakemake.wildcards.potential  # noqa: F821

@@ -1,8 +1,8 @@
 """Rule `figure_entropy`: surface entropy (Eq. 25 estimate and exact) versus strain."""
 import sys
 
-from surfwave.cube import open_cube
-from surfwave.plots_entropy import entropy_vs_strain
+from surfwave.data.cube import open_cube
+from surfwave.plots.entropy import entropy_vs_strain
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 entropy_vs_strain(open_cube(snakemake.input.cube), snakemake.output[0],  # noqa: F821

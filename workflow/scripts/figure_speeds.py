@@ -5,7 +5,7 @@ By hand: python workflow/scripts/figure_speeds.py SCENE  (reads results/SCENE/*.
 import sys
 from types import SimpleNamespace
 
-from surfwave.plots import LOADING_TITLES, fig2
+from surfwave.plots.speeds import LOADING_TITLES, fig2
 
 if "snakemake" not in globals():  # standalone run for debugging
     scene = sys.argv[1]

@@ -1,8 +1,8 @@
-"""Rule `figure_stability_map`: surfwave.plots_stability.main into results/stability_map/."""
+"""Rule `figure_stability_map`: surfwave.plots.stability.main into results/stability_map/."""
 import sys
 from pathlib import Path
 
-from surfwave.plots_stability import main
+from surfwave.plots.stability import main
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 sys.stdout = sys.stderr

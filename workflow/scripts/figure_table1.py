@@ -5,8 +5,8 @@ By hand: python workflow/scripts/figure_table1.py  (reads results/table1/*.nc)
 import sys
 from types import SimpleNamespace
 
-from surfwave.plots import table1_figure
-from surfwave.report import table1
+from surfwave.plots.speeds import table1_figure
+from surfwave.report.reproduction import table1
 
 if "snakemake" not in globals():  # standalone run for debugging
     r = "results/table1"

@@ -1,8 +1,8 @@
 """Rule `figure_theta_c`: crossover theta_c versus d/d0, one curve per potential."""
 import sys
 
-from surfwave.cube import open_cube
-from surfwave.plots_dispersion import plot_theta_c
+from surfwave.data.cube import open_cube
+from surfwave.plots.dispersion import plot_theta_c
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 ds = open_cube(snakemake.input.cube)  # noqa: F821

@@ -1,14 +1,15 @@
 """Rule `rayleigh`: Rayleigh speed c_R^2 (Eq. 17, root selection) and wave type from the
-stress derivatives S of elastic.nc (surfwave.rayleigh.solve).
+stress derivatives S of elastic.nc (surfwave.continuum.rayleigh.solve).
 
 By hand (from the repository root): python workflow/scripts/rayleigh.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave import cube, rayleigh
+from surfwave.data import cube
+from surfwave.continuum import rayleigh
 
 if "snakemake" not in globals():  # standalone run for debugging
-    from surfwave.scenes import standalone
+    from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("rayleigh", inputs={"elastic": "results/{scene}/elastic.nc"})
 sys.stderr = open(snakemake.log[0], "w")

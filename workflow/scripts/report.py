@@ -1,10 +1,10 @@
 """Rule `report_md`: results/report.md from the cubes and the paper's printed values.
 
-By hand: python -m surfwave.report results   (every cube found under results/)
+By hand: python -m surfwave.report.reproduction results   (every cube found under results/)
 """
 import sys
 
-from surfwave.report import write_report
+from surfwave.report.reproduction import write_report
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 write_report(snakemake.input.cubes, snakemake.output[0],  # noqa: F821

@@ -1,6 +1,6 @@
 """Analytic surface-wave dispersion of the prestressed triangular lattice (Eqs. 3a-16).
 
-Row equations and geometry: :mod:`surfwave.triangular` (row I at y = I d_y, row amplitudes
+Row equations and geometry: :mod:`surfwave.dynamics.triangular` (row I at y = I d_y, row amplitudes
 U_I multiply exp(i theta (I + 2J)) at atom (I, J); theta = k d_x). Bond force constants:
 in-row bond (2 d_x, 0) gives Phi_row = diag(p, t) with p = phi''(2 d_x), t = phi'(2 d_x)/(2 d_x);
 the inclined bonds (+-d_x, d_y) sit at d0, so with phi'(d0) = 0 they are pure springs
@@ -20,18 +20,18 @@ Eq. (14) is solved by omega^2 = 4 k y sin^2 theta with y the smaller root of
     2 y^2 - (2P + 2T + 1) y + (2 P T + T d_x^2 + P d_y^2) = 0,   P = p/k, T = t/k,
 
 i.e. Eq. (15) omega = (c_R/d_x) sin(theta) with c_R^2 = 4 k y d_x^2 for every pair potential
-with phi'(d0) = 0 (harmonic: Eq. 16). The numerical solve in :mod:`surfwave.lattice_dynamics`
+with phi'(d0) = 0 (harmonic: Eq. 16). The numerical solve in :mod:`surfwave.dynamics.triangular_surface`
 checks this independently. Units: m = K = d0 = 1; frequencies in (K/m)^(1/2).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .errors import InputError
-from .lattices import as_1d
-from .potentials import PairPotential, get_potential
-from .surface_green import inv2, null_vector2
-from .triangular import bond_force_constants, row_matrices
+from surfwave.errors import InputError
+from surfwave.continuum.lattices import as_1d
+from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.dynamics.surface_green import inv2, null_vector2
+from surfwave.dynamics.triangular import bond_force_constants, row_matrices
 
 _W = "(K/m)^(1/2)"
 #: Metadata of every array :func:`solve` and :func:`displacements` return (CF attributes).

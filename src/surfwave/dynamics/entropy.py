@@ -5,7 +5,7 @@ omega0 = (K/m)^(1/2) (reduced units of PHYSICS.md). Three quantities per strain:
 
 * ``bulk_mean_log_omega`` = <ln(omega/omega0)> over all bulk modes (both branches, whole
   zone) = (1/4) <B(theta)>_theta with B(theta) = (1/2 pi) int ln det D(theta, p) dp, done
-  exactly per theta by the Wiener-Hopf factor S (:mod:`surfwave.surface_green`).
+  exactly per theta by the Wiener-Hopf factor S (:mod:`surfwave.dynamics.surface_green`).
 * ``S_surface_estimate``, corrected Eq. (25):
   <ln(omega_L omega_T / omega0^2)> - <ln(omega_R / omega0)> - bulk_mean_log_omega, with
   omega_L^2, omega_T^2 the two eigenvalues of A0 + A1 + A1^H (Eq. 4a: the bulk waves along x
@@ -15,7 +15,7 @@ omega0 = (K/m)^(1/2) (reduced units of PHYSICS.md). Three quantities per strain:
   (1/pi) int_0^pi ln(a + b cos theta) dtheta = ln[(a + sqrt(a^2 - b^2))/2].
   c_R^2 is the Cauchy root, Eq. (20), of the long-wave speeds from the bond sums.
 * ``S_surface_exact`` = (1/pi) int_0^pi s(theta) dtheta, s(theta) the exact surface entropy
-  of the semi-infinite crystal at theta (:func:`surfwave.surface_green.theta_log_dets`);
+  of the semi-infinite crystal at theta (:func:`surfwave.dynamics.surface_green.theta_log_dets`);
   no slab, so compression (where a free slab buckles) is no problem.
 
 Quadrature: s and B are symmetric about theta = pi/2 and analytic on [0, pi/2] except
@@ -36,7 +36,7 @@ and 1.1141848 (LJ is stable again above d/d0 ~ 1.87, a branch not connected to d
 
 Examples
 --------
->>> from surfwave.entropy import surface_entropy
+>>> from surfwave.dynamics.entropy import surface_entropy
 >>> r = surface_entropy("harmonic", [1.0])
 >>> round(float(r["bulk_mean_log_omega"][0]), 7), round(float(r["S_surface_exact"][0]), 6)
 (0.4126784, 0.660737)
@@ -47,10 +47,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from .lattices import build
-from .potentials import PairPotential, get_potential
-from .surface_green import positive_definite2, theta_log_dets
-from .triangular import bond_force_constants, long_wave, row_matrices
+from surfwave.continuum.lattices import build
+from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.dynamics.surface_green import positive_definite2, theta_log_dets
+from surfwave.dynamics.triangular import bond_force_constants, long_wave, row_matrices
 
 _STRAIN = ("strain",)
 _ESTIMATE_NOTE = (

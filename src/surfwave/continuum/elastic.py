@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .lattices import build
-from .potentials import PairPotential, get_potential
+from surfwave.continuum.lattices import build
+from surfwave.continuum.potentials import PairPotential, get_potential
 
 #: Accuracy of the long-wave stability search (directions on the half sphere).
 STABILITY_DIRECTIONS = 400
@@ -255,7 +255,7 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
     Parameters
     ----------
     lattice, loading, potential, direction
-        As for :func:`surfwave.lattices.build`.
+        As for :func:`surfwave.continuum.lattices.build`.
     d_over_d0 : float or array_like, shape (n,)
 
     Returns

@@ -1,7 +1,7 @@
 """Figures of the triangular-lattice surface waves (matplotlib, Agg backend, PNG files).
 
-Every function takes either the dict returned by :func:`surfwave.dispersion.solve` /
-:func:`surfwave.dispersion.displacements` together with the coordinates (``d_over_d0``,
+Every function takes either the dict returned by :func:`surfwave.dynamics.dispersion.solve` /
+:func:`surfwave.dynamics.dispersion.displacements` together with the coordinates (``d_over_d0``,
 ``theta``), or an xarray Dataset holding the same variables with coordinates ``theta`` and
 ``d_over_d0`` (or ``strain`` = d/d0 - 1) and no other dimension (select a potential first),
 plus the output path. They return the path written.
@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .errors import InputError  # noqa: E402
+from surfwave.errors import InputError  # noqa: E402
 
 
 def _get(data, name: str):
@@ -67,7 +67,7 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
         PNG file to write.
     d_over_d0, theta : array_like, shapes (n,), (m,), optional with a Dataset.
     numerical : dict, optional
-        Output of :func:`surfwave.lattice_dynamics.surface_mode` on the same grid (its
+        Output of :func:`surfwave.dynamics.triangular_surface.surface_mode` on the same grid (its
         ``omega_lattice`` is drawn as markers and ``omega_bulk_min`` shades the continuum).
     max_curves : int
         At most this many strains are drawn (evenly picked).
@@ -114,7 +114,7 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
     Parameters
     ----------
     data : dict or xarray.Dataset
-        ``u``, ``v`` of shape (strain, theta, row) (from :func:`surfwave.dispersion.displacements`).
+        ``u``, ``v`` of shape (strain, theta, row) (from :func:`surfwave.dynamics.dispersion.displacements`).
     path : str or Path
     d_over_d0, theta : array_like, optional with a Dataset.
     strain_index : int, optional

@@ -32,8 +32,9 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from . import __version__
-from .errors import InputError
+from surfwave import __version__
+from surfwave.errors import InputError
+from surfwave.pipeline.provenance import module_closure
 
 #: Default location, relative to the working directory of the workflow.
 DEFAULT_ROOT = Path("results") / "cache"
@@ -202,8 +203,6 @@ def code_version(*modules: str) -> str:
     Put it in a key (``{"code": code_version("phonons"), ...}``) so that entries computed
     by older code are never reused, even while the package version stays the same.
     """
-    from .scenes import module_closure
-
     h = hashlib.sha256()
     for path in module_closure(*modules):
         p = Path(path)
@@ -216,7 +215,7 @@ def job_key(job: Mapping, module: str, method: str, **point) -> dict:
     """Cache key of a workflow job's points: the computing code, lattice, loading, method,
     plus ``point`` (potential, direction, accuracy knobs, ...); d/d0 is added per point.
 
-    ``job`` is :func:`surfwave.scenes.job_params` output; ``module`` the surfwave module that
+    ``job`` is :func:`surfwave.pipeline.scenes.job_params` output; ``module`` the surfwave module that
     computes the values (its :func:`code_version` goes in the key, so entries of older code
     are never reused).
     """

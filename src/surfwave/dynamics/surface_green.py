@@ -1,6 +1,6 @@
 """Semi-infinite triangular crystal at fixed theta: cyclic reduction and log-determinants.
 
-At fixed theta = k d_x the static (omega = 0) row equations of :mod:`surfwave.triangular`
+At fixed theta = k d_x the static (omega = 0) row equations of :mod:`surfwave.dynamics.triangular`
 form the Hermitian block-tridiagonal matrix H with diagonal blocks A0 (A0_surface on a free
 surface row), H[I, I+1] = A1 and H[I+1, I] = A1^H. The classical harmonic entropy of a set
 of modes is -sum ln(omega) = -(1/2) ln det H (+ const per mode), so everything the
@@ -90,7 +90,7 @@ def bulk_schur(
     Parameters
     ----------
     a0, a1 : ndarray, shape (..., 2, 2), complex
-        Bulk row blocks (omega^2 units, K/m), e.g. from :func:`surfwave.triangular.row_matrices`.
+        Bulk row blocks (omega^2 units, K/m), e.g. from :func:`surfwave.dynamics.triangular.row_matrices`.
     levels : int, optional
         Fixed number of reduction levels (effective depth 2^levels rows), for convergence
         studies. Default: iterate until the update is below machine precision.

@@ -1,6 +1,6 @@
-"""The claim checks of the reproduction report (`surfwave.report`): each qualitative statement
+"""The claim checks of the reproduction report (`surfwave.report.reproduction`): each qualitative statement
 of the paper tested against the FCC and triangular cubes with the criterion stated in
-``paper_values.yaml``. Shared helpers and the printed-value checks: `surfwave.report_checks`.
+``paper_values.yaml``. Shared helpers and the printed-value checks: `surfwave.report.checks`.
 """
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from .report_checks import (
+from surfwave.report.checks import (
     FAIL,
     INCONCLUSIVE,
     NOT_COMPUTED,

@@ -43,9 +43,9 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse.linalg import eigsh
 
-from .errors import InputError, SurfwaveError
-from .lattices import Crystal, build
-from .potentials import PairPotential, get_potential
+from surfwave.errors import InputError, SurfwaveError
+from surfwave.continuum.lattices import Crystal, build
+from surfwave.continuum.potentials import PairPotential, get_potential
 
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
 #: "the sagittal motion decouples".

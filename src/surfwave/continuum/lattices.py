@@ -18,7 +18,7 @@ Supported (lattice, loading, direction):
 
 Examples
 --------
->>> from surfwave.lattices import build
+>>> from surfwave.continuum.lattices import build
 >>> c = build("fcc", "in_plane_hydrostatic", "[110]", [0.9, 1.0])
 >>> c.bonds.shape, c.volume.shape
 ((2, 6, 3), (2,))
@@ -30,8 +30,8 @@ from typing import Literal
 
 import numpy as np
 
-from .errors import GeometryError, InputError
-from .potentials import PairPotential, get_potential
+from surfwave.errors import GeometryError, InputError
+from surfwave.continuum.potentials import PairPotential, get_potential
 
 Lattice = Literal["fcc", "triangular"]
 Loading = Literal["uniaxial", "in_plane_hydrostatic"]

@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from .entropy import VARIABLES  # noqa: E402
+from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
 
 #: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
 #: src/surfwave/data/paper_values.yaml (the one copy of the paper's numbers).
@@ -25,7 +25,7 @@ PAPER_ZERO_STRESS = {"Eq. (26) estimate": "eq26_entropy_estimate",
 
 
 def _paper_value(key: str) -> float:
-    from .report import load_paper_values  # lazy: report imports plotting helpers
+    from surfwave.report.reproduction import load_paper_values  # lazy: report imports plotting helpers
 
     return float(load_paper_values()["values"][key]["value"])
 
@@ -41,7 +41,7 @@ KNOBS = (
 
 
 def to_dataset(result: Mapping[str, np.ndarray], d_over_d0, potential: str) -> xr.Dataset:
-    """Wrap one :func:`surfwave.entropy.surface_entropy` result as a (potential, strain) cube.
+    """Wrap one :func:`surfwave.dynamics.entropy.surface_entropy` result as a (potential, strain) cube.
 
     Parameters
     ----------
@@ -70,7 +70,7 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
     ----------
     ds : xarray.Dataset
         Dims (potential, strain) (``potential`` optional), variables of
-        :data:`surfwave.entropy.VARIABLES`, coordinate ``strain`` = d/d0 - 1.
+        :data:`surfwave.dynamics.entropy.VARIABLES`, coordinate ``strain`` = d/d0 - 1.
     path : str or Path
         PNG to write.
 

@@ -7,7 +7,7 @@ needs to change.
 
 Examples
 --------
->>> from surfwave.potentials import get_potential
+>>> from surfwave.continuum.potentials import get_potential
 >>> lj = get_potential("lj")
 >>> float(lj.d2phi(1.0))
 1.0
@@ -19,7 +19,7 @@ from typing import Callable
 
 import numpy as np
 
-from .errors import InputError
+from surfwave.errors import InputError
 
 ArrayFn = Callable[[np.ndarray], np.ndarray]
 

@@ -1,4 +1,4 @@
-"""The checks behind the reproduction report (`surfwave.report`).
+"""The checks behind the reproduction report (`surfwave.report.reproduction`).
 
 Each check reads the cubes through a ``Cubes`` object (``.get(scene, cube)`` -> Dataset or
 None) and a spec from ``paper_values.yaml`` and returns `Check` lines; missing data gives

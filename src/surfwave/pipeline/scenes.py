@@ -22,20 +22,17 @@ Examples
 from __future__ import annotations
 
 import copy
-import functools
-import sys
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 
-from .errors import SurfwaveError, InputError
-from .lattices import LATTICES, build, check_combination, check_d_over_d0
-from .potentials import get_potential
+from surfwave.errors import SurfwaveError, InputError
+from surfwave.continuum.lattices import LATTICES, build, check_combination, check_d_over_d0
+from surfwave.continuum.potentials import get_potential
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+SCHEMA_PATH = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "config.schema.yaml"
 
 #: Result cube written for each quantity, under results/<scene>/.
 CUBES = {
@@ -321,84 +318,3 @@ def load_config(paths=("config/config.yaml",)) -> dict:
         with open(p) as fh:
             merge(config, yaml.safe_load(fh) or {})
     return config
-
-
-def standalone(stage: str, argv=None, inputs: dict | None = None) -> SimpleNamespace:
-    """A stand-in for Snakemake's ``snakemake`` object, to run a stage script by hand.
-
-    ``python workflow/scripts/<stage>.py SCENE [CONFIGFILE ...]`` (from the repository root)
-    runs the stage for one scene of ``config/config.yaml`` (plus the given files), writes
-    ``results/<scene>/<stage>.nc`` and logs to the terminal. Useful for debugging with pdb.
-    """
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if not argv:
-        raise SystemExit(f"usage: python workflow/scripts/{stage}.py SCENE [CONFIGFILE ...]")
-    name, files = argv[0], ["config/config.yaml", *argv[1:]]
-    config = load_config(files)
-    scenes = validate_config(config)
-    if name not in scenes:
-        raise SystemExit(f"unknown scene {name!r}; known scenes: {sorted(scenes)}")
-    from .cache import DEFAULT_ROOT
-
-    inputs = {k: v.format(scene=name) for k, v in (inputs or {}).items()}
-    return SimpleNamespace(
-        input=SimpleNamespace(**inputs),
-        output=[f"results/{name}/{stage}.nc"],
-        log=["/dev/stderr"],
-        params=SimpleNamespace(job=job_params(scenes[name], stage), cache=str(DEFAULT_ROOT)),
-        wildcards=SimpleNamespace(scene=name),
-        rule=stage,
-    )
-
-
-def module_closure(*modules: str, package_dir: str | Path | None = None) -> list[str]:
-    """Source files of surfwave modules and of every surfwave module they import (transitively).
-
-    Imports are read statically (``ast``), including imports inside functions, so a rule that
-    lists ``module_closure("rayleigh")`` as inputs reruns when any code it runs changes.
-    ``__init__.py`` (the version) is always included, but its re-exports are not followed,
-    nor are the lazy re-exports of a module-level ``__getattr__``: they are conveniences for
-    users, and each module imports what it needs explicitly (otherwise every stage would
-    depend on every module). A listed module that does not exist is
-    still returned, so Snakemake reports it as a missing input.
-    """
-    pkg = Path(package_dir or Path(__file__).resolve().parent)
-    todo, seen = list(modules), {"__init__"}
-    while todo:
-        name = todo.pop()
-        if name in seen:
-            continue
-        seen.add(name)
-        path = pkg / f"{name}.py"
-        if path.exists():
-            todo += _imported_modules(str(path), path.stat().st_mtime_ns)
-    return sorted(str(pkg / f"{m}.py") for m in seen
-                  if (pkg / f"{m}.py").exists() or m in modules)
-
-
-@functools.lru_cache(maxsize=None)
-def _imported_modules(path: str, mtime_ns: int) -> tuple[str, ...]:
-    """surfwave modules one source file imports (parsed once per file version)."""
-    import ast
-
-    tree = ast.parse(Path(path).read_text(), path)
-    # A module-level ``__getattr__`` only re-exports names lazily (PEP 562): a convenience
-    # for users, not code the module runs, so its imports are not followed (see above).
-    lazy = {id(n) for top in tree.body if isinstance(top, ast.FunctionDef)
-            and top.name == "__getattr__" for n in ast.walk(top)}
-    found: list[str] = []
-    for node in ast.walk(tree):
-        if id(node) in lazy:
-            continue
-        if isinstance(node, ast.ImportFrom):
-            if node.level == 1 and node.module:  # from .x import y
-                found.append(node.module.split(".")[0])
-            elif node.level == 1:  # from . import x, y
-                found += [a.name for a in node.names]
-            elif node.level == 0 and node.module and node.module.split(".")[0] == "surfwave":
-                parts = node.module.split(".")
-                found += [parts[1]] if len(parts) > 1 else [a.name for a in node.names]
-        elif isinstance(node, ast.Import):
-            found += [a.name.split(".")[1] for a in node.names
-                      if a.name.startswith("surfwave.")]
-    return tuple(found)

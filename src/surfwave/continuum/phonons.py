@@ -4,7 +4,7 @@ Phonopy builds the supercell, chooses the symmetry-reduced finite displacements 
 assembles (and symmetrises) the force constants; the forces come from our own
 nearest-neighbour pair-force calculator (:func:`pair_forces`), never from external code.
 This is the independent check of the prestress terms of Eq. (A11): the analytic route
-(:mod:`surfwave.elastic`) sums bond formulas, this one differentiates forces.
+(:mod:`surfwave.continuum.elastic`) sums bond formulas, this one differentiates forces.
 
 Units are the reduced units of PHYSICS.md (d0 = K = m = 1): force constants in K / d0^2,
 omega^2 in K / m, speeds squared in K d0^2 / m, wave vectors k in rad / d0. Phonopy's
@@ -25,8 +25,8 @@ Triangular lattice: the 2D cell is padded with vacuum along z (``Crystal.cell3d`
 supercell is N x N x 1 and only the in-plane (x, y) block of the dynamical matrix is used
 (the out-of-plane modes of a prestressed 2D sheet are not part of the model).
 
-Stability scans and instability limits: :mod:`surfwave.stability` (also reachable here as
-``surfwave.phonons.stability_scan``, ``instability_limits``, ``geometry_limit``).
+Stability scans and instability limits: :mod:`surfwave.continuum.stability` (also reachable here as
+``surfwave.continuum.phonons.stability_scan``, ``instability_limits``, ``geometry_limit``).
 """
 
 from __future__ import annotations
@@ -36,10 +36,10 @@ from typing import Literal
 
 import numpy as np
 
-from .elastic import STABILITY_DIRECTIONS, long_wave_stability
-from .errors import GeometryError, InputError, SurfwaveError
-from .lattices import build, check_combination
-from .potentials import PairPotential, get_potential
+from surfwave.continuum.elastic import STABILITY_DIRECTIONS, long_wave_stability
+from surfwave.errors import GeometryError, InputError, SurfwaveError
+from surfwave.continuum.lattices import build, check_combination
+from surfwave.continuum.potentials import PairPotential, get_potential
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
 DEFAULT_SUPERCELL = 2
@@ -148,8 +148,8 @@ def make_phonopy(crystal, index: int, potential: PairPotential, supercell: int, 
 
     Parameters
     ----------
-    crystal : surfwave.lattices.Crystal
-        Built by :func:`surfwave.lattices.build`; its ``cell3d()`` (d0) is the unit cell.
+    crystal : surfwave.continuum.lattices.Crystal
+        Built by :func:`surfwave.continuum.lattices.build`; its ``cell3d()`` (d0) is the unit cell.
     index : int
         Strain point of ``crystal`` to use.
     potential : PairPotential
@@ -279,7 +279,7 @@ def min_acoustic(w: np.ndarray, dim: int) -> tuple[float, np.ndarray]:
     """Lowest eigenvalue of A(n) = W_ikjl n_j n_l over all directions n, and its n.
 
     The direction search (grid of directions, then a shrinking local pattern search) is
-    :func:`surfwave.elastic.long_wave_stability`, fed with C'_ijkl = W_ikjl and zero stress
+    :func:`surfwave.continuum.elastic.long_wave_stability`, fed with C'_ijkl = W_ikjl and zero stress
     (W already holds the prestress term). In 2D only the in-plane block and in-plane
     directions count.
 
@@ -423,7 +423,7 @@ def bulk_speeds(
     Parameters
     ----------
     lattice, loading, direction : str
-        As in :func:`surfwave.lattices.build`.
+        As in :func:`surfwave.continuum.lattices.build`.
     potential : str or PairPotential
     d_over_d0 : float or array_like, shape (n,)
         Stretch along the propagation direction x.
@@ -491,9 +491,9 @@ def bulk_speeds(
 
 
 def __getattr__(name: str):
-    """Stability helpers live in :mod:`surfwave.stability`; re-exported here lazily."""
+    """Stability helpers live in :mod:`surfwave.continuum.stability`; re-exported here lazily."""
     if name in ("stability_scan", "instability_limits", "geometry_limit"):
-        from . import stability
+        from surfwave.continuum import stability
 
         return getattr(stability, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

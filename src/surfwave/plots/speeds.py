@@ -5,7 +5,7 @@ write a PNG; they return the path written.
 
 Examples
 --------
->>> from surfwave.plots import fig2
+>>> from surfwave.plots.speeds import fig2
 >>> fig2("results/fig2/elastic.nc", "results/fig2/rayleigh.nc",
 ...      "results/fig2/speeds_vs_stress.png")  # doctest: +SKIP
 """
@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from .cube import open_cube  # noqa: E402
+from surfwave.data.cube import open_cube  # noqa: E402
 
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"

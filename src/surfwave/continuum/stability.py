@@ -2,9 +2,9 @@
 
 The long-wave criterion is the analytic acoustic tensor over all directions
 (``surfwave.point(...)["stable"]``, Eq. A11); the full-zone criterion is phonopy's
-(:func:`surfwave.phonons.bulk_speeds`: no imaginary frequency on the zone mesh nor in the
+(:func:`surfwave.continuum.phonons.bulk_speeds`: no imaginary frequency on the zone mesh nor in the
 long-wave limit of the force constants). The functions are also reachable as
-``surfwave.phonons.stability_scan`` etc.
+``surfwave.continuum.phonons.stability_scan`` etc.
 """
 
 from __future__ import annotations
@@ -13,21 +13,21 @@ from typing import Literal
 
 import numpy as np
 
-from .elastic import properties
-from .errors import GeometryError, InputError
-from .phonons import (
+from surfwave.continuum.elastic import properties
+from surfwave.errors import GeometryError, InputError
+from surfwave.continuum.phonons import (
     DEFAULT_DISPLACEMENT,
     DEFAULT_SUPERCELL,
     DEFAULT_ZONE_MESH,
     _checked_crystal,
     bulk_speeds,
 )
-from .potentials import PairPotential, get_potential
+from surfwave.continuum.potentials import PairPotential, get_potential
 
 
 def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
     """Analytic long-wave stability per point (``surfwave.point(...)["stable"]``, i.e.
-    :func:`surfwave.elastic.properties`; the Rayleigh solve of ``point`` is not needed).
+    :func:`surfwave.continuum.elastic.properties`; the Rayleigh solve of ``point`` is not needed).
 
     Vectorised when every point can be built; otherwise point by point, a point whose
     geometry cannot be built being reported as False. Each point's value is independent of

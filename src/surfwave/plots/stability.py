@@ -2,8 +2,8 @@
 
 The long-wave criterion is the analytic acoustic tensor over all directions
 (``surfwave.point(...)["stable"]``); the full-zone criterion is phonopy's
-(:func:`surfwave.phonons.bulk_speeds`: zone mesh plus the long-wave limit of the force
-constants). Run ``python -m surfwave.plots_stability OUTDIR`` to write
+(:func:`surfwave.continuum.phonons.bulk_speeds`: zone mesh plus the long-wave limit of the force
+constants). Run ``python -m surfwave.plots.stability OUTDIR`` to write
 OUTDIR/stability_map.nc and OUTDIR/stability_map.png.
 """
 
@@ -16,9 +16,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .phonons import DEFAULT_DISPLACEMENT, DEFAULT_SUPERCELL, DEFAULT_ZONE_MESH, TOLERANCE
-from .stability import geometry_limit, instability_limits, stability_scan
+from surfwave import __version__
+from surfwave.continuum.phonons import DEFAULT_DISPLACEMENT, DEFAULT_SUPERCELL, DEFAULT_ZONE_MESH, TOLERANCE
+from surfwave.continuum.stability import geometry_limit, instability_limits, stability_scan
 
 #: The paper's claim: "maximum compressive strains about 10% (LJ) and 40% (harmonic)".
 PAPER_CLAIM = {"lj": 0.90, "harmonic": 0.60}
@@ -177,7 +177,7 @@ def stability_map(
         attrs={
             "Conventions": "CF-1.8",
             "title": "stability map of prestressed nearest-neighbour FCC",
-            "source": f"surfwave {__version__} (surfwave.plots_stability.stability_map)",
+            "source": f"surfwave {__version__} (surfwave.plots.stability.stability_map)",
             "history": f"{time.strftime('%Y-%m-%dT%H:%M:%SZ', time.gmtime())} stability_map",
             "method": "long wave: analytic acoustic tensor; full zone: phonopy finite displacements",
             "supercell": supercell,
@@ -285,5 +285,5 @@ def main(outdir: str) -> xr.Dataset:
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
-        sys.exit("usage: python -m surfwave.plots_stability OUTDIR")
+        sys.exit("usage: python -m surfwave.plots.stability OUTDIR")
     main(sys.argv[1])

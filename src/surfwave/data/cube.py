@@ -29,15 +29,15 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .errors import InputError
+from surfwave import __version__
+from surfwave.errors import InputError
 
 #: netCDF engine used on write and read (complex numbers supported natively).
 ENGINE = "h5netcdf"
 CONVENTIONS = "CF-1.10"
 
 COORDS: dict[str, dict[str, str]] = {
-    "potential": {"long_name": "pair potential (surfwave.potentials registry name)"},
+    "potential": {"long_name": "pair potential (surfwave.continuum.potentials registry name)"},
     "direction": {"long_name": "propagation direction x (crystal axes; [10]: triangular rows)"},
     "strain": {"long_name": "strain along the propagation direction, d/d0 - 1", "units": "1"},
     "d_over_d0": {"long_name": "stretch along the propagation direction, d/d0", "units": "1"},
@@ -191,7 +191,7 @@ def provenance(
 ) -> xr.Dataset:
     """Set the global attributes (CF + provenance) of a cube and return it.
 
-    ``params`` are the job's parameters (:func:`surfwave.scenes.job_params`): they are
+    ``params`` are the job's parameters (:func:`surfwave.pipeline.scenes.job_params`): they are
     recorded as the ``scene`` attribute (JSON) and hashed into ``config_hash``; their
     ``accuracy`` block is recorded as ``accuracy`` (JSON). Dicts in ``extra`` become JSON.
     """
@@ -229,8 +229,8 @@ def finish(ds: xr.Dataset, job_context, *, what: str, method: str,
     ds : xarray.Dataset
         The cube (from :func:`build`).
     job_context : object
-        Snakemake's ``snakemake`` object (or :func:`surfwave.scenes.standalone`): uses
-        ``params.job`` (:func:`surfwave.scenes.job_params`), ``rule`` and ``output[0]``.
+        Snakemake's ``snakemake`` object (or :func:`surfwave.pipeline.standalone.standalone`): uses
+        ``params.job`` (:func:`surfwave.pipeline.scenes.job_params`), ``rule`` and ``output[0]``.
     what : str
         Cube name for the title, e.g. ``"elastic"``.
     method : str

@@ -1,6 +1,6 @@
 """Numerical surface lattice dynamics of the triangular lattice (independent of Eqs. 6a-16).
 
-The semi-infinite crystal is solved with the row equations of :mod:`surfwave.triangular`
+The semi-infinite crystal is solved with the row equations of :mod:`surfwave.dynamics.triangular`
 (bulk rows: omega^2 U_I = A0 U_I + A1 U_{I+1} + A1^H U_{I-1}; surface row with A0_surface)
 by renormalisation-group decimation (Lopez Sancho et al., J. Phys. F 15, 851 (1985)): each
 step eliminates every second row, so after K steps the surface row is coupled exactly to a
@@ -11,7 +11,7 @@ surface matrix E_s(omega^2) then gives the surface-mode condition
 
 searched below the bottom of the bulk continuum at the same theta (bound, i.e. localised,
 states only: every root there is a surface mode; plate modes and slab buckling cannot occur).
-No formula of :mod:`surfwave.dispersion` is used. In the basis (U, V) with u = U, v = iV the
+No formula of :mod:`surfwave.dynamics.dispersion` is used. In the basis (U, V) with u = U, v = iV the
 row matrices are real, so f is real and the roots are bracketed by sign changes.
 
 Units: m = K = d0 = 1; omega in (K/m)^(1/2), omega^2 in K/m.
@@ -20,10 +20,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import InputError
-from .potentials import PairPotential, get_potential
-from .surface_green import det2, inv2, null_vector2
-from .triangular import long_wave, row_matrices
+from surfwave.errors import InputError
+from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.dynamics.surface_green import det2, inv2, null_vector2
+from surfwave.dynamics.triangular import long_wave, row_matrices
 
 _W = "(K/m)^(1/2)"
 #: Metadata of every array :func:`surface_mode` returns (CF attributes).

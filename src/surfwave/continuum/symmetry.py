@@ -20,8 +20,8 @@ import numpy as np
 import spglib
 import spglib.error
 
-from .errors import SymmetryError
-from .lattices import build
+from surfwave.errors import SymmetryError
+from surfwave.continuum.lattices import build
 
 spglib.error.OLD_ERROR_HANDLING = False
 
@@ -94,7 +94,7 @@ def crystal_symmetry(
     potential=None,
     symprec: float = 1e-5,
 ) -> dict[str, np.ndarray]:
-    """Build the prestressed crystal (:func:`surfwave.lattices.build`) and analyse it.
+    """Build the prestressed crystal (:func:`surfwave.continuum.lattices.build`) and analyse it.
 
     Returns
     -------

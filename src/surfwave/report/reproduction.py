@@ -10,7 +10,7 @@ what the claim needs) and ``not computed``.
 
 Examples
 --------
->>> from surfwave.report import write_report
+>>> from surfwave.report.reproduction import write_report
 >>> write_report(["results/table1/elastic.nc", "results/table1/rayleigh.nc"],
 ...              "results/report.md")  # doctest: +SKIP
 """
@@ -28,11 +28,11 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from . import report_checks as _values
-from . import report_claims as _claims
-from .cube import open_cube as _open_cube
-from .report_targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
-from .report_checks import (
+from surfwave.report import checks as _values
+from surfwave.report import claims as _claims
+from surfwave.data.cube import open_cube as _open_cube
+from surfwave.pipeline.targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
+from surfwave.report.checks import (
     FAIL,
     INCONCLUSIVE,
     NOT_COMPUTED,
@@ -54,7 +54,7 @@ def load_paper_values(path: str | Path | None = None) -> dict:
 
 
 def open_cube(path: str | Path) -> xr.Dataset | None:
-    """Load a result cube into memory (:func:`surfwave.cube.open_cube`), or None when the
+    """Load a result cube into memory (:func:`surfwave.data.cube.open_cube`), or None when the
     file does not exist."""
     path = Path(path)
     return _open_cube(path) if path.is_file() else None
@@ -290,7 +290,7 @@ def render(numbers: list[Check], claims: list[Check], entries: list[dict], cubes
     counts = {v: sum(c.verdict == v for c in every) for v in verdicts}
     out = ["# Reproduction report", "",
            f"Paper: {paper_values['paper'].strip()}.", "",
-           "Built by `surfwave.report` from the result cubes and the paper's printed numbers "
+           "Built by `surfwave.report.reproduction` from the result cubes and the paper's printed numbers "
            "(`src/surfwave/data/paper_values.yaml`, each with its source and tolerance); "
            "no other number is typed in. INCONCLUSIVE: the cube exists but its grid does not "
            "reach what the check needs.", "",
@@ -451,7 +451,7 @@ def benchmark_table(dirs: Iterable[str | Path], out_md: str | Path) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m surfwave.report [RESULTS] [--out results/report.md]``."""
+    """``python -m surfwave.report.reproduction [RESULTS] [--out results/report.md]``."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("results", nargs="?", default="results")
     p.add_argument("--out", default=None)

@@ -1,0 +1,1 @@
+"""Workflow support: scene validation and grids, job parameters, targets, provenance."""

@@ -1,0 +1,1 @@
+"""The reproduction report: the paper's numbers and claims checked against the cubes."""
