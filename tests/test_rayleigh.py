@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 import surfwave
 from surfwave.continuum import rayleigh
-from surfwave.api import cubic_tensor
+from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
 
 SQ3 = np.sqrt(3.0)
 
@@ -263,3 +263,7 @@ def test_general_solver_equals_cauchy_eq20_for_pair_forces(case, pot, s):
         assert r["c2_R"][0] == pytest.approx(eq20, rel=1e-9, abs=1e-12)
     else:  # no surface wave: Eq. (20) gives no admissible value either
         assert not (0 < eq20 < r["c2_T_par"][0]) or r["c2_T_perp"][0] <= 0
+
+
+def _cubic(C11, C12, C44):
+    return voigt_to_tensor(cubic_voigt(C11, C12, C44))

@@ -11,6 +11,7 @@ import numpy as np
 from surfwave.continuum import elastic, rayleigh
 from surfwave.errors import InputError
 from surfwave.continuum.lattices import _FCC_LAB_AXES
+from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
 
 
 def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:
@@ -55,20 +56,6 @@ def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0)
     return out
 
 
-def cubic_tensor(C11: float, C12: float, C44: float) -> np.ndarray:
-    """Full C_ijkl (shape (3, 3, 3, 3)) of a cubic crystal in its cube axes, from Voigt constants."""
-    C = np.zeros((3, 3, 3, 3))
-    for i in range(3):
-        for j in range(3):
-            C[i, i, j, j] = C12
-        C[i, i, i, i] = C11
-    for i in range(3):
-        for j in range(3):
-            if i != j:
-                C[i, j, i, j] = C[i, j, j, i] = C44
-    return C
-
-
 def material(C11: float, C12: float, C44: float, rho: float, direction: str, stress: float = 0.0) -> dict:
     """Rayleigh and bulk speeds of a real cubic crystal on its (001) surface.
 
@@ -104,7 +91,7 @@ def material(C11: float, C12: float, C44: float, rho: float, direction: str, str
     if rho <= 0:
         raise InputError(f"density rho must be positive, got {rho!r} kg/m^3")
     R = _FCC_LAB_AXES[direction]
-    C = np.einsum("ai,bj,ck,dl,ijkl->abcd", R, R, R, R, cubic_tensor(C11, C12, C44))
+    C = np.einsum("ai,bj,ck,dl,ijkl->abcd", R, R, R, R, voigt_to_tensor(cubic_voigt(C11, C12, C44)))
     sigma = np.diag([stress, 0.0, 0.0])
     S = elastic.stress_derivatives(sigma, C) * 1e9  # Pa
     speeds = elastic.sound_speeds(S[None], rho)
