@@ -1,16 +1,17 @@
 # surfwave: two commands set everything up on a fresh machine.
 #   make reproduce   build .venv from environment.lock (if missing or stale), run snakemake -j2
 #   make test        build the same environment and run the test suite
+#   make test-slurm  opt-in: the SLURM profile on a real single-node cluster (root; see below)
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.surfwave-stamp
 JOBS ?= 2
 
-.PHONY: env reproduce test bench lint lock clean-results help
+.PHONY: env reproduce test test-slurm bench lint lock clean-results help
 
 help:
-	@echo "make reproduce | make test | make bench | make lint | make lock | make clean-results"
+	@echo "make reproduce | make test | make test-slurm | make bench | make lint | make lock | make clean-results"
 
 # The environment is rebuilt only when the lock or the project metadata change.
 $(STAMP): environment.lock pyproject.toml
@@ -26,6 +27,14 @@ reproduce: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
+
+# The SLURM profile on a real single-node SLURM cluster on localhost (tests/test_slurm.py):
+# installs Debian's slurmctld, slurmd, slurm-client and munge if missing, runs a tiny scene
+# locally and through profiles/slurm, compares the cubes. Needs root and apt, else it skips
+# and says why. Bounded: 600 s inside the test, `timeout` as the backstop. CI runs it.
+SLURM_TIMEOUT ?= 900
+test-slurm: $(STAMP)
+	SURFWAVE_SLURM_TEST=1 timeout -k 30 $(SLURM_TIMEOUT) $(BIN)/python -m pytest -p no:cacheprovider -q -rs -s tests/test_slurm.py
 
 bench: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS) benchmarks
