@@ -197,3 +197,84 @@ def test_chunks_are_stored_as_they_finish(tmp_path):
     r = cache.cached_points("bulk", KEY, d, f, tmp_path, chunk=2)
     assert (f.calls, f.points) == (1, 2)
     np.testing.assert_allclose(r["y"], np.square(d))
+
+
+# --------------------------------------------------------------------------- keys of the knobs
+def _knob_variants(value):
+    """Values a knob may take that must never share a cache entry with ``value``: for a
+    float, the next representable double (a change in the last digit) and a 10 % change;
+    for an int, +1; for a string (an enum), another string; None (auto) against 1."""
+    if isinstance(value, bool):
+        return [not value]
+    if isinstance(value, int):
+        return [value + 1]
+    if isinstance(value, float):
+        return [float(np.nextafter(value, np.inf)), value * 1.1]
+    if isinstance(value, str):
+        return [value + "_other"]
+    if value is None:
+        return [1]
+    raise AssertionError(f"knob value {value!r} of an unexpected type")
+
+
+def _default_jobs():
+    """Job params (surfwave.pipeline.scenes.job_params) of every cached stage, with the
+    schema's default accuracy knobs (workflow/schemas/config.schema.yaml) filled in."""
+    from surfwave.pipeline.scenes import job_params, validate_config
+
+    cfg = {"scenes": {
+        "f": {"lattice": "fcc", "loading": "in_plane_hydrostatic", "potentials": ["lj"],
+              "d_over_d0": [1.0], "quantities": ["elastic", "bulk"]},
+        "t": {"lattice": "triangular", "loading": "uniaxial", "potentials": ["lj"],
+              "d_over_d0": [1.0], "theta": [0.3], "quantities": ["dispersion", "entropy"]}}}
+    scenes = validate_config(cfg)
+    return {"bulk": job_params(scenes["f"], "bulk"), "dispersion": job_params(scenes["t"], "dispersion"),
+            "entropy": job_params(scenes["t"], "entropy")}
+
+
+@pytest.mark.parametrize("stage", ["bulk", "dispersion", "entropy"])
+def test_every_accuracy_knob_changes_the_key(stage):
+    """A cached value computed at one accuracy must never be served for another: the point
+    digest of ``job_key(..., **knobs)`` changes with every knob of the stage (each knob of
+    the schema's defaults, changed by +1, by 10 % or in its last binary digit). Reference:
+    DESIGN.md ("keyed by a hash of everything that determines the value ... accuracy
+    settings") -- the supercell 2 / supercell 3 mix-up of issue 14 is the case caught."""
+    job = _default_jobs()[stage]
+    knobs = job["accuracy"]
+    assert knobs, f"stage {stage} has no accuracy knobs in the schema"
+
+    def digest(acc):
+        key = cache.job_key(job, "continuum.phonons", "m", potential="lj", direction="[100]", **acc)
+        return cache.point_key(stage, key, 1.0)[0]
+
+    base = digest(knobs)
+    assert digest(dict(knobs)) == base  # deterministic
+    seen = {base}
+    for name, value in knobs.items():
+        for other in _knob_variants(value):
+            d = digest({**knobs, name: other})
+            assert d not in seen, f"{stage}: knob {name}={other!r} shares a key with another setting"
+            seen.add(d)
+
+
+def test_keys_distinguish_last_digit_and_type_of_values():
+    """Floats enter the key by repr (all 17 significant digits): 3e-5 and the next double
+    differ, and so do 2 and 2.0 (an int knob typed as a float is another setting); d/d0 is
+    rounded to 12 decimals on purpose (grid values and typed values must meet, see
+    test_grid_values_hit_typed_values), so a difference in its 11th decimal still counts."""
+    k = dict(KEY, displacement=3e-5)
+    base = cache.point_key("bulk", k, 1.0)[0]
+    assert cache.point_key("bulk", dict(k, displacement=float(np.nextafter(3e-5, 1.0))), 1.0)[0] != base
+    assert cache.point_key("bulk", dict(k, supercell=2.0), 1.0)[0] != base
+    assert cache.point_key("bulk", k, 1.0 + 1e-11)[0] != base
+    assert cache.point_key("bulk", k, 1.0 + 1e-14)[0] == base
+
+
+def test_potential_parameters_enter_the_key():
+    """Two registered potentials of the same family (Morse alpha 3 and 4) are different
+    physics: their keys differ by name and parameters (PairPotential.params)."""
+    from surfwave.continuum.potentials import morse
+
+    a = cache.point_key("bulk", dict(KEY, potential=morse(3.0)), 1.0)[0]
+    b = cache.point_key("bulk", dict(KEY, potential=morse(4.0)), 1.0)[0]
+    assert a != b

@@ -35,6 +35,34 @@ def eq20_elastic(name, d):
     return rayleigh.cauchy_c2(sp["c2_L_par"], sp["c2_T_par"], sp["c2_L_perp"], sp["c2_T_perp"])
 
 
+def crossover_from_row_equations(pot, d, c2_R):
+    """theta_c computed from the bulk row equations of surfwave.dynamics.triangular, not from
+    the Eq. (6a) coefficients of surfwave.dynamics.dispersion.
+
+    A bulk mode U_I = U z^I (z = e^{-q}) at omega^2 = (c_R^2 / d_x^2) sin^2 theta (Eq. 15)
+    needs det(A0 - omega^2 + A1 z + A1^H / z) = 0. A0 and A1 + A1^H are diagonal and
+    A1 - A1^H is off-diagonal, so the determinant is a real quadratic in s = z + 1/z = 2 cosh q
+    (through z - 1/z only as (z - 1/z)^2 = s^2 - 4). q is complex exactly where that
+    quadratic's discriminant is negative; its first sign change in (0, pi/2) is theta_c.
+    """
+    from scipy.optimize import brentq
+
+    def disc(th):
+        a0, _, a1 = (m[0, 0] for m in row_matrices(pot, [d], [th]))
+        w2 = c2_R / (0.5 * d) ** 2 * np.sin(th) ** 2
+        z = np.array([0.3, 0.6, 0.9, 0.45])
+        det = np.array([np.linalg.det(a0 - w2 * np.eye(2) + a1 * zi + a1.conj().T / zi) for zi in z])
+        assert np.abs(det.imag).max() < 1e-12
+        coef = np.polyfit(z[:3] + 1 / z[:3], det[:3].real, 2)
+        assert abs(np.polyval(coef, z[3] + 1 / z[3]) - det[3].real) < 1e-10  # a quadratic in s
+        return coef[1] ** 2 - 4 * coef[0] * coef[2]
+
+    th = np.linspace(1e-3, np.pi / 2, 24)
+    neg = np.flatnonzero([disc(t) < 0 for t in th])
+    assert neg.size and neg[0] > 0
+    return brentq(disc, th[neg[0] - 1], th[neg[0]], xtol=1e-14)
+
+
 def plug_in_residual(pot, d, th, u, v, omega):
     """Max residual of the bulk and surface row equations (surfwave.dynamics.triangular) for (u, v)."""
     A0, A0s, A1 = row_matrices(pot, d, th)
@@ -177,7 +205,9 @@ def test_fig3_claims():
     assert np.all((u[:5] > v[:5]) != (u[1:6] > v[1:6]))  # alternating
     d = np.linspace(0.75, 1.0, 6)
     tc = D.solve("harmonic", d, [0.5])["theta_c"]
-    assert abs(tc[-1] / (np.pi / 8) - 1) < 0.1
+    np.testing.assert_allclose(tc, [crossover_from_row_equations("harmonic", x, eq16(x)) for x in d],
+                               rtol=0, atol=1e-11)
+    assert abs(tc[-1] - np.pi / 8) < 0.5 * (np.pi / 8 - np.pi / 9)  # "about pi/8": 0.119 pi
     assert np.all(np.diff(tc) < 0)
     r = D.solve("harmonic", [1.0], [tc[-1] - 1e-3, tc[-1] + 1e-3])
     assert r["q1"][0, 0].imag == 0 and abs(r["q1"][0, 1].imag) > 1e-3
@@ -185,13 +215,16 @@ def test_fig3_claims():
 
 def test_instability_edges():
     """Harmonic: c_T,par^2 = 0 at d/d0 = 4 cos 80 deg (Eq. A14 closed form), and the surface goes
-    first (c_R^2 = 0 at a larger d/d0: 'vanishing just before the shear instability')."""
+    first: c_R^2 = 0 at d/d0 = 2(3 - sqrt 7) = 0.70850 > 0.69459 ('vanishing just before the
+    shear instability'). Eq. (16) = 0 squares to x^2 - 6x + 2 = 0 (x = d_x/d0, the root with
+    5x^2 - x >= 0), so x = 3 - sqrt 7; the edge is checked to 1e-9 relative."""
     lc = D.lattice_constants("harmonic", D_SHEAR_HARMONIC * np.array([1 - 1e-9, 1 + 1e-9]))
     assert lc["c2_T_par"][0] < 0 < lc["c2_T_par"][1]
-    d = np.linspace(0.69, 0.72, 301)
-    c2 = D.lattice_constants("harmonic", d)["c2_R"]
-    d_surface = d[np.argmax(c2 > 0)]
-    assert d_surface > D_SHEAR_HARMONIC + 0.01
+    d_surface = 2 * (3 - np.sqrt(7))
+    assert eq16(d_surface) == pytest.approx(0.0, abs=1e-15)
+    c2 = D.lattice_constants("harmonic", d_surface * np.array([1 - 1e-9, 1 + 1e-9, 1.01]))["c2_R"]
+    assert not c2[0] > 0 and 0 < c2[1] < 1e-8 and c2[2] == pytest.approx(eq16(d_surface * 1.01), rel=1e-12)
+    assert d_surface > D_SHEAR_HARMONIC + 0.0139
 
 
 def test_invalid_points_are_nan_with_reason_and_no_warning():

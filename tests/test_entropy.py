@@ -213,7 +213,8 @@ def test_rayleigh_matches_general_eq17_solver():
 
     grid = np.array([0.9, 1.0, 1.1])
     ref = surfwave.point("triangular", "uniaxial", "lj", "[10]", grid)["c2_R"]
-    np.testing.assert_allclose([rayleigh_c2("lj", d) for d in grid], ref, rtol=1e-6)
+    # both routes are closed-form roots (Eq. 20 and the cubic of Eq. 17): they agree to 1e-14
+    np.testing.assert_allclose([rayleigh_c2("lj", d) for d in grid], ref, rtol=1e-12)
 
 
 def test_clamped_fixed_point_is_mirror_image():
@@ -259,8 +260,9 @@ def test_harmonic_instabilities():
 @pytest.mark.parametrize("pot,lo,hi", [("harmonic", S_SURF + 1e-4, 1.99), ("lj", 0.8937, 1.1139)])
 def test_no_nan_inside_stable_range(pot, lo, hi):
     """Every quantity is finite, converged (error <= tol) and without reason across the
-    stable range (LJ limits 0.89362 and 1.11393 found by bisection; cf. the harmonic
-    ones from Eq. 16), including the edges, without RuntimeWarnings."""
+    stable range (LJ surface limits 0.89362 and 1.11393, derived independently in
+    test_golden_constants.py; cf. the harmonic ones from Eq. 16), including the edges,
+    without RuntimeWarnings."""
     grid = np.linspace(lo, hi, 9)
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -15,11 +15,12 @@ from surfwave.dynamics import dispersion as D
 from surfwave.dynamics import triangular_surface as L
 from surfwave.dynamics.triangular import row_matrices
 
-#: LJ surface instabilities (c_R^2 = 0 of the lattice quadratic, surfwave.dynamics.dispersion), found by
-#: bisection; the LJ bulk goes unstable only beyond them (0.8930277 and 1.1141848).
+#: LJ surface instabilities (c_R^2 = 0): roots of the Cauchy condition of Eq. (20) with the
+#: bond sums written out by hand, derived in test_golden_constants.py; the LJ bulk goes
+#: unstable only beyond them (0.8930277 and 1.1141848, brute-force direction scan, same file).
 LJ_SURFACE = (0.89361985602, 1.11392551139)
 
-D_SURFACE_HARMONIC = 0.70849737787  # c_R^2 = 0 of Eq. (16) (root found by brentq, checked below)
+D_SURFACE_HARMONIC = 0.70849737787  # c_R^2 = 0 of Eq. (16): 2(3 - sqrt 7) (test_golden_constants.py)
 
 
 def eq16(d):

@@ -203,7 +203,9 @@ def test_known_unstable_points_flagged():
     """LJ in-plane hydrostatic: the paper tabulates d/d0 = 0.88 and 0.90, where c_T,par^2 > 0
     but the shear wave along the in-plane diagonal polarised across it has c^2 < 0
     (analytic Eq. A11, ``surfwave.point``, asserted first), and d/d0 = 1.15 in tension; all
-    three are flagged, with the soft direction found along (+-1, 0, +-1)/sqrt 2 at 0.90."""
+    three are flagged, with the soft direction found along (+-1, 0, +-1)/sqrt 2 at 0.90.
+    The expected flags are re-derived by a brute-force direction scan in
+    test_golden_constants.py (edges 0.91987 and 1.11-1.12)."""
     grid = [0.88, 0.90, 0.95, 1.15]
     ref = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[100]", grid)
     assert ref["stable"].tolist() == [False, False, True, False] and (ref["c2_T_par"][:2] > 0).all()
