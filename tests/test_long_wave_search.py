@@ -70,7 +70,7 @@ def test_flags_and_minimum_match_the_plain_scan(case):
     scan's (the octant is searched four times as densely)."""
     lattice, loading, direction, pot = case
     lo, hi = SPANS[case]
-    c = build(lattice, loading, direction, np.linspace(lo, hi, 150), pot)
+    c = build(lattice, loading, pot, direction, np.linspace(lo, hi, 150))
     sigma = elastic.stress(c.bonds, pot)
     C = elastic.elastic_constants(c.bonds, pot)
     stable, e_min, n_min = elastic.long_wave_stability(C, sigma)
@@ -87,7 +87,7 @@ def test_general_anisotropy_searches_the_whole_sphere():
     """Without lab mirror planes (a random rotation of an LJ crystal near its instability)
     the search must not fold directions into one octant: it matches the plain scan."""
     rng = np.random.default_rng(5)
-    c = build("fcc", "in_plane_hydrostatic", "[100]", np.linspace(0.90, 0.95, 20), "lj")
+    c = build("fcc", "in_plane_hydrostatic", "lj", "[100]", np.linspace(0.90, 0.95, 20))
     C = elastic.elastic_constants(c.bonds, "lj")
     sigma = elastic.stress(c.bonds, "lj")
     R, _ = np.linalg.qr(rng.normal(size=(3, 3)))

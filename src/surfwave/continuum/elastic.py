@@ -385,7 +385,7 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
         ``c2_T_perp``, ``c2_SH`` (shape (n,)), ``stable``, ``min_acoustic_eig`` (shape (n,)),
         ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame).
     """
-    crystal = build(lattice, loading, direction, d_over_d0, potential)
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
     sigma = stress(crystal.bonds, potential)
     C = elastic_constants(crystal.bonds, potential)
     S = stress_derivatives(sigma, C)

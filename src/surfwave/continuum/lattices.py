@@ -19,7 +19,7 @@ Supported (lattice, loading, direction):
 Examples
 --------
 >>> from surfwave.continuum.lattices import build
->>> c = build("fcc", "in_plane_hydrostatic", "[110]", [0.9, 1.0])
+>>> c = build("fcc", "in_plane_hydrostatic", None, "[110]", [0.9, 1.0])
 >>> c.bonds.shape, c.volume.shape
 ((2, 6, 3), (2,))
 """
@@ -270,21 +270,26 @@ def solve_lateral_stretch(
 def build(
     lattice: Lattice,
     loading: Loading,
+    potential: str | PairPotential | None,
     direction: Direction,
     d_over_d0,
-    potential: str | PairPotential | None = None,
 ) -> Crystal:
     """Build the prestressed crystal at one or several stretches.
+
+    The arguments come in the order used throughout the library (:func:`surfwave.point`,
+    :func:`surfwave.continuum.elastic.properties`, ...): lattice, loading, potential,
+    direction, d/d0.
 
     Parameters
     ----------
     lattice : {"fcc", "triangular"}
     loading : {"uniaxial", "in_plane_hydrostatic"}
+    potential : str or PairPotential or None
+        Needed only for FCC uniaxial loading (the lateral stretches depend on it); None
+        elsewhere. A name is checked against the registry in every case.
     direction : {"[100]", "[110]", "[10]"}
     d_over_d0 : float or array_like, shape (n,)
         Stretch along the propagation direction x (1 = unstressed).
-    potential : str or PairPotential, optional
-        Needed only for FCC uniaxial loading (the lateral stretches depend on it).
 
     Returns
     -------
@@ -297,6 +302,8 @@ def build(
     GeometryError
         A geometry that cannot exist, naming the offending d/d0.
     """
+    if potential is not None:
+        potential = get_potential(potential)
     check_combination(lattice, loading, direction)
     s = check_d_over_d0(lattice, loading, d_over_d0)
     if lattice == "triangular":
@@ -323,3 +330,37 @@ def build(
     cell = _deform(cell0, stretch)
     volume = np.abs(np.linalg.det(cell))
     return Crystal(lattice, loading, direction, s, bonds, cell, volume, stretch)
+
+
+#: A lab stretch or a volume per atom below this (d0, d0^dim) counts as a collapsed geometry.
+COLLAPSED = 1e-6
+
+
+def build_checked(
+    lattice: Lattice,
+    loading: Loading,
+    potential: str | PairPotential | None,
+    direction: Direction,
+    d_over_d0,
+) -> Crystal:
+    """:func:`build`, and a :class:`GeometryError` where the crystal has collapsed.
+
+    A geometry that exists but whose lab stretches or volume per atom fall below
+    :data:`COLLAPSED` (e.g. the lateral collapse t_y -> 0 of harmonic uniaxial FCC [110]
+    near d/d0 = sqrt 3) has no meaningful force constants or symmetry; the phonopy and
+    stability routes use this builder so they stop there.
+
+    Raises
+    ------
+    InputError, GeometryError
+        As :func:`build`; GeometryError naming the first collapsed d/d0 and its stretches.
+    """
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
+    bad = (crystal.stretch.min(axis=1) < COLLAPSED) | (crystal.volume < COLLAPSED)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise GeometryError(
+            f"degenerate geometry at d/d0 = {crystal.d_over_d0[i]:.6g}: lab stretches "
+            f"{np.round(crystal.stretch[i], 8)}"
+        )
+    return crystal
