@@ -24,7 +24,7 @@ def test_triangular_closed_forms_A14(pot):
     V C_xyxy = 2x^2 - 2x^4 with x = d_x/d0 (harmonic springs, inclined bonds at rest)."""
     d = np.linspace(0.6, 1.9, 50)
     x = d / 2
-    c = build("triangular", "uniaxial", "[10]", d)
+    c = build("triangular", "uniaxial", None, "[10]", d)
     sig = elastic.stress(c.bonds, pot)
     C = elastic.elastic_constants(c.bonds, pot)
     np.testing.assert_allclose(sig[:, 0, 0], 4 * x**2 - 2 * x, atol=1e-14)
@@ -64,7 +64,7 @@ CASES = [("fcc", "in_plane_hydrostatic", "[100]"), ("fcc", "in_plane_hydrostatic
 def test_A11_matches_energy_hessian(case, pot, s):
     """S from Eq. (A11) reproduces the acoustic tensor Q_ik(n) = A_ijkl n_j n_l of the
     finite-difference energy Hessian for random directions, and the stress itself."""
-    c = build(case[0], case[1], case[2], s, pot)
+    c = build(case[0], case[1], pot, case[2], s)
     bonds = c.bonds[0]
     sig_fd, A = fd_tensors(bonds, pot)
     sig = elastic.stress(bonds, pot)
@@ -82,7 +82,7 @@ def test_A11_matches_energy_hessian(case, pot, s):
 @pytest.mark.parametrize("pot", ["harmonic", "lj"])
 def test_free_surface_in_equilibrium(case, pot):
     """PHYSICS.md: every loading keeps sigma_yy = 0 (and sigma_zz = 0 for uniaxial), no shear stress."""
-    c = build(case[0], case[1], case[2], np.linspace(0.9, 1.1, 9), pot)
+    c = build(case[0], case[1], pot, case[2], np.linspace(0.9, 1.1, 9))
     sig = elastic.stress(c.bonds, pot)
     assert np.abs(sig[:, 1, 1]).max() < 1e-12
     off = sig - np.einsum("sii->si", sig)[..., None] * np.eye(c.dim)
@@ -109,7 +109,7 @@ def test_stability_sees_instability_off_axis():
     rng = np.random.default_rng(3)
     n = rng.normal(size=(20000, 3))
     n /= np.linalg.norm(n, axis=1, keepdims=True)
-    c = build("fcc", "in_plane_hydrostatic", "[100]", 0.88)
+    c = build("fcc", "in_plane_hydrostatic", None, "[100]", 0.88)
     sig = elastic.stress(c.bonds, "lj")
     Q = elastic.acoustic_tensor(elastic.elastic_constants(c.bonds, "lj"), sig, n)
     brute = np.linalg.eigvalsh(Q)[..., 0].min()
@@ -140,7 +140,7 @@ def test_A11_matches_finite_differences_of_the_stress(case, pot, s):
     Cauchy stress of the deformed bonds (same bond sum, no new physics), convert it to the
     nominal stress V0 P = (V' sigma') F^-T, and differentiate numerically: dP_ij/dH_kl = A_ijkl.
     The acoustic tensor from S (Eq. A11) must match A_ijkl n_j n_l."""
-    c = build(case[0], case[1], case[2], s, pot)
+    c = build(case[0], case[1], pot, case[2], s)
     bonds = c.bonds[0]
     dim = bonds.shape[-1]
     h = 1e-6

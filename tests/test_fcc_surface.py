@@ -74,7 +74,7 @@ def test_supersonic_decoupled_110_is_sagittal_and_localised():
     assert sag["c2"] > float(pt["c2_SH"][0])
     assert sag["tail"] < 1e-6 and sag["surface_weight"] > 0.1
 
-    crystal = build("fcc", "in_plane_hydrostatic", "[110]", 1.0)
+    crystal = build("fcc", "in_plane_hydrostatic", None, "[110]", 1.0)
     a0, a0s, a1, _ = (m[0] for m in layer_matrices(crystal, "lj", k))
     sagittal_blocks(a0[None], a0s[None], a1[None])  # raises unless the z coupling vanishes
     h = slab_matrix(a0, a0s, a1, sag["n_layers"])
@@ -95,7 +95,7 @@ def test_layer_blocks_bulk_limit_and_surface_equilibrium():
     A0 + A1 + A1^H at small k (normal wavenumber 0) gives rho c^2 = S_xxxx and S_xyyx;
     the bonds a surface atom lacks carry no net force (uniaxial LJ, orthorhombic [110])."""
     loading, pot, direction, s = "uniaxial", "lj", "[110]", 1.04
-    crystal = build("fcc", loading, direction, s, pot)
+    crystal = build("fcc", loading, pot, direction, s)
     a0, _, a1, _ = (m[0] for m in layer_matrices(crystal, pot, 0.0))
     np.testing.assert_allclose(a0 + a1 + a1.conj().T, 0, atol=1e-13)
     k = 1e-4

@@ -97,7 +97,7 @@ def test_row_matrices_equal_phonopy_bulk_dynamical_matrix():
 
     pot = get_potential("lj")
     for d in (0.95, 1.08):
-        crystal = build("triangular", "uniaxial", "[10]", [d], potential=pot)
+        crystal = build("triangular", "uniaxial", pot, "[10]", [d])
         phonon, _ = make_phonopy(crystal, 0, pot, 3, 1e-4)
         dx, dy = d / 2, np.sqrt(1 - (d / 2) ** 2)
         th, p = np.array([0.3, 1.1, 2.6]), np.array([0.0, 0.7, -2.0])

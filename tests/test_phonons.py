@@ -16,12 +16,12 @@ from surfwave.continuum.phonons import (
     VARIABLES,
     bulk_speeds,
     dynamical_matrix,
-    instability_limits,
     make_phonopy,
     neighbour_table,
     pair_forces,
 )
 from surfwave.continuum.potentials import get_potential
+from surfwave.continuum.stability import instability_limits
 
 SPEEDS = ["c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH"]
 
@@ -149,7 +149,7 @@ def test_units_and_q_to_k_at_X():
     omega_L^2 = 4 * 4 * (1/2) = 8 and omega_T^2 = 4 * 2 * (1/2) = 4 (doubly degenerate).
     Phonopy's frequencies with unit_conversion_factor = 1 are angular, in (K/m)^(1/2), at
     q = cell @ k / (2 pi)."""
-    crystal = build("fcc", "in_plane_hydrostatic", "[100]", [1.0])
+    crystal = build("fcc", "in_plane_hydrostatic", None, "[100]", [1.0])
     phonon, _ = make_phonopy(crystal, 0, get_potential("lj"), 2, 1e-4)
     cell = crystal.cell3d()[0]
     k = np.array([2 * np.pi / np.sqrt(2), 0, 0])
@@ -163,7 +163,7 @@ def test_dynamical_matrix_equals_bond_sum_stressed():
     sum_b 2 (1 - cos k.b) [phi'' b^b^ + (phi'/r)(1 - b^b^)] (PHYSICS.md, bond force
     constant including the prestress term)."""
     pot = get_potential("lj")
-    crystal = build("fcc", "uniaxial", "[110]", [1.04], potential=pot)
+    crystal = build("fcc", "uniaxial", pot, "[110]", [1.04])
     phonon, bonds = make_phonopy(crystal, 0, pot, 2, 1e-4)
     k = np.array([0.7, -1.3, 0.4])
     r = np.linalg.norm(bonds, axis=1)
@@ -178,7 +178,7 @@ def test_dynamical_matrix_equals_bond_sum_stressed():
 def test_pair_forces_are_minus_energy_gradient():
     """Forces of the pair calculator equal -dE/du by central differences of the energy."""
     pot = get_potential("lj")
-    crystal = build("fcc", "in_plane_hydrostatic", "[100]", [0.97])
+    crystal = build("fcc", "in_plane_hydrostatic", None, "[100]", [0.97])
     phonon, bonds = make_phonopy(crystal, 0, pot, 2, 1e-4)
     sc = phonon.supercell
     table = neighbour_table(sc.scaled_positions, sc.cell, bonds)
@@ -261,7 +261,7 @@ def test_min_omega2_wave_vector_is_cartesian_k():
     pot = get_potential("lj")
     res = bulk_speeds("fcc", "in_plane_hydrostatic", pot, "[100]", [1.15])
     assert res["min_omega2"][0] < -0.1
-    bonds = build("fcc", "in_plane_hydrostatic", "[100]", [1.15]).bonds[0]
+    bonds = build("fcc", "in_plane_hydrostatic", None, "[100]", [1.15]).bonds[0]
     r = np.linalg.norm(bonds, axis=1)
     u = bonds / r[:, None]
     kb = pot.d2phi(r)[:, None, None] * u[:, :, None] * u[:, None, :] + (pot.dphi(r) / r)[:, None, None] * (
@@ -277,7 +277,7 @@ def test_long_wave_instability_missed_by_mesh_is_flagged():
     tensor (Eq. A11, ``surfwave.point``) has a negative eigenvalue (first long-wave
     instability at 0.553), soft only at long waves, so an 8^3 zone mesh alone sees no
     imaginary frequency; the full-zone flag must still be False. At 0.60 both are stable."""
-    from surfwave.continuum.phonons import stability_scan
+    from surfwave.continuum.stability import stability_scan
 
     assert surfwave.point("fcc", "uniaxial", "harmonic", "[100]", [0.54])["min_acoustic_eig"][0] < 0
     r = stability_scan("fcc", "uniaxial", "harmonic", "[100]", [0.54, 0.60])

@@ -35,7 +35,7 @@ def test_space_groups_and_mirrors(lattice, loading, direction, groups):
     stretching along [110] leaves three orthogonal 2-fold axes: Immm. The 2D triangular
     lattice padded with vacuum is P6/mmm, uniaxially stretched centred rectangular Cmmm.
     Every one has the lab-frame mirrors x -> -x and z -> -z that Eq. (17) needs."""
-    r = symmetry.crystal_symmetry(lattice, loading, direction, [0.95, 1.0, 1.05], "lj")
+    r = symmetry.crystal_symmetry(lattice, loading, "lj", direction, [0.95, 1.0, 1.05])
     assert r["space_group"].tolist() == groups
     assert r["mirror_x"].all() and r["mirror_z"].all()
     assert r["cell"].shape == (3, 3, 3)
@@ -44,13 +44,13 @@ def test_space_groups_and_mirrors(lattice, loading, direction, groups):
 
 def test_space_group_numbers():
     """International Tables numbers: Fm-3m = 225, I4/mmm = 139."""
-    r = symmetry.crystal_symmetry("fcc", "in_plane_hydrostatic", "[100]", [1.0, 0.9])
+    r = symmetry.crystal_symmetry("fcc", "in_plane_hydrostatic", None, "[100]", [1.0, 0.9])
     assert r["space_group_number"].tolist() == [225, 139]
 
 
 def test_rotated_frame_lacks_mirrors_and_raises():
     """Propagation 17 degrees off [100] is not in a mirror plane: Eq. (17) does not apply."""
-    cell = build("fcc", "in_plane_hydrostatic", "[100]", [0.95]).cell3d()
+    cell = build("fcc", "in_plane_hydrostatic", None, "[100]", [0.95]).cell3d()
     a = np.deg2rad(17.0)
     rot = np.array([[np.cos(a), 0, -np.sin(a)], [0, 1, 0], [np.sin(a), 0, np.cos(a)]])
     r = symmetry.analyse(cell @ rot.T)

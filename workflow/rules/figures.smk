@@ -155,7 +155,7 @@ rule figure_stability_map:
     """Stability map of prestressed FCC, long-wave versus full-zone (phonopy); built by the
     benchmarks target, not by rule all (it computes its own grid)."""
     input:
-        code=code("plots.stability"),
+        code=code("continuum.stability_map", "plots.stability", "data.cube"),
     output:
         nc="results/stability_map/stability_map.nc",
         png=report(

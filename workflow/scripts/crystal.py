@@ -17,8 +17,8 @@ job = snakemake.params.job
 blocks = {}
 for pot in job["potentials"]:
     for direction in job["directions"]:
-        r = symmetry.crystal_symmetry(job["lattice"], job["loading"], direction, job["d_over_d0"],
-                                      pot, **job["accuracy"])
+        r = symmetry.crystal_symmetry(job["lattice"], job["loading"], pot, direction,
+                                      job["d_over_d0"], **job["accuracy"])
         symmetry.require_mirrors(r, job["d_over_d0"], f"scene {job['scene']!r}, {job['lattice']} "
                                  f"{job['loading']} {direction}, potential {pot!r}: ")
         groups = {g: int((r["space_group"] == g).sum()) for g in dict.fromkeys(r["space_group"].tolist())}

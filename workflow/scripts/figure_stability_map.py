@@ -1,9 +1,18 @@
-"""Rule `figure_stability_map`: surfwave.plots.stability.main into results/stability_map/."""
+"""Rule `figure_stability_map`: the FCC stability map (library), its cube and its figure."""
 import sys
-from pathlib import Path
 
-from surfwave.plots.stability import main
+from surfwave.continuum import stability_map as sm
+from surfwave.data import cube
+from surfwave.plots.stability import plot_stability_map
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 sys.stdout = sys.stderr
-main(str(Path(snakemake.output.nc).parent))  # noqa: F821
+settings = {"scene": "stability_map", "d_over_d0": sm.DEFAULT_GRID.tolist(),
+            "accuracy": {"supercell": sm.DEFAULT_SUPERCELL, "displacement": sm.DEFAULT_DISPLACEMENT,
+                         "zone_mesh": sm.DEFAULT_ZONE_MESH, "tol": 1e-4}}
+ds = sm.stability_map(tol=settings["accuracy"]["tol"])
+ds = cube.provenance(ds, title="stability map of prestressed nearest-neighbour FCC", params=settings,
+                     rule=snakemake.rule,  # noqa: F821
+                     method=ds.attrs["method"])
+cube.write(ds, snakemake.output.nc)  # noqa: F821
+plot_stability_map(ds, snakemake.output.png)  # noqa: F821

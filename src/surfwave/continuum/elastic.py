@@ -17,6 +17,7 @@ import numpy as np
 
 from surfwave.continuum.lattices import build
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.errors import InputError
 
 #: Accuracy of the long-wave stability search (directions on the half sphere).
 STABILITY_DIRECTIONS = 400
@@ -49,7 +50,7 @@ VARIABLES: dict[str, dict] = {
 
 def _bond_terms(bonds: np.ndarray, potential: str | PairPotential):
     pot = get_potential(potential)
-    r = np.linalg.norm(bonds, axis=-1)
+    r = np.sqrt(np.einsum("...i,...i->...", bonds, bonds))
     rhat = bonds / r[..., None]
     return pot, r, rhat
 
@@ -88,7 +89,10 @@ def elastic_constants(bonds: np.ndarray, potential: str | PairPotential) -> np.n
     """
     pot, r, rhat = _bond_terms(bonds, potential)
     w = r**2 * pot.d2phi(r) - r * pot.dphi(r)
-    return np.einsum("...b,...bi,...bj,...bk,...bl->...ijkl", w, rhat, rhat, rhat, rhat)
+    dim = bonds.shape[-1]
+    dyad = (rhat[..., :, None] * rhat[..., None, :]).reshape(rhat.shape[:-1] + (dim * dim,))
+    C = np.swapaxes(dyad * w[..., None], -1, -2) @ dyad  # sum over bonds as one product
+    return C.reshape(C.shape[:-2] + (dim,) * 4)
 
 
 def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:
@@ -106,9 +110,9 @@ def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:
     """
     eye = np.eye(sigma.shape[-1])
     return (
-        np.einsum("...ad,bc->...abcd", sigma, eye)
-        + np.einsum("...bd,ac->...abcd", sigma, eye)
-        - np.einsum("...ab,cd->...abcd", sigma, eye)
+        sigma[..., :, None, None, :] * eye[:, :, None]  # sigma_ad delta_bc
+        + sigma[..., None, :, None, :] * eye[:, None, :, None]  # sigma_bd delta_ac
+        - sigma[..., :, :, None, None] * eye  # sigma_ab delta_cd
         + C
     )
 
@@ -144,13 +148,22 @@ def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
     return out
 
 
-def _sphere_directions(dim: int, n: int) -> np.ndarray:
-    """Unit vectors covering half the circle/sphere (n and -n are equivalent), shape (k, dim)."""
+def _sphere_directions(dim: int, n: int, octant: bool = False) -> np.ndarray:
+    """Unit vectors covering half the circle/sphere (n and -n are equivalent), shape (k, dim).
+
+    With ``octant`` only the directions with non-negative components, at the same density
+    (about n / 2 in 2D, n / 4 in 3D): enough when the lab axes are mirror planes, since the
+    acoustic tensor's eigenvalues are then even in each component of n.
+    """
     if dim == 2:
-        phi = np.linspace(0.0, np.pi, n, endpoint=False)
+        if octant:
+            phi = np.linspace(0.0, 0.5 * np.pi, n // 2 + 1)
+        else:
+            phi = np.linspace(0.0, np.pi, n, endpoint=False)
         return np.column_stack([np.cos(phi), np.sin(phi)])
-    i = np.arange(n) + 0.5
-    zc = i / n  # upper hemisphere z in (0, 1)
+    n_fib = max(n // _OCTANT_DIVISOR, 1) if octant else n
+    i = np.arange(n_fib) + 0.5
+    zc = i / n_fib  # upper hemisphere z in (0, 1)
     phi = np.pi * (1 + 5**0.5) * i
     rxy = np.sqrt(1 - zc**2)
     fib = np.column_stack([rxy * np.cos(phi), rxy * np.sin(phi), zc])
@@ -159,7 +172,26 @@ def _sphere_directions(dim: int, n: int) -> np.ndarray:
          [0, 1, 1], [0, 1, -1], [1, 1, 1], [1, 1, -1], [1, -1, 1], [-1, 1, 1]], dtype=float
     )
     sym /= np.linalg.norm(sym, axis=1, keepdims=True)
-    return np.vstack([sym, fib])
+    out = np.vstack([sym, fib])
+    return np.unique(np.abs(out).round(15), axis=0) if octant else out
+
+
+def _lab_mirror_symmetric(M: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
+    """Whether each lab axis is a mirror plane of the wave-propagation tensor, shape (s,).
+
+    Under the mirror x_a -> -x_a every component of A_ijkl with an odd number of indices
+    equal to a changes sign, so it must vanish; in the (p, p) form of
+    :func:`_wave_tensor_matrix` these are the entries whose row pair and column pair
+    together hold the axis an odd number of times.
+    """
+    dim = int(round((np.sqrt(8 * M.shape[-1] + 1) - 1) / 2))
+    pairs = _pairs(dim)
+    odd = np.zeros(M.shape[-2:], bool)
+    for a in range(dim):
+        count = np.array([(i == a) + (k == a) for i, k in pairs])
+        odd |= (count[:, None] + count[None, :]) % 2 == 1
+    scale = np.abs(M).max(axis=(-2, -1))
+    return np.abs(M[:, odd]).max(axis=-1, initial=0.0) <= rtol * scale
 
 
 def acoustic_tensor(C: np.ndarray, sigma: np.ndarray, n: np.ndarray) -> np.ndarray:
@@ -183,15 +215,86 @@ def acoustic_tensor(C: np.ndarray, sigma: np.ndarray, n: np.ndarray) -> np.ndarr
     return q
 
 
+def _pairs(dim: int) -> list[tuple[int, int]]:
+    """Independent (i, k) index pairs of a symmetric d x d matrix: diagonal first."""
+    return [(i, i) for i in range(dim)] + [(i, k) for i in range(dim) for k in range(i + 1, dim)]
+
+
+def _wave_tensor_matrix(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """The acoustic tensor as a linear map of the direction dyad, shape (s, p, p).
+
+    With p = d(d+1)/2 independent components, row (i, k) of Q and column (j, l) of
+    n_j n_l: Q_ik = sum_jl A_ijkl n_j n_l, A_ijkl = C_ijkl + sigma_jl delta_ik, the
+    off-diagonal columns counting (j, l) and (l, j) together. Q for k directions is then
+    one matrix product with the (p, k) dyads (:func:`_dyads`).
+    """
+    dim = C.shape[-1]
+    A = C + sigma[:, None, :, None, :] * np.eye(dim)[:, None, :, None]
+    pairs = _pairs(dim)
+    rows = [(i, k) for i, k in pairs]
+    M = np.empty(C.shape[:1] + (len(pairs), len(pairs)))
+    for a, (i, k) in enumerate(rows):
+        for b, (j, l) in enumerate(pairs):
+            M[:, a, b] = A[:, i, j, k, l] if j == l else A[:, i, j, k, l] + A[:, i, l, k, j]
+    return M
+
+
+def _dyads(n: np.ndarray) -> np.ndarray:
+    """n_j n_l for the independent pairs (j, l), shape (..., p) from n of shape (..., d)."""
+    return np.stack([n[..., j] * n[..., l] for j, l in _pairs(n.shape[-1])], axis=-1)
+
+
+def _lowest_eigenvalue(q: np.ndarray) -> np.ndarray:
+    """Lowest eigenvalue of symmetric 2x2 or 3x3 matrices given by components, closed form.
+
+    Parameters
+    ----------
+    q : ndarray, shape (p, ...)
+        Components in the order of :func:`_pairs` (2D: xx, yy, xy; 3D: xx, yy, zz, xy, xz, yz).
+
+    Returns
+    -------
+    ndarray, shape q.shape[1:]
+        2D: exact formula. 3D: the trigonometric solution of the characteristic cubic
+        (accurate to ~1e-8 of the matrix scale near a double root), used to *choose*
+        directions; the reported minimum is recomputed with LAPACK at the chosen direction.
+    """
+    if q.shape[0] == 3:
+        h = 0.5 * (q[0] - q[1])
+        return 0.5 * (q[0] + q[1]) - np.sqrt(h * h + q[2] * q[2])
+    xx, yy, zz, xy, xz, yz = q
+    m = (xx + yy + zz) / 3.0
+    a, b, c = xx - m, yy - m, zz - m
+    off = xy * xy + xz * xz + yz * yz
+    p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0
+    p = np.sqrt(p2)
+    det = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.where(p2 > 0, det / (2.0 * p2 * p), 0.0)
+    phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
+    return m + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+
+
+#: Strain points per block of the direction search (bounds the memory to ~10 MB per array).
+_BLOCK = 256
+
+#: The octant grid holds n_directions / _OCTANT_DIVISOR directions (1: four times the
+#: density of the half-sphere grid, at the same cost).
+_OCTANT_DIVISOR = 1
+
+
 def long_wave_stability(
     C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Lowest eigenvalue of the acoustic tensor over all propagation directions.
 
-    Every bulk acoustic wave must have rho c^2 > 0 in every direction (PHYSICS.md); the
-    paper checks only c_T,par. A grid of directions (high-symmetry ones included) is
-    searched, then the best direction of each strain is refined by a shrinking local
-    pattern search, vectorised over strain.
+    Every bulk acoustic wave must have rho c^2 > 0 in every direction (strong ellipticity
+    of A_ijkl = C_ijkl + sigma_jl delta_ik, docs/physics/paper.md); the paper checks only
+    c_T,par. A grid of directions (high-symmetry ones included) is searched, then the best
+    direction of each strain is refined by a shrinking local pattern search, vectorised
+    over strain. The search compares directions with the closed-form lowest eigenvalue
+    (the acoustic tensor of all directions is one matrix product); the minimum reported
+    is the LAPACK eigenvalue at the direction found.
 
     Parameters
     ----------
@@ -213,18 +316,34 @@ def long_wave_stability(
     direction : ndarray, shape (s, d)
         Unit vector where it occurs.
     """
+    C = np.asarray(C, dtype=float)
+    sigma = np.asarray(sigma, dtype=float)
+    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
+        raise InputError(
+            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
+            f"got {C.shape} and {sigma.shape}"
+        )
     dim = C.shape[-1]
-    grid = _sphere_directions(dim, n_directions)
-    eig = np.linalg.eigvalsh(acoustic_tensor(C, sigma, grid))[..., 0]  # (s, k)
-    best = np.argmin(eig, axis=1)
-    n_best = grid[best]
-    e_best = eig[np.arange(len(best)), best]
+    s = C.shape[0]
+    M = _wave_tensor_matrix(C, sigma)
+    mirror = _lab_mirror_symmetric(M)
+    n_best = np.empty((s, dim))
+    for sym in (True, False):
+        grid = _sphere_directions(dim, n_directions, octant=sym)
+        grid_dyads = _dyads(grid).T  # (p, k)
+        idx = np.flatnonzero(mirror == sym)
+        for lo in range(0, idx.size, _BLOCK):
+            block = idx[lo:lo + _BLOCK]
+            e = _lowest_eigenvalue(np.swapaxes(M[block], 0, 1) @ grid_dyads)  # (b, k)
+            n_best[block] = grid[np.argmin(e, axis=1)]
+    e_best = _lowest_eigenvalue((M @ _dyads(n_best)[:, :, None])[:, :, 0].T)
     # Local refinement: perturb along the tangent plane with a shrinking step.
     step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions
     if dim == 3:
         offsets = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 0, 1) if (a, b) != (0, 0)], float)
     else:
         offsets = np.array([[-1.0], [1.0]])
+    rows = np.arange(s)
     for _ in range(refine):
         if dim == 3:
             helper = np.where(np.abs(n_best[:, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]])
@@ -236,13 +355,14 @@ def long_wave_stability(
             t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
             cand = n_best[:, None, :] + step * offsets[None, :, :1] * t1[:, None]
         cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
-        e_c = np.linalg.eigvalsh(acoustic_tensor(C, sigma, cand))[..., 0]
+        e_c = _lowest_eigenvalue(np.moveaxis(M @ np.swapaxes(_dyads(cand), 1, 2), 1, 0))
         j = np.argmin(e_c, axis=1)
-        e_j = e_c[np.arange(len(j)), j]
+        e_j = e_c[rows, j]
         better = e_j < e_best
-        n_best = np.where(better[:, None], cand[np.arange(len(j)), j], n_best)
+        n_best = np.where(better[:, None], cand[rows, j], n_best)
         e_best = np.where(better, e_j, e_best)
         step *= 0.5
+    e_best = np.linalg.eigvalsh(acoustic_tensor(C, sigma, n_best[:, None, :])[:, 0])[:, 0]
     return e_best > 0.0, e_best, n_best
 
 
@@ -265,7 +385,7 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
         ``c2_T_perp``, ``c2_SH`` (shape (n,)), ``stable``, ``min_acoustic_eig`` (shape (n,)),
         ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame).
     """
-    crystal = build(lattice, loading, direction, d_over_d0, potential)
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
     sigma = stress(crystal.bonds, potential)
     C = elastic_constants(crystal.bonds, potential)
     S = stress_derivatives(sigma, C)

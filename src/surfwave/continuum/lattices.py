@@ -19,7 +19,7 @@ Supported (lattice, loading, direction):
 Examples
 --------
 >>> from surfwave.continuum.lattices import build
->>> c = build("fcc", "in_plane_hydrostatic", "[110]", [0.9, 1.0])
+>>> c = build("fcc", "in_plane_hydrostatic", None, "[110]", [0.9, 1.0])
 >>> c.bonds.shape, c.volume.shape
 ((2, 6, 3), (2,))
 """
@@ -181,12 +181,26 @@ def _fcc_lab(direction: str) -> tuple[np.ndarray, np.ndarray]:
     return _FCC_HALF_NEIGHBOURS @ axes.T, _FCC_PRIMITIVE @ axes.T
 
 
-def _lateral_stress(bonds0: np.ndarray, stretch: np.ndarray, pot: PairPotential) -> np.ndarray:
-    """V sigma_yy and V sigma_zz, shape (n, 2), for lab stretches (n, 3)."""
-    r = _deform(bonds0, stretch) if bonds0.ndim == 2 else bonds0 * stretch[:, None, :]
-    length = np.linalg.norm(r, axis=-1)
-    w = pot.dphi(length) / length
-    return np.stack([(r[..., 1] ** 2 * w).sum(-1), (r[..., 2] ** 2 * w).sum(-1)], axis=-1)
+def _lateral_stress(bonds0: np.ndarray, stretch: np.ndarray, pot: PairPotential, jacobian: bool = False):
+    """V sigma_yy and V sigma_zz, shape (n, 2), for lab stretches (n, 3).
+
+    With ``jacobian`` also their derivatives with respect to (t_y, t_z), shape (n, 2, 2):
+    V sigma_aa = sum r_a^2 w(r), w = phi'(r)/r, r_a = b_a t_a, so
+    d(V sigma_aa)/dt_c = 2 delta_ac r_a^2 w / t_a + r_a^2 w'(r) r_c^2 / (r t_c).
+    """
+    r = _deform(bonds0, stretch)
+    length = np.sqrt(np.einsum("...i,...i->...", r, r))
+    d1 = pot.dphi(length)
+    w = d1 / length
+    r2 = r[..., 1:] ** 2  # (n, nb, 2)
+    f = np.einsum("nb,nba->na", w, r2)
+    if not jacobian:
+        return f
+    dw = (pot.d2phi(length) - w) / length  # w'(r)
+    t = stretch[:, 1:]
+    jac = np.einsum("nb,nba,nbc->nac", dw / length, r2, r2) / t[:, None, :]
+    jac[:, [0, 1], [0, 1]] += 2.0 * f / t
+    return f, jac
 
 
 def solve_lateral_stretch(
@@ -227,25 +241,17 @@ def solve_lateral_stretch(
     # Newton at each step; a point that fails is frozen so it cannot spoil the others.
     t = np.ones((s.size, 2))
     steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
-    h = 1e-7
     failed = np.zeros(s.size, dtype=bool)
     for k in range(1, steps + 1):
         s_k = 1.0 + (s - 1.0) * k / steps
         converged = np.zeros(s.size, dtype=bool)
         for _ in range(max_iter):
             full = np.column_stack([s_k, t])
-            f = _lateral_stress(bonds0, full, pot)
+            f, jac = _lateral_stress(bonds0, full, pot, jacobian=True)
             converged = np.all(np.abs(f) < tol, axis=-1)
             active = ~converged & ~failed
             if not active.any():
                 break
-            jac = np.empty((s.size, 2, 2))
-            for j in range(2):
-                dp = full.copy()
-                dp[:, j + 1] += h
-                dm = full.copy()
-                dm[:, j + 1] -= h
-                jac[:, :, j] = (_lateral_stress(bonds0, dp, pot) - _lateral_stress(bonds0, dm, pot)) / (2 * h)
             with np.errstate(all="ignore"):
                 step = np.linalg.solve(jac, f[..., None])[..., 0]
             step = np.where(np.isfinite(step) & active[:, None], step, 0.0)
@@ -264,21 +270,26 @@ def solve_lateral_stretch(
 def build(
     lattice: Lattice,
     loading: Loading,
+    potential: str | PairPotential | None,
     direction: Direction,
     d_over_d0,
-    potential: str | PairPotential | None = None,
 ) -> Crystal:
     """Build the prestressed crystal at one or several stretches.
+
+    The arguments come in the order used throughout the library (:func:`surfwave.point`,
+    :func:`surfwave.continuum.elastic.properties`, ...): lattice, loading, potential,
+    direction, d/d0.
 
     Parameters
     ----------
     lattice : {"fcc", "triangular"}
     loading : {"uniaxial", "in_plane_hydrostatic"}
+    potential : str or PairPotential or None
+        Needed only for FCC uniaxial loading (the lateral stretches depend on it); None
+        elsewhere. A name is checked against the registry in every case.
     direction : {"[100]", "[110]", "[10]"}
     d_over_d0 : float or array_like, shape (n,)
         Stretch along the propagation direction x (1 = unstressed).
-    potential : str or PairPotential, optional
-        Needed only for FCC uniaxial loading (the lateral stretches depend on it).
 
     Returns
     -------
@@ -291,6 +302,8 @@ def build(
     GeometryError
         A geometry that cannot exist, naming the offending d/d0.
     """
+    if potential is not None:
+        potential = get_potential(potential)
     check_combination(lattice, loading, direction)
     s = check_d_over_d0(lattice, loading, d_over_d0)
     if lattice == "triangular":
@@ -317,3 +330,37 @@ def build(
     cell = _deform(cell0, stretch)
     volume = np.abs(np.linalg.det(cell))
     return Crystal(lattice, loading, direction, s, bonds, cell, volume, stretch)
+
+
+#: A lab stretch or a volume per atom below this (d0, d0^dim) counts as a collapsed geometry.
+COLLAPSED = 1e-6
+
+
+def build_checked(
+    lattice: Lattice,
+    loading: Loading,
+    potential: str | PairPotential | None,
+    direction: Direction,
+    d_over_d0,
+) -> Crystal:
+    """:func:`build`, and a :class:`GeometryError` where the crystal has collapsed.
+
+    A geometry that exists but whose lab stretches or volume per atom fall below
+    :data:`COLLAPSED` (e.g. the lateral collapse t_y -> 0 of harmonic uniaxial FCC [110]
+    near d/d0 = sqrt 3) has no meaningful force constants or symmetry; the phonopy and
+    stability routes use this builder so they stop there.
+
+    Raises
+    ------
+    InputError, GeometryError
+        As :func:`build`; GeometryError naming the first collapsed d/d0 and its stretches.
+    """
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
+    bad = (crystal.stretch.min(axis=1) < COLLAPSED) | (crystal.volume < COLLAPSED)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise GeometryError(
+            f"degenerate geometry at d/d0 = {crystal.d_over_d0[i]:.6g}: lab stretches "
+            f"{np.round(crystal.stretch[i], 8)}"
+        )
+    return crystal

@@ -25,8 +25,7 @@ Triangular lattice: the 2D cell is padded with vacuum along z (``Crystal.cell3d`
 supercell is N x N x 1 and only the in-plane (x, y) block of the dynamical matrix is used
 (the out-of-plane modes of a prestressed 2D sheet are not part of the model).
 
-Stability scans and instability limits: :mod:`surfwave.continuum.stability` (also reachable here as
-``surfwave.continuum.phonons.stability_scan``, ``instability_limits``, ``geometry_limit``).
+Stability scans and instability limits built on this module: :mod:`surfwave.continuum.stability`.
 """
 
 from __future__ import annotations
@@ -37,8 +36,8 @@ from typing import Literal
 import numpy as np
 
 from surfwave.continuum.elastic import STABILITY_DIRECTIONS, long_wave_stability
-from surfwave.errors import GeometryError, InputError, SurfwaveError
-from surfwave.continuum.lattices import build, check_combination
+from surfwave.errors import InputError, SurfwaveError
+from surfwave.continuum.lattices import build_checked, check_combination
 from surfwave.continuum.potentials import PairPotential, get_potential
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
@@ -359,16 +358,6 @@ def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.
 MAX_EXTRA_SUPERCELL = 2
 
 
-def _checked_crystal(lattice, loading, direction, d, pot):
-    """Build one point; a collapsed geometry (a stretch or the volume ~ 0) is a GeometryError."""
-    crystal = build(lattice, loading, direction, [d], potential=pot)
-    if crystal.stretch.min() < 1e-6 or crystal.volume[0] < 1e-6:
-        raise GeometryError(
-            f"degenerate geometry at d/d0 = {d:.6g}: lab stretches {np.round(crystal.stretch[0], 8)}"
-        )
-    return crystal
-
-
 def _point(crystal, index, pot, supercell, displacement, zone_mesh, long_wave, secant_eps):
     for sc in range(supercell, supercell + MAX_EXTRA_SUPERCELL + 1):
         phonon, bonds = make_phonopy(crystal, index, pot, sc, displacement)
@@ -470,7 +459,7 @@ def bulk_speeds(
     )
     for i, si in enumerate(s):
         try:
-            crystal = _checked_crystal(lattice, loading, direction, si, pot)
+            crystal = build_checked(lattice, loading, pot, direction, [si])
             res = _point(crystal, 0, pot, supercell, displacement, zone_mesh, long_wave, secant_eps)
         except Exception as exc:  # noqa: BLE001 - recorded per point, never raised mid-array
             out["reason"][i] = f"{type(exc).__name__}: {exc}"
@@ -488,12 +477,3 @@ def bulk_speeds(
             out[k][i] = res[k]
     out["reason"] = out["reason"].astype(str)
     return out
-
-
-def __getattr__(name: str):
-    """Stability helpers live in :mod:`surfwave.continuum.stability`; re-exported here lazily."""
-    if name in ("stability_scan", "instability_limits", "geometry_limit"):
-        from surfwave.continuum import stability
-
-        return getattr(stability, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

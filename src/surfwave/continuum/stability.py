@@ -3,8 +3,10 @@
 The long-wave criterion is the analytic acoustic tensor over all directions
 (``surfwave.point(...)["stable"]``, Eq. A11); the full-zone criterion is phonopy's
 (:func:`surfwave.continuum.phonons.bulk_speeds`: no imaginary frequency on the zone mesh nor in the
-long-wave limit of the force constants). The functions are also reachable as
-``surfwave.continuum.phonons.stability_scan`` etc.
+long-wave limit of the force constants).
+
+Only a :class:`~surfwave.errors.GeometryError` (the crystal cannot be built, or has
+collapsed) ends a stable range here; any other exception is a bug and propagates.
 """
 
 from __future__ import annotations
@@ -14,15 +16,15 @@ from typing import Literal
 import numpy as np
 
 from surfwave.continuum.elastic import properties
-from surfwave.errors import GeometryError, InputError
+from surfwave.continuum.lattices import build_checked
 from surfwave.continuum.phonons import (
     DEFAULT_DISPLACEMENT,
     DEFAULT_SUPERCELL,
     DEFAULT_ZONE_MESH,
-    _checked_crystal,
     bulk_speeds,
 )
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.errors import GeometryError, InputError
 
 
 def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
@@ -30,24 +32,22 @@ def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> n
     :func:`surfwave.continuum.elastic.properties`; the Rayleigh solve of ``point`` is not needed).
 
     Vectorised when every point can be built; otherwise point by point, a point whose
-    geometry cannot be built being reported as False. Each point's value is independent of
-    the others (the long-wave search runs per strain).
+    geometry cannot be built (or has collapsed) being reported as False. Each point's value
+    is independent of the others (the long-wave search runs per strain).
     """
     pot = get_potential(potential)
-    try:  # every point buildable (the usual case): one vectorised call
-        for si in s:
-            _checked_crystal(lattice, loading, direction, si, pot)
-        return np.asarray(properties(lattice, loading, pot, direction, s)["stable"], bool)
-    except Exception:  # noqa: BLE001 - fall back to point by point below
-        pass
-    flags = np.zeros(s.size, bool)
-    for i, si in enumerate(s):
-        try:
-            _checked_crystal(lattice, loading, direction, si, pot)
-            flags[i] = bool(np.asarray(properties(lattice, loading, pot, direction, [si])["stable"])[0])
-        except Exception:  # noqa: BLE001 - geometry failures end the stable range
-            flags[i] = False
-    return flags
+    try:
+        build_checked(lattice, loading, pot, direction, s)
+    except GeometryError:
+        flags = np.zeros(s.size, bool)
+        for i, si in enumerate(s):
+            try:
+                build_checked(lattice, loading, pot, direction, [si])
+            except GeometryError:  # the geometry ends: not stable there
+                continue
+            flags[i] = bool(properties(lattice, loading, pot, direction, [si])["stable"][0])
+        return flags
+    return np.asarray(properties(lattice, loading, pot, direction, s)["stable"], bool)
 
 
 def stability_scan(
@@ -103,7 +103,7 @@ def stability_scan(
 def _flag(lattice, loading, potential, direction, kind, d, knobs) -> bool | None:
     """Stability flag at one d/d0; None if the geometry cannot be built there."""
     try:
-        _checked_crystal(lattice, loading, direction, d, get_potential(potential))
+        build_checked(lattice, loading, potential, direction, [d])
     except GeometryError:
         return None
     if kind == "long_wave":
@@ -200,7 +200,7 @@ def geometry_limit(
 
     def ok(d):
         try:
-            _checked_crystal(lattice, loading, direction, d, pot)
+            build_checked(lattice, loading, pot, direction, [d])
             return True
         except GeometryError:
             return False

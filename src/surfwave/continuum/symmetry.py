@@ -10,7 +10,7 @@ stress; the triangular lattice in its vacuum-padded 3D cell P6/mmm, then Cmmm.
 
 Examples
 --------
->>> r = crystal_symmetry("fcc", "in_plane_hydrostatic", "[110]", [0.95, 1.0])
+>>> r = crystal_symmetry("fcc", "in_plane_hydrostatic", None, "[110]", [0.95, 1.0])
 >>> r["space_group"].tolist(), bool(r["mirror_x"].all()), bool(r["mirror_z"].all())
 (['I4/mmm', 'Fm-3m'], True, True)
 """
@@ -22,6 +22,7 @@ import spglib.error
 
 from surfwave.errors import SymmetryError
 from surfwave.continuum.lattices import build
+from surfwave.continuum.potentials import PairPotential
 
 spglib.error.OLD_ERROR_HANDLING = False
 
@@ -89,9 +90,9 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5) -> dict[str, np.ndarray]:
 def crystal_symmetry(
     lattice: str,
     loading: str,
+    potential: str | PairPotential | None,
     direction: str,
     d_over_d0,
-    potential=None,
     symprec: float = 1e-5,
 ) -> dict[str, np.ndarray]:
     """Build the prestressed crystal (:func:`surfwave.continuum.lattices.build`) and analyse it.
@@ -101,7 +102,7 @@ def crystal_symmetry(
     dict
         The keys of :func:`analyse` plus ``cell`` (n, 3, 3) in d0 and ``volume`` (n,).
     """
-    crystal = build(lattice, loading, direction, d_over_d0, potential)
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
     cells = crystal.cell3d()
     out = analyse(cells, symprec)
     out["cell"] = cells

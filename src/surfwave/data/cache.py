@@ -24,7 +24,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 import time
 import zipfile
 from pathlib import Path
@@ -33,6 +32,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from surfwave import __version__
+from surfwave.data.atomic import atomic_write
 from surfwave.errors import InputError
 from surfwave.pipeline.provenance import module_closure
 
@@ -89,18 +89,12 @@ def _read(path: Path, text: str) -> dict[str, np.ndarray] | None:
 
 
 def _atomic_write(path: Path, arrays: Mapping[str, np.ndarray], text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".npz", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
+    """Store one entry (its key text beside the arrays) atomically and durably."""
+    def savez(tmp: Path) -> None:
+        with open(tmp, "wb") as fh:
             np.savez(fh, __key__=np.array(text), **arrays)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, _file_mode())  # mkstemp makes 0600; a shared cache must be readable
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+
+    atomic_write(path, savez, prefix=".tmp-", suffix=".npz", fsync=True)
 
 
 def _record(root: Path, kind: str, hits: int, misses: int) -> None:
@@ -111,22 +105,7 @@ def _record(root: Path, kind: str, hits: int, misses: int) -> None:
 
 
 def _atomic_write_text(path: Path, text: str) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-        os.chmod(tmp, _file_mode())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _file_mode() -> int:
-    """Permissions of a new file under the current umask (mkstemp alone gives 0600)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
+    atomic_write(path, lambda tmp: tmp.write_text(text), prefix=".tmp-", suffix="")
 
 
 def _as_store(a) -> np.ndarray:

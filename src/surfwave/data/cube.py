@@ -20,9 +20,7 @@ from __future__ import annotations
 import datetime as _dt
 import hashlib
 import json
-import os
 import subprocess
-import tempfile
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -30,6 +28,7 @@ import numpy as np
 import xarray as xr
 
 from surfwave import __version__
+from surfwave.data.atomic import atomic_write
 from surfwave.errors import InputError
 
 #: netCDF engine used on write and read (complex numbers supported natively).
@@ -251,34 +250,17 @@ def finish(ds: xr.Dataset, job_context, *, what: str, method: str,
     return write(ds, job_context.output[0])
 
 
-def _file_mode() -> int:
-    """Permissions of a new file under the current umask (what ``open(..., "w")`` gives)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
 def write(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write ``ds`` to ``path`` atomically (temporary file in the same directory + os.replace).
+    """Write ``ds`` to ``path`` atomically (:func:`surfwave.data.atomic.atomic_write`).
 
     Readers never see a half-written cube and a killed job never leaves one at ``path``;
     temporary files of an earlier, killed write of the same path are removed first. The file gets the
     permissions of an ordinary new file under the current umask.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     for stale in path.parent.glob(f".{path.name}.*.tmp"):  # left by a killed writer of this
         stale.unlink(missing_ok=True)                       # file (one job writes each path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, engine=ENGINE)
-        os.chmod(tmp, _file_mode())  # mkstemp makes 0600; results are for everyone to read
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
 
 
 def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:

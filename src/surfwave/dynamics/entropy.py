@@ -343,7 +343,7 @@ def surface_entropy(
         Unknown potential, or d/d0 outside (0, 2) (the geometry cannot exist).
     """
     pot = get_potential(potential)
-    s = build("triangular", "uniaxial", "[10]", d_over_d0).d_over_d0  # validates
+    s = build("triangular", "uniaxial", None, "[10]", d_over_d0).d_over_d0  # validates
     rows = [_one_strain(pot, float(d), tol, n_theta_start, n_theta_max) for d in s]
     out = {k: np.array([r[k] for r in rows], dtype=float)
            for k in VARIABLES if k not in ("reason", "n_theta")}

@@ -221,7 +221,7 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
         raise InputError("d_over_d0 must be a scalar")
     if not 0 < k <= np.pi:
         raise InputError(f"k must lie in (0, pi], got {k!r}")
-    crystal = build("fcc", loading, direction, float(d_over_d0), potential)
+    crystal = build("fcc", loading, potential, direction, float(d_over_d0))
     a0, a0s, a1, h = layer_matrices(crystal, potential, k)
     a0, a0s, a1 = (m[0] for m in sagittal_blocks(a0, a0s, a1))
     # e^{-kappa k y}: the deeper half starts ~14 e-folds down if kappa >= 1/2 (else grown)

@@ -45,7 +45,7 @@ def bond_force_constants(potential: str | PairPotential, d_over_d0) -> np.ndarra
         Phi for the bonds (2 d_x, 0), (d_x, d_y), (-d_x, d_y), in K (units of phi'').
     """
     pot = get_potential(potential)
-    crystal = build("triangular", "uniaxial", "[10]", d_over_d0)
+    crystal = build("triangular", "uniaxial", None, "[10]", d_over_d0)
     r = crystal.bonds  # (n, 3, 2)
     length = np.linalg.norm(r, axis=-1)  # (n, 3)
     rhat = r / length[..., None]

@@ -217,7 +217,7 @@ def _check_scene(name: str, raw: dict) -> dict:
         if lattice == "fcc" and loading == "uniaxial":
             for pot in raw["potentials"]:  # the lateral solve must succeed for every point
                 for direction in directions:
-                    build(lattice, loading, direction, d, pot)
+                    build(lattice, loading, pot, direction, d)
     except SurfwaveError as exc:
         raise SceneError(f"{where}, key 'd_over_d0': {exc}") from None
     theta = theta_grid(raw["theta"], f"{where}, key 'theta'")

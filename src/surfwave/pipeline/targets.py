@@ -4,9 +4,7 @@ Kept free of matplotlib and xarray so that parsing the workflow stays fast.
 """
 from __future__ import annotations
 
-from importlib import resources
-
-import yaml
+from surfwave.data.paper import load_paper_values
 
 CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
 #: cubes the report's checks can read (bulk.nc feeds its own section, see report_inputs)
@@ -45,7 +43,7 @@ def report_inputs(scenes: dict, results: str = "results") -> list[str]:
     scenes : dict
         ``config["scenes"]``: scene name -> {"quantities": [...], ...}.
     """
-    pv = yaml.safe_load(resources.files("surfwave").joinpath("data/paper_values.yaml").read_text())
+    pv = load_paper_values()
     wanted = {pv["table1"]["scene"]: {"elastic", "rayleigh"}}
     for group in ("values", "claims"):
         for spec in pv[group].values():

@@ -15,6 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
+from surfwave.data.paper import load_paper_values  # noqa: E402
 from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
 
 #: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
@@ -25,8 +26,6 @@ PAPER_ZERO_STRESS = {"Eq. (26) estimate": "eq26_entropy_estimate",
 
 
 def _paper_value(key: str) -> float:
-    from surfwave.report.reproduction import load_paper_values  # lazy: report imports plotting helpers
-
     return float(load_paper_values()["values"][key]["value"])
 
 #: Knobs of the benchmark cube: (prefix, coordinate, label, the quantity whose error is shown).

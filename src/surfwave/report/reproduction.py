@@ -20,17 +20,16 @@ import argparse
 import csv
 import json
 import math
-from importlib import resources
 from pathlib import Path
 from typing import Iterable
 
 import numpy as np
 import xarray as xr
-import yaml
 
 from surfwave.report import checks as _values
 from surfwave.report import claims as _claims
 from surfwave.data.cube import open_cube as _open_cube
+from surfwave.data.paper import load_paper_values  # noqa: F401 (re-exported)
 from surfwave.pipeline.targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
 from surfwave.report.checks import (
     FAIL,
@@ -44,15 +43,6 @@ from surfwave.report.checks import (
 )
 
 # --------------------------------------------------------------------------- I/O helpers
-def load_paper_values(path: str | Path | None = None) -> dict:
-    """The paper's printed numbers (``surfwave/data/paper_values.yaml`` unless ``path``)."""
-    if path is None:
-        text = resources.files("surfwave").joinpath("data/paper_values.yaml").read_text()
-    else:
-        text = Path(path).read_text()
-    return yaml.safe_load(text)
-
-
 def open_cube(path: str | Path) -> xr.Dataset | None:
     """Load a result cube into memory (:func:`surfwave.data.cube.open_cube`), or None when the
     file does not exist."""
