@@ -41,14 +41,16 @@ WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 REASON_UNSTABLE = "no surface wave: a bulk wave in the sagittal plane has rho v^2 <= 0 (unstable crystal)"
 REASON_T = "no surface wave: T_ik = A_i2k2 is not positive definite (unstable normal to the surface)"
-REASON_NOROOT = ("no subsonic surface wave: det Z stays positive up to the limiting speed v_L; "
-                 "a leaky pseudo-surface wave above v_L is not computed")
+REASON_PSEUDO = ("pseudo-surface wave: no subsonic root (the lowest eigenvalue of the impedance stays "
+                 "positive up to v_L (1 - 1e-12)): off a mirror the surface wave has left the subsonic "
+                 "range through v_L and leaks into the bulk; its complex speed is not computed")
 REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sagittal motion, "
                         "below its own limiting speed")
 
 VARIABLES: dict[str, dict] = {
     "c": {"long_name": "phase speed of the surface wave (real part for a pseudo wave)", "dims": ()},
-    "c_imag": {"long_name": "imaginary part of the complex speed of a pseudo wave (0 otherwise)", "dims": ()},
+    "c_imag": {"long_name": "imaginary part of the complex speed of a pseudo wave (0 for real waves; NaN where "
+               "not computed)", "dims": ()},
     "c_limit": {"long_name": "limiting speed v_L: lowest trace velocity along x1 of the bulk waves", "dims": ()},
     "wave_type": {"long_name": "surface, supersonic_decoupled, pseudo or none", "dims": ()},
     "reason": {"long_name": "why the speed is NaN (empty if it is not)", "dims": ()},
@@ -303,9 +305,11 @@ def surface_wave(A, rho=1.0, *, mirror=None, tol: float = 1e-12) -> dict:
         X[sag], found[sag] = _root_search(Q2[sag], R2[sag], T2[sag], XL2[sag], tol)[:2]
 
     supersonic = found & mir & (X >= XL * (1 - 1e-12))
-    wave_type = np.where(found, np.where(supersonic, "supersonic_decoupled", "surface"), "none").astype(object)
+    pseudo = stable & ~found & ~mir
+    wave_type = np.where(found, np.where(supersonic, "supersonic_decoupled", "surface"),
+                         np.where(pseudo, "pseudo", "none")).astype(object)
     reason = np.full(n, "", dtype=object)
-    reason[~found] = np.where(mir[~found], REASON_NOROOT_MIRROR, REASON_NOROOT)
+    reason[~found] = np.where(mir[~found], REASON_NOROOT_MIRROR, REASON_PSEUDO)
     reason[~stable] = REASON_UNSTABLE
     reason[~Tpd] = REASON_T
 
