@@ -1,0 +1,264 @@
+"""Stroh blocks, the limiting speed and the surface impedance (building blocks of :mod:`stroh`).
+
+Lab frame: x1 = propagation, x2 = inward surface normal. For the wave-propagation tensor A
+(``shape (..., d, d, d, d)``, d = 3, or d = 2 for the sagittal sub-problem) the Stroh blocks
+are Q_ik = A_i1k1, R_ik = A_i1k2, T_ik = A_i2k2. A partial wave u = a exp(ik(x1 + p x2))
+has traction b = (R^T + p T) a on the planes x2 = const (divided by ik) and
+
+    p [a; b] = N [a; b],   N = [[-T^-1 R^T, T^-1], [R T^-1 R^T - Q + X I, -R T^-1]],
+
+with X = rho v^2. Below the limiting speed the six eigenvalues p are complex in conjugate
+pairs; the three with Im p > 0 decay into the crystal. Their invariant subspace is spanned by
+the columns of W = prod_j (N - conj(p_j) I) over the decaying p_j (Cayley-Hamilton: the
+product annihilates the growing generalised eigenspace and is invertible on the decaying
+one). This needs no eigenvectors, so equal or nearly equal p (isotropic crystals, Jordan
+blocks) cost no accuracy: W depends on the roots only through symmetric functions. With
+W = [W1; W2] the surface impedance is Z = -i B A^-1 = -i W2 W1^H (W1 W1^H)^-1 (Hermitian).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: Points of the initial grid of wave-normal angles in the limiting-speed search.
+LIMIT_GRID = 48
+#: Local minima of the grid refined (the lowest ones).
+LIMIT_CANDIDATES = 3
+#: ... among those within this relative distance of the grid's best value.
+LIMIT_WINDOW = 0.05
+#: Newton steps refining the limiting speed (quadratic convergence from the grid).
+LIMIT_STEPS = 4
+
+
+def stroh_blocks(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Q, R, T of a lab-frame tensor A, shape (..., d, d, d, d) -> three (..., d, d)."""
+    return A[..., :, 0, :, 0], A[..., :, 0, :, 1], A[..., :, 1, :, 1]
+
+
+def acoustic(Q, R, T, phi) -> np.ndarray:
+    """Acoustic tensor Gamma(n) for the wave normal n = (cos phi, sin phi) in the sagittal plane.
+
+    Parameters
+    ----------
+    Q, R, T : ndarray, shape (m, d, d)
+    phi : ndarray, shape (m, k)
+
+    Returns
+    -------
+    ndarray, shape (m, k, d, d)
+        cos^2 Q + sin cos (R + R^T) + sin^2 T; its eigenvalues are rho v^2 of the bulk waves.
+    """
+    c, s = np.cos(phi)[..., None, None], np.sin(phi)[..., None, None]
+    RR = (R + np.swapaxes(R, -1, -2))[:, None]
+    return c * c * Q[:, None] + s * c * RR + s * s * T[:, None]
+
+
+def _lowest_eig_closed(Q, R, T, phi) -> np.ndarray:
+    """Lowest eigenvalue of Gamma(n) (see :func:`acoustic`) in closed form, shape (m, k).
+
+    Built component by component (no (m, k, d, d) temporaries); 2 x 2 directly, 3 x 3 by the
+    trigonometric solution of the characteristic cubic: cheap but only accurate to ~1e-8
+    relative near degenerate eigenvalues, so used for the coarse grid only.
+    """
+    c, s = np.cos(phi), np.sin(phi)
+    cc, sc, ss = c * c, s * c, s * s
+
+    def comp(i, j):
+        return cc * Q[:, i, j, None] + sc * (R[:, i, j] + R[:, j, i])[:, None] + ss * T[:, i, j, None]
+
+    if Q.shape[-1] == 2:
+        a, b, c2 = comp(0, 0), comp(0, 1), comp(1, 1)
+        return 0.5 * (a + c2) - np.hypot(0.5 * (a - c2), b)
+    g00, g11, g22, d, e, f = comp(0, 0), comp(1, 1), comp(2, 2), comp(0, 1), comp(0, 2), comp(1, 2)
+    q = (g00 + g11 + g22) / 3.0
+    a, b, c3 = g00 - q, g11 - q, g22 - q
+    p = np.sqrt((a * a + b * b + c3 * c3 + 2.0 * (d * d + e * e + f * f)) / 6.0)
+    det = a * (b * c3 - f * f) - d * (d * c3 - f * e) + e * (d * f - b * e)
+    with np.errstate(all="ignore"):
+        r = det / (2.0 * p**3)
+    ang = np.arccos(np.clip(np.nan_to_num(r), -1.0, 1.0)) / 3.0
+    return q + 2.0 * p * np.cos(ang + 2.0 * np.pi / 3.0)
+
+
+def _trace_x(Q, R, T, phi, exact: bool = True) -> np.ndarray:
+    """Lowest rho v_trace^2 = lambda_min(Gamma(n)) / cos^2 phi of the bulk waves, shape (m, k).
+
+    ``exact``: LAPACK eigenvalues (accurate to rounding); else the closed form.
+    """
+    lam = np.linalg.eigvalsh(acoustic(Q, R, T, phi))[..., 0] if exact else _lowest_eig_closed(Q, R, T, phi)
+    return lam / np.cos(phi) ** 2
+
+
+def limiting_x(Q, R, T) -> tuple[np.ndarray, np.ndarray]:
+    """Limiting X_L = rho v_L^2 = min over real p of the lowest eigenvalue of Q + p(R+R^T) + p^2 T.
+
+    With p = tan phi (phi the angle of the bulk wave normal from x1 in the sagittal plane)
+    this is the lowest trace velocity along x1 of all bulk waves. A grid of ``LIMIT_GRID``
+    angles finds the local minima; the ``LIMIT_CANDIDATES`` lowest are refined by Newton's
+    method on the branch and the lowest result is kept; the value at a smooth minimum is then accurate to rounding.
+    (Newton on the branch, :func:`_refine`.)
+
+    Parameters
+    ----------
+    Q, R, T : ndarray, shape (m, d, d)
+
+    Returns
+    -------
+    X_L : ndarray, shape (m,)
+    p_L : ndarray, shape (m,)
+        tan(phi) at the minimum (the slope of the limiting bulk wave's normal).
+    """
+    m = Q.shape[0]
+    h = np.pi / LIMIT_GRID
+    grid = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
+    g = _trace_x(Q, R, T, np.broadcast_to(grid, (m, LIMIT_GRID)), exact=False)
+    # refine the lowest local minima of the grid (up to LIMIT_CANDIDATES, those within
+    # LIMIT_WINDOW of the best): two branches may have minima within the grid's resolution
+    # of each other (e.g. SH at p = 0, sagittal at p != 0)
+    pad = np.pad(g, ((0, 0), (1, 1)), constant_values=np.inf)
+    local = (g <= pad[:, :-2]) & (g <= pad[:, 2:])
+    gl = np.where(local, g, np.inf)
+    order = np.argsort(gl, axis=1)[:, :LIMIT_CANDIDATES]
+    cand = np.take_along_axis(gl, order, axis=1)
+    best = cand[:, :1]
+    keep = np.isfinite(cand) & (cand <= best + LIMIT_WINDOW * np.abs(best))
+    keep[:, 0] = True
+    rows, cols = np.nonzero(keep)
+    xf, pf = _refine(Q[rows], R[rows], T[rows], grid[order[rows, cols]], h)
+    X_L = np.full(m, np.inf)
+    np.minimum.at(X_L, rows, xf)
+    win = xf == X_L[rows]
+    phi = np.empty(m)
+    phi[rows[win]] = pf[win]
+    return X_L, np.tan(phi)
+
+
+def _refine(Q, R, T, phi0, h):
+    """Minimise the lowest branch lam(p) of Gamma(p) = Q + p (R + R^T) + p^2 T from p = tan(phi0).
+
+    Newton's method on lam'(p) = 0 with analytic derivatives (eigenvectors a_j, eigenvalues
+    w_j of Gamma): lam' = a_0 . Gamma' a_0, lam'' = 2 a_0 . T a_0 + 2 sum_j (a_j . Gamma' a_0)^2 /
+    (w_0 - w_j), Gamma' = R + R^T + 2 p T; steps limited to the grid cell, a non-positive
+    curvature steps downhill by half a cell; the lowest value seen is kept. Degenerate pairs
+    (|w_0 - w_j| < 1e-9 scale, e.g. isotropic SH and SV) contribute nothing to lam''.
+
+    Returns
+    -------
+    fx, phi : ndarray, shape (m,)
+        The minimum value of lam and its angle phi = arctan p.
+    """
+    p = np.tan(phi0)
+    trust = h * (1.0 + p * p)                                      # the grid cell in p
+    RR = R + np.swapaxes(R, -1, -2)
+    best, best_p = np.full(p.shape, np.inf), p.copy()
+    for _ in range(LIMIT_STEPS + 1):
+        G = Q + p[:, None, None] * RR + (p * p)[:, None, None] * T
+        w, V = np.linalg.eigh(G)
+        lam = w[:, 0]
+        better = lam < best
+        best, best_p = np.where(better, lam, best), np.where(better, p, best_p)
+        a0 = V[:, :, 0]
+        G1a = np.einsum("mij,mj->mi", RR + 2.0 * p[:, None, None] * T, a0)
+        d1 = np.einsum("mi,mi->m", a0, G1a)
+        d2 = 2.0 * np.einsum("mi,mij,mj->m", a0, T, a0)
+        scale = np.abs(w).max(axis=1)
+        for j in (1, 2)[: Q.shape[-1] - 1]:
+            gap = w[:, 0] - w[:, j]
+            c = np.einsum("mi,mi->m", V[:, :, j], G1a)
+            with np.errstate(all="ignore"):
+                d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
+        with np.errstate(all="ignore"):
+            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust)
+        p = p + np.clip(np.nan_to_num(step), -trust, trust)
+    return best, np.arctan(best_p)
+
+
+def stroh_matrix(Q, R, T, X) -> np.ndarray:
+    """Real Stroh matrix N(X), shape (m, 2d, 2d), for X shape (m,)."""
+    d = Q.shape[-1]
+    Ti = np.linalg.inv(T)
+    RT = np.swapaxes(R, -1, -2)
+    N1 = -Ti @ RT
+    N3 = R @ Ti @ RT - Q + X[:, None, None] * np.eye(d)
+    top = np.concatenate([N1, Ti], axis=-1)
+    bottom = np.concatenate([N3, np.swapaxes(N1, -1, -2)], axis=-1)
+    return np.concatenate([top, bottom], axis=-2)
+
+
+def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
+    """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
+
+    Parameters
+    ----------
+    Q, R, T : ndarray, shape (m, d, d)
+        Stroh blocks (scaled so that their entries are of order one).
+    X : ndarray, shape (m,)
+        rho v^2 in the units of Q.
+    derivative : bool
+        Also return the lowest eigenvalue of Z and its derivative in X (below).
+    N0 : ndarray, shape (m, 2d, 2d), optional
+        ``stroh_matrix(Q, R, T, 0)``, to save its recomputation in a root search
+        (N(X) = N0 + X [[0, 0], [I, 0]]).
+
+    Returns
+    -------
+    dict
+        ``Z`` (m, d, d) complex Hermitian impedance (NaN where not subsonic); ``p`` (m, d)
+        complex, the eigenvalues with Im p > 0 in ascending Im p; ``subsonic`` (m,) bool:
+        no eigenvalue within 1e-10 of the real axis; ``f`` (m,) real: det Z, whose sign
+        change in X marks the surface wave (not computed, NaN, with ``derivative``). With
+        ``derivative``: ``lam`` (m,) the lowest
+        eigenvalue of Z, ``u`` (m, d) its unit eigenvector, ``dlam`` (m,) d lam / dX.
+
+    Notes
+    -----
+    The derivative: M = B A^-1 solves the Riccati equation M N1 + M N2 M = N3 + N4 M (N in
+    blocks N1..N4); as dN3/dX = I, dM/dX solves the Sylvester equation
+    dM K1 - K2 dM = I with K1 = N1 + N2 M (eigenvalues: the decaying p) and K2 = N4 - M N2
+    (the growing ones), solved as a d^2 x d^2 linear system. Then dZ = -i dM and
+    d lam / dX = u^H dZ u (first-order perturbation of a simple eigenvalue).
+    """
+    d = Q.shape[-1]
+    if N0 is None:
+        N = stroh_matrix(Q, R, T, X)
+    else:
+        N = N0.copy()
+        N[:, d:, :d] += X[:, None, None] * np.eye(d)
+    ev = np.linalg.eigvals(N)
+    order = np.argsort(ev.imag, axis=-1)
+    ev = np.take_along_axis(ev, order, axis=-1)
+    lower, upper = ev[:, :d], ev[:, d:]
+    subsonic = (lower.imag[:, -1] < -1e-10) & (upper.imag[:, 0] > 1e-10)
+    eye = np.eye(2 * d)
+    W = N - lower[:, 0, None, None] * eye
+    for j in range(1, d):
+        W = W @ (N - lower[:, j, None, None] * eye)
+    W1, W2 = W[:, :d, :], W[:, d:, :]
+    W1H = np.conj(np.swapaxes(W1, -1, -2))
+    with np.errstate(all="ignore"):
+        M = np.linalg.solve(np.swapaxes(W1 @ W1H, -1, -2), np.swapaxes(W2 @ W1H, -1, -2))
+    M = np.swapaxes(M, -1, -2)                                     # B A^-1
+    Z = -1j * M
+    Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
+    f = np.linalg.det(Z).real if not derivative else np.full(len(X), np.nan)
+    bad = ~subsonic
+    if bad.any():
+        Z[bad] = np.nan
+        f[bad] = np.nan
+    out = {"Z": Z, "p": upper, "subsonic": subsonic, "f": f}
+    if derivative:
+        Zs = np.where(bad[:, None, None], np.eye(d), Z)
+        w, v = np.linalg.eigh(Zs)
+        u = v[..., 0]
+        n1, n2, n4 = N[:, :d, :d], N[:, :d, d:], N[:, d:, d:]
+        K1 = n1 + n2 @ M
+        K2 = n4 - M @ n2
+        e = np.eye(d)
+        L = (np.einsum("ia,...bj->...ijab", e, K1) - np.einsum("...ia,bj->...ijab", K2, e)).reshape(-1, d * d, d * d)
+        with np.errstate(all="ignore"):
+            dM = np.linalg.solve(np.where(bad[:, None, None], np.eye(d * d), L),
+                                 np.broadcast_to(e.reshape(d * d), (len(X), d * d))[..., None])[..., 0]
+        dZ = -1j * dM.reshape(-1, d, d)
+        out["lam"] = np.where(bad, np.nan, w[:, 0])
+        out["u"] = u
+        out["dlam"] = np.where(bad, np.nan, np.einsum("mi,mij,mj->m", np.conj(u), dZ, u).real)
+    return out
