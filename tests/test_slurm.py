@@ -41,6 +41,8 @@ PIDFILE = Path(tempfile.gettempdir()) / "surfwave-slurm-test.pids"
 #: It is written only when absent (or left by an earlier run of this test) and removed after.
 SYSTEM_CONF = Path("/etc/slurm/slurm.conf")
 MARKER = "# Single-node test cluster of surfwave's tests/test_slurm.py"
+#: Daemons live in /usr/sbin, which a non-login root shell may not have on PATH.
+SEARCH_PATH = os.pathsep.join(p for p in (os.environ.get("PATH"), "/usr/sbin", "/sbin") if p)
 CTLD_PORT, SLURMD_PORT = 16817, 16818  # not SLURM's defaults: a real slurmd may be running
 
 # `tiny`: the issue's FCC scene (one grouped SLURM job); `tiny_tri`: the triangular stages,
@@ -80,6 +82,10 @@ def _run(cmd, timeout, check=True, **kw) -> subprocess.CompletedProcess:
     return subprocess.run(cmd, capture_output=True, text=True, timeout=max(timeout, 1), check=check, **kw)
 
 
+def _missing() -> list[str]:
+    return [b for b in BINARIES if shutil.which(b, path=SEARCH_PATH) is None]
+
+
 def why_not_runnable() -> str | None:
     """Why this machine cannot run the test (None: it can, possibly after installing packages)."""
     if not sys.platform.startswith("linux"):
@@ -88,22 +94,22 @@ def why_not_runnable() -> str | None:
         return "needs root (it starts munged, slurmctld and slurmd and may apt-get install them)"
     if SYSTEM_CONF.exists() and MARKER not in SYSTEM_CONF.read_text(errors="replace"):
         return f"{SYSTEM_CONF} exists (a real SLURM setup?): the test does not touch it"
-    if any(shutil.which(b) is None for b in BINARIES) and shutil.which("apt-get") is None:
+    if _missing() and shutil.which("apt-get", path=SEARCH_PATH) is None:
         return f"SLURM/munge not installed and no apt-get to install {' '.join(PACKAGES)}"
     return None
 
 
 def install(deadline: float) -> str | None:
     """apt-get install the Debian packages when a binary is missing; the error text if it fails."""
-    if all(shutil.which(b) for b in BINARIES):
+    if not _missing():
         return None
-    env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
+    env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive", "PATH": SEARCH_PATH}
     cmd = ["apt-get", "install", "-y", "-q", "--no-install-recommends", *PACKAGES]
     proc = _run(cmd, deadline - time.time(), check=False, env=env)
     if proc.returncode != 0:  # a fresh image has no package lists yet
         _run(["apt-get", "update", "-q"], deadline - time.time(), check=False, env=env)
         proc = _run(cmd, deadline - time.time(), check=False, env=env)
-    missing = [b for b in BINARIES if shutil.which(b) is None]
+    missing = _missing()
     if proc.returncode != 0 or missing:
         return f"apt-get install {' '.join(PACKAGES)} failed (missing {missing}): {proc.stderr[-1500:]}"
     return None
@@ -158,6 +164,7 @@ class LocalSlurm:
         self.host = socket.gethostname().split(".")[0]
         self.procs: list[subprocess.Popen] = []
         self.env = {k: v for k, v in os.environ.items() if k != "SLURM_CONF"}
+        self.env["PATH"] = SEARCH_PATH
 
     def write_config(self) -> None:
         r = self.root
@@ -215,7 +222,7 @@ PartitionName=debug Nodes={self.host} Default=YES MaxTime=INFINITE State=UP
         r = self.root
         self.write_config()
         key = r / "munge.key"
-        _run(["mungekey", "--create", f"--keyfile={key}"], deadline - time.time())
+        _run(["mungekey", "--create", f"--keyfile={key}"], deadline - time.time(), env=self.env)
         key.chmod(0o600)
         self._spawn("munged", ["munged", "--foreground", "--force", f"--socket={r / 'munge.socket'}",
                                f"--key-file={key}", f"--pid-file={r / 'munged.pid'}",
