@@ -330,12 +330,8 @@ def snakemake(workdir: Path, args: list[str], deadline: float, env: dict) -> tup
 
 def compare_cubes(local: Path, cluster: Path) -> list[str]:
     """Differences between two results/ trees: missing cubes, data variables or coordinates."""
-    try:
-        from surfwave.cube import open_cube  # complex values as numbers
-    except ImportError:  # library layout changed: plain xarray compares the stored form
-        import xarray as xr
+    from surfwave.data.cube import open_cube  # complex values as numbers
 
-        open_cube = xr.open_dataset
     problems = []
     names = sorted(p.relative_to(local) for p in local.rglob("*.nc") if "cache" not in p.parts)
     other = sorted(p.relative_to(cluster) for p in cluster.rglob("*.nc") if "cache" not in p.parts)
