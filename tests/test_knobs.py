@@ -104,7 +104,17 @@ def test_inject_refuses_mismatched_knob_lists():
         knobs.inject(raw)
 
 
-def test_estimated_cost_scales_with_supercell():
-    """Cost model: N^6 for phonopy's supercell (atoms^2), mesh^3 for the zone scan."""
-    t = knobs.estimated_cost("bulk", {"supercell": 4, "zone_mesh": 16}, 0.01)
-    assert np.isclose(t, 0.01 * 2**6 * 2**3)
+def test_costly_settings_announced_before_any_job():
+    """supercell 8, zone_mesh 200 ran for minutes per point with no sign of life: the
+    expected time is stated up front (cost model measured on supercell 2..4, mesh 8..64);
+    the defaults stay silent."""
+    cfg = {"scenes": {"big": {"lattice": "fcc", "loading": "in_plane_hydrostatic", "potentials": ["lj"],
+                              "d_over_d0": [0.99, 1.0], "quantities": ["elastic", "bulk"],
+                              "accuracy": {"bulk": {"supercell": 8, "zone_mesh": 200}}}}}
+    sc = validate_config(cfg)
+    (line,) = knobs.expected_cost(sc, ["big"])
+    assert "bulk, scene big: 4 points" in line and "supercell 8" in line
+    per_point = knobs.estimated_cost("bulk", {"supercell": 8, "zone_mesh": 200}, 0.0)
+    assert 10 < per_point < 300  # minutes for the scene, not milliseconds and not days
+    cfg["scenes"]["big"]["accuracy"] = {}
+    assert knobs.expected_cost(validate_config(cfg), ["big"]) == []

@@ -24,7 +24,8 @@ for pot in job["potentials"]:
         r = cache.cached_points(
             "bulk", key, job["d_over_d0"],
             lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),
-            snakemake.params.cache, chunk=cache.CHUNK)
+            snakemake.params.cache, chunk=cache.CHUNK,
+            label=f"bulk, scene {job['scene']}")
         blocks[(pot, direction)] = cube.documented(r, phonons.VARIABLES, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], phonons.VARIABLES)
