@@ -63,9 +63,11 @@ def _table() -> dict[str, dict[str, Knob]]:
             "long_wave": Knob(phonons.DEFAULT_LONG_WAVE),
         },
         "dispersion": {
-            "tol": Knob(_keyword_default(triangular_surface.surface_mode, "tol"), 1.0e-13, 1.0e-2,
-                        "relative decimation tolerance: rounding limits the surface-mode "
-                        "error estimate to about 3e-14, so a tolerance below 1e-13 cannot be met"),
+            "tol": Knob(_keyword_default(triangular_surface.surface_mode, "tol"), 1.0e-14, 1.0e-2,
+                        "coupling left to the rows beyond the decimation depth, relative to the "
+                        "row coupling: the error of omega_lattice against Eq. (15) stops "
+                        "improving (about 5e-9) below tol = 1e-8 (benchmarks/bench_dispersion.py); "
+                        "below 1e-14 only the time grows"),
         },
         "displacements": {
             "n_rows": Knob(None, 1, 10_000, "rows below the surface"),
