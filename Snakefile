@@ -34,6 +34,10 @@ os.environ.update(
 configfile: "config/config.yaml"
 
 
+# Front page of `snakemake --report report.html`: what the workflow is.
+report: "workflow/report/workflow.rst"
+
+
 # Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
 try:
     SCENES = validate_config(
