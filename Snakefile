@@ -15,7 +15,9 @@ from snakemake.utils import min_version
 sys.path.insert(0, str(Path(workflow.basedir, "src")))
 
 from surfwave.data import cache
-from surfwave.pipeline.scenes import SceneError, validate_config
+from surfwave.data.integrity import set_aside_damaged
+from surfwave.pipeline.knobs import expected_cost
+from surfwave.pipeline.scenes import SceneError, selected, validate_config
 
 min_version("9.13.1")
 
@@ -32,6 +34,10 @@ os.environ.update(
 configfile: "config/config.yaml"
 
 
+# Front page of `snakemake --report report.html`: what the workflow is.
+report: "workflow/report/workflow.rst"
+
+
 # Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
 try:
     SCENES = validate_config(
@@ -41,12 +47,34 @@ except SceneError as exc:
     raise WorkflowError(str(exc)) from None
 
 
+# Stages expected to run long (costly accuracy settings) are announced before any job.
+for _line in expected_cost(SCENES, selected(config, SCENES)):
+    print(_line, file=sys.stderr)
+
+# A damaged cube (truncated, not netCDF) is set aside as <file>.damaged and rebuilt,
+# instead of failing every figure and report job that reads it.
+for _line in set_aside_damaged(Path("results").glob("*/*.nc")):
+    print(_line, file=sys.stderr)
+
+
 wildcard_constraints:
     scene="|".join(re.escape(name) for name in SCENES),
 
 
 onstart:
     cache.start_run(cache.DEFAULT_ROOT)  # `surfwave cache info` counts hits from here
+
+
+# Each job writes its progress and its summary line to its own log; the run ends with the
+# summary lines of every cached stage ("bulk, scene x: 22 points, 14 from the cache, ...").
+onsuccess:
+    for _line in cache.run_summary(cache.DEFAULT_ROOT):
+        print(_line, file=sys.stderr)
+
+
+onerror:
+    for _line in cache.run_summary(cache.DEFAULT_ROOT):
+        print(_line, file=sys.stderr)
 
 
 include: "workflow/rules/common.smk"
