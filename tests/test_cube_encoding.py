@@ -3,8 +3,6 @@
 References: the written values themselves (round trip), and the HDF5 format's own check of
 a truncated file (its superblock records the end-of-file address).
 """
-import subprocess
-import sys
 
 import numpy as np
 import xarray as xr

@@ -118,7 +118,7 @@ def morse(alpha: float = 3.0) -> PairPotential:
         return np.exp(-alpha * (_asarray(r) - 1.0))
 
     return PairPotential(
-        name=f"morse" if alpha == 3.0 else f"morse{alpha:g}",
+        name="morse" if alpha == 3.0 else f"morse{alpha:g}",
         phi=lambda r: depth * ((1.0 - e(r)) ** 2 - 1.0),
         dphi=lambda r: 2.0 * depth * alpha * (1.0 - e(r)) * e(r),
         d2phi=lambda r: 2.0 * depth * alpha**2 * e(r) * (2.0 * e(r) - 1.0),

@@ -37,7 +37,7 @@ def figure_targets(scenes: dict, names, results: str = "results") -> list[str]:
 
 def paper_scenes() -> list[str]:
     """The scenes the paper's reproduction report reads (named in ``paper_values.yaml``)."""
-    pv = yaml.safe_load(resources.files("surfwave").joinpath("data/paper_values.yaml").read_text())
+    pv = load_paper_values()
     names = [pv["table1"]["scene"]]
     for group in ("values", "claims"):
         for spec in pv[group].values():

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from surfwave.errors import InputError  # noqa: E402
-from surfwave.plots.labels import D_OVER_D0, OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
+from surfwave.plots.labels import OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
 
 
 def _get(data, name: str):
