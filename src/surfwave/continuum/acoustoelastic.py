@@ -13,10 +13,11 @@ solver is needed and this module returns NaN with that reason.
 Speeds are true phase speeds in the stressed state, m/s (wavelength measured in the
 deformed crystal). The acoustoelastic coefficient is (1/v) dv/dsigma at zero stress, 1/GPa,
 by a central difference of step :data:`DEFAULT_STEP` = 1e-4 GPa. The step is chosen from a
-measured scan (``benchmarks/bench_toec.py``, Cu (001)[100]): the relative error against a
-Richardson-extrapolated reference falls as h^2 (4e-7 at h = 1e-2 GPa, 4e-9 at 1e-3 GPa)
-until round-off of the Newton solve and Eq. (17) takes over near 1e-5 GPa (~1e-9 there and
-growing as 1/h below); 1e-4 GPa sits at the bottom of that valley, ~1e-9 relative.
+measured scan (``benchmarks/bench_toec.py``: the 8 database crystals with TOEC, (001)[100]
+and [110], three loadings, with and without TOEC, against a Richardson-extrapolated
+reference): the largest relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at
+1e-3 GPa and 8e-9 at 1e-4 GPa, then grows again as 1/h (round-off of the deformation solve
+and of Eq. 17: 1e-7 at 1e-6 GPa). 1e-4 GPa is the bottom of that valley.
 """
 from __future__ import annotations
 
