@@ -151,3 +151,25 @@ def test_extreme_stress_is_nan_with_a_reason_and_bad_input_is_refused():
         stressed_state(CU_C2, CU_C3, np.zeros(3), 8960.0)
     with pytest.raises(InputError, match="rho0"):
         stressed_state(CU_C2, CU_C3, np.zeros((3, 3)), -1.0)
+
+
+def test_pressure_derivative_of_the_bulk_modulus_is_the_closed_form():
+    """Under hydrostatic pressure P the effective bulk modulus of the stressed state,
+    B(P) = (B*_1111 + 2 B*_1122)/3 with Wallace's B* = C* - P (d_ik d_jl + d_il d_jk - d_ij d_kl),
+    has dB/dP = -(C111 + 6 C112 + 2 C123)/(9 B) at P = 0 (closed form from W(eta) along
+    eta = e I, derived in docs/physics/third-order-constants.md); checked for every database
+    crystal with third-order constants."""
+    from surfwave.data.materials import available_materials, get_material
+
+    for name in available_materials():
+        m = get_material(name)
+        if m.toec is None:
+            continue
+        C3, h = cubic_toec(**m.toec), 1e-3
+        P = np.array([-h, h])
+        C = stressed_state(m.voigt, C3, -P[:, None, None] * np.eye(3), m.rho)["C_star"]
+        B = (C[:, 0, 0, 0, 0] + 2 * C[:, 0, 0, 1, 1] + P) / 3
+        t, c = m.toec, m.constants
+        B0 = (c["C11"] + 2 * c["C12"]) / 3
+        assert (B[1] - B[0]) / (2 * h) == pytest.approx(-(t["C111"] + 6 * t["C112"] + 2 * t["C123"]) / (9 * B0),
+                                                        rel=1e-6), name
