@@ -182,6 +182,32 @@ def stressed_constants(C2, C3, F) -> np.ndarray:
     return out / np.linalg.det(F)[..., None, None, None, None]
 
 
+def wallace_tensor(C, sigma) -> np.ndarray:
+    """Wallace's stability tensor of a stressed crystal, Voigt form, symmetrised.
+
+    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2
+    (Wallace; Wang, Yip, Phillpot and Wolf 1993), with C the constants of the stressed state.
+    The stressed crystal is stable against homogeneous deformation where it is positive definite.
+
+    Parameters
+    ----------
+    C : array_like, shape (..., 3, 3, 3, 3)
+    sigma : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+    """
+    e = np.eye(3)
+    sigma = np.asarray(sigma, dtype=float)
+    B = np.asarray(C, dtype=float) + 0.5 * (
+        np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
+        + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
+        - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
+    B6 = tensor_to_voigt(B)
+    return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
+
+
 def _stress_and_jacobian(F, C2, C3):
     """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
     (..., 6, 3, 3), plus the tangent C2 + C3 : eta."""
@@ -326,8 +352,9 @@ def stressed_state(C2, C3, sigma, rho0, *, tol: float = DEFAULT_TOL) -> dict:
     dict
         ``F`` (..., 3, 3), ``C_star`` (..., 3, 3, 3, 3) GPa, ``rho`` (...,) kg/m^3, ``sigma``
         (..., 3, 3) GPa, ``ok`` (...,) bool, ``reason`` (...,) str. Where the deformation solve
-        fails or C* is not Born-stable (Voigt matrix not positive definite), ``ok`` is False,
-        the reason is given and F, C_star, rho are NaN.
+        fails or the stressed crystal is not Born-stable (Wallace's B = C* + stress terms,
+        :func:`wallace_tensor`, not positive definite), ``ok`` is False, the reason is given
+        and F, C_star, rho are NaN.
     """
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
@@ -351,11 +378,11 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
         C_star = stressed_constants(C2, C3, F)
         rho = float(rho0) / np.linalg.det(F)
-    born = np.linalg.eigvalsh(np.nan_to_num(tensor_to_voigt(C_star)))[..., 0]
+    born = np.linalg.eigvalsh(wallace_tensor(np.nan_to_num(C_star), sigma))[..., 0]
     lost = ok & ~(born > 0)
     if np.any(lost):
-        why = np.vectorize(lambda b: f"stressed constants C* not Born-stable (lowest Voigt eigenvalue {b:.3g} GPa)",
-                           otypes=[object])(born)
+        why = np.vectorize(lambda b: "stressed crystal not Born-stable (lowest eigenvalue of Wallace's "
+                           f"B = C* + stress terms: {b:.3g} GPa)", otypes=[object])(born)
         reason = np.where(lost, why, reason)
         ok = ok & ~lost
     F = np.where(ok[..., None, None], F, np.nan)
