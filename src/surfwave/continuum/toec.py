@@ -122,12 +122,14 @@ def lagrangian_strain(F) -> np.ndarray:
 
 def _tangent(C2, C3, eta) -> np.ndarray:
     """d^2 W / d eta^2 = C2 + C3 : eta, shape (..., 3, 3, 3, 3)."""
-    return C2 + np.einsum("...ijklmn,...mn->...ijkl", C3, eta)
+    C3m = C3.reshape(C3.shape[:-6] + (81, 9))
+    contracted = (C3m @ eta.reshape(eta.shape[:-2] + (9, 1)))
+    return C2 + contracted.reshape(contracted.shape[:-2] + (3, 3, 3, 3))
 
 
 def _pk2(C2, C3, eta) -> np.ndarray:
     """T = C2 : eta + 1/2 C3 : eta : eta, shape (..., 3, 3)."""
-    return np.einsum("...ijkl,...kl->...ij", C2 + 0.5 * np.einsum("...ijklmn,...mn->...ijkl", C3, eta), eta)
+    return np.einsum("...ijkl,...kl->...ij", 0.5 * (C2 + _tangent(C2, C3, eta)), eta)
 
 
 def cauchy_stress(F, C2, C3) -> np.ndarray:
@@ -210,20 +212,22 @@ def wallace_tensor(C, sigma) -> np.ndarray:
 
 def _stress_and_jacobian(F, C2, C3):
     """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
-    (..., 6, 3, 3), plus the tangent C2 + C3 : eta."""
+    (..., 6, 3, 3), plus the tangent C2 + C3 : eta (matrix products: einsum chains are slow)."""
     eta = lagrangian_strain(F)
     K = _tangent(C2, C3, eta)
-    T = np.einsum("...ijkl,...kl->...ij", C2 + 0.5 * (K - C2), eta)
+    T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
     J = np.linalg.det(F)
     Finv = np.linalg.inv(F)
-    sigma = np.einsum("...ip,...pq,...jq->...ij", F, T, F) / J[..., None, None]
+    Ft = np.swapaxes(F, -1, -2)
+    sigma = F @ T @ Ft / J[..., None, None]
+    F1, Ft1, T1 = F[..., None, :, :], Ft[..., None, :, :], T[..., None, :, :]
     dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
-    FtdF = np.einsum("...ki,...bkj->...bij", F, dF)
+    FtdF = Ft1 @ dF
     deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
-    dT = np.einsum("...ijkl,...bkl->...bij", K, deta)
-    term = (np.einsum("...bip,...pq,...jq->...bij", dF, T, F)
-            + np.einsum("...ip,...bpq,...jq->...bij", F, dT, F)
-            + np.einsum("...ip,...pq,...bjq->...bij", F, T, dF))
+    K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
+    dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
+    dFTFt = dF @ T1 @ Ft1
+    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
     trace = np.einsum("...ij,...bji->...b", Finv, dF)
     dsigma = term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
     return sigma, dsigma, K
@@ -299,14 +303,19 @@ def deformation_for_stress(sigma, C2, C3, *, tol: float = DEFAULT_TOL, max_itera
             except np.linalg.LinAlgError:
                 du = -np.einsum("mab,mb->ma", np.linalg.pinv(jac), r[active])
             step = np.einsum("ma,aij->mij", du, _BASIS)
-            best_F, best_res = F[active], residual[active]
+            # Full Newton step where it lowers the residual; step halving only for the others.
+            F_a, res_a, tgt = F[active], residual[active], target[active]
+            todo = np.ones(len(F_a), dtype=bool)
             for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
-                trial = F[active] + alpha * step
-                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - target[active]), axis=-1)
-                better = np.isfinite(rt) & (rt < best_res) & (best_res == residual[active])
-                best_F = np.where(better[:, None, None], trial, best_F)
-                best_res = np.where(better, rt, best_res)
-            F[active] = best_F
+                trial = F_a[todo] + alpha * step[todo]
+                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - tgt[todo]), axis=-1)
+                better = np.isfinite(rt) & (rt < res_a[todo])
+                idx = np.flatnonzero(todo)[better]
+                F_a[idx] = trial[better]
+                todo[idx] = False
+                if not todo.any():
+                    break
+            F[active] = F_a
         eta = lagrangian_strain(F)
         J = np.linalg.det(F)
         K_min = np.linalg.eigvalsh(tensor_to_voigt(_tangent(C2, C3, eta)))[..., 0]
