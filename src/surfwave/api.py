@@ -1,8 +1,8 @@
 """The library's front door: one call per question.
 
 :func:`point` answers "what are the bulk speeds and the Rayleigh speed of this prestressed
-model crystal at these strains?"; :func:`material` answers the same for a real cubic
-crystal from measured elastic constants.
+model crystal at these strains?"; :func:`material` answers the same for a real crystal from
+measured elastic constants (or a material name), optionally with third-order constants.
 """
 from __future__ import annotations
 
@@ -323,11 +323,15 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     Parameters
     ----------
     C11, C12, C44 : float
-        Cubic elastic constants, GPa (taken as the stressed crystal's constants). Or:
+        Cubic elastic constants, GPa. Without ``toec`` they are taken as the stressed crystal's
+        constants (fixed-C model); with ``toec`` they are the unstressed (natural-state) ones.
+        Or C11 is a material name from the database (``"Cu"``, ``"copper"``, ``"GaAs"``, ...,
+        :func:`surfwave.data.materials.available_materials`), which supplies the constants and
+        the density (an explicit ``rho`` wins). Or:
     voigt : array_like, shape (6, 6), keyword only
         A full Voigt stiffness of any symmetry, crystal axes, GPa (instead of C11, C12, C44).
     rho : float
-        Density, kg/m^3.
+        Density, kg/m^3 (natural state with ``toec``).
     direction : str or float or array_like of float
         A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
         surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
@@ -339,6 +343,16 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         "(hkl)".
     angle : float or array_like, optional, keyword only
         Same as an angle ``direction`` (wins over it).
+    toec : None, True or sequence of 6 floats or array_like (6, 6, 6), keyword only
+        Third-order elastic constants (C111, C112, C123, C144, C155, C456) in GPa, Brugger
+        convention (Lagrangian strain, energy per unit natural volume, as tabulated), or a
+        Voigt (6, 6, 6) array; True takes them from the database (the material must be given
+        by name). The crystal then deforms under the stress
+        (:func:`surfwave.continuum.toec.stressed_state`): the constants C* and density rho0/J of
+        the stressed state are used, the wave propagates along F m0 (m0 the given direction of
+        the unstressed crystal) on the surface of normal F^-T n0, and speeds are true phase
+        speeds in the stressed state (docs/physics/third-order-constants.md). A stress beyond the
+        model's range gives NaN with the reason.
 
     Returns
     -------
@@ -349,13 +363,16 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         NaN where imaginary), ``wave_type``, ``reason``, ``stable`` (Born stability and
         positive acoustic tensor in every direction), ``polarisation`` (..., 3) and ``decay``
         (..., 3) complex (see :func:`surfwave.continuum.stroh.surface_wave`),
-        ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``.
+        ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
+        ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
 
     Raises
     ------
     InputError
         Missing or non-finite constants, constants in Pa (hint given), rho <= 0, a direction
-        not in the surface, a stress with sigma . n != 0 (component named).
+        not in the surface, a stress with sigma . n != 0 (component named), an unknown material
+        name (known ones listed), toec=True for a material without third-order constants (the
+        material and the missing constants named).
 
     Examples
     --------
@@ -364,6 +381,8 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     0.633975
     >>> round(material(168.4, 121.4, 75.4, 8960, "[1-10]", surface="(111)")["c_R"], 1)
     1613.5
+    >>> round(material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"], 2)  # 2012.12 unstressed
+    2019.06
     """
     C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
