@@ -66,7 +66,7 @@ def mirror_cases() -> tuple[np.ndarray, np.ndarray]:
     for loading in ("in_plane_hydrostatic", "uniaxial"):
         for d in ("[100]", "[110]"):
             p = surfwave.point("fcc", loading, "lj", d, s)
-            crystal = build("fcc", loading, d, s, "lj")
+            crystal = build("fcc", loading, "lj", d, s)
             As.append(stroh.wave_propagation_tensor(p["C"], elastic.stress(crystal.bonds, "lj")))
             ref.append(rayleigh.rayleigh_c2(p["S"]))
     A = np.concatenate(As)[:, :2, :2, :2, :2]

@@ -61,7 +61,7 @@ def test_pair_sum_toec_of_fcc_is_cubic_with_cauchy_relations():
     """C3 of nearest-neighbour central forces in cube axes has cubic form: rebuilding it from
     its C111, C112, C123, C144, C155, C456 gives the same tensor (this fixes where C144 and
     C155 go), and bonds along <110> give C123 = C144 = C456 = 0, C112 = C155 (Cauchy)."""
-    c = build("fcc", "in_plane_hydrostatic", "[100]", [1.0])
+    c = build("fcc", "in_plane_hydrostatic", None, "[100]", [1.0])
     lab = np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])          # lab rows in crystal axes
     bonds = c.bonds[0] @ lab                                        # back to crystal axes
     C3 = elastic.third_order_constants(bonds, "lj") / c.volume[0]
@@ -75,13 +75,13 @@ def test_pair_sum_toec_of_fcc_is_cubic_with_cauchy_relations():
 
 def _kinematics(potential, direction, strains):
     """Errors of sigma, C* and c_R^2 through the third-order expansion vs exact pair sums."""
-    c0 = build("fcc", "in_plane_hydrostatic", direction, [1.0])
+    c0 = build("fcc", "in_plane_hydrostatic", None, direction, [1.0])
     V0 = c0.volume[0]
     C2 = elastic.elastic_constants(c0.bonds[0], potential) / V0
     C3 = elastic.third_order_constants(c0.bonds[0], potential) / V0
     s = 1.0 + np.asarray(strains)
     exact = surfwave.point("fcc", "in_plane_hydrostatic", potential, direction, s)
-    crystal = build("fcc", "in_plane_hydrostatic", direction, s)
+    crystal = build("fcc", "in_plane_hydrostatic", None, direction, s)
     F = np.einsum("ni,ij->nij", crystal.stretch, np.eye(3))         # lab frame, diagonal
     sig = cauchy_stress(F, C2, C3)
     Cs = stressed_constants(C2, C3, F)
