@@ -170,7 +170,8 @@ def test_noop_scene_change_knob_change_and_code_provenance(built, tmp_path):
     dry = smk(built, "-n", "--configfile", "config/config.yaml", str(extra))
     jobs = scheduled(dry)
     assert jobs and {scene for _, scene in jobs} == {"tiny_tri", "tiny_fcc"}, jobs
-    assert [rule for rule, scene in jobs if scene == "tiny_fcc"] == ["bulk"], jobs
+    # bulk, and the scene's summary that reads bulk.nc
+    assert sorted(rule for rule, scene in jobs if scene == "tiny_fcc") == ["bulk", "scene_summary"], jobs
     # ... and, run for real, computes only the new points in the cached stages.
     fcc = {c: (built / "results" / "tiny_fcc" / f"{c}.nc").stat().st_mtime_ns
            for c in ("crystal", "elastic", "rayleigh")}
@@ -223,13 +224,14 @@ def test_slurm_profile_dry_run(tmp_path):
 
 
 def test_figures_and_report_exist_without_unexpected_fail(built):
-    """Rule `all` also builds the figures the scenes allow and results/report.md. The tiny
-    scenes are not the paper's scenes, so the report can judge none of the paper's checks:
-    every printed value and claim of paper_values.yaml must still be listed (a check that
-    silently vanishes fails here), none may be FAIL, and the bulk section must show the
-    phonopy stage of tiny_fcc. (The paper scenes' known FAILs: tests/test_report_verdicts.py.)"""
+    """Rule `all` also builds the figures the scenes allow and each user scene's summary.md;
+    the reproduction report is the paper scenes' alone, so none is written here. Rendered from
+    the tiny cubes, the report can judge none of the paper's checks: every printed value and
+    claim of paper_values.yaml must still be listed (a check that silently vanishes fails
+    here), none may be FAIL, and the bulk section must show the phonopy stage of tiny_fcc.
+    (The paper scenes' known FAILs: tests/test_report_verdicts.py.)"""
     from surfwave.pipeline.targets import figure_targets
-    from surfwave.report.reproduction import load_paper_values
+    from surfwave.report.reproduction import load_paper_values, write_report
 
     res = built / "results"
     scenes = {"tiny_fcc": {"quantities": ["elastic", "rayleigh", "bulk"], "potentials": ["lj"]},
@@ -239,7 +241,13 @@ def test_figures_and_report_exist_without_unexpected_fail(built):
     assert len(pngs) == 5
     for png in pngs:
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000, png
-    text = (res / "report.md").read_text()
+    assert not (res / "report.md").exists()
+    for scene in scenes:
+        assert "elastic" in (res / scene / "summary.md").read_text() or scene == "tiny_tri"
+        assert (res / scene / "summary.md").stat().st_size > 200
+    report = built.parent / f"report_{built.name}.md"
+    write_report(sorted(res.glob("tiny_*/*.nc")), report)
+    text = report.read_text()
     counts = dict((v, int(n)) for n, v in re.findall(r"(\d+) (PASS|FAIL|INCONCLUSIVE)", text.split("\n\n## ")[0]))
     assert counts.get("FAIL") == 0, text[:2000]
     assert not re.search(r"\|\s*\**FAIL\**\s*\|", text)
