@@ -1,4 +1,4 @@
-"""Geometries and input validation (PHYSICS.md, 'Prestressed geometries')."""
+"""Geometries and input validation (docs/physics/paper.md, 'Prestressed geometries')."""
 from __future__ import annotations
 
 import numpy as np

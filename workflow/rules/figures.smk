@@ -1,4 +1,4 @@
-# Figures of the reproduction (issue 3 and 7): Fig. 2 for every selected FCC scene with
+# Figures of the reproduction: Fig. 2 for every selected FCC scene with
 # elastic and rayleigh cubes, Table I (paper beside ours) for the `table1` scene, and for
 # triangular scenes the dispersion, theta_c, Fig. 3 (displacements) and entropy figures.
 # FIGURE_TARGETS is what rule `all` builds.

@@ -26,6 +26,6 @@ blocks = {
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], elastic.VARIABLES)
 cube.finish(ds, snakemake, what="elastic", crystal=snakemake.input.crystal,
-            method="analytic nearest-neighbour sums (PHYSICS.md Appendix, Eq. A11); long-wave "
+            method="analytic nearest-neighbour sums (docs/physics/paper.md Appendix, Eq. A11); long-wave "
             f"stability from the acoustic tensor over {elastic.STABILITY_DIRECTIONS} directions, "
             "refined locally")
