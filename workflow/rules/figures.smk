@@ -4,8 +4,10 @@
 # FIGURE_TARGETS is what rule `all` builds.
 from surfwave.pipeline.targets import figure_targets, speeds_scenes
 from surfwave.continuum.potentials import available_potentials
+from surfwave.data.paper import load_paper_values
 
-TABLE1_SCENE = "table1"
+#: The scene Table I is compared with (held in paper_values.yaml beside the table itself).
+TABLE1_SCENE = load_paper_values()["table1"]["scene"]
 
 FIGURE_TARGETS = [
     f"results/{name}/speeds_vs_stress.png"
