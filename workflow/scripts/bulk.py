@@ -11,8 +11,7 @@ from surfwave.continuum import phonons
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("bulk", inputs={"crystal": "results/{scene}/crystal.nc",
-                                           "elastic": "results/{scene}/elastic.nc"})
+    snakemake = standalone("bulk")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job

@@ -14,7 +14,7 @@ from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("dispersion", inputs={"crystal": "results/{scene}/crystal.nc"})
+    snakemake = standalone("dispersion")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job

@@ -10,7 +10,7 @@ from surfwave.continuum import elastic
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("elastic", inputs={"crystal": "results/{scene}/crystal.nc"})
+    snakemake = standalone("elastic")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job

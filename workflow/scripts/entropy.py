@@ -11,7 +11,7 @@ from surfwave.dynamics import entropy
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("entropy", inputs={"crystal": "results/{scene}/crystal.nc"})
+    snakemake = standalone("entropy")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job

@@ -11,7 +11,7 @@ from surfwave.continuum import rayleigh
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("rayleigh", inputs={"elastic": "results/{scene}/elastic.nc"})
+    snakemake = standalone("rayleigh")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job
