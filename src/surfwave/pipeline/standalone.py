@@ -89,7 +89,6 @@ def standalone(rule: str, argv=None, snakefile: str | Path = "Snakefile") -> Sim
     config = workflow.config
     for path in (*output, *log):
         Path(path).parent.mkdir(parents=True, exist_ok=True)
-    print(f"{rule} (standalone): inputs {list(inputs)}, outputs {list(output)}, log {list(log)}",
-          file=sys.stderr)
+    print(f"{rule} (by hand): writes {list(output)}, log {list(log)}", file=sys.stderr)
     return SimpleNamespace(input=inputs, output=output, params=params, log=log, wildcards=wildcards,
                            rule=rule, threads=1, config=config)
