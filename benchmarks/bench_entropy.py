@@ -11,7 +11,7 @@ Cases: harmonic at zero stress and LJ under compression (d/d0 = 0.92, near its l
 * ``zone_grid`` the naive bulk average: n x n midpoint grid over the zone;
 * ``tol``       the production call, surface_entropy(tol): actual and reported error.
 
-Target (issue 6): S_surface_exact to 1e-8 in under 0.5 s per strain.
+Target: S_surface_exact to 1e-8 in under 0.5 s per strain.
 """
 from __future__ import annotations
 

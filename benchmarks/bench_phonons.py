@@ -1,4 +1,4 @@
-"""Speed/accuracy trade of the phonopy bulk stage (issue 4).
+"""Speed/accuracy trade of the phonopy bulk stage.
 
 Measures, against the analytic speeds of Eq. (A11) (``surfwave.point``):
 

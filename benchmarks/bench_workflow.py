@@ -4,7 +4,7 @@ Usage: python benchmarks/bench_workflow.py OUTDIR   -> OUTDIR/workflow_timing.nc
 
 Copies the repository (without results/, .snakemake/, .git/, .venv/) to a temporary
 directory and runs ``snakemake -j2`` there from an empty results/ (the parameter cache
-starts empty too), then again (must print "Nothing to be done"). Targets (issue 3):
+starts empty too), then again (must print "Nothing to be done"). Targets:
 full reproduction < 20 s, no-op rerun < 2 s, on the 2-core machine.
 """
 from __future__ import annotations
@@ -70,7 +70,7 @@ def main(outdir: str) -> Path:
         print(f"{run}: {t:.2f} s (target < {target:g} s)")
     ds = xr.Dataset(
         {"time": ("run", times, {"long_name": "wall time", "units": "s"}),
-         "target": ("run", TARGETS, {"long_name": "target wall time (issue 3)", "units": "s"})},
+         "target": ("run", TARGETS, {"long_name": "target wall time", "units": "s"})},
         coords={"run": ("run", RUNS)},
         attrs={"Conventions": "CF-1.10", "title": "surfwave benchmark: workflow wall time",
                "source": f"surfwave {surfwave.__version__}",

@@ -1,7 +1,7 @@
 """Tests of the analytic triangular-lattice surface-wave solution (surfwave.dynamics.dispersion).
 
 Reference values come from closed forms (Eq. 16, the paper's Eqs. 3a/6a/8a as corrected in
-PHYSICS.md, Eq. 20 with bond sums of Eq. A12) or from plugging the result back into the row
+docs/physics/paper.md, Eq. 20 with bond sums of Eq. A12) or from plugging the result back into the row
 equations of surfwave.dynamics.triangular (an independent statement of the lattice dynamics).
 """
 from __future__ import annotations
@@ -78,7 +78,7 @@ def plug_in_residual(pot, d, th, u, v, omega):
 
 @pytest.mark.parametrize("d", [0.75, 1.0, 1.4])
 def test_row_matrices_are_eq2a(d):
-    """The row matrices of surfwave.dynamics.triangular against the corrected Eq. (2a) of PHYSICS.md
+    """The row matrices of surfwave.dynamics.triangular against the corrected Eq. (2a) of docs/physics/paper.md
     (harmonic, hand-written): the y-equation
     -v''_00 = [1 - 1/(2 d_x)](2v_00 - v_01 - v_0-1) + d_y^2 (4v_00 - v_10 - v_-10 - v_1-1 - v_-11)
               - d_x d_y (u_10 + u_-10 - u_1-1 - u_-11)
@@ -101,7 +101,7 @@ def test_row_matrices_are_eq2a(d):
 
 
 def test_c2R_matches_eq16_harmonic():
-    """Closed form: Eq. (16), and (3 - sqrt 3)/4 at zero stress (PHYSICS.md)."""
+    """Closed form: Eq. (16), and (3 - sqrt 3)/4 at zero stress (docs/physics/paper.md)."""
     d = np.linspace(0.72, 1.95, 30)
     r = D.solve("harmonic", d, [0.5])
     np.testing.assert_allclose(r["c2_R"], eq16(d), rtol=1e-12)
@@ -119,7 +119,7 @@ def test_c2R_matches_long_wave_eq20(name, d):
 
 @pytest.mark.parametrize("name,d", [("harmonic", [0.7093, 0.8, 1.0, 1.4]), ("lj", [0.9, 1.0, 1.1])])
 def test_eq3a_and_eq6a_hold(name, d):
-    """q and R satisfy the corrected Eq. (3a) and the quadratic Eq. (6a) (PHYSICS.md)."""
+    """q and R satisfy the corrected Eq. (3a) and the quadratic Eq. (6a) (docs/physics/paper.md)."""
     r = D.solve(name, d, TH)
     dx = 0.5 * np.asarray(d)[:, None]
     dy = np.sqrt(1 - dx**2)

@@ -1,6 +1,6 @@
 """Stress, elastic constants, stress derivatives and stability.
 
-References: Eq. (A14) closed forms of the triangular lattice (PHYSICS.md); an independent
+References: Eq. (A14) closed forms of the triangular lattice (docs/physics/paper.md); an independent
 finite-difference route through the lattice energy W(H) = (1/V) sum phi(|(1 + H) r|), whose
 first derivative is sigma and whose second derivative A_ijkl = C_ijkl + sigma_jl delta_ik
 gives the acoustic tensor that Eq. (A11) must reproduce (this checks the prestress terms).
@@ -81,7 +81,7 @@ def test_A11_matches_energy_hessian(case, pot, s):
 @pytest.mark.parametrize("case", CASES)
 @pytest.mark.parametrize("pot", ["harmonic", "lj"])
 def test_free_surface_in_equilibrium(case, pot):
-    """PHYSICS.md: every loading keeps sigma_yy = 0 (and sigma_zz = 0 for uniaxial), no shear stress."""
+    """docs/physics/paper.md: every loading keeps sigma_yy = 0 (and sigma_zz = 0 for uniaxial), no shear stress."""
     c = build(case[0], case[1], pot, case[2], np.linspace(0.9, 1.1, 9))
     sig = elastic.stress(c.bonds, pot)
     assert np.abs(sig[:, 1, 1]).max() < 1e-12

@@ -1,4 +1,4 @@
-"""Surface entropy of the triangular lattice (issue 6): references, independent routes, extremes."""
+"""Surface entropy of the triangular lattice: references, independent routes, extremes."""
 from __future__ import annotations
 
 import warnings
@@ -19,7 +19,7 @@ from surfwave.dynamics.surface_green import (
 from surfwave.dynamics.triangular import row_matrices
 
 #: Huckaby's mean of ln(omega/omega0) over the bulk modes of the unstressed harmonic
-#: triangular lattice, quoted in the paper before Eq. (26) and in PHYSICS.md.
+#: triangular lattice, quoted in the paper before Eq. (26) and in docs/physics/paper.md.
 HUCKABY = 0.4126784
 #: Harmonic bulk limit: c_T,par^2 = 0 from Eq. (A14), 6x^2 - 2x^4 - 2x = 0 with x = s/2,
 #: i.e. s^3 - 12 s + 8 = 0 (root in (0, 1)).
@@ -45,7 +45,7 @@ def test_zero_stress_harmonic_reference_values():
     assert abs(r["bulk_mean_log_omega"][0] - HUCKABY) < 5e-8 + r["bulk_mean_log_omega_error"][0]
     assert r["bulk_mean_log_omega_error"][0] < 1e-8
     assert abs(r["S_surface_estimate"][0] - eq26) < 1e-6
-    assert abs(r["S_surface_estimate"][0] - 0.711075) < 1e-6  # issue 6's acceptance value
+    assert abs(r["S_surface_estimate"][0] - 0.711075) < 1e-6  # Eq. (26) with Huckaby's bulk term
     assert r["S_surface_exact_error"][0] < 1e-8
     assert r["reason"][0] == ""
     # the paper's numerical lattice dynamics (Ref. 23) gives 0.66, cell cluster 0.62
@@ -54,7 +54,7 @@ def test_zero_stress_harmonic_reference_values():
 
 def test_eq26_terms_separately():
     """Eq. (26) term by term at zero stress: <ln omega_L omega_T> = (1/2) ln 3 and
-    <ln omega_R> = (1/2) ln c_R^2 with c_R^2 = (3 - sqrt 3)/4 (Eq. 16 at x = 1/2, PHYSICS.md)."""
+    <ln omega_R> = (1/2) ln c_R^2 with c_R^2 = (3 - sqrt 3)/4 (Eq. 16 at x = 1/2, docs/physics/paper.md)."""
     t = estimate_terms("harmonic", 1.0)
     assert t["log_omega_LT"] == pytest.approx(0.5 * np.log(3.0), abs=1e-14)
     assert t["log_omega_R"] == pytest.approx(0.5 * np.log((3 - np.sqrt(3)) / 4), abs=1e-14)
@@ -316,7 +316,7 @@ def test_bad_inputs_raise():
 
 
 def test_timing_target():
-    """Issue target: S_surface_exact to 1e-8 in under 0.5 s per strain on one core (CPU time
+    """Target: S_surface_exact to 1e-8 in under 0.5 s per strain on one core (CPU time
     of this process, so that a loaded machine running other tests does not make it flaky)."""
     import time
     t0 = time.process_time()

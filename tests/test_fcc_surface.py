@@ -25,7 +25,7 @@ RTOL = 1e-6
     ("[110]", (7 - np.sqrt(17)) / 4),
 ])
 def test_zero_stress_closed_forms(direction, gamma):
-    """Reference: PHYSICS.md "Checks that need no paper": nearest-neighbour FCC at zero stress,
+    """Reference: docs/physics/paper.md "Checks that need no paper": nearest-neighbour FCC at zero stress,
     rho c_R^2 / C44 = (3 - sqrt 3)/2 along [100] and (7 - sqrt 17)/4 along [110];
     V C44 = 1/2 (K d0^2) and m = 1, so c_R^2 = gamma / 2."""
     res = long_wave_c2("fcc", "in_plane_hydrostatic", "lj", direction, 1.0, k=K_MAX, levels=LEVELS)
@@ -54,7 +54,7 @@ PRESTRESSED = [
 @pytest.mark.parametrize("loading, potential, direction, s", PRESTRESSED)
 def test_prestressed_matches_eq17(loading, potential, direction, s):
     """Reference: surfwave.point(...)["c2_R"], the root of Eq. (17) with S of Eq. (A11) selected
-    by the unsquared boundary condition (PHYSICS.md "Rayleigh velocity"). The lattice solve
+    by the unsquared boundary condition (docs/physics/paper.md "Rayleigh velocity"). The lattice solve
     tests the prestressed free-surface condition independently."""
     ref = float(surfwave.point("fcc", loading, potential, direction, s)["c2_R"][0])
     res = long_wave_c2("fcc", loading, potential, direction, s, k=K_MAX, levels=LEVELS)
@@ -62,7 +62,7 @@ def test_prestressed_matches_eq17(loading, potential, direction, s):
 
 
 def test_supersonic_decoupled_110_is_sagittal_and_localised():
-    """Reference: PHYSICS.md: along [110] the sagittal surface wave is faster than the
+    """Reference: docs/physics/paper.md: along [110] the sagittal surface wave is faster than the
     shear-horizontal bulk wave (c_R > c_SH, "supersonic_decoupled") and exists because the
     z -> -z mirror decouples it. Checked on the full 3x3-block slab: the xz, yz blocks vanish,
     SH modes lie below the surface wave, and the eigenvector at the surface-wave frequency
@@ -90,7 +90,7 @@ def test_supersonic_decoupled_110_is_sagittal_and_localised():
 
 
 def test_layer_blocks_bulk_limit_and_surface_equilibrium():
-    """Reference: PHYSICS.md (A7, A11) and "with sigma_yy = 0 the free surface is in equilibrium".
+    """Reference: docs/physics/paper.md (A7, A11) and "with sigma_yy = 0 the free surface is in equilibrium".
     Translation invariance: A0 + A1 + A1^H = 0 at k = 0; the bulk matrix
     A0 + A1 + A1^H at small k (normal wavenumber 0) gives rho c^2 = S_xxxx and S_xyyx;
     the bonds a surface atom lacks carry no net force (uniaxial LJ, orthorhombic [110])."""

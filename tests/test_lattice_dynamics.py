@@ -43,7 +43,7 @@ def test_surface_edge_constant():
 
 
 def test_harmonic_agrees_with_eq15_everywhere():
-    """Acceptance of issue 5: omega_lattice = (c_R/d_x) sin theta (Eq. 15 with Eq. 16) to 1e-6,
+    """Acceptance bar: omega_lattice = (c_R/d_x) sin theta (Eq. 15 with Eq. 16) to 1e-6,
     including theta within 1e-3 of 0, pi and theta_c, and strains within 1% of the instability."""
     d = np.array([D_SURFACE_HARMONIC * 1.001, D_SURFACE_HARMONIC * 1.01, 0.8, 1.0, 1.3, 1.9])
     th = scene_theta("harmonic", d)
@@ -60,7 +60,7 @@ def test_harmonic_agrees_with_eq15_everywhere():
 
 
 def test_triangular_scene_acceptance():
-    """Acceptance of issue 5 on the ``triangular`` scene of config/config.yaml (its strains,
+    """Acceptance bar on the ``triangular`` scene of config/config.yaml (its strains,
     theta grid and tolerance, both potentials), with theta 1e-3 from 0 and pi, theta_c +- 1e-3
     and strains 1% inside both surface instabilities added: omega_lattice agrees with Eq. (15)
     (``dispersion.solve``, c_R from the lattice quadratic; Eq. 16 for springs) to 1e-6,

@@ -1,4 +1,4 @@
-"""Geometries and input validation (PHYSICS.md, 'Prestressed geometries')."""
+"""Geometries and input validation (docs/physics/paper.md, 'Prestressed geometries')."""
 from __future__ import annotations
 
 import numpy as np
@@ -79,3 +79,24 @@ def test_uniaxial_collapse_is_an_error_naming_the_right_point():
         build("fcc", "uniaxial", "harmonic", "[110]", [1.5, 1.6, 1.7315])
     ok = build("fcc", "uniaxial", "harmonic", "[110]", [1.5, 1.6])
     np.testing.assert_allclose(ok.stretch[:, 1], np.sqrt((3 - ok.stretch[:, 0] ** 2) / 2), rtol=1e-10)
+
+
+def test_swapped_arguments_fail_loudly():
+    """The library-wide order is (lattice, loading, potential, direction, d/d0): a call in
+    another order names the misplaced value instead of computing something else."""
+    with pytest.raises(InputError, match=r"\[110\]"):
+        build("fcc", "uniaxial", "[110]", "lj", 1.0)
+    with pytest.raises(TypeError):  # the old 4-argument form lacks d/d0
+        build("fcc", "in_plane_hydrostatic", "[110]", [0.9, 1.0])
+
+
+def test_build_checked_stops_at_a_collapsed_geometry():
+    """build_checked = build plus a GeometryError where a lab stretch or the volume vanishes;
+    reference: harmonic uniaxial FCC [110] collapses laterally as d/d0 -> sqrt 3 (the lateral
+    solve or the collapse check stops it), while d/d0 = 1.5 is an ordinary crystal."""
+    from surfwave.continuum.lattices import build_checked
+
+    ok = build_checked("fcc", "uniaxial", "harmonic", "[110]", [1.0, 1.5])
+    assert ok.volume.min() > 0.1
+    with pytest.raises(GeometryError, match="1.7315"):
+        build_checked("fcc", "uniaxial", "harmonic", "[110]", [1.5, 1.7315])

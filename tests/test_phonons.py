@@ -1,8 +1,8 @@
-"""Phonopy-assisted bulk sound speeds and full-zone stability (issue 4).
+"""Phonopy-assisted bulk sound speeds and full-zone stability.
 
 Reference values come from closed forms (nearest-neighbour FCC at zero stress, Eq. A14 of
 the triangular lattice), from the paper's Table I, and from the analytic bond sums of
-``surfwave.point`` (Eq. A11); the tolerance 1e-5 relative is the issue's acceptance bar.
+``surfwave.point`` (Eq. A11); the tolerance 1e-5 relative is the acceptance bar.
 """
 
 from __future__ import annotations
@@ -78,7 +78,7 @@ def _scene(name):
 
 
 def test_every_stable_point_of_the_default_bulk_scene():
-    """Acceptance of issue 4 taken literally: the default scene that asks for ``bulk``
+    """Acceptance taken literally: the default scene that asks for ``bulk``
     (``table1`` in config/config.yaml), with its own accuracy knobs, agrees with the analytic
     speeds of Eq. (A11) (``surfwave.point``) to 1e-5 relative at every long-wave-stable point,
     and every such point is also stable over the whole zone."""
@@ -160,7 +160,7 @@ def test_units_and_q_to_k_at_X():
 
 def test_dynamical_matrix_equals_bond_sum_stressed():
     """At a generic k in a stressed crystal, phonopy's D(k) equals the bond sum
-    sum_b 2 (1 - cos k.b) [phi'' b^b^ + (phi'/r)(1 - b^b^)] (PHYSICS.md, bond force
+    sum_b 2 (1 - cos k.b) [phi'' b^b^ + (phi'/r)(1 - b^b^)] (docs/physics/paper.md, bond force
     constant including the prestress term)."""
     pot = get_potential("lj")
     crystal = build("fcc", "uniaxial", pot, "[110]", [1.04])

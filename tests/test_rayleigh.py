@@ -1,6 +1,6 @@
 """Rayleigh velocity: closed forms, independent routes, root selection and extremes.
 
-References are stated per test: classical isotropic Rayleigh equation, PHYSICS.md closed
+References are stated per test: classical isotropic Rayleigh equation, docs/physics/paper.md closed
 forms for nearest-neighbour FCC, the paper's Eqs. (16), (20) and (21).
 """
 from __future__ import annotations
@@ -32,7 +32,7 @@ def classical_rayleigh_xi(ratio: float) -> float:
 
 
 def test_isotropic_poisson_quarter():
-    """PHYSICS.md: isotropic, Poisson ratio 1/4 (lambda = mu): c_R/c_T = sqrt(2 - 2/sqrt 3) = 0.919402."""
+    """docs/physics/paper.md: isotropic, Poisson ratio 1/4 (lambda = mu): c_R/c_T = sqrt(2 - 2/sqrt 3) = 0.919402."""
     c2 = rayleigh.rayleigh_c2(isotropic_S(1.0, 1.0))
     assert np.sqrt(c2) == pytest.approx(np.sqrt(2 - 2 / SQ3), rel=1e-12)
     assert round(float(np.sqrt(c2)), 6) == 0.919402
@@ -50,7 +50,7 @@ def test_isotropic_any_poisson_matches_classical_equation(nu, mu):
 
 @pytest.mark.parametrize("direction,gamma", [("[100]", (3 - SQ3) / 2), ("[110]", (7 - np.sqrt(17)) / 4)])
 def test_fcc_211_closed_forms(direction, gamma):
-    """PHYSICS.md: nearest-neighbour FCC at zero stress (C11:C12:C44 = 2:1:1),
+    """docs/physics/paper.md: nearest-neighbour FCC at zero stress (C11:C12:C44 = 2:1:1),
     rho c_R^2 / C44 = (3 - sqrt 3)/2 along [100] and (7 - sqrt 17)/4 along [110]."""
     for pot in ("harmonic", "lj"):
         r = surfwave.point("fcc", "in_plane_hydrostatic", pot, direction, 1.0)
@@ -61,7 +61,7 @@ def test_fcc_211_closed_forms(direction, gamma):
 
 
 def test_fcc_110_unstressed_is_supersonic_decoupled():
-    """PHYSICS.md: along [110] the sagittal wave outruns the SH bulk wave ((C11-C12)/2 = C44/2 < rho c_R^2)
+    """docs/physics/paper.md: along [110] the sagittal wave outruns the SH bulk wave ((C11-C12)/2 = C44/2 < rho c_R^2)
     and exists only by mirror symmetry: labelled, not dropped."""
     r = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[110]", 1.0)
     assert r["c2_R"][0] > r["c2_SH"][0]

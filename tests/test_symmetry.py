@@ -19,7 +19,7 @@ def test_new_error_handling_is_on():
 @pytest.mark.parametrize(
     "lattice, loading, direction, groups",
     [
-        # Issue 3 / PHYSICS.md: FCC Fm-3m unstressed, I4/mmm under in-plane hydrostatic stress.
+        # docs/physics/paper.md: FCC Fm-3m unstressed, I4/mmm under in-plane hydrostatic stress.
         ("fcc", "in_plane_hydrostatic", "[100]", ["I4/mmm", "Fm-3m", "I4/mmm"]),
         ("fcc", "in_plane_hydrostatic", "[110]", ["I4/mmm", "Fm-3m", "I4/mmm"]),
         # Uniaxial along a cube axis keeps a 4-fold axis; along [110] the cell is orthorhombic.

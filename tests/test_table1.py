@@ -55,7 +55,7 @@ def test_table1_covers_23_rows(table1):
 
 def test_table1_points_keep_values_when_unstable(ours):
     """Strong compression (d/d0 <= 0.91) is long-wave unstable in some direction other than x,
-    yet the paper tabulates c_R there; we keep the values and flag stable = False (DESIGN.md)."""
+    yet the paper tabulates c_R there; we keep the values and flag stable = False (docs/cubes.md)."""
     r = ours["[100]"]
     assert not r["stable"][0] and np.isfinite(r["c2_R"][0])
     assert r["stable"][r["d_over_d0"] == 1.0].all()

@@ -1,6 +1,6 @@
 """The real Snakemake workflow on tiny scenes in a temporary directory (marker `workflow`).
 
-Checks (issue 3): outputs pass the interface checker, values match the library, the no-op
+Checks: outputs pass the interface checker, values match the library, the no-op
 rerun does nothing, a scene change reruns only that scene (and computes only new points),
 a bad config fails before any job with a message naming scene, key and value, code
 provenance (rayleigh.py is an input of the rayleigh jobs, not of the crystal jobs), and a

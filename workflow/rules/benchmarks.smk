@@ -8,6 +8,7 @@ from pathlib import Path
 BENCH_MODULES = {
     "rayleigh": ("api", "continuum.rayleigh"),
     "stroh": ("continuum.stroh", "continuum.impedance", "continuum.rayleigh"),
+    "point": ("api", "continuum.elastic", "continuum.lattices"),
     "phonons": ("continuum.phonons",),
     "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
     "entropy": ("dynamics.entropy",),

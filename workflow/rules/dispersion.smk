@@ -7,6 +7,7 @@ rule dispersion:
             "dynamics.triangular_surface",
             "data.cache",
             "data.cube",
+            "pipeline.stage",
         ),
     output:
         "results/{scene}/dispersion.nc",

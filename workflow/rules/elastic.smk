@@ -2,7 +2,7 @@ rule elastic:
     """Stress, C, S, bulk sound speeds and long-wave stability (analytic)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("continuum.elastic", "data.cube"),
+        code=code("continuum.elastic", "data.cube", "pipeline.stage"),
     output:
         "results/{scene}/elastic.nc",
     log:

@@ -2,7 +2,7 @@ rule entropy:
     """Surface entropy of the triangular lattice: Eq. (25) estimate and exact (cached per point)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("dynamics.entropy", "data.cache", "data.cube"),
+        code=code("dynamics.entropy", "data.cache", "data.cube", "pipeline.stage"),
     output:
         "results/{scene}/entropy.nc",
     log:

@@ -2,7 +2,7 @@ rule rayleigh:
     """Rayleigh speed c_R^2 from Eq. (17) with root selection, and the wave type."""
     input:
         elastic="results/{scene}/elastic.nc",
-        code=code("continuum.rayleigh", "data.cube"),
+        code=code("continuum.rayleigh", "data.cube", "pipeline.stage"),
     output:
         "results/{scene}/rayleigh.nc",
     log:

@@ -6,29 +6,29 @@ By hand (from the repository root): python workflow/scripts/bulk.py SCENE [CONFI
 import sys
 
 from surfwave.data import cache, cube
+from surfwave.pipeline import stage
 from surfwave.continuum import phonons, sanity
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("bulk", inputs={"crystal": "results/{scene}/crystal.nc",
-                                           "elastic": "results/{scene}/elastic.nc"})
-sys.stderr = open(snakemake.log[0], "w")
+    snakemake = standalone("bulk")
+stage.open_log(snakemake)
 
 job = snakemake.params.job
 acc = job["accuracy"]
-blocks = {}
-for pot in job["potentials"]:
-    for direction in job["directions"]:
-        key = cache.job_key(job, "continuum.phonons", "phonopy", potential=pot, direction=direction, **acc)
-        r = cache.cached_points(
-            "bulk", key, job["d_over_d0"],
-            lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),
-            snakemake.params.cache, chunk=cache.CHUNK,
-            label=f"bulk, scene {job['scene']}")
-        blocks[(pot, direction)] = cube.documented(r, phonons.VARIABLES, sys.stderr)
-ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
-                job["d_over_d0"], phonons.VARIABLES)
+
+
+def compute(pot, direction):
+    key = cache.job_key(job, "continuum.phonons", "phonopy", potential=pot, direction=direction, **acc)
+    return cache.cached_points(
+        "bulk", key, job["d_over_d0"],
+        lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),
+        snakemake.params.cache, chunk=cache.CHUNK,
+        label=f"bulk, scene {job['scene']}")
+
+
+ds = stage.block_cube(job, compute, phonons.VARIABLES)
 analytic = cube.open_cube(snakemake.input.elastic)
 ds, n_implausible = sanity.check_bulk(ds, analytic)
 if n_implausible:

@@ -5,27 +5,29 @@ By hand (from the repository root): python workflow/scripts/crystal.py SCENE [CO
 import sys
 
 from surfwave.data import cube
+from surfwave.pipeline import stage
 from surfwave.continuum import symmetry
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("crystal")
-sys.stderr = open(snakemake.log[0], "w")
+stage.open_log(snakemake)
 
 job = snakemake.params.job
-blocks = {}
-for pot in job["potentials"]:
-    for direction in job["directions"]:
-        r = symmetry.crystal_symmetry(job["lattice"], job["loading"], pot, direction,
-                                      job["d_over_d0"], **job["accuracy"])
-        symmetry.require_mirrors(r, job["d_over_d0"], f"scene {job['scene']!r}, {job['lattice']} "
-                                 f"{job['loading']} {direction}, potential {pot!r}: ")
-        groups = {g: int((r["space_group"] == g).sum()) for g in dict.fromkeys(r["space_group"].tolist())}
-        print(f"{pot} {direction}: space groups (points) {groups}; mirrors x, z present", file=sys.stderr)
-        blocks[(pot, direction)] = r
-ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
-                job["d_over_d0"], symmetry.VARIABLES)
+
+
+def analyse(pot, direction):
+    r = symmetry.crystal_symmetry(job["lattice"], job["loading"], pot, direction,
+                                  job["d_over_d0"], **job["accuracy"])
+    symmetry.require_mirrors(r, job["d_over_d0"], f"scene {job['scene']!r}, {job['lattice']} "
+                             f"{job['loading']} {direction}, potential {pot!r}: ")
+    groups = {g: int((r["space_group"] == g).sum()) for g in dict.fromkeys(r["space_group"].tolist())}
+    print(f"{pot} {direction}: space groups (points) {groups}; mirrors x, z present", file=sys.stderr)
+    return r
+
+
+ds = stage.block_cube(job, analyse, symmetry.VARIABLES)
 cube.finish(ds, snakemake, what="crystal",
             method="spglib space group of the one-atom primitive cell (2D lattices padded with "
             "vacuum); lab-frame mirrors x->-x, z->-z required")

@@ -12,7 +12,7 @@ from surfwave.dynamics import dispersion
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("displacements", inputs={"crystal": "results/{scene}/crystal.nc"})
+    snakemake = standalone("displacements")
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job

@@ -3,28 +3,29 @@
 Each (potential, strain) point goes through the parameter cache (surfwave.data.cache).
 By hand (from the repository root): python workflow/scripts/entropy.py SCENE [CONFIGFILE ...]
 """
-import sys
 
 from surfwave.data import cache, cube
+from surfwave.pipeline import stage
 from surfwave.dynamics import entropy
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("entropy", inputs={"crystal": "results/{scene}/crystal.nc"})
-sys.stderr = open(snakemake.log[0], "w")
+    snakemake = standalone("entropy")
+stage.open_log(snakemake)
 
 job = snakemake.params.job
 tol = job["accuracy"]["tol"]
-blocks = {}
-for pot in job["potentials"]:
+
+
+def compute(pot):
     key = cache.job_key(job, "dynamics.entropy", "entropy.surface_entropy", potential=pot, tol=tol)
-    r = cache.cached_points("entropy", key, job["d_over_d0"],
-                            lambda d: entropy.surface_entropy(pot, d, tol=tol), snakemake.params.cache,
-                            chunk=cache.CHUNK,
-                            label=f"entropy, scene {job['scene']}")
-    blocks[(pot,)] = cube.documented(r, entropy.VARIABLES, sys.stderr)
-ds = cube.build(blocks, {"potential": job["potentials"]}, job["d_over_d0"], entropy.VARIABLES)
+    return cache.cached_points("entropy", key, job["d_over_d0"],
+                               lambda d: entropy.surface_entropy(pot, d, tol=tol), snakemake.params.cache,
+                               chunk=cache.CHUNK, label=f"entropy, scene {job['scene']}")
+
+
+ds = stage.block_cube(job, compute, entropy.VARIABLES, by=("potential",))
 cube.finish(ds, snakemake, what="entropy", crystal=snakemake.input.crystal,
             method="classical harmonic surface entropy per surface atom (k_B): Eq. (25) "
             "estimate and the exact slab-minus-bulk limit")

@@ -5,6 +5,10 @@ from surfwave.data.cube import open_cube
 from surfwave.plots.dispersion import plot_dispersion
 from surfwave.plots.labels import potential_label
 
+if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_dispersion.py SCENE potential=POTENTIAL
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("figure_dispersion")
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 pot = snakemake.wildcards.potential  # noqa: F821
 ds = open_cube(snakemake.input.cube).sel(potential=pot)  # noqa: F821

@@ -5,6 +5,10 @@ from surfwave.data.cube import open_cube
 from surfwave.plots.speeds import FIG3_ROWS, FIG3_THETA, nearest_indices
 from surfwave.plots.dispersion import plot_displacements
 
+if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_displacements.py SCENE potential=POTENTIAL
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("figure_displacements")
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 pot = snakemake.wildcards.potential  # noqa: F821
 ds = open_cube(snakemake.input.cube)  # noqa: F821

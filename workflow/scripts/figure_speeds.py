@@ -3,18 +3,13 @@
 By hand: python workflow/scripts/figure_speeds.py SCENE  (reads results/SCENE/*.nc)
 """
 import sys
-from types import SimpleNamespace
 
 from surfwave.plots.speeds import LOADING_TITLES, fig2
 
-if "snakemake" not in globals():  # standalone run for debugging
-    scene = sys.argv[1]
-    snakemake = SimpleNamespace(
-        input=SimpleNamespace(elastic=f"results/{scene}/elastic.nc",
-                              rayleigh=f"results/{scene}/rayleigh.nc"),
-        output=[f"results/{scene}/speeds_vs_stress.png"], log=["/dev/stderr"],
-        params=SimpleNamespace(lattice="fcc", loading=sys.argv[2] if len(sys.argv) > 2 else ""),
-        wildcards=SimpleNamespace(scene=scene))
+if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_speeds.py SCENE
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("figure_speeds")
 sys.stderr = open(snakemake.log[0], "w")
 
 loading = LOADING_TITLES.get(snakemake.params.loading, snakemake.params.loading)

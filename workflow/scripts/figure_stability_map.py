@@ -5,6 +5,10 @@ from surfwave.continuum import stability_map as sm
 from surfwave.data import cube
 from surfwave.plots.stability import plot_stability_map
 
+if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_stability_map.py
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("figure_stability_map")
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 sys.stdout = sys.stderr
 settings = {"scene": "stability_map", "d_over_d0": sm.DEFAULT_GRID.tolist(),

@@ -4,6 +4,10 @@ import sys
 from surfwave.data.cube import open_cube
 from surfwave.plots.dispersion import plot_theta_c
 
+if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_theta_c.py SCENE
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("figure_theta_c")
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 ds = open_cube(snakemake.input.cube)  # noqa: F821
 pots = [str(p) for p in ds["potential"].values]

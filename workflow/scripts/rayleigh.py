@@ -3,28 +3,28 @@ stress derivatives S of elastic.nc (surfwave.continuum.rayleigh.solve).
 
 By hand (from the repository root): python workflow/scripts/rayleigh.py SCENE [CONFIGFILE ...]
 """
-import sys
 
 from surfwave.data import cube
+from surfwave.pipeline import stage
 from surfwave.continuum import rayleigh
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
-    snakemake = standalone("rayleigh", inputs={"elastic": "results/{scene}/elastic.nc"})
-sys.stderr = open(snakemake.log[0], "w")
+    snakemake = standalone("rayleigh")
+stage.open_log(snakemake)
 
 job = snakemake.params.job
 elastic = cube.open_cube(snakemake.input.elastic)
-blocks = {}
-for pot in job["potentials"]:
-    for direction in job["directions"]:
-        point = elastic.sel(potential=pot, direction=direction)
-        # m = 1 per atom and S is V S, so rho = 1 gives c^2 in K d0^2/m.
-        result = rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
-        blocks[(pot, direction)] = cube.documented(result, rayleigh.VARIABLES, sys.stderr)
-ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
-                job["d_over_d0"], rayleigh.VARIABLES)
+
+
+def solve(pot, direction):
+    point = elastic.sel(potential=pot, direction=direction)
+    # m = 1 per atom and S is V S, so rho = 1 gives c^2 in K d0^2/m.
+    return rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
+
+
+ds = stage.block_cube(job, solve, rayleigh.VARIABLES)
 ds = ds.assign_coords(space_group=elastic["space_group"])
 cube.finish(ds, snakemake, what="rayleigh",
             method="Eq. (17) secular equation; root in 0 < rho c^2 < min(S_xyyx, S_xxxx) "

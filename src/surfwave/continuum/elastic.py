@@ -1,7 +1,7 @@
 """Stress, elastic constants, stress derivatives, bulk sound speeds and long-wave stability.
 
 All tensors are *per atom times the volume*, i.e. V sigma and V C in K d0^2 (reduced units,
-PHYSICS.md), in the lab frame (x = propagation, y = surface normal, z = in-plane normal).
+docs/physics/paper.md), in the lab frame (x = propagation, y = surface normal, z = in-plane normal).
 With m = 1 the squared sound speeds are then simply components of V S:
 rho c^2 = S  <=>  c^2 = (V S) / m.
 

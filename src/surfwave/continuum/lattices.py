@@ -1,4 +1,4 @@
-"""Prestressed crystal geometries in the lab frame of PHYSICS.md.
+"""Prestressed crystal geometries in the lab frame of docs/physics/paper.md.
 
 Lab frame: x = propagation direction, y = surface normal pointing into the crystal,
 z = in-plane direction normal to x (3D only). Lengths in units of the rest length d0.

@@ -6,7 +6,7 @@ nearest-neighbour pair-force calculator (:func:`pair_forces`), never from extern
 This is the independent check of the prestress terms of Eq. (A11): the analytic route
 (:mod:`surfwave.continuum.elastic`) sums bond formulas, this one differentiates forces.
 
-Units are the reduced units of PHYSICS.md (d0 = K = m = 1): force constants in K / d0^2,
+Units are the reduced units of docs/physics/paper.md (d0 = K = m = 1): force constants in K / d0^2,
 omega^2 in K / m, speeds squared in K d0^2 / m, wave vectors k in rad / d0. Phonopy's
 ``unit_conversion_factor`` is set to 1, so its "frequencies" are angular frequencies in
 (K/m)^(1/2). Phonopy's reduced wave vector q (reciprocal-lattice units, phase

@@ -88,7 +88,7 @@ def _asarray(r):
     return np.asarray(r, dtype=float)
 
 
-# Hooke spring phi_H = (1/2) K (r - d0)^2 (PHYSICS.md; the seed's Eq. 22 is garbled).
+# Hooke spring phi_H = (1/2) K (r - d0)^2 (docs/physics/paper.md; the seed's Eq. 22 is garbled).
 register(
     PairPotential(
         name="harmonic",

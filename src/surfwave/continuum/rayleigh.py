@@ -20,7 +20,7 @@ keep those in 0 < X < min(a, c) whose two kappa have positive real part (complex
 and accept one only if it satisfies the *unsquared* G(X) = 0 with p > 0.
 
 The initial stress enters through S (Eq. A11); the traction condition uses C_iykl, which
-equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, PHYSICS.md).
+equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, docs/physics/paper.md).
 """
 from __future__ import annotations
 

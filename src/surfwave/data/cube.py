@@ -1,6 +1,6 @@
 """Result cubes: labelled xarray Datasets with CF attributes and provenance, netCDF I/O.
 
-The cubes are the public interface (DESIGN.md): dims (potential, direction, strain),
+The cubes are the public interface (docs/cubes.md): dims (potential, direction, strain),
 (potential, strain, theta[, row]) or (potential, strain); ``strain`` = d/d0 - 1 with the
 auxiliary coordinate ``d_over_d0``. Every numeric variable carries ``long_name`` and
 ``units``, string and flag variables a ``long_name``. Files are written atomically
@@ -214,7 +214,7 @@ def provenance(
         "source": f"surfwave {__version__}",
         "history": f"{now}: written by Snakemake rule {rule!r} (surfwave {__version__}), config hash {chash}",
         "institution": "surfwave workflow",
-        "references": "Rayleigh waves in prestressed crystals, Phys. Rev. B (seed paper); PHYSICS.md",
+        "references": "Rayleigh waves in prestressed crystals, Phys. Rev. B (seed paper); docs/physics/paper.md",
         "scene": json.dumps(dict(params), sort_keys=True),
         "scene_name": str(params.get("scene", "")),
         "config_hash": chash,

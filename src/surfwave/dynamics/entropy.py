@@ -1,7 +1,7 @@
 """Surface entropy of the prestressed triangular lattice (section III.C, corrected Eq. 25).
 
 Classical harmonic crystal, entropies per surface atom in units of k_B, frequencies in
-omega0 = (K/m)^(1/2) (reduced units of PHYSICS.md). Three quantities per strain:
+omega0 = (K/m)^(1/2) (reduced units of docs/physics/paper.md). Three quantities per strain:
 
 * ``bulk_mean_log_omega`` = <ln(omega/omega0)> over all bulk modes (both branches, whole
   zone) = (1/4) <B(theta)>_theta with B(theta) = (1/2 pi) int ln det D(theta, p) dp, done

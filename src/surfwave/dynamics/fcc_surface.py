@@ -2,7 +2,7 @@
 
 An independent check of the long-wave Rayleigh speed of Eq. (17) (:func:`surfwave.point`):
 no elastic constant, S tensor or decay constant is used, only the bond force constants
-Phi_b = phi'' r^r^ + (phi'/r)(1 - r^r^) (PHYSICS.md) of the prestressed crystal.
+Phi_b = phi'' r^r^ + (phi'/r)(1 - r^r^) (docs/physics/paper.md) of the prestressed crystal.
 
 Lab frame: x = propagation, y = surface normal into the crystal, z = in-plane normal.
 The crystal is a stack of (001) layers at y_n = n h (layer 0 is the free surface). For a

@@ -7,7 +7,7 @@ motion (m = 1, reduced units) of row amplitudes U_I (shape (2,): u along x, v al
     omega^2 U_I = A0 U_I + A1 U_{I+1} + A1^H U_{I-1}          (bulk rows, I >= 1)
     omega^2 U_0 = A0_surface U_0 + A1 U_1                      (free surface row)
 
-with the bond force constant Phi_b = phi''(r) r^r^ + (phi'(r)/r)(1 - r^r^) (PHYSICS.md):
+with the bond force constant Phi_b = phi''(r) r^r^ + (phi'(r)/r)(1 - r^r^) (docs/physics/paper.md):
 
     A0 = 2 Phi_row (1 - cos 2 theta) + 2 Phi_up + 2 Phi_um,
     A0_surface = 2 Phi_row (1 - cos 2 theta) + Phi_up + Phi_um,

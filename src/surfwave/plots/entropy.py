@@ -1,4 +1,4 @@
-"""Figures of the surface entropy (issue 6): entropy against strain, convergence with the knobs.
+"""Figures of the surface entropy: entropy against strain, convergence with the knobs.
 
 Matplotlib with the Agg backend; every function takes data and an output path and returns
 the path written.

@@ -293,7 +293,7 @@ def table1_figure(csv_path: str | Path, out_png: str | Path) -> Path:
 
 
 #: theta values of the Fig. 3 panels (the paper discusses pi/20, pi/8, ~1 and pi/2)
-FIG3_THETA = (np.pi / 20, np.pi / 8, np.pi / 4, np.pi / 2)  # the paper's Fig. 3 (PHYSICS.md)
+FIG3_THETA = (np.pi / 20, np.pi / 8, np.pi / 4, np.pi / 2)  # the paper's Fig. 3 (docs/physics/paper.md)
 #: rows drawn in Fig. 3 (surface row 0 and the next 13: "noticeable nine layers deep")
 FIG3_ROWS = 14
 

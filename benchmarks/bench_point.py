@@ -1,0 +1,115 @@
+"""Throughput of surfwave.point (strain points per second), against the plain direction scan.
+
+Usage: python benchmarks/bench_point.py OUTDIR   -> OUTDIR/point_throughput.nc
+
+surfwave.point = lattice build + bond sums + long-wave stability search + Rayleigh solve.
+The yardstick, timed in the same run on the same tensors, is the plain long-wave scan the
+library used before (the same 400-direction half-sphere grid and 12 refinement rounds,
+acoustic tensors by einsum, eigenvalues by LAPACK), which was 99 % of point's time; the
+ratio of the two is what the machine's load does not change much. Times are CPU times
+(time.process_time, one core, BLAS threads pinned to 1), the minimum of REPEATS runs.
+Target: point at >= 1e5 strain points per second.
+"""
+from __future__ import annotations
+
+import os
+
+for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_v] = "1"  # one core, before numpy is imported
+
+import json  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+import surfwave  # noqa: E402
+from surfwave.continuum import elastic  # noqa: E402
+from surfwave.continuum.lattices import build  # noqa: E402
+
+CASES = [("fcc", "in_plane_hydrostatic", "lj", "[100]"), ("fcc", "uniaxial", "lj", "[110]"),
+         ("triangular", "uniaxial", "lj", "[10]")]
+N_POINTS = 20000
+N_YARDSTICK = 1000
+REPEATS = 3
+TARGET = 1e5
+
+
+def plain_scan(C, sigma, n_directions=elastic.STABILITY_DIRECTIONS, refine=12):
+    """The previous long-wave search: LAPACK eigenvalues of every candidate direction."""
+    dim = C.shape[-1]
+    grid = elastic._sphere_directions(dim, n_directions)
+    e = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, grid))[..., 0]
+    n_best, e_best = grid[e.argmin(1)], e.min(1)
+    step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions
+    offs = [(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1) if (a, b) != (0, 0)]
+    rows = np.arange(len(e_best))
+    for _ in range(refine):
+        if dim == 3:
+            t1 = np.cross(n_best, np.where(np.abs(n_best[:, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]]))
+            t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
+            t2 = np.cross(n_best, t1)
+            cand = np.stack([n_best + step * (a * t1 + b * t2) for a, b in offs], 1)
+        else:
+            t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
+            cand = np.stack([n_best - step * t1, n_best + step * t1], 1)
+        cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
+        ec = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, cand))[..., 0]
+        j = ec.argmin(1)
+        better = ec[rows, j] < e_best
+        n_best = np.where(better[:, None], cand[rows, j], n_best)
+        e_best = np.where(better, ec[rows, j], e_best)
+        step *= 0.5
+    return e_best
+
+
+def cpu_time(f) -> float:
+    """Minimum CPU time of REPEATS calls of f, s."""
+    best = np.inf
+    for _ in range(REPEATS):
+        t0 = time.process_time()
+        f()
+        best = min(best, time.process_time() - t0)
+    return best
+
+
+def main(outdir: str) -> Path:
+    out = Path(outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    rate = np.zeros(len(CASES))
+    rate_old = np.zeros(len(CASES))
+    same = np.zeros(len(CASES), bool)
+    for i, (lat, load, pot, d) in enumerate(CASES):
+        s = np.linspace(0.9, 1.1, N_POINTS)
+        rate[i] = N_POINTS / cpu_time(lambda: surfwave.point(lat, load, pot, d, s))
+        c = build(lat, load, pot, d, s[:: N_POINTS // N_YARDSTICK])
+        sig, C = elastic.stress(c.bonds, pot), elastic.elastic_constants(c.bonds, pot)
+        t_old = cpu_time(lambda: plain_scan(C, sig))
+        rate_old[i] = len(sig) / t_old
+        same[i] = np.array_equal(elastic.long_wave_stability(C, sig)[0], plain_scan(C, sig) > 0)
+        print(f"{lat} {load} {pot} {d}: point {rate[i]:.3g}/s, plain scan alone {rate_old[i]:.3g}/s, "
+              f"ratio {rate[i] / rate_old[i]:.1f}, same flags {same[i]}")
+    labels = [" ".join(c) for c in CASES]
+    rows = [[f"`surfwave.point`, {lab}", "-", "same stability flags as the plain scan" if ok else "FLAGS DIFFER",
+             f"{r:.3g} points/s ({r / r0:.0f}x the plain scan alone, same run)", f"target {TARGET:.0e}/s"]
+            for lab, r, r0, ok in zip(labels, rate, rate_old, same)]
+    ds = xr.Dataset(
+        {"rate": ("case", rate, {"long_name": "surfwave.point strain points per CPU second", "units": "1/s"}),
+         "rate_plain_scan": ("case", rate_old, {"long_name": "previous long-wave scan alone, points per CPU second",
+                                                "units": "1/s"}),
+         "same_flags": ("case", same, {"long_name": "stable flags identical to the plain scan", "units": "1"})},
+        coords={"case": labels},
+        attrs={"method": "surfwave.point throughput", "n_points": N_POINTS, "repeats": REPEATS,
+               "conditions": "CPU time, one core, BLAS threads 1, minimum of the repeats",
+               "readme_rows": json.dumps(rows)})
+    path = out / "point_throughput.nc"
+    ds.to_netcdf(path, engine="h5netcdf")
+    return path
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: python benchmarks/bench_point.py OUTDIR")
+    main(sys.argv[1])

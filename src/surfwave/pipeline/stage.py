@@ -1,0 +1,62 @@
+"""The skeleton every stage script shares: open the log, compute each block, build the cube.
+
+A block is one potential (and one direction where the stage has directions); the library
+function computes it over the scene's whole strain grid at once. The script then finishes
+the cube with :func:`surfwave.data.cube.finish` (space groups, provenance, atomic write).
+"""
+from __future__ import annotations
+
+import itertools
+import sys
+from typing import Any, Callable, Mapping
+
+import xarray as xr
+
+from surfwave.data import cube
+
+#: Block dimension -> key of the job parameters that lists its values.
+_LABELS = {"potential": "potentials", "direction": "directions"}
+
+
+def open_log(job_context) -> None:
+    """Send this process's stderr to the rule's log file (``job_context.log[0]``)."""
+    sys.stderr = open(job_context.log[0], "w")
+
+
+def block_cube(
+    job: Mapping[str, Any],
+    compute: Callable[..., Mapping[str, Any]],
+    variables: Mapping[str, Any],
+    by: tuple[str, ...] = ("potential", "direction"),
+    log=None,
+    **build_kwargs,
+) -> xr.Dataset:
+    """Run ``compute`` for every block of a scene and assemble the cube.
+
+    Parameters
+    ----------
+    job : mapping
+        The job parameters (:func:`surfwave.pipeline.scenes.job_params`): ``potentials``,
+        ``directions`` (when ``by`` has it) and ``d_over_d0``.
+    compute : callable
+        ``compute(potential, direction)`` (or ``compute(potential)``), returning arrays with
+        the strain as leading axis, keyed like ``variables``.
+    variables : mapping
+        Metadata of the variables to keep (others are reported to ``log`` and dropped).
+    by : tuple of str
+        Block dimensions, from ``("potential", "direction")``.
+    log : file, optional
+        Where dropped arrays are reported (default: the current stderr, i.e. the log).
+    **build_kwargs
+        Passed to :func:`surfwave.data.cube.build` (``coords``, ``skip``).
+
+    Returns
+    -------
+    xarray.Dataset
+        dims (*by, strain, ...).
+    """
+    log = sys.stderr if log is None else log
+    labels = {b: list(job[_LABELS[b]]) for b in by}
+    blocks = {key: cube.documented(compute(*key), variables, log)
+              for key in itertools.product(*labels.values())}
+    return cube.build(blocks, labels, job["d_over_d0"], variables, **build_kwargs)
