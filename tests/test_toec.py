@@ -17,7 +17,7 @@ import surfwave
 from surfwave.continuum import elastic, rayleigh
 from surfwave.continuum.lattices import build
 from surfwave.continuum.potentials import get_potential
-from surfwave.continuum.tensors import cubic_voigt, tensor_to_voigt, voigt_to_tensor
+from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
 from surfwave.continuum.toec import (cauchy_stress, cubic_toec, deformation_for_stress,
                                      lagrangian_strain, stressed_constants, stressed_state,
                                      toec_tensor)

@@ -35,7 +35,7 @@ rule scene_summary:
     """results/<scene>/summary.md: what a user scene computed, ranges, NaN and unstable counts."""
     input:
         cubes=lambda wildcards: targets(SCENES, [wildcards.scene])[1:],
-        code=code("report.summary"),
+        code=code("report.summary", "pipeline.stage"),
     output:
         "results/{scene}/summary.md",
     log:
