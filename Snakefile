@@ -56,6 +56,7 @@ include: "workflow/rules/rayleigh.smk"
 include: "workflow/rules/bulk.smk"
 include: "workflow/rules/dispersion.smk"
 include: "workflow/rules/entropy.smk"
+include: "workflow/rules/surface_wave.smk"
 # Figures, report, benchmarks: they define FIGURE_TARGETS and REPORT_TARGETS.
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/report.smk"
@@ -68,3 +69,4 @@ rule all:
         scene_targets(),
         globals().get("FIGURE_TARGETS", []),
         globals().get("REPORT_TARGETS", []),
+        globals().get("CRYSTAL_TARGETS", []),

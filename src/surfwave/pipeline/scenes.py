@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 import copy
+import re
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +43,7 @@ CUBES = {
     "dispersion": "dispersion.nc",
     "displacements": "displacements.nc",
     "entropy": "entropy.nc",
+    "surface_wave": "surface_wave.nc",
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
@@ -234,6 +236,107 @@ def _check_scene(name: str, raw: dict) -> dict:
     }
 
 
+def _crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
+    """Angles (degrees) of a real-crystal scene and their Miller labels (or None)."""
+    from surfwave.continuum import orientation
+    from surfwave.continuum.crystal_scene import symmetry_reduced_range
+
+    if "directions" in raw:
+        if "angles" in raw:
+            raise SceneError(f"{where}, key 'directions': give either 'angles' or 'directions', not both")
+        angles = []
+        for direction in raw["directions"]:
+            found = []
+            for sf in surfaces:
+                e1, n, _ = np.asarray(orientation.lab_axes(sf, 0.0), dtype=float).reshape(3, 3)
+                e90 = np.asarray(orientation.lab_axes(sf, 90.0), dtype=float).reshape(3, 3)[0]
+                d = np.array([float(x) for x in re.findall(r"-?\d", direction)])
+                d = d / np.linalg.norm(d) if np.any(d) else d
+                if not np.any(d) or abs(d @ n) > 1e-9:
+                    raise SceneError(f"{where}, key 'directions': value {direction!r} is not a direction "
+                                     f"in the surface {sf!r} (it must be perpendicular to the normal)")
+                found.append(round(float(np.degrees(np.arctan2(d @ e90, d @ e1))), DECIMALS))
+            if len(set(found)) > 1:
+                raise SceneError(f"{where}, key 'directions': value {direction!r} lies at different "
+                                 f"angles in the surfaces {surfaces} ({found} degrees); give "
+                                 "'angles' instead, or one surface per scene")
+            angles.append(found[0])
+        if len(set(angles)) < len(angles):
+            raise SceneError(f"{where}, key 'directions': two directions give the same angle {angles}")
+        order = np.argsort(angles)
+        return [float(angles[i]) for i in order], [raw["directions"][i] for i in order]
+    spec = raw.get("angles", "symmetric")
+    if spec == "symmetric" or (isinstance(spec, dict) and "symmetric" in spec):
+        step = float(spec.get("step", 1.0)) if isinstance(spec, dict) else 1.0
+        stop = max(symmetry_reduced_range(sf, voigts) for sf in surfaces)
+        n = stop / step
+        if abs(n - round(n)) > 1e-9:
+            raise SceneError(f"{where}, key 'angles': step {step!r} does not divide the "
+                             f"symmetry-reduced range of {stop:g} degrees")
+        spec = {"start": 0.0, "stop": stop, "step": step}
+    return [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")], None
+
+
+def _check_crystal_scene(name: str, raw: dict) -> dict:
+    """Physical checks and expansion of a real-crystal scene (``materials:`` key)."""
+    from surfwave.continuum import orientation
+    from surfwave.continuum.crystal_scene import applied_stress
+    from surfwave.data.materials import get_material
+
+    where = f"scene {name!r}"
+    mats = []
+    for m in raw["materials"]:
+        try:
+            mats.append(get_material(m))
+        except InputError as exc:
+            raise SceneError(f"{where}, key 'materials': value {m!r}: {exc}") from None
+    surfaces = []
+    for sf in raw["surfaces"]:
+        try:
+            orientation.lab_axes(sf, 0.0)
+        except (InputError, ValueError) as exc:
+            raise SceneError(f"{where}, key 'surfaces': value {sf!r}: {exc}") from None
+        surfaces.append(sf)
+    angles, directions = _crystal_angles(where, raw, surfaces, [m.voigt for m in mats])
+    stress = None
+    if "stress" in raw:
+        stress = [float(x) for x in expand_grid(raw["stress"], f"{where}, key 'stress'")]
+        for loading in raw["loading"]:
+            for sf in surfaces:
+                try:  # an axis_<hkl> must lie in every surface: no stress on the free face
+                    axes = np.asarray(orientation.lab_axes(sf, 0.0), dtype=float).reshape(1, 3, 3)
+                    applied_stress(loading, axes, [1.0])
+                except InputError as exc:
+                    raise SceneError(f"{where}, key 'loading': value {loading!r}, surface {sf!r}: "
+                                     f"{exc}") from None
+        if True in raw["toec"]:
+            lacking = [m.name for m in mats if m.toec is None]
+            if lacking:
+                raise SceneError(
+                    f"{where}, key 'toec': value true needs third-order elastic constants "
+                    f"(C111, C112, C123, C144, C155, C456), which the database lacks for "
+                    f"material(s) {lacking}; remove them or use toec: [false]")
+    elif raw.get("toec", [False]) != [False] or raw.get("loading", ["along"]) != ["along"]:
+        raise SceneError(f"{where}, key 'stress': 'loading' and 'toec' need a stress grid")
+    n = len(mats) * len(surfaces) * len(angles) * (len(stress) * len(raw["loading"]) * len(raw["toec"])
+                                                   if stress else 1)
+    if n > MAX_POINTS:
+        raise SceneError(f"{where}: {n} points exceed the limit of {MAX_POINTS}")
+    return {
+        "name": name,
+        "kind": "crystal",
+        "materials": [m.name for m in mats],
+        "surfaces": surfaces,
+        "angles": angles,
+        "directions": directions,
+        "stress": stress,
+        "loading": list(raw["loading"]) if stress else ["along"],
+        "toec": [bool(t) for t in raw["toec"]] if stress else [False],
+        "quantities": list(raw["quantities"]),
+        "accuracy": copy.deepcopy(raw["accuracy"]),
+    }
+
+
 def validate_config(config: dict, schema: dict | str | Path | None = None) -> dict[str, dict]:
     """Validate the whole config (defaults filled in place) and expand every scene.
 
@@ -250,7 +353,8 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
         combinations, impossible d/d0, malformed grids, unknown scene names in ``run``.
     """
     validate_schema(config, schema)
-    scenes = {name: _check_scene(name, raw) for name, raw in config["scenes"].items()}
+    scenes = {name: _check_crystal_scene(name, raw) if "materials" in raw else _check_scene(name, raw)
+              for name, raw in config["scenes"].items()}
     for name in config.get("run", []):
         if name not in scenes:
             raise SceneError(
@@ -268,7 +372,8 @@ def targets(scenes: dict[str, dict], names, results: str = "results") -> list[st
     """The cube paths the named scenes ask for (crystal.nc always; one cube per quantity)."""
     out = []
     for name in names:
-        out.append(f"{results}/{name}/crystal.nc")
+        if scenes[name].get("kind") != "crystal":  # real crystals have no model-lattice cell
+            out.append(f"{results}/{name}/crystal.nc")
         out += [f"{results}/{name}/{CUBES[q]}" for q in scenes[name]["quantities"]]
     return out
 
@@ -281,9 +386,11 @@ _STAGE_KEYS = {
     "dispersion": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
     "displacements": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
     "entropy": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "surface_wave": ("materials", "surfaces", "angles", "directions", "stress", "loading", "toec"),
 }
 _STAGE_ACCURACY = {"crystal": "symmetry", "bulk": "bulk", "dispersion": "dispersion",
-                   "displacements": "displacements", "entropy": "entropy"}
+                   "displacements": "displacements", "entropy": "entropy",
+                   "surface_wave": "surface_wave"}
 
 
 def job_params(scene: dict, stage: str) -> dict[str, Any]:

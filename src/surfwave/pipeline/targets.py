@@ -15,7 +15,7 @@ REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
 
 def speeds_scenes(scenes: dict, names) -> list[str]:
     """Names (of ``names``) of the FCC scenes that make elastic and rayleigh cubes (Fig. 2)."""
-    return [n for n in names if scenes[n]["lattice"] == "fcc"
+    return [n for n in names if scenes[n].get("lattice") == "fcc"
             and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
 
 
@@ -27,13 +27,36 @@ def figure_targets(scenes: dict, names, results: str = "results") -> list[str]:
     """
     out = []
     for n in names:
-        q, pots = set(scenes[n]["quantities"]), scenes[n]["potentials"]
+        q, pots = set(scenes[n]["quantities"]), scenes[n].get("potentials", [])
         if "dispersion" in q:
             out += [f"{results}/{n}/dispersion_{p}.png" for p in pots] + [f"{results}/{n}/theta_c.png"]
         if "displacements" in q:
             out += [f"{results}/{n}/fig3_displacements_{p}.png" for p in pots]
         if "entropy" in q:
             out.append(f"{results}/{n}/entropy_vs_strain.png")
+    return out
+
+
+def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
+    """Figures and tables of the named real-crystal scenes (``materials:`` scenes).
+
+    ``surface_wave_angles.png`` when a scene has three or more angles;
+    ``surface_wave_vs_stress.png`` when it has two or more stresses; ``acoustoelastic.md``
+    and ``.csv`` when its stress grid has zero with a point on each side (the central
+    difference of the coefficients).
+    """
+    out = []
+    for n in names:
+        s = scenes[n]
+        if s.get("kind") != "crystal" or "surface_wave" not in s["quantities"]:
+            continue
+        if len(s["angles"]) >= 3:
+            out.append(f"{results}/{n}/surface_wave_angles.png")
+        stress = s.get("stress") or []
+        if len(stress) >= 2:
+            out.append(f"{results}/{n}/surface_wave_vs_stress.png")
+        if 0.0 in stress and min(stress) < 0.0 < max(stress):
+            out += [f"{results}/{n}/acoustoelastic.md", f"{results}/{n}/acoustoelastic.csv"]
     return out
 
 
