@@ -15,6 +15,7 @@ from snakemake.utils import min_version
 sys.path.insert(0, str(Path(workflow.basedir, "src")))
 
 from surfwave.data import cache
+from surfwave.data.integrity import set_aside_damaged
 from surfwave.pipeline.scenes import SceneError, validate_config
 
 min_version("9.13.1")
@@ -39,6 +40,12 @@ try:
     )
 except SceneError as exc:
     raise WorkflowError(str(exc)) from None
+
+
+# A damaged cube (truncated, not netCDF) is set aside as <file>.damaged and rebuilt,
+# instead of failing every figure and report job that reads it.
+for _line in set_aside_damaged(Path("results").glob("*/*.nc")):
+    print(_line, file=sys.stderr)
 
 
 wildcard_constraints:

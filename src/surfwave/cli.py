@@ -1,11 +1,14 @@
-"""Command-line interface: ``surfwave point|material|potentials|cache``.
+"""Command-line interface: ``surfwave point|material|potentials|scenes|cache info|cache clear``.
 
-Run ``surfwave --help`` or ``surfwave <command> --help``.
+Run ``surfwave --help`` or ``surfwave <command> --help`` (also ``python -m surfwave``).
+Mistyped commands, choices and options get a "did you mean" suggestion.
 """
 from __future__ import annotations
 
 import argparse
+import difflib
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -35,8 +38,51 @@ example (copper, room temperature):
 """
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with "did you mean" for mistyped commands, choices and options."""
+
+    def error(self, message):  # noqa: D102 (argparse API)
+        hint = _suggestion(self, message)
+        super().error(message + (f"; did you mean {hint}?" if hint else ""))
+
+
+def _suggestion(parser: argparse.ArgumentParser, message: str) -> str | None:
+    m = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+    if m:
+        choices = re.findall(r"'?([^',\s][^',]*)'?", m.group(2))
+        close = difflib.get_close_matches(m.group(1), [c.strip() for c in choices], n=1, cutoff=0.5)
+        return repr(close[0]) if close else None
+    m = re.search(r"unrecognized arguments: (.*)", message)
+    if m:
+        options = _all_options(parser)
+        for word in m.group(1).split():
+            if word.startswith("-"):
+                close = difflib.get_close_matches(word.split("=")[0], options, n=1, cutoff=0.6)
+                if close:
+                    return repr(close[0])
+    return None
+
+
+def _all_options(parser: argparse.ArgumentParser) -> list[str]:
+    """Every option string of ``parser`` and of its subcommands (recursively)."""
+    options = [o for a in parser._actions for o in a.option_strings]
+    for sub in (a for a in parser._actions if isinstance(a, argparse._SubParsersAction)):
+        for sp in sub.choices.values():
+            options += _all_options(sp)
+    return options
+
+
+def _check_options(parser: argparse.ArgumentParser, argv: list[str]) -> None:
+    """Refuse an unknown ``--option`` first (argparse would first complain about the
+    required options it hides), so that the error can suggest the intended one."""
+    known = set(_all_options(parser))
+    for word in argv:
+        if word.startswith("--") and word.split("=")[0] not in known:
+            parser.error(f"unrecognized arguments: {word}")
+
+
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="surfwave",
         description="Rayleigh (surface acoustic) waves in prestressed crystals.",
         epilog="Reproduce the paper: 'make reproduce' (snakemake -j2). Docs: README.md.",
@@ -76,12 +122,32 @@ def _parser() -> argparse.ArgumentParser:
                     help="in-plane stress sigma_xx along the propagation direction, GPa (negative = compression)")
     mt.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
-    sub.add_parser("potentials", help="list the registered pair potentials")
+    sub.add_parser(
+        "potentials", help="list the registered pair potentials (names usable in scenes and 'point')",
+        description="List the registered pair potentials: the names accepted by 'surfwave point "
+        "--potential' and by a scene's 'potentials' key, with their form and parameters. New "
+        "potentials join surfwave.continuum.potentials.register(...).")
 
-    cc = sub.add_parser("cache", help="inspect or empty the parameter cache (results/cache)")
-    cc.add_argument("action", choices=["info", "clear"])
-    cc.add_argument("--root", default="results/cache", type=Path,
-                    help="cache directory (default: results/cache)")
+    sc = sub.add_parser(
+        "scenes", help="list the configured scenes and what each computes",
+        description="List the scenes of the workflow's config (config/config.yaml, plus any "
+        "--configfile, merged as Snakemake does): lattice, loading, potentials, grid, quantities.")
+    sc.add_argument("--configfile", nargs="+", type=Path, default=[],
+                    help="extra config files merged over the default config, as for snakemake")
+    sc.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
+    cc = sub.add_parser("cache", help="inspect ('cache info') or empty ('cache clear') the parameter cache",
+                        description="The parameter cache of expensive points (RESULTS/cache).")
+    csub = cc.add_subparsers(dest="action", metavar="ACTION", required=True, parser_class=_Parser)
+    for name, text in (("info", "entries, size, hits and misses of the last run, and which cache was read"),
+                       ("clear", "delete every cache entry (results are kept)")):
+        a = csub.add_parser(name, help=text, description=text[0].upper() + text[1:] + ".")
+        where = a.add_mutually_exclusive_group()
+        where.add_argument("--results", type=Path, default=Path("results"), metavar="DIR",
+                           help="results directory of the workflow; the cache is DIR/cache (default: results)")
+        where.add_argument("--root", type=Path, help="the cache directory itself")
+        if name == "info":
+            a.add_argument("--json", action="store_true", help="print JSON")
     return p
 
 
@@ -140,26 +206,79 @@ def _cmd_potentials(args) -> int:
     return 0
 
 
+def _default_configs() -> list[Path]:
+    """config/config.yaml of the working directory, else the one shipped with this checkout."""
+    from surfwave.pipeline.scenes import SCHEMA_PATH
+
+    here = Path("config/config.yaml")
+    return [here if here.is_file() else SCHEMA_PATH.parents[2] / "config" / "config.yaml"]
+
+
+def _cmd_scenes(args) -> int:
+    from surfwave.pipeline.scenes import load_config, selected, validate_config
+    from surfwave.pipeline.targets import paper_scenes
+
+    files = _default_configs() + list(args.configfile)
+    missing = [str(f) for f in files if not Path(f).is_file()]
+    if missing:
+        raise SurfwaveError(f"config file(s) not found: {missing}")
+    config = load_config(files)
+    scenes = validate_config(config)
+    run = set(selected(config, scenes))
+    paper = set(paper_scenes())
+    rows = []
+    for name, sc in scenes.items():
+        d = sc["d_over_d0"]
+        rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
+                     "lattice": sc["lattice"], "loading": sc["loading"], "potentials": sc["potentials"],
+                     "directions": sc["directions"], "d_over_d0": [min(d), max(d), len(d)],
+                     "n_theta": len(sc["theta"]), "quantities": sc["quantities"]})
+    if args.json:
+        print(json.dumps(rows, indent=2))
+        return 0
+    print(f"# scenes of {', '.join(str(f) for f in files)} ('*' = built by 'snakemake', "
+          "P = read by the paper's report.md)")
+    for r in rows:
+        lo, hi, n = r["d_over_d0"]
+        theta = f", {r['n_theta']} theta" if {"dispersion", "displacements"} & set(r["quantities"]) else ""
+        print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
+              f"{r['lattice']}, {r['loading']}, {'/'.join(r['potentials'])}, {' '.join(r['directions'])}, "
+              f"d/d0 {lo:g}..{hi:g} ({n} points{theta}) -> {', '.join(r['quantities'])}")
+    return 0
+
+
 def _cmd_cache(args) -> int:
     from surfwave.data import cache
 
+    root = (args.root if args.root is not None else args.results / "cache").resolve()
     if args.action == "info":
-        info = cache.info(args.root)
+        info = cache.info(root)
+        info["exists"] = root.is_dir()
+        if args.json:
+            print(json.dumps(info, indent=2))
+            return 0
+        print(f"cache: {root}" + ("" if info["exists"] else
+                                  "  (no such directory: run from the workflow's directory or pass --results DIR)"))
         for key, value in info.items():
+            if key in ("root", "exists"):
+                continue
             if key == "size":
                 value = f"{value} bytes ({value / 1e6:.2f} MB)"
             print(f"{key}: {value}")
     else:
-        n = cache.clear(args.root)
-        print(f"removed {n} cache entries from {args.root}")
+        n = cache.clear(root)
+        print(f"removed {n} cache entries from {root}")
     return 0
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``surfwave`` command."""
-    args = _parser().parse_args(argv)
-    handler = {"point": _cmd_point, "material": _cmd_material,
-               "potentials": _cmd_potentials, "cache": _cmd_cache}[args.command]
+    parser = _parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    _check_options(parser, argv)
+    args = parser.parse_args(argv)
+    handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
+               "scenes": _cmd_scenes, "cache": _cmd_cache}[args.command]
     try:
         return handler(args)
     except SurfwaveError as exc:

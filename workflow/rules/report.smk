@@ -1,12 +1,14 @@
 # The reproduction report: every printed number of the paper beside ours, and each claim
-# tested against the cubes (surfwave.report.reproduction). Reads only the cubes the selected scenes make;
-# missing ones are reported as "not computed". REPORT_TARGETS is what rule `all` builds:
-# nothing when the selected scenes make no cube the report reads (a user's own scene alone
-# leaves the reproduction report of the default scenes as it is).
-from surfwave.pipeline.targets import report_inputs
+# tested against the cubes (surfwave.report.reproduction). It reads the paper's scenes only
+# (named in paper_values.yaml), whatever `run` selects, so a user's own scene never rewrites
+# it; missing cubes are reported as "not computed". A user scene gets its own
+# results/<scene>/summary.md. REPORT_TARGETS is what rule `all` builds.
+from surfwave.pipeline.targets import paper_scenes, report_inputs, summary_targets
 
-REPORT_INPUTS = report_inputs({name: SCENES[name] for name in selected(config, SCENES)})
-REPORT_TARGETS = ["results/report.md"] if REPORT_INPUTS else []
+REPORT_INPUTS = report_inputs(SCENES)
+REPORT_TARGETS = summary_targets(SCENES, selected(config, SCENES))
+if REPORT_INPUTS and set(paper_scenes()) & set(selected(config, SCENES)):
+    REPORT_TARGETS.append("results/report.md")
 
 
 rule report_md:
@@ -27,3 +29,22 @@ rule report_md:
         CONDA_ENV
     script:
         "../scripts/report.py"
+
+
+rule scene_summary:
+    """results/<scene>/summary.md: what a user scene computed, ranges, NaN and unstable counts."""
+    input:
+        cubes=lambda wildcards: [
+            t
+            for t in targets(SCENES, [wildcards.scene])
+            if not t.endswith("/crystal.nc")
+        ],
+        code=code("report.summary"),
+    output:
+        "results/{scene}/summary.md",
+    log:
+        "results/{scene}/logs/summary.log",
+    conda:
+        CONDA_ENV
+    script:
+        "../scripts/summary.py"

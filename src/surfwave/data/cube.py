@@ -4,7 +4,13 @@ The cubes are the public interface (DESIGN.md): dims (potential, direction, stra
 (potential, strain, theta[, row]) or (potential, strain); ``strain`` = d/d0 - 1 with the
 auxiliary coordinate ``d_over_d0``. Every numeric variable carries ``long_name`` and
 ``units``, string and flag variables a ``long_name``. Files are written atomically
-(temporary file + ``os.replace``) with an explicit engine; complex values are native.
+(temporary file + ``os.replace``) with an explicit engine.
+
+Complex values (``q1``, ``q2``, ``R1``, ``R2``, ``amplitude_ratio``, ``u``, ``v``) are
+stored as real numbers with a trailing dimension ``complex`` of length 2 (coordinate
+``["real", "imag"]``) and the variable attribute ``complex_dimension = "complex"``, so that
+plain ``xr.open_dataset`` and netCDF tools that know nothing of complex numbers read
+numbers (docs/cubes.md, "Complex values"); :func:`open_cube` returns them complex again.
 
 Examples
 --------
@@ -31,10 +37,15 @@ import xarray as xr
 
 from surfwave import __version__
 from surfwave.errors import InputError
+from surfwave.data.integrity import check_readable, rebuild_hint
 
-#: netCDF engine used on write and read (complex numbers supported natively).
+#: netCDF engine used on write and read.
 ENGINE = "h5netcdf"
 CONVENTIONS = "CF-1.10"
+#: Trailing dimension holding the real and imaginary parts of a complex variable.
+COMPLEX_DIM = "complex"
+#: Variable attribute naming that dimension (the marker :func:`open_cube` decodes).
+COMPLEX_ATTR = "complex_dimension"
 
 COORDS: dict[str, dict[str, str]] = {
     "potential": {"long_name": "pair potential (surfwave.continuum.potentials registry name)"},
@@ -43,6 +54,7 @@ COORDS: dict[str, dict[str, str]] = {
     "d_over_d0": {"long_name": "stretch along the propagation direction, d/d0", "units": "1"},
     "theta": {"long_name": "reduced wave number theta = k d_x", "units": "rad"},
     "row": {"long_name": "atomic row below the surface (0 = surface row)", "units": "1"},
+    COMPLEX_DIM: {"long_name": "part of a complex number: real or imaginary"},
 }
 
 
@@ -272,7 +284,7 @@ def write(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine=ENGINE)
+        encode_complex(ds).to_netcdf(tmp, engine=ENGINE)
         os.chmod(tmp, _file_mode())  # mkstemp makes 0600; results are for everyone to read
         os.replace(tmp, path)
     except BaseException:
@@ -281,16 +293,76 @@ def write(ds: xr.Dataset, path: str | Path) -> Path:
     return path
 
 
+def encode_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Complex variables as real ones with a trailing dimension ``complex`` = [real, imag].
+
+    Each encoded variable gets the attribute ``complex_dimension = "complex"`` (and keeps
+    its ``long_name`` and ``units``); real variables are untouched.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+
+    Returns
+    -------
+    xarray.Dataset
+        A new dataset without complex dtypes (``ds`` itself when it has none).
+    """
+    names = [n for n, v in ds.variables.items() if v.dtype.kind == "c"]
+    if not names:
+        return ds
+    out = ds.copy()
+    for n in names:
+        var = ds[n].variable
+        parts = np.stack([var.values.real, var.values.imag], axis=-1)
+        attrs = dict(var.attrs, **{COMPLEX_ATTR: COMPLEX_DIM})
+        out[n] = (var.dims + (COMPLEX_DIM,), parts, attrs)
+    return out.assign_coords({COMPLEX_DIM: (COMPLEX_DIM, np.array(["real", "imag"]),
+                                            COORDS[COMPLEX_DIM])})
+
+
+def decode_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Inverse of :func:`encode_complex`: variables marked ``complex_dimension`` become complex."""
+    names = [n for n, v in ds.variables.items() if v.attrs.get(COMPLEX_ATTR) == COMPLEX_DIM
+             and v.dims[-1:] == (COMPLEX_DIM,)]
+    if not names:
+        return ds
+    out = ds.copy()
+    for n in names:
+        var = ds[n].variable
+        values = var.values[..., 0] + 1j * var.values[..., 1]
+        attrs = {k: v for k, v in var.attrs.items() if k != COMPLEX_ATTR}
+        out[n] = (var.dims[:-1], values, attrs)
+    if not any(COMPLEX_DIM in v.dims for v in out.variables.values() if v.dims != (COMPLEX_DIM,)):
+        out = out.drop_vars(COMPLEX_DIM, errors="ignore")
+    return out
+
+
+class DamagedCubeError(InputError):
+    """A result file that exists but cannot be read (truncated, not netCDF)."""
+
+
 def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:
     """Open a result cube (explicit engine; complex values come back as complex).
+
+    Raises
+    ------
+    DamagedCubeError
+        One line naming the file, what is wrong and the command that rebuilds it.
 
     Examples
     --------
     >>> ds = open_cube("results/table1/rayleigh.nc")               # doctest: +SKIP
     >>> ds.c2_R.sel(potential="lj", direction="[110]", strain=0.0)  # doctest: +SKIP
     """
-    ds = xr.open_dataset(path, engine=ENGINE)
+    try:
+        ds = xr.open_dataset(path, engine=ENGINE)
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, RuntimeError) as exc:
+        why = check_readable(path) or str(exc).splitlines()[0]
+        raise DamagedCubeError(f"{path} is damaged ({why}); rebuild it: {rebuild_hint(path)}") from None
     if load:
         with ds:
-            return ds.load()
-    return ds
+            ds = ds.load()
+    return decode_complex(ds)

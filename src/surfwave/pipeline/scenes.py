@@ -65,11 +65,14 @@ def _where(path) -> str:
 
 
 def load_schema(path: str | Path | None = None) -> dict:
-    """Read the JSON schema (YAML file) of the config."""
+    """Read the JSON schema (YAML file) of the config, with the accuracy knobs' defaults and
+    bounds filled in from the library (:func:`surfwave.pipeline.knobs.inject`)."""
     import yaml
 
+    from surfwave.pipeline.knobs import inject
+
     with open(path or SCHEMA_PATH) as fh:
-        return yaml.safe_load(fh)
+        return inject(yaml.safe_load(fh))
 
 
 def _validator_with_defaults(schema: dict):
@@ -94,15 +97,30 @@ def validate_schema(config: dict, schema: dict | str | Path | None = None) -> di
     Raises
     ------
     SceneError
-        Naming the scene, the key and the value of the first problem.
+        Naming the scene, the key and the value of every problem (one line each).
     """
+    messages = schema_problems(config, schema)
+    if messages:
+        raise SceneError(_join(messages))
+    return config
+
+
+def schema_problems(config: dict, schema: dict | str | Path | None = None) -> list[str]:
+    """Fill defaults into ``config`` (in place); one message per schema violation, in key order."""
+    return list(dict.fromkeys(_schema_message(e) for e in _schema_errors(config, schema)))
+
+
+def _schema_errors(config: dict, schema) -> list:
     if not isinstance(schema, dict):
         schema = load_schema(schema)
     validator = _validator_with_defaults(schema)
-    errors = sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
-    if errors:
-        raise SceneError(_schema_message(errors[0]))
-    return config
+    return sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
+
+
+def _join(messages: list[str]) -> str:
+    if len(messages) == 1:
+        return messages[0]
+    return f"{len(messages)} problems in the config:\n" + "\n".join(f"  - {m}" for m in messages)
 
 
 def _schema_message(err) -> str:
@@ -148,6 +166,10 @@ def expand_grid(spec, where: str = "grid") -> np.ndarray:
     """
     if isinstance(spec, dict):
         start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
+        bad = {k: v for k, v in zip(("start", "stop", "step"), (start, stop, step)) if not np.isfinite(v)}
+        if bad:
+            key, value = next(iter(bad.items()))
+            raise SceneError(f"{where}: {key} must be a finite number, got {value!r}")
         if not step > 0:
             raise SceneError(f"{where}: step must be positive, got {step!r}")
         if stop < start:
@@ -193,36 +215,50 @@ def theta_grid(spec, where: str = "theta") -> np.ndarray:
     return values
 
 
-def _check_scene(name: str, raw: dict) -> dict:
+def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
+    """The expanded scene (None if it has problems) and every problem found."""
     where = f"scene {name!r}"
+    problems: list[str] = []
     lattice, loading = raw["lattice"], raw["loading"]
+    pots = []
     for pot in raw["potentials"]:
         try:
             get_potential(pot)
+            pots.append(pot)
         except InputError as exc:
-            raise SceneError(f"{where}, key 'potentials': value {pot!r}: {exc}") from None
+            problems.append(f"{where}, key 'potentials': value {pot!r}: {exc}")
     directions = list(raw.get("directions") or LATTICES[lattice]["directions"])
+    good_dirs = []
     for direction in directions:
         try:
             check_combination(lattice, loading, direction)
+            good_dirs.append(direction)
         except InputError as exc:
             key = "loading" if "loading" in str(exc) else "directions"
-            raise SceneError(f"{where}, key {key!r}: {exc}") from None
+            problems.append(f"{where}, key {key!r}: {exc}")
     for q in raw["quantities"]:
         if q in TRIANGULAR_ONLY and lattice != "triangular":
-            raise SceneError(
+            problems.append(
                 f"{where}, key 'quantities': value {q!r} needs lattice 'triangular', not {lattice!r}"
             )
-    d = expand_grid(raw["d_over_d0"], f"{where}, key 'd_over_d0'")
+    d = None
     try:
+        d = expand_grid(raw["d_over_d0"], f"{where}, key 'd_over_d0'")
         check_d_over_d0(lattice, loading, d)
         if lattice == "fcc" and loading == "uniaxial":
-            for pot in raw["potentials"]:  # the lateral solve must succeed for every point
-                for direction in directions:
+            for pot in pots:  # the lateral solve must succeed for every point
+                for direction in good_dirs:
                     build(lattice, loading, direction, d, pot)
+    except SceneError as exc:
+        problems.append(str(exc))
     except SurfwaveError as exc:
-        raise SceneError(f"{where}, key 'd_over_d0': {exc}") from None
-    theta = theta_grid(raw["theta"], f"{where}, key 'theta'")
+        problems.append(f"{where}, key 'd_over_d0': {exc}")
+    try:
+        theta = theta_grid(raw["theta"], f"{where}, key 'theta'")
+    except SceneError as exc:
+        problems.append(str(exc))
+    if problems:
+        return None, problems
     return {
         "name": name,
         "lattice": lattice,
@@ -233,7 +269,7 @@ def _check_scene(name: str, raw: dict) -> dict:
         "theta": [float(x) for x in theta],
         "quantities": list(raw["quantities"]),
         "accuracy": copy.deepcopy(raw["accuracy"]),
-    }
+    }, []
 
 
 def _crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
@@ -277,8 +313,16 @@ def _crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) ->
     return [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")], None
 
 
-def _check_crystal_scene(name: str, raw: dict) -> dict:
-    """Physical checks and expansion of a real-crystal scene (``materials:`` key)."""
+def _check_crystal_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
+    """The expanded real-crystal scene (``materials:`` key), or None and its problem."""
+    try:
+        return _expand_crystal_scene(name, raw), []
+    except SceneError as exc:
+        return None, [str(exc)]
+
+
+def _expand_crystal_scene(name: str, raw: dict) -> dict:
+    """Physical checks and expansion of a real-crystal scene; the first problem raises."""
     from surfwave.continuum import orientation
     from surfwave.continuum.crystal_scene import applied_stress
     from surfwave.data.materials import get_material
@@ -350,16 +394,31 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
     ------
     SceneError
         Schema violations, unknown potentials, unsupported lattice/loading/direction
-        combinations, impossible d/d0, malformed grids, unknown scene names in ``run``.
+        combinations, impossible d/d0, malformed grids, unknown scene names in ``run``:
+        every problem of the config at once, one line each.
     """
-    validate_schema(config, schema)
-    scenes = {name: _check_crystal_scene(name, raw) if "materials" in raw else _check_scene(name, raw)
-              for name, raw in config["scenes"].items()}
-    for name in config.get("run", []):
-        if name not in scenes:
-            raise SceneError(
-                f"key 'run': value {name!r} is not a scene; known scenes: {sorted(scenes)}"
+    errors = _schema_errors(config, schema)
+    problems = list(dict.fromkeys(_schema_message(e) for e in errors))
+    raw_scenes = config.get("scenes") if isinstance(config.get("scenes"), dict) else {}
+    broken = {str(e.absolute_path[1]) for e in errors
+              if len(e.absolute_path) >= 2 and e.absolute_path[0] == "scenes"}
+    scenes: dict[str, dict] = {}
+    for name, raw in raw_scenes.items():
+        if name in broken or not isinstance(raw, dict):
+            continue
+        check = _check_crystal_scene if "materials" in raw else _check_scene
+        scene, found = check(name, raw)
+        problems += found
+        if scene is not None:
+            scenes[name] = scene
+    run = config.get("run", [])
+    for name in run if isinstance(run, list) else []:
+        if name not in raw_scenes:
+            problems.append(
+                f"key 'run': value {name!r} is not a scene; known scenes: {sorted(raw_scenes)}"
             )
+    if problems:
+        raise SceneError(_join(problems))
     return scenes
 
 

@@ -60,8 +60,22 @@ def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
     return out
 
 
+def paper_scenes() -> list[str]:
+    """The scenes the paper's reproduction report reads (named in ``paper_values.yaml``)."""
+    pv = yaml.safe_load(resources.files("surfwave").joinpath("data/paper_values.yaml").read_text())
+    names = [pv["table1"]["scene"]]
+    for group in ("values", "claims"):
+        for spec in pv[group].values():
+            names += [s for s in (spec.get("scene"), spec.get("reference_scene")) if s]
+    return list(dict.fromkeys(names))
+
+
 def report_inputs(scenes: dict, results: str = "results") -> list[str]:
-    """The cubes the report reads that the given scenes produce.
+    """The cubes of the paper's scenes that the reproduction report reads.
+
+    Only the scenes named in ``paper_values.yaml`` count: a user's own scene never feeds
+    ``results/report.md`` (it gets ``results/<scene>/summary.md``), so running it leaves
+    the reproduction report, and Snakemake's view of it, untouched.
 
     Parameters
     ----------
@@ -75,11 +89,17 @@ def report_inputs(scenes: dict, results: str = "results") -> list[str]:
             for scene in (spec.get("scene"), spec.get("reference_scene")):
                 if scene:
                     wanted.setdefault(scene, set()).update(REPORT_CUBES)
-    for scene, spec in scenes.items():  # the bulk section: phonopy against elastic.nc
-        if "bulk" in spec.get("quantities", []):
-            wanted.setdefault(scene, set()).update({"bulk", "elastic"})
+    for scene in list(wanted):  # the bulk section: phonopy against elastic.nc
+        if "bulk" in scenes.get(scene, {}).get("quantities", []):
+            wanted[scene].update({"bulk", "elastic"})
     out = []
     for scene, cubes in wanted.items():
         have = set(scenes.get(scene, {}).get("quantities", []))
         out += [f"{results}/{scene}/{c}.nc" for c in CUBE_NAMES if c in cubes and c in have]
     return sorted(set(out))
+
+
+def summary_targets(scenes: dict, names, results: str = "results") -> list[str]:
+    """``results/<scene>/summary.md`` for each named scene that is not one of the paper's."""
+    paper = set(paper_scenes())
+    return [f"{results}/{n}/summary.md" for n in names if n not in paper]
