@@ -14,17 +14,30 @@ if "snakemake" not in globals():  # standalone run for debugging
 sys.stderr = open(snakemake.log[0], "w")
 
 job = snakemake.params.job
-blocks = {
-    (pot, direction): cube.documented(
-        elastic.properties(job["lattice"], job["loading"], pot, direction, job["d_over_d0"]),
-        elastic.VARIABLES,
-        sys.stderr,
-    )
-    for pot in job["potentials"]
-    for direction in job["directions"]
-}
-ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
-                job["d_over_d0"], elastic.VARIABLES)
+if job.get("angles") is not None:  # FCC propagation angles in the (001) surface (degrees)
+    from surfwave.continuum import fcc_angles
+
+    blocks = {}
+    for pot in job["potentials"]:
+        out = fcc_angles.properties_at_angles(pot, job["angles"], job["d_over_d0"], job["loading"])
+        for i, angle in enumerate(job["angles"]):
+            blocks[(pot, angle)] = cube.documented({k: v[i] for k, v in out.items()},
+                                                   elastic.VARIABLES, sys.stderr)
+    ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
+                    job["d_over_d0"], elastic.VARIABLES)
+    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+else:
+    blocks = {
+        (pot, direction): cube.documented(
+            elastic.properties(job["lattice"], job["loading"], pot, direction, job["d_over_d0"]),
+            elastic.VARIABLES,
+            sys.stderr,
+        )
+        for pot in job["potentials"]
+        for direction in job["directions"]
+    }
+    ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
+                    job["d_over_d0"], elastic.VARIABLES)
 cube.finish(ds, snakemake, what="elastic", crystal=snakemake.input.crystal,
             method="analytic nearest-neighbour sums (PHYSICS.md Appendix, Eq. A11); long-wave "
             f"stability from the acoustic tensor over {elastic.STABILITY_DIRECTIONS} directions, "

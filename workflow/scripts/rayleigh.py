@@ -17,14 +17,27 @@ sys.stderr = open(snakemake.log[0], "w")
 job = snakemake.params.job
 elastic = cube.open_cube(snakemake.input.elastic)
 blocks = {}
-for pot in job["potentials"]:
-    for direction in job["directions"]:
-        point = elastic.sel(potential=pot, direction=direction)
-        # m = 1 per atom and S is V S, so rho = 1 gives c^2 in K d0^2/m.
-        result = rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
-        blocks[(pot, direction)] = cube.documented(result, rayleigh.VARIABLES, sys.stderr)
-ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
-                job["d_over_d0"], rayleigh.VARIABLES)
+if job.get("angles") is not None:  # FCC propagation angles: the general solver off the mirrors
+    from surfwave.continuum import fcc_angles
+
+    for pot in job["potentials"]:
+        point = elastic.sel(potential=pot).transpose("angle", "strain", ...)
+        result = fcc_angles.rayleigh_at_angles(point["C"].values, point["stress"].values,
+                                               point["S"].values, job["angles"])
+        for i, angle in enumerate(job["angles"]):
+            blocks[(pot, angle)] = {k: v[i] for k, v in result.items()}
+    ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
+                    job["d_over_d0"], fcc_angles.RAYLEIGH_VARIABLES)
+    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+else:
+    for pot in job["potentials"]:
+        for direction in job["directions"]:
+            point = elastic.sel(potential=pot, direction=direction)
+            # m = 1 per atom and S is V S, so rho = 1 gives c^2 in K d0^2/m.
+            result = rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
+            blocks[(pot, direction)] = cube.documented(result, rayleigh.VARIABLES, sys.stderr)
+    ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
+                    job["d_over_d0"], rayleigh.VARIABLES)
 ds = ds.assign_coords(space_group=elastic["space_group"])
 cube.finish(ds, snakemake, what="rayleigh",
             method="Eq. (17) secular equation; root in 0 < rho c^2 < min(S_xyyx, S_xxxx) "

@@ -65,10 +65,8 @@ VARIABLES: dict[str, dict[str, str]] = {
                 "projection along x1 (onset of bulk radiation)", "units": "m s-1"},
     "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
     "reason": {"long_name": "why no surface wave exists at the point (empty when one does)"},
-    "polarisation_real": {"long_name": "real part of the surface displacement (u1, u2, u3) in the lab "
-                          "frame, normalised to unit length with u2 real", "units": "1"},
-    "polarisation_imag": {"long_name": "imaginary part of the surface displacement (u1, u2, u3) in "
-                          "the lab frame, normalised to unit length with u2 real", "units": "1"},
+    "polarisation": {"long_name": "surface displacement (u1, u2, u3) in the lab frame, complex, "
+                     "normalised to unit length (phase as the solver returns it)", "units": "1"},
     "penetration_depth": {"long_name": "penetration depth 1/min(k Im p) of the slowest-decaying "
                           "partial wave, in wavelengths", "units": "1"},
     "rho": {"long_name": "density of the (stressed) crystal", "units": "kg m-3"},
@@ -320,7 +318,9 @@ def surface_wave_scene(
         Dims (material, surface, angle) or (material, surface, angle, loading, toec, stress)
         for ``c_R``, ``c_R_imag``, ``c_limit`` (m/s), ``wave_type``, ``reason``,
         ``penetration_depth`` (wavelengths), ``rho`` (kg/m^3), and the same plus a trailing
-        ``component`` (u1, u2, u3) for ``polarisation_real`` and ``polarisation_imag``.
+        ``component`` (u1, u2, u3) for the complex ``polarisation`` (written to netCDF as real
+        and imaginary parts by :func:`surfwave.data.cube.write`), plus ``symmetric_range``
+        (material, surface) in degrees.
         Every variable and coordinate has ``long_name`` (and ``units`` when numeric). No
         global attributes: the workflow adds provenance.
 
@@ -382,17 +382,12 @@ def surface_wave_scene(
 def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, directions) -> xr.Dataset:
     """Label the arrays of :func:`surface_wave_scene` (drop the stress dims when unstressed)."""
     dims = ("material", "surface", "angle", "loading", "toec", "stress")
-    pol = out.pop("polarisation")
-    out["polarisation_real"], out["polarisation_imag"] = pol.real, pol.imag
     data_vars = {}
     for name, arr in out.items():
         vdims = dims + (("component",) if arr.ndim == len(dims) + 1 else ())
         if arr.dtype == object:
             arr = arr.astype(str)
-        meta = dict(VARIABLES[name])
-        if name.startswith("polarisation"):
-            meta["complex_parts"] = "polarisation = polarisation_real + 1j * polarisation_imag"
-        data_vars[name] = (vdims, arr, meta)
+        data_vars[name] = (vdims, arr, dict(VARIABLES[name]))
     coords = {
         "material": ("material", np.asarray(materials, dtype=str), COORDS["material"]),
         "surface": ("surface", np.asarray(surfaces, dtype=str), COORDS["surface"]),

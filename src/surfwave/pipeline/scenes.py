@@ -227,6 +227,13 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
             pots.append(pot)
         except InputError as exc:
             problems.append(f"{where}, key 'potentials': value {pot!r}: {exc}")
+    angles = None
+    if isinstance(raw.get("directions"), dict) or (
+            isinstance(raw.get("directions"), list)
+            and all(isinstance(x, (int, float)) for x in raw["directions"])):
+        angles, found = _fcc_angles(where, raw)  # propagation angles in the (001) surface
+        problems += found
+        raw = {**raw, "directions": ["[100]"]}   # the base frame the angles turn from
     directions = list(raw.get("directions") or LATTICES[lattice]["directions"])
     good_dirs = []
     for direction in directions:
@@ -269,7 +276,33 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
         "theta": [float(x) for x in theta],
         "quantities": list(raw["quantities"]),
         "accuracy": copy.deepcopy(raw["accuracy"]),
+        **({"angles": angles} if angles is not None else {}),
     }, []
+
+
+#: Quantities an FCC scene with propagation angles can compute.
+ANGLE_QUANTITIES = ("elastic", "rayleigh")
+
+
+def _fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
+    """Angles (degrees from [100] in the (001) surface) of an FCC scene's ``directions`` grid."""
+    from surfwave.continuum.fcc_angles import LOADING
+
+    problems = []
+    if raw["lattice"] != "fcc":
+        problems.append(f"{where}, key 'directions': angles need lattice 'fcc', not {raw['lattice']!r}")
+    if raw["loading"] != LOADING:
+        problems.append(f"{where}, key 'loading': value {raw['loading']!r} with angles as directions: "
+                        f"only {LOADING!r} keeps the stressed crystal the same in every direction")
+    for q in raw["quantities"]:
+        if q not in ANGLE_QUANTITIES:
+            problems.append(f"{where}, key 'quantities': value {q!r} is not available with angles "
+                            f"as directions (choose from {list(ANGLE_QUANTITIES)})")
+    try:
+        angles = [float(a) for a in expand_grid(raw["directions"], f"{where}, key 'directions'")]
+    except SceneError as exc:
+        return None, problems + [str(exc)]
+    return (None if problems else angles), problems
 
 
 def _crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
@@ -464,6 +497,8 @@ def job_params(scene: dict, stage: str) -> dict[str, Any]:
     params.update({k: copy.deepcopy(scene[k]) for k in _STAGE_KEYS[stage]})
     acc = _STAGE_ACCURACY.get(stage)
     params["accuracy"] = copy.deepcopy(scene["accuracy"].get(acc, {})) if acc else {}
+    if scene.get("angles") is not None and stage in ("elastic", "rayleigh"):
+        params["angles"] = list(scene["angles"])  # FCC propagation angles (degrees)
     return params
 
 

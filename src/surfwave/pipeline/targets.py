@@ -15,7 +15,7 @@ REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
 
 def speeds_scenes(scenes: dict, names) -> list[str]:
     """Names (of ``names``) of the FCC scenes that make elastic and rayleigh cubes (Fig. 2)."""
-    return [n for n in names if scenes[n].get("lattice") == "fcc"
+    return [n for n in names if scenes[n].get("lattice") == "fcc" and scenes[n].get("angles") is None
             and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
 
 
