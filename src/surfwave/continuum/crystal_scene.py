@@ -258,16 +258,20 @@ def applied_stress(loading: str, axes, stress) -> np.ndarray:
 def _state(material, sigma: np.ndarray, use_toec: bool):
     """Constants (GPa, crystal axes), stress and density of the stressed crystal.
 
-    sigma: shape (..., 3, 3) GPa. Returns C (..., 3, 3, 3, 3), sigma (..., 3, 3), rho (...).
+    sigma: shape (..., 3, 3) GPa. Returns C (..., 3, 3, 3, 3), sigma (..., 3, 3), rho (...),
+    ok (...) and reason (...): where the stressed state could not be found, ok is False.
     """
     C2 = voigt_to_tensor(material.voigt)
+    shape = sigma.shape[:-2]
     if not use_toec:  # fixed-C model: natural-state constants and density
-        shape = sigma.shape[:-2]
-        return np.broadcast_to(C2, shape + C2.shape), sigma, np.full(shape, material.rho)
+        return (np.broadcast_to(C2, shape + C2.shape), sigma, np.full(shape, material.rho),
+                np.ones(shape, bool), np.full(shape, "", dtype=object))
     from surfwave.continuum import toec
 
     state = toec.stressed_state(C2, toec.cubic_c3(material.toec), sigma, material.rho)
-    return state["C_star"], state["sigma"], state["rho"]
+    ok = np.broadcast_to(np.asarray(state.get("ok", True), dtype=bool), shape)
+    reason = np.broadcast_to(np.asarray(state.get("reason", ""), dtype=object), shape)
+    return state["C_star"], state["sigma"], state["rho"], ok, reason
 
 
 def _solve_points(C_lab, sigma_lab, rho, tol):
@@ -356,7 +360,7 @@ def surface_wave_scene(
         # sigma in crystal axes for every (surface*angle, loading, stress): (nsf*na, nl, ns, 3, 3)
         sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
         for it, use in enumerate(models):
-            C, sigma, rho = _state(mat, sig, use)
+            C, sigma, rho, ok, why = _state(mat, sig, use)
             R = np.broadcast_to(flat_axes[:, None, None], sig.shape)     # lab axes per point
             C_lab = rotate4(C, R).reshape(-1, 3, 3, 3, 3)
             sigma_lab = rotate2(sigma, R).reshape(-1, 3, 3)
@@ -372,6 +376,14 @@ def surface_wave_scene(
             out["wave_type"][idx] = np.asarray(res["wave_type"]).astype(str).reshape(sub)
             out["reason"][idx] = np.asarray(res["reason"]).astype(str).reshape(sub)
             out["polarisation"][idx] = np.asarray(res["polarisation"], dtype=complex).reshape(sub + (3,))
+            bad = ~ok.reshape(sub)  # no stressed state (e.g. the TOEC solve did not converge)
+            if bad.any():
+                for name in ("c_R", "c_R_imag", "c_limit", "penetration_depth"):
+                    out[name][idx] = np.where(bad, np.nan, out[name][idx])
+                out["polarisation"][idx] = np.where(bad[..., None], np.nan, out["polarisation"][idx])
+                out["wave_type"][idx] = np.where(bad, "none", out["wave_type"][idx])
+                out["reason"][idx] = np.where(bad, "no stressed state: " + why.reshape(sub).astype(str),
+                                              out["reason"][idx])
     ds = _dataset(out, [m.name for m in mats], list(surfaces), angles, loads, models, s, stressed,
                   directions)
     width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
