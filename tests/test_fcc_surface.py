@@ -109,3 +109,18 @@ def test_layer_blocks_bulk_limit_and_surface_equilibrium():
     ru = np.linalg.norm(up, axis=-1)
     force = (get_potential(pot).dphi(ru) / ru)[:, None] * up
     np.testing.assert_allclose(force.sum(axis=0), 0, atol=1e-12)
+
+
+@pytest.mark.parametrize("loading, d_over_d0, load_direction", [
+    ("in_plane_hydrostatic", 1.0, None),
+    ("uniaxial", 1.03, "[100]"),
+])
+def test_non_mirror_angle_matches_general_solver(loading, d_over_d0, load_direction):
+    """Reference: the general Stroh/impedance solver (surfwave.point at 20 deg from [100],
+    A_ijkl = C_ijkl + sigma_jl delta_ik, nominal-traction condition). The slab solve uses only
+    the bond force constants, rotated about the (001) normal, with the full coupled 3 x 3
+    blocks; zero stress and uniaxial LJ prestress along [100] (monoclinic lab frame)."""
+    ref = float(surfwave.point("fcc", loading, "lj", 20.0, d_over_d0, load_direction=load_direction)["c2_R"][0])
+    res = long_wave_c2("fcc", loading, "lj", 20.0, d_over_d0, k=K_MAX, levels=LEVELS,
+                       load_direction=load_direction)
+    assert res["c2_R"] == pytest.approx(ref, rel=RTOL)

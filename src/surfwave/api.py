@@ -8,10 +8,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum import elastic, rayleigh
+from surfwave.continuum import elastic, rayleigh, stroh
+from surfwave.continuum.lattices import build
+from surfwave.continuum.orientation import direction_angle, lab_axes
+from surfwave.continuum.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
-from surfwave.continuum.lattices import _FCC_LAB_AXES
-from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
+
+__all__ = ["material", "point"]
+
+#: Extra outputs of the general solver that :func:`point` adds (see :func:`stroh.surface_wave`).
+EXTRA_KEYS = ("c2_limit", "polarisation", "decay", "penetration_depth")
 
 
 def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:
@@ -56,54 +62,293 @@ def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0)
     return out
 
 
-def material(C11: float, C12: float, C44: float, rho: float, direction: str, stress: float = 0.0) -> dict:
-    """Rayleigh and bulk speeds of a real cubic crystal on its (001) surface.
+def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
+    """The general solver's outputs for lab-frame V C and V sigma (rho = m = 1)."""
+    sw = stroh.surface_wave(stroh.wave_propagation_tensor(C, sigma), 1.0)
+    return {"c2_limit": sw["c_limit"] ** 2, "polarisation": sw["polarisation"], "decay": sw["decay"],
+            "penetration_depth": sw["penetration_depth"], "_sw": sw}
+
+
+def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, load_direction=None) -> dict:
+    """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
+
+    Parameters
+    ----------
+    lattice : {"fcc", "triangular"}
+    loading : {"uniaxial", "in_plane_hydrostatic"}
+    potential : str
+        A registered potential (``"harmonic"``, ``"lj"``, ...).
+    direction : str or float or array_like of float
+        ``"[100]"``, ``"[110]"`` (FCC, mirror directions of the (001) surface) or ``"[10]"``
+        (triangular rows), as in the paper; or (FCC) any Miller direction in the (001)
+        surface (``"[210]"``) or an angle in degrees from [100] toward [010] (float or 1-D
+        array of m angles). Non-mirror directions use the general (Stroh) solver.
+    d_over_d0 : float or array_like, shape (n,)
+        Stretch along the load direction (1 = unstressed).
+    load_direction : {None, "[100]", "[110]"}
+        FCC: the direction of the uniaxial load (the stretch d/d0 is along it); None = the
+        propagation direction, which must then be "[100]" or "[110]" for uniaxial loading.
+        In-plane hydrostatic loading has no direction (any value is accepted and ignored).
+
+    Returns
+    -------
+    dict
+        Shapes: (n,) per strain, or (n, m) for an array of m angles (scalar angle or string:
+        (n,)). ``stress`` (sigma_xx V / K d0^2, x = propagation), ``c2_L_par``, ``c2_T_par``,
+        ``c2_L_perp``, ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (K d0^2 / m; the real
+        part for a pseudo wave), ``c2_limit`` (v_L^2), ``wave_type``, ``reason``,
+        ``polarisation`` (..., d) and ``decay`` (..., d) complex, ``penetration_depth``
+        (wavelengths), ``stable`` and ``min_acoustic_eig`` (n,) (long-wave stability in every
+        direction), ``C`` and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
+        ``volume``, ``d_over_d0`` (n,), and ``angle`` (degrees from [100], FCC only).
+
+    Raises
+    ------
+    InputError, GeometryError
+        Unknown names, a direction outside the (001) surface, a uniaxial load without
+        direction, an impossible geometry (the message names the value).
+
+    Examples
+    --------
+    >>> import surfwave
+    >>> r = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[110]", 1.0)
+    >>> round(float(r["c2_R"][0]), 4)   # Table I: 0.3596
+    0.3596
+    >>> surfwave.point("fcc", "in_plane_hydrostatic", "lj", [0.0, 20.0, 45.0], [0.98, 1.0])["c2_R"].shape
+    (2, 3)
+    """
+    classic = isinstance(direction, str) and direction in ("[100]", "[110]", "[10]") \
+        and load_direction in (None, direction)
+    if classic:
+        out = elastic.properties(lattice, loading, potential, direction, d_over_d0)
+        ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
+        out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
+        crystal = build(lattice, loading, direction, out["d_over_d0"], potential)
+        extra = _extras(out["C"], elastic.stress(crystal.bonds, potential))
+        extra.pop("_sw")
+        out.update(extra)
+        if lattice == "fcc":
+            out["angle"] = np.full(out["c2_R"].shape, direction_angle("(001)", direction))
+        return out
+    return _point_general(lattice, loading, potential, direction, d_over_d0, load_direction)
+
+
+def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction) -> dict:
+    """:func:`point` at any direction of the FCC (001) surface (the general solver)."""
+    if lattice != "fcc":
+        raise InputError(f"directions other than the mirror ones need lattice 'fcc', got {lattice!r} "
+                         f"with direction {direction!r}")
+    angle = direction_angle("(001)", direction) if isinstance(direction, str) else direction
+    angle = np.asarray(angle, dtype=float)
+    if angle.ndim > 1:
+        raise InputError(f"angles must be a scalar or a 1-D array, got shape {angle.shape}")
+    if loading == "in_plane_hydrostatic":
+        load = "[100]"  # tetragonal: the loading has no in-plane direction
+    elif load_direction in ("[100]", "[110]"):
+        load = load_direction
+    else:
+        raise InputError(f"uniaxial loading along {direction!r} needs load_direction '[100]' or '[110]' "
+                         f"(got {load_direction!r}): the lateral relaxation is solved for loads along "
+                         "the mirror directions")
+    crystal = build(lattice, loading, load, d_over_d0, potential)
+    sigma_l = elastic.stress(crystal.bonds, potential)                     # (n, 3, 3), load frame
+    C_l = elastic.elastic_constants(crystal.bonds, potential)
+    # load lab frame -> crystal axes -> propagation lab frame, composed into one rotation
+    rot = np.atleast_3d(lab_axes("(001)", angle)).reshape(-1, 3, 3) @ lab_axes("(001)", load).T   # (m, 3, 3)
+    C = rotate4(C_l[:, None], rot[None])                                    # (n, m, 3, 3, 3, 3)
+    sigma = rotate2(sigma_l[:, None], rot[None])
+    S = elastic.stress_derivatives(sigma, C)
+    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[..., 0, 0]}
+    out.update(elastic.sound_speeds(S))
+    out["stable"], out["min_acoustic_eig"], _ = elastic.long_wave_stability(C_l, sigma_l, elastic.STABILITY_DIRECTIONS)
+    extra = _extras(C, sigma)
+    sw = extra.pop("_sw")
+    out.update(extra)
+    out.update(c2_R=sw["c"] ** 2, wave_type=sw["wave_type"], reason=sw["reason"], C=C, S=S)
+    out["angle"] = np.broadcast_to(angle.reshape(-1), out["c2_R"].shape).copy()
+    if angle.ndim == 0:  # a scalar angle: no angle axis
+        for key in _ANGLE_KEYS:
+            out[key] = out[key][:, 0]
+    return out
+
+
+#: Outputs of :func:`point` that carry the angle axis (the rest depend on the strain only).
+_ANGLE_KEYS = ("stress", "c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH", "c2_R", "c2_limit",
+               "wave_type", "reason", "polarisation", "decay", "penetration_depth", "C", "S", "angle")
+
+
+#: Largest |elastic constant| (GPa) accepted: diamond's C11 is about 1080 GPa; larger values are
+#: almost surely given in Pa.
+MAX_GPA = 1e5
+REASON_BORN = "no surface wave: the crystal is Born-unstable (the elastic energy is not positive definite)"
+
+
+def _stressed_constants(C6: np.ndarray, stress, x1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Constants C and prestress sigma of the stressed crystal, crystal axes, GPa.
+
+    The one place where C and sigma are built (third-order constants would enter here).
+
+    Parameters
+    ----------
+    C6 : ndarray, shape (6, 6)
+        Voigt stiffness of the (stressed) crystal, crystal axes, GPa.
+    stress : float or array_like, shape (3, 3)
+        A scalar: uniaxial sigma along each propagation direction x1; a 3 x 3 tensor: the
+        Cauchy prestress in crystal axes. GPa.
+    x1 : ndarray, shape (m, 3)
+        Propagation directions, crystal axes.
+
+    Returns
+    -------
+    C : ndarray, shape (3, 3, 3, 3)
+    sigma : ndarray, shape (m, 3, 3)
+    """
+    s = np.asarray(stress, dtype=float)
+    if s.shape == ():
+        sigma = s * x1[:, :, None] * x1[:, None, :]
+    elif s.shape == (3, 3):
+        if not np.allclose(s, s.T, rtol=1e-12, atol=1e-12 * np.abs(s).max()):
+            raise InputError(f"the stress tensor must be symmetric, got {s.tolist()}")
+        sigma = np.broadcast_to(s, (x1.shape[0], 3, 3))
+    else:
+        raise InputError(f"stress must be a scalar or a 3 x 3 tensor (GPa), got shape {s.shape}")
+    return voigt_to_tensor(C6), sigma
+
+
+def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """Born (Wallace) stability of a prestressed crystal: the stability tensor is positive definite.
+
+    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2 (Wallace;
+    Wang, Yip, Phillpot and Wolf 1993), symmetrised, in Voigt form; d = Kronecker delta.
+
+    Parameters
+    ----------
+    C : ndarray, shape (..., 3, 3, 3, 3)
+    sigma : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+    """
+    from surfwave.continuum.tensors import tensor_to_voigt
+
+    e = np.eye(3)
+    B = C + 0.5 * (np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
+                   + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
+                   - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
+    B6 = tensor_to_voigt(B)
+    B6 = 0.5 * (B6 + np.swapaxes(B6, -1, -2))
+    return np.linalg.eigvalsh(B6)[..., 0] > 0
+
+
+def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
+             voigt=None, angle=None) -> dict:
+    """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
     ----------
     C11, C12, C44 : float
-        Measured elastic constants in GPa (taken as the stressed crystal's C).
+        Cubic elastic constants, GPa (taken as the stressed crystal's constants). Or:
+    voigt : array_like, shape (6, 6), keyword only
+        A full Voigt stiffness of any symmetry, crystal axes, GPa (instead of C11, C12, C44).
     rho : float
-        Density in kg/m^3.
-    direction : {"[100]", "[110]"}
-        Propagation direction in the (001) surface.
-    stress : float
-        In-plane uniaxial stress sigma_xx along the propagation direction, GPa (negative
-        = compression). Enters through Eq. (A11).
+        Density, kg/m^3.
+    direction : str or float or array_like of float
+        A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
+        surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
+        n x reference (:mod:`surfwave.continuum.orientation`).
+    stress : float or array_like, shape (3, 3)
+        A scalar: uniaxial stress along the propagation direction; a 3 x 3 Cauchy stress in
+        crystal axes. GPa, negative = compression. It must lie in the surface plane.
+    surface : str
+        "(hkl)".
+    angle : float or array_like, optional, keyword only
+        Same as an angle ``direction`` (wins over it).
 
     Returns
     -------
-    dict of float
-        ``c_R``, ``c_L_par``, ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (m/s; NaN
-        where imaginary), ``wave_type``, ``reason``, ``stable``.
+    dict
+        Floats for one direction, arrays of shape (m,) for m angles: ``c_R`` (m/s, NaN where
+        none; real part for a pseudo wave), ``c_R_imag``, ``c_limit`` (v_L), ``c_L_par``,
+        ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (bulk speeds along x1 and x2, m/s,
+        NaN where imaginary), ``wave_type``, ``reason``, ``stable`` (Born stability and
+        positive acoustic tensor in every direction), ``polarisation`` (..., 3) and ``decay``
+        (..., 3) complex (see :func:`surfwave.continuum.stroh.surface_wave`),
+        ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``.
+
+    Raises
+    ------
+    InputError
+        Missing or non-finite constants, constants in Pa (hint given), rho <= 0, a direction
+        not in the surface, a stress with sigma . n != 0 (component named).
 
     Examples
     --------
     >>> r = material(2.0, 1.0, 1.0, 1e9, "[100]")   # nearest-neighbour FCC ratios
     >>> round(r["c_R"] ** 2 / 1.0, 6)               # (3 - sqrt 3)/2 C44/rho, m^2/s^2
     0.633975
+    >>> round(material(168.4, 121.4, 75.4, 8960, "[1-10]", surface="(111)")["c_R"], 1)
+    1727.3
     """
-    if direction not in _FCC_LAB_AXES:
-        raise InputError(f"direction {direction!r} not supported; choose '[100]' or '[110]'")
-    for name, value in (("C11", C11), ("C12", C12), ("C44", C44), ("rho", rho), ("stress", stress)):
-        if not np.isfinite(value):
-            raise InputError(f"{name} must be finite, got {value!r}")
-    if rho <= 0:
+    if voigt is not None:
+        if any(v is not None for v in (C11, C12, C44)):
+            raise InputError("give either voigt= or C11, C12, C44, not both")
+        C6 = np.asarray(voigt, dtype=float)
+        if C6.shape != (6, 6):
+            raise InputError(f"voigt must be a 6 x 6 stiffness (GPa), got shape {C6.shape}")
+        if not np.allclose(C6, C6.T, rtol=1e-10, atol=0):
+            raise InputError("the Voigt stiffness must be symmetric")
+    else:
+        for name, value in (("C11", C11), ("C12", C12), ("C44", C44)):
+            if value is None:
+                raise InputError(f"{name} is missing: give C11, C12, C44 (GPa) or voigt=")
+        C6 = cubic_voigt(C11, C12, C44)
+    if rho is None:
+        raise InputError("the density rho (kg/m^3) is missing")
+    if not np.all(np.isfinite(C6)):
+        raise InputError(f"elastic constants must be finite, got {C6[~np.isfinite(C6)][:3]}")
+    big = np.abs(C6).max()
+    if big > MAX_GPA:
+        raise InputError(f"elastic constants must be in GPa; the largest is {big:.4g}, which looks like Pa "
+                         "(divide by 1e9)")
+    if not np.isfinite(rho) or rho <= 0:
         raise InputError(f"density rho must be positive, got {rho!r} kg/m^3")
-    R = _FCC_LAB_AXES[direction]
-    C = np.einsum("ai,bj,ck,dl,ijkl->abcd", R, R, R, R, voigt_to_tensor(cubic_voigt(C11, C12, C44)))
-    sigma = np.diag([stress, 0.0, 0.0])
-    S = elastic.stress_derivatives(sigma, C) * 1e9  # Pa
-    speeds = elastic.sound_speeds(S[None], rho)
-    ray = rayleigh.solve(S[None], rho)
-    stable, _, _ = elastic.long_wave_stability(C[None], sigma[None])
-    out = {}
-    for key, value in speeds.items():
-        v = float(value[0])
-        out["c" + key[2:]] = float(np.sqrt(v)) if v > 0 else float("nan")
-    c2 = float(ray["c2_R"][0])
-    out["c_R"] = float(np.sqrt(c2)) if c2 > 0 else float("nan")
-    out["wave_type"] = str(ray["wave_type"][0])
-    out["reason"] = str(ray["reason"][0])
-    out["stable"] = bool(stable[0])
+    if not np.all(np.isfinite(np.asarray(stress, dtype=float))):
+        raise InputError(f"stress must be finite, got {stress!r}")
+    if np.abs(np.asarray(stress, dtype=float)).max() > MAX_GPA:
+        raise InputError(f"stress must be in GPa; got {stress!r}, which looks like Pa (divide by 1e9)")
+    which = direction if angle is None else angle
+    R = lab_axes(surface, which)
+    scalar = R.ndim == 2
+    R = R.reshape(-1, 3, 3)
+    C_c, sigma_c = _stressed_constants(C6, stress, R[:, 0])
+    traction = sigma_c @ R[0, 1]
+    if np.abs(traction).max() > 1e-9 * max(np.abs(sigma_c).max(), 1e-300):
+        raise InputError(f"prestress must lie in the surface plane {surface}: its traction sigma . n = "
+                         f"{np.round(traction[0], 12).tolist()} GPa (crystal axes) is not zero")
+    C = rotate4(C_c, R)
+    sigma = rotate2(sigma_c, R)
+    A = stroh.wave_propagation_tensor(C, sigma) * 1e9                        # Pa
+    sw = stroh.surface_wave(A, rho)
+    born = born_stable(C_c, sigma_c)
+    acoustic, _, _ = elastic.long_wave_stability(np.broadcast_to(C_c, (R.shape[0],) + C_c.shape), sigma_c)
+    S = elastic.stress_derivatives(sigma, C) * 1e9
+    out: dict = {}
+    for key, value in elastic.sound_speeds(S, rho).items():
+        out["c" + key[2:]] = np.sqrt(np.where(value > 0, value, np.nan))
+    c = np.where(born, sw["c"], np.nan)
+    out.update(c_R=c, c_R_imag=np.where(born, sw["c_imag"], np.nan), c_limit=sw["c_limit"],
+               wave_type=np.where(born, sw["wave_type"], "none").astype(object),
+               reason=np.where(born, sw["reason"], REASON_BORN).astype(object),
+               stable=born & acoustic, polarisation=sw["polarisation"], decay=sw["decay"],
+               penetration_depth=sw["penetration_depth"], method=sw["method"])
+    from surfwave.continuum.orientation import reference_direction, surface_normal
+
+    ref = reference_direction(surface)
+    out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))
+    if scalar:
+        out = {k: (v[0] if np.ndim(v[0]) else np.asarray(v[0]).item()) for k, v in out.items()}
+        for key in ("wave_type", "reason", "method"):
+            out[key] = str(out[key])
+        out["stable"] = bool(out["stable"])
     return out

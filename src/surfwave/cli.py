@@ -30,11 +30,19 @@ examples:
 """
 
 EPILOG_MATERIAL = """\
-The (001) surface of a cubic crystal; the measured constants are taken as those of the
-(stressed) crystal and the in-plane stress sigma_xx enters through Eq. (A11).
+Any surface "(hkl)" of a crystal given by cubic constants or a full 6x6 Voigt stiffness
+(GPa, crystal axes). Propagation: a Miller direction in the surface, or --angle in degrees
+from the surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
+n x reference. Prestress: --stress S (uniaxial along the propagation) or nine values (the
+Cauchy tensor in crystal axes, row by row; it must lie in the surface plane). The measured
+constants are taken as those of the stressed crystal. Below v_L (the lowest bulk trace
+velocity) the surface wave is found by the Stroh/impedance solver, at mirror directions by
+Eq. (17).
 
-example (copper, room temperature):
+examples (copper, room temperature):
   surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --direction "[100]"
+  surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(111)" --direction "[1-10]"
+  surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(110)" --angle 0:90:15
 """
 
 
@@ -108,18 +116,25 @@ def _parser() -> argparse.ArgumentParser:
     pt.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     mt = sub.add_parser(
-        "material", help="Rayleigh and bulk speeds (m/s) of a real cubic crystal from C11, C12, C44",
-        description="Rayleigh and bulk sound speeds on the (001) surface of a cubic crystal.",
+        "material", help="surface-wave and bulk speeds (m/s) of a real crystal, any surface and direction",
+        description="Surface (Rayleigh) wave, limiting speed and bulk sound speeds of a real crystal "
+        "on any surface, in any direction, under prestress.",
         epilog=EPILOG_MATERIAL, formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    mt.add_argument("--C11", required=True, type=float, help="elastic constant C11, GPa")
-    mt.add_argument("--C12", required=True, type=float, help="elastic constant C12, GPa")
-    mt.add_argument("--C44", required=True, type=float, help="elastic constant C44, GPa")
+    mt.add_argument("--C11", type=float, help="cubic elastic constant C11, GPa")
+    mt.add_argument("--C12", type=float, help="cubic elastic constant C12, GPa")
+    mt.add_argument("--C44", type=float, help="cubic elastic constant C44, GPa")
+    mt.add_argument("--voigt", type=float, nargs=36, metavar="C",
+                    help="full 6x6 Voigt stiffness (36 values, row by row), GPa, crystal axes (instead of C11 C12 C44)")
     mt.add_argument("--rho", required=True, type=float, help="density, kg/m^3")
-    mt.add_argument("--direction", required=True, choices=["[100]", "[110]"],
-                    help="propagation direction in the (001) surface")
-    mt.add_argument("--stress", type=float, default=0.0,
-                    help="in-plane stress sigma_xx along the propagation direction, GPa (negative = compression)")
+    mt.add_argument("--surface", default="(001)", help='surface plane "(hkl)" (default "(001)")')
+    where = mt.add_mutually_exclusive_group()
+    where.add_argument("--direction", help='propagation direction "[uvw]" in the surface (default: the reference)')
+    where.add_argument("--angle", help="angle in degrees from the reference direction, or a sweep START:STOP:STEP "
+                       "(STOP included) printed as a table")
+    mt.add_argument("--stress", type=float, nargs="+", default=[0.0], metavar="S",
+                    help="prestress, GPa (negative = compression): one value (uniaxial along the propagation) "
+                    "or nine (Cauchy tensor in crystal axes, row by row)")
     mt.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     sub.add_parser(
@@ -182,19 +197,97 @@ def _cmd_point(args) -> int:
     return 0
 
 
+def _angles(text: str) -> np.ndarray | float:
+    """One angle "15" or a sweep "0:90:5" (stop included) in degrees."""
+    from surfwave.errors import InputError
+
+    parts = text.split(":")
+    try:
+        values = [float(v) for v in parts]
+    except ValueError:
+        raise InputError(f"--angle must be a number or START:STOP:STEP in degrees, got {text!r}") from None
+    if len(values) == 1:
+        return values[0]
+    if len(values) != 3 or values[2] <= 0 or values[1] < values[0]:
+        raise InputError(f"--angle sweep must be START:STOP:STEP with STEP > 0 and STOP >= START, got {text!r}")
+    start, stop, step = values
+    return start + step * np.arange(int(np.floor((stop - start) / step + 1e-9)) + 1)
+
+
+def _material_rows(r: dict) -> list[dict]:
+    """JSON-ready rows (one per direction) of a :func:`surfwave.material` result."""
+    n = np.size(r["c_R"])
+    rows = []
+    for i in range(n):
+        row = {}
+        for key, value in r.items():
+            v = np.asarray(value)
+            v = np.asarray(v[i]) if v.ndim and v.shape[0] == n and np.ndim(r["c_R"]) else v
+            if key in ("polarisation", "decay"):
+                row[key] = {"re": [None if np.isnan(x) else float(x) for x in v.real],
+                            "im": [None if np.isnan(x) else float(x) for x in v.imag]}
+            elif v.dtype.kind == "f":
+                row[key] = None if np.isnan(v) else float(v)
+            elif v.dtype.kind == "b":
+                row[key] = bool(v)
+            else:
+                row[key] = str(v)
+        rows.append(row)
+    return rows
+
+
 def _cmd_material(args) -> int:
     from surfwave.api import material
+    from surfwave.errors import InputError
 
-    r = material(args.C11, args.C12, args.C44, args.rho, args.direction, args.stress)
+    if args.voigt is not None:
+        if any(v is not None for v in (args.C11, args.C12, args.C44)):
+            raise InputError("give either --voigt or --C11 --C12 --C44, not both")
+        constants = {"voigt": np.reshape(args.voigt, (6, 6))}
+    else:
+        missing = [n for n in ("C11", "C12", "C44") if getattr(args, n) is None]
+        if missing:
+            raise InputError(f"missing {', '.join('--' + m for m in missing)} (GPa), or give --voigt")
+        constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
+    if len(args.stress) == 1:
+        stress = args.stress[0]
+    elif len(args.stress) == 9:
+        stress = np.reshape(args.stress, (3, 3))
+    else:
+        raise InputError(f"--stress takes one value or nine, got {len(args.stress)}")
+    if args.angle is not None:
+        direction = _angles(args.angle)
+    elif args.direction is not None:
+        direction = args.direction
+    else:
+        direction = 0.0
+    r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, **constants)
+    rows = _material_rows(r)
     if args.json:
-        print(json.dumps(r, indent=2))
+        print(json.dumps(rows if np.ndim(direction) else rows[0], indent=2))
         return 0
-    print(f"# cubic crystal, (001) surface, propagation {args.direction}, sigma_xx = {args.stress} GPa")
-    for key in ("c_R", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
-        print(f"{key:>10} = {r[key]:10.2f} m/s")
-    print(f"{'wave_type':>10} = {r['wave_type']}   stable = {r['stable']}")
-    if r["reason"]:
-        print(f"      note: {r['reason']}")
+    what = f"propagation {direction}" if isinstance(direction, str) else "angle from the reference"
+    print(f"# surface {args.surface}, {what}, stress {args.stress if len(args.stress) > 1 else args.stress[0]} GPa")
+    if np.ndim(direction) == 0:
+        row = rows[0]
+        for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
+            val = row[key]
+            unit = "deg" if key == "angle" else "m/s"
+            print(f"{key:>17} = " + (f"{val:10.2f} {unit}" if val is not None else "       nan"))
+        print(f"{'penetration_depth':>17} = " + (f"{row['penetration_depth']:10.3f} wavelengths"
+                                                  if row["penetration_depth"] is not None else "       nan"))
+        print(f"{'wave_type':>17} = {row['wave_type']}   stable = {row['stable']}")
+        pol = np.array(row["polarisation"]["re"], dtype=float) + 1j * np.array(row["polarisation"]["im"], dtype=float)
+        print(f"{'polarisation':>17} = " + "  ".join(f"{u.real:+.4f}{u.imag:+.4f}i" for u in pol))
+        if row["reason"]:
+            print(f"             note: {row['reason']}")
+        return 0
+    header = ["angle", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
+    print("  ".join(f"{h:>10}" for h in header))
+    for row in rows:
+        vals = [row[k] for k in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
+        cells = [f"{v:10.2f}" if v is not None else f"{'nan':>10}" for v in vals]
+        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
     return 0
 
 

@@ -31,6 +31,7 @@ from typing import Literal
 import numpy as np
 
 from surfwave.errors import GeometryError, InputError
+from surfwave.continuum.orientation import lab_axes
 from surfwave.continuum.potentials import PairPotential, get_potential
 
 Lattice = Literal["fcc", "triangular"]
@@ -58,12 +59,9 @@ _FCC_HALF_NEIGHBOURS = 0.5 * _A_FCC * np.array(
 )
 _FCC_PRIMITIVE = 0.5 * _A_FCC * np.array([[0, 1, 1], [1, 0, 1], [1, 1, 0]], dtype=float)
 
-# Rows: lab axes x, y, z expressed in crystal axes; the crystal [001] is the surface normal.
-_FCC_LAB_AXES = {
-    "[100]": np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]]),
-    "[110]": np.array([[1.0, 1.0, 0.0], [0.0, 0.0, np.sqrt(2.0)], [1.0, -1.0, 0.0]])
-    / np.sqrt(2.0),
-}
+# Rows: lab axes x, y, z expressed in crystal axes; the crystal [001] is the surface normal
+# (pointing into the crystal). One place for the convention: continuum.orientation.
+_FCC_LAB_AXES = {d: lab_axes("(001)", d) for d in ("[100]", "[110]")}
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,11 @@ equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, PHYSICS
 """
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
+
+from surfwave.errors import SymmetryError
 
 #: Metadata of the arrays this module produces.
 VARIABLES: dict[str, dict] = {
@@ -44,6 +48,9 @@ WAVE_TYPES = ("surface", "supersonic_decoupled", "none")
 
 REASON_SHEAR = "no surface wave: c_T,par^2 <= 0 (shear instability along the surface)"
 REASON_PERP = "no surface wave: S_yyyy <= 0 or S_xyxy <= 0 (unstable normal to the surface)"
+#: Relative size (of max |S|) above which a component breaking sagittal orthotropy is refused.
+ORTHOTROPY_TOL = 1e-9
+
 REASON_NOROOT = ("no root of Eq. (17) in 0 < rho c^2 < min(S_xxxx, S_xyyx) satisfies the "
                  "unsquared boundary condition with decaying partial waves")
 
@@ -143,8 +150,68 @@ def _sagittal_components(S: np.ndarray) -> tuple[np.ndarray, ...]:
     return S[..., 0, 0, 0, 0], S[..., 0, 1, 0, 1], S[..., 0, 1, 1, 0], S[..., 1, 1, 1, 1], S[..., 1, 1, 0, 0]
 
 
+def _odd_index_components(d: int) -> tuple[list[tuple[int, ...]], tuple[np.ndarray, ...]]:
+    """Components of S that vanish when the sagittal plane is orthotropic and a mirror.
+
+    Orthotropy in the sagittal plane (x -> -x) removes those with an odd number of x
+    indices among the sagittal ones; the mirror z -> -z (3D) those with an odd number of z.
+    """
+    comps = [c for c in itertools.product(range(d), repeat=4)
+             if sum(i == 0 for i in c) % 2 == 1 or sum(i == 2 for i in c) % 2 == 1]
+    return comps, tuple(np.array(col) for col in zip(*comps))
+
+
+_ODD = {d: _odd_index_components(d) for d in (2, 3)}
+
+
+def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
+    """Raise :class:`SymmetryError` unless S is orthotropic in the sagittal plane (Eq. 17 applies).
+
+    Eq. (17) needs x -> -x and (3D) z -> -z symmetry: every component with an odd number of
+    x or of z indices must vanish (relative to max |S| of the point). General tensors belong to
+    :func:`surfwave.continuum.stroh.surface_wave`.
+
+    Parameters
+    ----------
+    S : ndarray, shape (..., d, d, d, d), d = 2 or 3
+    rtol : float
+
+    Raises
+    ------
+    SymmetryError
+        Naming the largest offending components and their size relative to max |S|.
+    """
+    d = S.shape[-1]
+    if d not in _ODD or S.shape[-4:] != (d,) * 4:
+        raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
+    comps, idx = _ODD[d]
+    odd = np.abs(S[(Ellipsis,) + idx])                                   # (..., n_odd)
+    scale = np.abs(S).reshape(S.shape[:-4] + (-1,)).max(axis=-1)
+    with np.errstate(all="ignore"):
+        rel = odd / np.where(scale > 0, scale, 1.0)[..., None]
+    if rel.size and rel.max() > rtol:
+        flat = rel.reshape(-1, len(comps))
+        k = int(np.argmax(flat.max(axis=1)))
+        worst = np.argsort(flat[k])[::-1][:4]
+        names = ", ".join(f"S_{''.join('xyz'[i] for i in comps[j])} = {flat[k, j]:.2g}"
+                          for j in worst if flat[k, j] > rtol)
+        raise SymmetryError(
+            "Eq. (17) needs a sagittal plane that is a mirror and orthotropic; at point "
+            f"{np.unravel_index(k, S.shape[:-4]) if S.ndim > 4 else ()} these components do not vanish "
+            f"(relative to max|S|): {names}. Use surfwave.continuum.stroh.surface_wave for general tensors."
+        )
+
+
 def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
-    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists (module docstring)."""
+    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists (module docstring).
+
+    Scale invariant: the five components are divided by their largest magnitude first (so
+    constants in Pa, GPa or reduced units take the same path).
+    """
+    a, b, c, d, f = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (a, b, c, d, f)))
+    unit = np.maximum.reduce([np.abs(a), np.abs(b), np.abs(c), np.abs(d), np.abs(f)])
+    unit = np.where(unit > 0, unit, 1.0)
+    a, b, c, d, f = (v / unit for v in (a, b, c, d, f))
     X = _real_cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3), NaN if not real
     A5 = [v[..., None] for v in (a, b, c, d, f)]
     a_, b_, c_, d_, f_ = A5
@@ -162,7 +229,7 @@ def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndar
         badness = np.where(ok, np.abs(G) / scale, np.inf)
     best = np.argmin(badness, axis=-1)[..., None]
     has = np.take_along_axis(ok, best, -1)[..., 0]
-    return np.take_along_axis(X, best, -1)[..., 0], has
+    return np.take_along_axis(X, best, -1)[..., 0] * unit, has
 
 
 def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
@@ -186,6 +253,7 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
         ``kappa1``, ``kappa2`` (complex), all shape S.shape[:-4].
     """
     S = np.asarray(S, dtype=float)
+    check_orthotropic(S)
     rho = np.asarray(rho, dtype=float)
     a, b, c, d, f = _sagittal_components(S)
     if c2_SH is None:
@@ -234,6 +302,7 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     0.845299
     """
     S = np.asarray(S, dtype=float)
+    check_orthotropic(S)
     X, has = _select_root(*_sagittal_components(S))
     return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
 

@@ -22,6 +22,10 @@ so the xz and yz entries of the blocks vanish (checked) and the sagittal (x, y) 
 solved alone; this also removes the shear-horizontal branch, which lies *below* the sagittal
 surface wave for [110] ("supersonic_decoupled").
 
+Off the mirror directions (any angle in the (001) surface, :func:`oriented_crystal`) the
+bonds are rotated about the normal into the lab frame, the full 3 x 3 blocks are kept and
+the surface wave is the lowest localised mode (it is subsonic there).
+
 Method: a slab of N layers with a free top (layer 0) and a clamped bottom (U_N = 0), so
 that only the top surface carries a surface wave and a compressed slab cannot buckle. Its
 block-tridiagonal Hermitian matrix is sparse and banded; its lowest eigenpairs come from
@@ -43,8 +47,11 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse.linalg import eigsh
 
+import dataclasses
+
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.continuum.lattices import Crystal, build
+from surfwave.continuum.orientation import lab_axes
 from surfwave.continuum.potentials import PairPotential, get_potential
 
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
@@ -155,22 +162,24 @@ def slab_matrix(a0, a0s, a1, n_layers: int) -> sparse.csc_matrix:
     return h.tocsc()
 
 
-def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2):
+def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2, shift: float = 0.0):
     """Lowest modes of the free-top, clamped-bottom slab of :func:`slab_matrix`.
 
-    Shift-invert Lanczos about omega^2 = 0 (sparse LU of the banded matrix, O(N) work).
+    Shift-invert Lanczos about omega^2 = ``shift`` (sparse LU of the banded matrix, O(N)
+    work); a shift just below the wanted eigenvalue makes Lanczos converge in a few steps.
 
     Returns
     -------
     omega2 : ndarray, shape (n_modes,)
-        The n_modes eigenvalues nearest 0 (the lowest, for a stable slab), ascending, K/m.
+        The n_modes eigenvalues nearest ``shift`` (the lowest, for a stable slab and shift 0),
+        ascending, K/m.
     modes : ndarray, shape (n_modes, n_layers, d), complex
         Normalised eigenvectors, U_n per layer.
     """
     d = a0.shape[-1]
     h = slab_matrix(a0, a0s, a1, n_layers)
     v0 = np.ones(d * n_layers, dtype=complex)  # deterministic start
-    w, v = eigsh(h, k=n_modes, sigma=0.0, which="LM", v0=v0, tol=0.0)
+    w, v = eigsh(h, k=n_modes, sigma=shift, which="LM", v0=v0, tol=0.0, ncv=min(20, h.shape[0] - 1))
     order = np.argsort(w)
     return w[order], v[:, order].T.reshape(n_modes, n_layers, d)
 
@@ -181,9 +190,47 @@ def tail_ratio(mode: np.ndarray) -> float:
     return float(amp[amp.size // 2:].max() / amp.max())
 
 
-def surface_mode(lattice: str, loading: str, potential: str | PairPotential, direction: str,
+def oriented_crystal(loading: str, potential: str | PairPotential, direction, d_over_d0,
+                     load_direction: str | None = None) -> tuple[Crystal, bool]:
+    """The prestressed FCC crystal in the lab frame of any propagation direction in (001).
+
+    Parameters
+    ----------
+    loading : {"in_plane_hydrostatic", "uniaxial"}
+    potential : str or PairPotential
+    direction : str or float
+        "[100]", "[110]" (mirror directions, built directly), any Miller direction in (001)
+        or an angle in degrees from [100] toward [010].
+    d_over_d0 : float
+        Stretch along the load direction.
+    load_direction : {None, "[100]", "[110]"}
+        Uniaxial load direction (None: the propagation direction, then a mirror one).
+
+    Returns
+    -------
+    crystal : Crystal
+        Bonds and cell rotated about the (001) normal into the lab frame of the propagation.
+    mirror : bool
+        Whether the direction was built as a mirror direction (sagittal motion decouples).
+    """
+    if isinstance(direction, str) and direction in ("[100]", "[110]") and load_direction in (None, direction):
+        return build("fcc", loading, direction, d_over_d0, potential), True
+    if loading == "in_plane_hydrostatic":
+        load = "[100]"
+    elif load_direction in ("[100]", "[110]"):
+        load = load_direction
+    else:
+        raise InputError(f"uniaxial loading with propagation {direction!r} needs load_direction "
+                         f"'[100]' or '[110]', got {load_direction!r}")
+    crystal = build("fcc", loading, load, d_over_d0, potential)
+    rot = lab_axes("(001)", direction) @ lab_axes("(001)", load).T
+    return dataclasses.replace(crystal, direction=str(direction), bonds=crystal.bonds @ rot.T,
+                               cell=crystal.cell @ rot.T), False
+
+
+def surface_mode(lattice: str, loading: str, potential: str | PairPotential, direction,
                  d_over_d0: float, k: float, tail_tol: float = 1e-6,
-                 max_layers: int = 2**17) -> dict:
+                 max_layers: int = 2**17, load_direction: str | None = None, shift: float = 0.0) -> dict:
     """The sagittal surface wave of the semi-infinite FCC (001) crystal at wavevector k.
 
     Parameters
@@ -191,22 +238,30 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
     lattice : {"fcc"}
     loading : {"in_plane_hydrostatic", "uniaxial"}
     potential : str or PairPotential
-    direction : {"[100]", "[110]"}
+    direction : str or float
+        "[100]", "[110]" (sagittal 2 x 2 blocks: the mirror decouples the z motion), or any
+        direction in (001) as a Miller string or an angle in degrees from [100] (full 3 x 3
+        blocks; the lowest localised mode is the surface wave).
     d_over_d0 : float
-        Stretch along x (1 = unstressed).
+        Stretch along the load direction (1 = unstressed).
     k : float
         Wavevector along x, 1/d0, in (0, pi].
     tail_tol : float
         Localisation required of the selected mode (see :func:`tail_ratio`).
     max_layers : int
         Give up beyond this slab thickness.
+    load_direction : {None, "[100]", "[110]"}
+        See :func:`oriented_crystal`.
+    shift : float
+        Shift of the Lanczos solve (omega^2, K/m): 0, or a value just below the surface
+        mode's omega^2 (the modes nearest it are searched; only speeds up the solve).
 
     Returns
     -------
     dict
         ``c2`` (omega^2/k^2, K d0^2/m), ``omega2`` (K/m), ``n_layers``, ``tail`` (tail ratio of
         the mode), ``surface_weight`` (fraction of |U|^2 in layer 0), ``mode`` (n_layers, 2)
-        complex (u, v) per layer, ``layer_spacing`` (d0), ``k``.
+        complex (u, v) per layer ((u, v, w) off the mirror directions), ``layer_spacing`` (d0), ``k``.
 
     Raises
     ------
@@ -221,13 +276,17 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
         raise InputError("d_over_d0 must be a scalar")
     if not 0 < k <= np.pi:
         raise InputError(f"k must lie in (0, pi], got {k!r}")
-    crystal = build("fcc", loading, direction, float(d_over_d0), potential)
+    crystal, mirror = oriented_crystal(loading, potential, direction, float(d_over_d0), load_direction)
     a0, a0s, a1, h = layer_matrices(crystal, potential, k)
-    a0, a0s, a1 = (m[0] for m in sagittal_blocks(a0, a0s, a1))
+    if mirror:
+        a0, a0s, a1 = (m[0] for m in sagittal_blocks(a0, a0s, a1))
+    else:
+        a0, a0s, a1 = a0[0], a0s[0], a1[0]
     # e^{-kappa k y}: the deeper half starts ~14 e-folds down if kappa >= 1/2 (else grown)
     n_layers = int(np.ceil(60.0 / (k * h[0])))
     while n_layers <= max_layers:
-        w, v = slab_modes(a0, a0s, a1, n_layers)
+        # off the mirrors the surface wave is the lowest mode: one Lanczos eigenpair suffices
+        w, v = slab_modes(a0, a0s, a1, n_layers, n_modes=2 if mirror else 1, shift=shift)
         tails = [tail_ratio(mode) for mode in v]
         for omega2, mode, tail in zip(w, v, tails):
             if tail < tail_tol:
@@ -243,7 +302,7 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
 
 
 def surface_wave_speed(lattice: str, loading: str, potential: str | PairPotential,
-                       direction: str, d_over_d0: float, k: float) -> float:
+                       direction, d_over_d0: float, k: float) -> float:
     """(omega/k)^2 of the sagittal surface wave at wavevector k along x, K d0^2/m.
 
     See :func:`surface_mode` for the parameters and the method.
@@ -251,8 +310,9 @@ def surface_wave_speed(lattice: str, loading: str, potential: str | PairPotentia
     return float(surface_mode(lattice, loading, potential, direction, d_over_d0, k)["c2"])
 
 
-def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, direction: str,
-                 d_over_d0: float, k: float = 0.4, levels: int = 5) -> dict:
+def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, direction,
+                 d_over_d0: float, k: float = 0.4, levels: int = 5,
+                 load_direction: str | None = None) -> dict:
     """Long-wave limit c_R^2 = lim_{k -> 0} omega^2/k^2 by Richardson extrapolation.
 
     For k > 0, c2(k) = c_R^2 + a k + b k^2 + ... (odd powers included, module docstring);
@@ -260,7 +320,7 @@ def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, dir
 
     Parameters
     ----------
-    lattice, loading, potential, direction, d_over_d0
+    lattice, loading, potential, direction, d_over_d0, load_direction
         As for :func:`surface_mode`.
     k : float
         Largest wavevector used, 1/d0.
@@ -275,7 +335,11 @@ def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, dir
         and ``c2_k`` (levels,) the raw data; ``n_layers`` (levels,) the slab thicknesses.
     """
     ks = k / 2.0 ** np.arange(levels)
-    runs = [surface_mode(lattice, loading, potential, direction, d_over_d0, kj) for kj in ks]
+    runs = []
+    for kj in ks:  # each solve shifted just below the previous level's c^2 k^2 (faster Lanczos)
+        shift = 0.0 if not runs else 0.98 * runs[-1]["c2"] * kj**2
+        runs.append(surface_mode(lattice, loading, potential, direction, d_over_d0, kj,
+                                 load_direction=load_direction, shift=shift))
     table = [np.array([r["c2"] for r in runs])]
     for j in range(1, levels):  # Richardson table in powers of k, ratio 2
         prev = table[-1]
