@@ -28,11 +28,15 @@ ISOTROPIC = Material(name="iso", symmetry="cubic", rho=5000.0, voigt=cubic_voigt
 
 
 def test_copper_001_100_unstressed():
-    """2012.12 m/s (PHYSICS.md), and [110] equals the Eq. (17) value on the rotated constants."""
+    """2012.12 m/s (PHYSICS.md); along [110] copper's sagittal wave is faster than the slow
+    shear bulk wave polarised along [1-10] (sqrt((C11 - C12)/2 rho) = 1620 m/s), so it is the
+    mirror-protected supersonic_decoupled kind (PHYSICS.md: "label it as such, don't drop it")."""
     ds = surface_wave_scene(["Cu"], ["(001)"], [0.0, 45.0])
     c = ds.c_R.sel(material="Cu", surface="(001)")
     assert round(float(c.sel(angle=0.0)), 2) == 2012.12
-    assert ds.wave_type.sel(material="Cu", surface="(001)").values.tolist() == ["surface", "surface"]
+    assert ds.wave_type.sel(material="Cu", surface="(001)").values.tolist() == ["surface",
+                                                                               "supersonic_decoupled"]
+    assert float(c.sel(angle=45.0)) > np.sqrt((168.4 - 121.4) / 2 * 1e9 / 8960) == pytest.approx(1619.5, abs=0.5)
     assert ds.c_R.dims == ("material", "surface", "angle")
     assert ds.polarisation.dims == ("material", "surface", "angle", "component")
 
@@ -119,6 +123,9 @@ def test_config_defaults_and_expansion():
     """Default angles: the symmetry-reduced range (union over surfaces); directions -> angles."""
     out = validate_config(_cfg(surfaces=["(001)", "(111)"], angles={"symmetric": True, "step": 5}))["rc"]
     assert out["angles"] == [float(a) for a in range(0, 50, 5)] and out["stress"] is None
+    # step 7 divides neither range: each surface's mirror angle (30, 45) is still on the grid
+    out = validate_config(_cfg(surfaces=["(001)", "(111)"], angles={"symmetric": True, "step": 7}))["rc"]
+    assert out["angles"] == [0.0, 7.0, 14.0, 21.0, 28.0, 30.0, 35.0, 42.0, 45.0]
     out = validate_config(_cfg(directions=["[110]", "[100]"], stress=[-0.1, 0.0, 0.1]))["rc"]
     assert out["angles"] == [0.0, 45.0] and out["directions"] == ["[100]", "[110]"]
     assert out["loading"] == ["along"] and out["toec"] == [False]
@@ -131,7 +138,7 @@ def test_config_defaults_and_expansion():
     ({"stress": [0.0, 0.1], "loading": ["axis_001"]}, ["'rc'", "loading", "axis_001", "surface"]),
     ({"materials": ["Cu", "W"], "stress": [0.0, 0.1], "toec": [True]}, ["'rc'", "toec", "W", "C111"]),
     ({"loading": ["across"]}, ["'rc'", "stress"]),
-    ({"angles": {"symmetric": True, "step": 7}}, ["'rc'", "angles", "7"]),
+    ({"angles": {"start": 0, "stop": 45, "step": 7}}, ["'rc'", "angles", "7"]),
     ({"stress": {"start": 0.5, "stop": -0.5, "step": 0.1}}, ["'rc'", "stress", "before start"]),
     ({"lattice": "fcc"}, ["'rc'", "lattice"]),
 ])

@@ -1,5 +1,6 @@
 # Real crystals (scenes with `materials:`): the general surface-wave solver over materials x
-# surfaces x angles [x loading x toec x stress], its figures and the acoustoelastic table.
+# surfaces x angles [x loading x toec x stress], its figures and the acoustoelastic table
+# (one job per figure kind: each job's start-up costs more than its work).
 # CRYSTAL_TARGETS is what rule `all` builds (surfwave.pipeline.targets.crystal_targets).
 from surfwave.pipeline.targets import crystal_targets
 
@@ -38,40 +39,23 @@ rule figure_surface_wave_angles:
         "results/{scene}/logs/figure_surface_wave_angles.log",
     conda:
         CONDA_ENV
-    params:
-        kind="angles",
     script:
         "../scripts/figure_surface_wave.py"
 
 
-rule figure_surface_wave_stress:
-    """c_R against the applied stress, per material and direction, every loading and model."""
+rule surface_wave_stress:
+    """c_R against the applied stress per material and direction (every loading and model),
+    and the table of acoustoelastic coefficients (1/c_R) dc_R/dsigma at zero stress."""
     input:
         cube="results/{scene}/surface_wave.nc",
-        code=code("plots.surface_wave"),
+        code=code("plots.surface_wave", "report.acoustoelastic"),
     output:
-        report(
+        png=report(
             "results/{scene}/surface_wave_vs_stress.png",
             caption="../report/surface_wave_vs_stress.rst",
             category="Real crystals",
             subcategory="{scene}",
         ),
-    log:
-        "results/{scene}/logs/figure_surface_wave_stress.log",
-    conda:
-        CONDA_ENV
-    params:
-        kind="stress",
-    script:
-        "../scripts/figure_surface_wave.py"
-
-
-rule acoustoelastic_table:
-    """Acoustoelastic coefficients (1/c_R) dc_R/dsigma at zero stress, with and without TOEC."""
-    input:
-        cube="results/{scene}/surface_wave.nc",
-        code=code("report.acoustoelastic"),
-    output:
         md=report(
             "results/{scene}/acoustoelastic.md",
             caption="../report/acoustoelastic.rst",
@@ -80,8 +64,8 @@ rule acoustoelastic_table:
         ),
         csv="results/{scene}/acoustoelastic.csv",
     log:
-        "results/{scene}/logs/acoustoelastic.log",
+        "results/{scene}/logs/surface_wave_stress.log",
     conda:
         CONDA_ENV
     script:
-        "../scripts/acoustoelastic.py"
+        "../scripts/surface_wave_stress.py"

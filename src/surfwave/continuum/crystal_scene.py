@@ -44,6 +44,8 @@ LOADINGS = ("along", "across", "biaxial")
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
 #: Names of the three displacement components of the polarisation (lab frame).
 COMPONENTS = ("u1", "u2", "u3")
+#: Trailing dimension of the vector variables.
+TRAILING = {"polarisation": "component", "decay": "partial_wave"}
 #: Speeds are given to the solver in SI: GPa -> Pa.
 GPA = 1.0e9
 
@@ -66,9 +68,12 @@ VARIABLES: dict[str, dict[str, str]] = {
     "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
     "reason": {"long_name": "why no surface wave exists at the point (empty when one does)"},
     "polarisation": {"long_name": "surface displacement (u1, u2, u3) in the lab frame, complex, "
-                     "normalised to unit length (phase as the solver returns it)", "units": "1"},
-    "penetration_depth": {"long_name": "penetration depth 1/min(k Im p) of the slowest-decaying "
-                          "partial wave, in wavelengths", "units": "1"},
+                     "unit length, phase such that u2 is real and >= 0", "units": "1"},
+    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, "
+                          "1/(2 pi min Im p), in wavelengths", "units": "1"},
+    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the partial waves exp(ik(x1 + p x2)) of the "
+              "surface wave, ascending Im p (decoupled mirror wave: the two sagittal ones, then the SH "
+              "one or NaN), complex", "units": "1"},
     "rho": {"long_name": "density of the (stressed) crystal", "units": "kg m-3"},
     "symmetric_range": {"long_name": "width of the symmetry-reduced angle range [0, w]: the "
                         "unstressed speeds repeat mirror-symmetrically about multiples of w",
@@ -353,6 +358,7 @@ def surface_wave_scene(
     shape = (len(mats), nsf, na, len(loads), len(models), len(s))
     out = {k: np.full(shape, np.nan) for k in ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho")}
     out["polarisation"] = np.full(shape + (3,), np.nan + 0j)
+    out["decay"] = np.full(shape + (3,), np.nan + 0j)
     out["wave_type"] = np.full(shape, "none", dtype=object)
     out["reason"] = np.full(shape, "", dtype=object)
     flat_axes = axes.reshape(nsf * na, 3, 3)
@@ -370,6 +376,7 @@ def surface_wave_scene(
             idx = (im, slice(None), slice(None), slice(None), it, slice(None))
             out["c_R"][idx] = np.asarray(res["c"], dtype=float).reshape(sub)
             out["c_R_imag"][idx] = np.asarray(res["c_imag"], dtype=float).reshape(sub)
+            out["decay"][idx] = np.asarray(res["decay"], dtype=complex).reshape(sub + (3,))
             out["c_limit"][idx] = np.asarray(res["c_limit"], dtype=float).reshape(sub)
             out["penetration_depth"][idx] = np.asarray(res["penetration_depth"], dtype=float).reshape(sub)
             out["rho"][idx] = rho.reshape(sub)
@@ -380,7 +387,8 @@ def surface_wave_scene(
             if bad.any():
                 for name in ("c_R", "c_R_imag", "c_limit", "penetration_depth"):
                     out[name][idx] = np.where(bad, np.nan, out[name][idx])
-                out["polarisation"][idx] = np.where(bad[..., None], np.nan, out["polarisation"][idx])
+                for name in ("polarisation", "decay"):
+                    out[name][idx] = np.where(bad[..., None], np.nan, out[name][idx])
                 out["wave_type"][idx] = np.where(bad, "none", out["wave_type"][idx])
                 out["reason"][idx] = np.where(bad, "no stressed state: " + why.reshape(sub).astype(str),
                                               out["reason"][idx])
@@ -396,7 +404,7 @@ def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, direc
     dims = ("material", "surface", "angle", "loading", "toec", "stress")
     data_vars = {}
     for name, arr in out.items():
-        vdims = dims + (("component",) if arr.ndim == len(dims) + 1 else ())
+        vdims = dims + ((TRAILING.get(name, "component"),) if arr.ndim == len(dims) + 1 else ())
         if arr.dtype == object:
             arr = arr.astype(str)
         data_vars[name] = (vdims, arr, dict(VARIABLES[name]))
@@ -409,6 +417,8 @@ def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, direc
         "stress": ("stress", s, COORDS["stress"]),
         "component": ("component", np.asarray(COMPONENTS), {"long_name": "lab-frame displacement "
                       "component (u1 along the propagation, u2 along the inward normal)"}),
+        "partial_wave": ("partial_wave", np.arange(1, 4), {"long_name": "partial wave of the Stroh "
+                         "solution (1 = fastest decaying)", "units": "1"}),
     }
     ds = xr.Dataset(data_vars, coords=coords)
     if directions is not None:

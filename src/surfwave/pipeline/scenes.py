@@ -336,13 +336,13 @@ def _crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) ->
         return [float(angles[i]) for i in order], [raw["directions"][i] for i in order]
     spec = raw.get("angles", "symmetric")
     if spec == "symmetric" or (isinstance(spec, dict) and "symmetric" in spec):
+        # Each surface's range [0, w] by the step, w itself included (a mirror line), merged.
         step = float(spec.get("step", 1.0)) if isinstance(spec, dict) else 1.0
-        stop = max(symmetry_reduced_range(sf, voigts) for sf in surfaces)
-        n = stop / step
-        if abs(n - round(n)) > 1e-9:
-            raise SceneError(f"{where}, key 'angles': step {step!r} does not divide the "
-                             f"symmetry-reduced range of {stop:g} degrees")
-        spec = {"start": 0.0, "stop": stop, "step": step}
+        grid = set()
+        for sf in surfaces:
+            w = symmetry_reduced_range(sf, voigts)
+            grid.update(np.round(np.arange(0.0, w - 1e-9, step), DECIMALS).tolist() + [w])
+        return sorted(float(a) for a in grid), None
     return [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")], None
 
 

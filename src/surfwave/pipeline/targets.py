@@ -41,9 +41,9 @@ def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
     """Figures and tables of the named real-crystal scenes (``materials:`` scenes).
 
     ``surface_wave_angles.png`` when a scene has three or more angles;
-    ``surface_wave_vs_stress.png`` when it has two or more stresses; ``acoustoelastic.md``
-    and ``.csv`` when its stress grid has zero with a point on each side (the central
-    difference of the coefficients).
+    ``surface_wave_vs_stress.png``, ``acoustoelastic.md`` and ``.csv`` (one job) when it has
+    two or more stresses (the table says so when the grid has no zero with a point on
+    each side, which the central differences need).
     """
     out = []
     for n in names:
@@ -54,9 +54,8 @@ def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
             out.append(f"{results}/{n}/surface_wave_angles.png")
         stress = s.get("stress") or []
         if len(stress) >= 2:
-            out.append(f"{results}/{n}/surface_wave_vs_stress.png")
-        if 0.0 in stress and min(stress) < 0.0 < max(stress):
-            out += [f"{results}/{n}/acoustoelastic.md", f"{results}/{n}/acoustoelastic.csv"]
+            out += [f"{results}/{n}/{f}" for f in ("surface_wave_vs_stress.png", "acoustoelastic.md",
+                                                   "acoustoelastic.csv")]
     return out
 
 

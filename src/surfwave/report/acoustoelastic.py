@@ -126,10 +126,16 @@ def write_table(ds: xr.Dataset, md_path: str | Path, csv_path: str | Path) -> tu
     (pathlib.Path, pathlib.Path)
         The Markdown and CSV files.
     """
-    table = rows(ds)
-    cols = list(table[0])
     md_path, csv_path = Path(md_path), Path(csv_path)
     md_path.parent.mkdir(parents=True, exist_ok=True)
+    title = f"# Acoustoelastic coefficients of the surface-wave speed ({ds.attrs.get('scene_name', '')})"
+    try:
+        table = rows(ds)
+    except InputError as exc:  # a stress grid without 0 +/- h: say why, write no numbers
+        md_path.write_text(f"{title}\n\nNo coefficients: {exc}.\n")
+        csv_path.write_text("")
+        return md_path, csv_path
+    cols = list(table[0])
     with open(csv_path, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=cols)
         w.writeheader()
@@ -142,7 +148,7 @@ def write_table(ds: xr.Dataset, md_path: str | Path, csv_path: str | Path) -> tu
 
     h = float(np.min(np.abs(ds.stress.values[ds.stress.values != 0])))
     lines = [
-        f"# Acoustoelastic coefficients of the surface-wave speed ({ds.attrs.get('scene_name', '')})",
+        title,
         "",
         "K = (1/c_R) dc_R/dsigma at zero stress, in 1/TPa (a speed change of K x 1e-3 per GPa), "
         f"by central differences over +/- {h:g} GPa of the cube's stress grid; the error is "
