@@ -119,3 +119,15 @@ def test_names_are_case_insensitive_with_aliases_and_unknown_names_are_explained
         get_material("unobtainium")
     with pytest.raises(ValueError):  # the voigt matrix is shared: it must be read-only
         m.voigt[0, 0] = 0.0
+
+
+def test_toec_voigt_is_the_cubic_expansion_of_the_printed_constants():
+    """Material.toec_voigt places the printed C111 ... C456 at their Voigt positions
+    (1,1,1), (1,1,2), (1,2,3), (1,4,4), (1,5,5), (4,5,6); None without TOEC."""
+    cu = get_material("Cu")
+    C3 = cu.toec_voigt
+    t = cu.toec
+    assert C3.shape == (6, 6, 6)
+    assert (C3[0, 0, 0], C3[0, 0, 1], C3[0, 1, 2], C3[0, 3, 3], C3[0, 4, 4], C3[3, 4, 5]) == (
+        t["C111"], t["C112"], t["C123"], t["C144"], t["C155"], t["C456"])
+    assert get_material("W").toec_voigt is None

@@ -10,6 +10,7 @@ BENCH_MODULES = {
     "phonons": ("continuum.phonons",),
     "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
     "entropy": ("dynamics.entropy",),
+    "toec": ("continuum.acoustoelastic", "continuum.toec", "data.materials"),
 }
 BENCH_METHODS = [
     name

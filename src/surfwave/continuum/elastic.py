@@ -17,6 +17,7 @@ import numpy as np
 
 from surfwave.continuum.lattices import build
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.errors import InputError
 
 #: Accuracy of the long-wave stability search (directions on the half sphere).
 STABILITY_DIRECTIONS = 400
@@ -89,6 +90,34 @@ def elastic_constants(bonds: np.ndarray, potential: str | PairPotential) -> np.n
     pot, r, rhat = _bond_terms(bonds, potential)
     w = r**2 * pot.d2phi(r) - r * pot.dphi(r)
     return np.einsum("...b,...bi,...bj,...bk,...bl->...ijkl", w, rhat, rhat, rhat, rhat)
+
+
+def third_order_constants(bonds: np.ndarray, potential: str | PairPotential) -> np.ndarray:
+    """V C3_abcdef, the third Lagrangian-strain derivatives of the bond energy (Brugger).
+
+    With r^2 = R . (I + 2 eta) . R for each bond, the third eta-derivative of sum phi(r) is
+
+        V C3_abcdef = sum r_a r_b r_c r_d r_e r_f / r^6 (r^3 phi3 - 3 r^2 phi'' + 3 r phi'),
+
+    (phi3 the third derivative of phi), the third-order analogue of Eq. (A12), about the
+    geometry of ``bonds``.
+
+    Parameters
+    ----------
+    bonds : ndarray, shape (..., nb, dim)
+    potential : str or PairPotential
+        Must provide ``d3phi``.
+
+    Returns
+    -------
+    ndarray, shape (..., dim, dim, dim, dim, dim, dim)
+        V C3 in K d0^2.
+    """
+    pot, r, rhat = _bond_terms(bonds, potential)
+    if pot.d3phi is None:
+        raise InputError(f"potential {pot.name!r} has no third derivative d3phi")
+    w = r**3 * pot.d3phi(r) - 3.0 * r**2 * pot.d2phi(r) + 3.0 * r * pot.dphi(r)
+    return np.einsum("...b,...bi,...bj,...bk,...bl,...bm,...bn->...ijklmn", w, *([rhat] * 6))
 
 
 def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:

@@ -38,6 +38,9 @@ class PairPotential:
         One line, shown by ``surfwave potentials``.
     params : dict
         Parameters that determine the potential (they enter cache keys).
+    d3phi : callable or None
+        Third derivative of phi, analytic; needed only for third-order elastic constants
+        from pair sums (optional, so a potential can join without it).
     """
 
     name: str
@@ -46,6 +49,7 @@ class PairPotential:
     d2phi: ArrayFn
     description: str = ""
     params: dict = field(default_factory=dict)
+    d3phi: ArrayFn | None = None
 
 
 _REGISTRY: dict[str, PairPotential] = {}
@@ -91,6 +95,7 @@ register(
         phi=lambda r: 0.5 * (_asarray(r) - 1.0) ** 2,
         dphi=lambda r: _asarray(r) - 1.0,
         d2phi=lambda r: np.ones_like(_asarray(r)),
+        d3phi=lambda r: np.zeros_like(_asarray(r)),
         description="Hooke spring, phi = (r - 1)^2 / 2",
     )
 )
@@ -102,6 +107,7 @@ register(
         phi=lambda r: (_asarray(r) ** -12 - 2.0 * _asarray(r) ** -6) / 72.0,
         dphi=lambda r: (_asarray(r) ** -7 - _asarray(r) ** -13) / 6.0,
         d2phi=lambda r: (13.0 * _asarray(r) ** -14 - 7.0 * _asarray(r) ** -8) / 6.0,
+        d3phi=lambda r: (56.0 * _asarray(r) ** -9 - 182.0 * _asarray(r) ** -15) / 6.0,
         description="Lennard-Jones 12-6, phi = (r^-12 - 2 r^-6) / 72",
     )
 )
@@ -122,6 +128,7 @@ def morse(alpha: float = 3.0) -> PairPotential:
         phi=lambda r: depth * ((1.0 - e(r)) ** 2 - 1.0),
         dphi=lambda r: 2.0 * depth * alpha * (1.0 - e(r)) * e(r),
         d2phi=lambda r: 2.0 * depth * alpha**2 * e(r) * (2.0 * e(r) - 1.0),
+        d3phi=lambda r: -2.0 * depth * alpha**3 * e(r) * (4.0 * e(r) - 1.0),
         description=f"Morse, alpha = {alpha:g}, phi''(1) = 1",
         params={"alpha": alpha},
     )

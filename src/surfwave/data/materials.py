@@ -74,6 +74,15 @@ class Material:
     temperature: float = 300.0
     aliases: tuple = field(default_factory=tuple)
 
+    @property
+    def toec_voigt(self) -> np.ndarray | None:
+        """Third-order constants as a Voigt array, shape (6, 6, 6), GPa (None if unknown)."""
+        if self.toec is None:
+            return None
+        from surfwave.continuum.toec import cubic_toec
+
+        return cubic_toec(**self.toec)
+
 
 def _read() -> dict:
     text = resources.files("surfwave.data").joinpath("materials.yaml").read_text(encoding="utf-8")

@@ -1,0 +1,255 @@
+"""Surface waves of real crystals under in-plane stress, and their acoustoelastic coefficients.
+
+The stressed crystal comes from :func:`surfwave.continuum.toec.stressed_state` (natural-state
+C2, Brugger C3, Cauchy stress sigma in crystal axes); its surface wave from the
+wave-propagation coefficients A_ijkl = C*_ijkl + sigma_jl delta_ik in the laboratory frame
+of the *deformed* crystal: x along F m0 (the image of the given crystal direction m0),
+y along F^-T n0 (the normal of the deformed surface, into the crystal), z = x cross y.
+At mirror directions (the sagittal plane xy a mirror plane of the stressed crystal) the
+sagittal wave decouples and Eq. (17) on S (Eq. A11, which gives the same equations of motion
+and, with sigma . n = 0, the same traction condition) is exact; elsewhere the general
+solver is needed and this module returns NaN with that reason.
+
+Speeds are true phase speeds in the stressed state, m/s (wavelength measured in the
+deformed crystal). The acoustoelastic coefficient is (1/v) dv/dsigma at zero stress, 1/GPa,
+by a central difference of step :data:`DEFAULT_STEP` = 1e-4 GPa. The step is chosen from a
+measured scan (``benchmarks/bench_toec.py``: the 8 database crystals with TOEC, (001)[100]
+and [110], three loadings, with and without TOEC, against a Richardson-extrapolated
+reference): the largest relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at
+1e-3 GPa and 8e-9 at 1e-4 GPa, then grows again as 1/h (round-off of the deformation solve
+and of Eq. 17: 1e-7 at 1e-6 GPa). 1e-4 GPa is the bottom of that valley.
+"""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from surfwave.continuum import elastic, rayleigh
+from surfwave.continuum.tensors import rotate2, rotate4
+from surfwave.continuum.toec import DEFAULT_TOL, stressed_state
+from surfwave.errors import InputError
+
+#: Loading kinds: uniaxial along / across the propagation direction (in the surface),
+#: equi-biaxial in the surface plane, uniaxial along a given crystal axis.
+LOADINGS = ("along", "across", "biaxial", "axis")
+#: Central-difference step of the acoustoelastic coefficient, GPa.
+DEFAULT_STEP = 1e-4
+#: Largest coupling between sagittal and shear-horizontal motion (relative to max |A|)
+#: accepted as a mirror direction.
+MIRROR_TOL = 1e-10
+
+
+def miller(index, kind: str = "direction") -> np.ndarray:
+    """A crystal vector from Miller indices: ``"[110]"``, ``"(001)"``, ``"[1-10]"`` or a 3-vector.
+
+    Returns the unit vector, shape (3,), in cubic crystal axes (for a plane: its normal).
+    """
+    if isinstance(index, str):
+        digits = re.findall(r"-?\d", index.strip().strip("[]()<>{}").replace(" ", "").replace(",", ""))
+        if len(digits) != 3:
+            raise InputError(f"{kind} {index!r} is not three Miller indices like '[110]' or '(001)'")
+        v = np.array([float(d) for d in digits])
+    else:
+        v = np.asarray(index, dtype=float)
+        if v.shape != (3,):
+            raise InputError(f"{kind} must be a Miller string or a 3-vector, got {index!r}")
+    norm = np.linalg.norm(v)
+    if not np.isfinite(norm) or norm == 0:
+        raise InputError(f"{kind} {index!r} is not a direction")
+    return v / norm
+
+
+def natural_axes(surface="(001)", direction="[100]") -> np.ndarray:
+    """Laboratory axes of the unstressed crystal, rows x (propagation), y (inward normal), z.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Orthonormal rows in crystal axes; z = x cross y (for (001)[100]: x = [100],
+        y = [001], z = [0-10], as in the FCC model crystals of PHYSICS.md).
+    """
+    n = miller(surface, "surface")
+    m = miller(direction, "direction")
+    if abs(float(m @ n)) > 1e-12:
+        raise InputError(f"direction {direction!r} does not lie in the surface {surface!r}")
+    return np.stack([m, n, np.cross(m, n)])
+
+
+def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axis=None) -> np.ndarray:
+    """Cauchy stress tensors of a loading, crystal axes, GPa.
+
+    Parameters
+    ----------
+    kind : {"along", "across", "biaxial", "axis"}
+        ``along``: sigma = s m m (uniaxial along the propagation direction m);
+        ``across``: sigma = s t t, t = the in-plane direction normal to m;
+        ``biaxial``: sigma = s (m m + t t) (equal in-plane stress, sigma . n = 0);
+        ``axis``: sigma = s a a along the crystal direction ``axis`` (must lie in the surface).
+    magnitude : float or array_like, shape (k,)
+        s in GPa (negative = compression).
+
+    Returns
+    -------
+    ndarray, shape (k, 3, 3) (or (3, 3) for a scalar magnitude)
+    """
+    if kind not in LOADINGS:
+        raise InputError(f"unknown loading {kind!r}; choose one of {list(LOADINGS)}")
+    x, _, z = natural_axes(surface, direction)
+    if kind == "along":
+        unit = np.outer(x, x)
+    elif kind == "across":
+        unit = np.outer(z, z)
+    elif kind == "biaxial":
+        unit = np.outer(x, x) + np.outer(z, z)
+    else:
+        if axis is None:
+            raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
+        a = miller(axis, "axis")
+        if abs(float(a @ miller(surface, "surface"))) > 1e-12:
+            raise InputError(f"axis {axis!r} does not lie in the surface {surface!r} (out-of-plane stress)")
+        unit = np.outer(a, a)
+    s = np.asarray(magnitude, dtype=float)
+    if not np.all(np.isfinite(s)):
+        raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
+    return s[..., None, None] * unit
+
+
+def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float = 1e-12) -> None:
+    """Raise :class:`InputError` naming the first out-of-plane component of sigma.
+
+    The free surface is in equilibrium only if sigma . n = 0; in the natural laboratory
+    frame (x propagation, y normal, z in-plane) that is sigma_yy = sigma_xy = sigma_yz = 0.
+    """
+    lab = rotate2(np.asarray(sigma, dtype=float), natural_axes(surface, direction))
+    for name, (i, j) in (("sigma_yy", (1, 1)), ("sigma_xy", (0, 1)), ("sigma_yz", (1, 2))):
+        v = lab[..., i, j]
+        if np.any(np.abs(v) > tol):
+            bad = float(np.ravel(v)[np.argmax(np.abs(np.ravel(v)))])
+            raise InputError(f"out-of-plane stress component {name} = {bad:.6g} GPa (lab frame: x along "
+                             f"{direction}, y normal to {surface}); only in-plane stress is allowed")
+
+
+def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
+    """Laboratory axes of the deformed crystal, rows x = F m0, y = F^-T n0, z = x cross y.
+
+    Parameters
+    ----------
+    F : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3), orthonormal rows (F m0 . F^-T n0 = m0 . n0 = 0).
+    """
+    x0, y0, _ = natural_axes(surface, direction)
+    x = np.einsum("...ij,j->...i", F, x0)
+    y = np.einsum("...ji,j->...i", np.linalg.inv(F), y0)
+    x = x / np.linalg.norm(x, axis=-1, keepdims=True)
+    y = y / np.linalg.norm(y, axis=-1, keepdims=True)
+    return np.stack([x, y, np.cross(x, y)], axis=-2)
+
+
+def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", *, tol: float = DEFAULT_TOL) -> dict:
+    """Surface-wave speed of a real crystal under in-plane stress (mirror directions, Eq. 17).
+
+    Parameters
+    ----------
+    C2 : array_like, shape (6, 6) or (3, 3, 3, 3)
+        Natural-state constants, GPa, crystal axes.
+    C3 : array_like, shape (6, 6, 6), or None
+        Brugger third-order constants, GPa; None: fixed-C model (C* = C2, rho = rho0).
+    rho0 : float
+        Natural-state density, kg/m^3.
+    sigma : array_like, shape (..., 3, 3)
+        Cauchy stress, crystal axes, GPa; in-plane only (else InputError naming the component).
+    surface, direction : str or 3-vector
+        Surface plane and propagation direction of the natural crystal.
+
+    Returns
+    -------
+    dict
+        ``c_R`` (..., m/s, NaN where none), ``wave_type``, ``reason`` (str, "" if fine),
+        ``ok`` (the stressed state exists and the direction is a mirror direction), ``rho``
+        (kg/m^3), ``F`` (..., 3, 3), ``axes`` (..., 3, 3) deformed lab axes, ``c_SH`` (m/s).
+    """
+    sigma = np.asarray(sigma, dtype=float)
+    if sigma.shape[-2:] != (3, 3):
+        raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
+    check_in_plane(sigma, surface, direction)
+    shape = sigma.shape[:-2]
+    out = _surface_wave_speed(C2, C3, rho0, sigma.reshape(-1, 3, 3), surface, direction, tol)
+    return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
+
+
+def _surface_wave_speed(C2, C3, rho0, sigma, surface, direction, tol) -> dict:
+    st = stressed_state(C2, C3, sigma, rho0, tol=tol)
+    ok = st["ok"].copy()
+    reason = st["reason"].astype(object)
+    F = np.where(ok[..., None, None], st["F"], np.eye(3))
+    axes = deformed_axes(F, surface, direction)
+    C_lab = rotate4(np.nan_to_num(st["C_star"]), axes)
+    s_lab = rotate2(sigma, axes)
+    # Sagittal (x, y) and shear-horizontal (z) motion decouple iff every component with an
+    # odd number of z indices vanishes (mirror plane z -> -z).
+    odd = (np.indices((3, 3, 3, 3)) == 2).sum(0) % 2 == 1
+    coupling = np.abs(C_lab[..., odd]).max(-1) + np.abs(s_lab[..., [0, 1], [2, 2]]).max(-1)
+    scale = np.abs(C_lab).max(axis=(-4, -3, -2, -1))
+    mirror = coupling <= MIRROR_TOL * np.maximum(scale, 1e-300)
+    no_mirror = ok & ~mirror
+    reason = np.where(no_mirror, "not a mirror direction of the stressed crystal: needs the general (Stroh) "
+                      "solver", reason)
+    ok &= mirror
+    rho = np.where(ok, st["rho"], np.nan)
+    S = elastic.stress_derivatives(s_lab, C_lab) * 1e9  # Pa
+    ray = rayleigh.solve(S, np.where(ok, rho, 1.0))
+    c2 = np.where(ok, ray["c2_R"], np.nan)
+    with np.errstate(invalid="ignore"):
+        c_R = np.sqrt(np.where(c2 > 0, c2, np.nan))
+        c2_SH = S[..., 0, 2, 2, 0] / rho
+        c_SH = np.sqrt(np.where(c2_SH > 0, c2_SH, np.nan))
+    wave_type = np.where(ok, ray["wave_type"], "none")
+    reason = np.where(ok, ray["reason"], reason).astype(str)
+    return {"c_R": c_R, "wave_type": wave_type, "reason": reason, "ok": ok, "rho": rho,
+            "F": st["F"], "axes": axes, "c_SH": c_SH}
+
+
+def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]", *,
+                                step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL) -> dict:
+    """(1/v) dv/dsigma of the surface wave at zero stress, with and without third-order constants.
+
+    Central difference (v(+h) - v(-h)) / (2 h v(0)) for uniaxial stress along and across the
+    propagation direction and for equi-biaxial in-plane stress; error O(h^2) (see the module
+    docstring for the choice of h).
+
+    Parameters
+    ----------
+    C2, C3, rho0 : as for :func:`surface_wave_speed`
+        With C3 None only the fixed-C model is available (the ``toec`` entries are NaN).
+    surface, direction : str or 3-vector
+    step : float
+        Stress step h, GPa.
+
+    Returns
+    -------
+    dict
+        ``toec`` and ``fixed_C``: dicts loading -> coefficient (1/GPa) for ``along``,
+        ``across``, ``biaxial``; ``c_R0`` (m/s, unstressed); ``step`` (GPa).
+    """
+    if not (np.isfinite(step) and step > 0):
+        raise InputError(f"step must be a positive stress in GPa, got {step!r}")
+    kinds = ("along", "across", "biaxial")
+    h = np.array([-step, step])
+    sig = np.stack([loading_stress(k, h, surface, direction) for k in kinds])  # (3, 2, 3, 3)
+    sig0 = np.zeros((1, 3, 3))
+    out = {"step": float(step)}
+    for model, c3 in (("toec", C3), ("fixed_C", None)):
+        if model == "toec" and C3 is None:
+            out[model] = {k: float("nan") for k in kinds}
+            continue
+        v = surface_wave_speed(C2, c3, rho0, np.concatenate([sig.reshape(-1, 3, 3), sig0]),
+                               surface, direction, tol=tol)["c_R"]
+        v0 = v[-1]
+        pm = v[:-1].reshape(3, 2)
+        out[model] = {k: float((pm[i, 1] - pm[i, 0]) / (2 * step * v0)) for i, k in enumerate(kinds)}
+        out["c_R0"] = float(v0)
+    return out
