@@ -147,3 +147,23 @@ def test_bad_crystal_scene_names_scene_key_value(over, words):
         validate_config(_cfg(**over))
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+@pytest.mark.parametrize("direction, angle", [("[100]", 0.0), ("[110]", 45.0)])
+def test_acoustoelastic_coefficients_match_the_mirror_route(direction, angle):
+    """K = (1/c) dc/dsigma from the cube (general solver, stressed lab frame F x1, F^-T x2)
+    against surfwave.continuum.acoustoelastic (Eq. 17 on the deformed mirror frame, its own
+    stress construction and central difference), with and without third-order constants."""
+    from surfwave.continuum.acoustoelastic import acoustoelastic_coefficients
+    from surfwave.report.acoustoelastic import PER_TPA, coefficients
+
+    cu = get_material("Cu")
+    h = 1e-3
+    ds = surface_wave_scene(["Cu"], ["(001)"], [angle], stress=[-h, 0.0, h],
+                            loadings=["along", "across", "biaxial"], toec=[False, True])
+    K = coefficients(ds).K.sel(material="Cu", surface="(001)", angle=angle)
+    ref = acoustoelastic_coefficients(cu.voigt, cu.toec_voigt, cu.rho, "(001)", direction)
+    for model, tv in (("fixed_C", False), ("toec", True)):
+        for loading, value in ref[model].items():
+            assert float(K.sel(loading=loading, toec=tv)) == pytest.approx(value * PER_TPA, rel=1e-5, abs=1e-6), \
+                (model, loading)

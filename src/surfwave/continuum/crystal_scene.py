@@ -260,23 +260,43 @@ def applied_stress(loading: str, axes, stress) -> np.ndarray:
 # --------------------------------------------------------------------------- the scene
 
 
-def _state(material, sigma: np.ndarray, use_toec: bool):
-    """Constants (GPa, crystal axes), stress and density of the stressed crystal.
+def _stressed_frames(material, sigma: np.ndarray, axes: np.ndarray, use_toec: bool) -> dict:
+    """Lab-frame constants, stress and density of the stressed crystal at every point.
 
-    sigma: shape (..., 3, 3) GPa. Returns C (..., 3, 3, 3, 3), sigma (..., 3, 3), rho (...),
-    ok (...) and reason (...): where the stressed state could not be found, ok is False.
+    Parameters
+    ----------
+    material : Material
+    sigma : ndarray, shape (n, 3, 3)
+        Applied Cauchy stress, crystal axes, GPa.
+    axes : ndarray, shape (n, 3, 3)
+        Lab axes of the natural crystal (rows x1, x2 = inward normal, x3), crystal axes.
+    use_toec : bool
+        False: fixed-C model (C* = C2, rho = rho0, no deformation). True: the stressed state
+        of :func:`surfwave.continuum.toec.stressed_state`; the material direction x1 and the
+        surface plane move with the (pure-stretch) deformation F, so the lab axes become
+        F x1 and F^-T x2 (normalised), x3 their cross product.
+
+    Returns
+    -------
+    dict
+        ``C`` (n, 3, 3, 3, 3) and ``sigma`` (n, 3, 3) in the lab frame, GPa; ``rho`` (n,)
+        kg/m^3; ``ok`` (n,) bool and ``reason`` (n,) str where the stressed state does not
+        exist (values there are meaningless).
     """
-    C2 = voigt_to_tensor(material.voigt)
-    shape = sigma.shape[:-2]
-    if not use_toec:  # fixed-C model: natural-state constants and density
-        return (np.broadcast_to(C2, shape + C2.shape), sigma, np.full(shape, material.rho),
-                np.ones(shape, bool), np.full(shape, "", dtype=object))
     from surfwave.continuum import toec
 
-    state = toec.stressed_state(C2, toec.cubic_c3(material.toec), sigma, material.rho)
-    ok = np.broadcast_to(np.asarray(state.get("ok", True), dtype=bool), shape)
-    reason = np.broadcast_to(np.asarray(state.get("reason", ""), dtype=object), shape)
-    return state["C_star"], state["sigma"], state["rho"], ok, reason
+    state = toec.stressed_state(material.voigt, material.toec_voigt if use_toec else None, sigma,
+                                material.rho)
+    ok = np.asarray(state["ok"], dtype=bool)
+    F = np.where(ok[:, None, None], state["F"], np.eye(3))
+    x1 = np.einsum("nij,nj->ni", F, axes[:, 0])
+    x2 = np.einsum("nji,nj->ni", np.linalg.inv(F), axes[:, 1])
+    x1 /= np.linalg.norm(x1, axis=-1, keepdims=True)
+    x2 /= np.linalg.norm(x2, axis=-1, keepdims=True)
+    lab = np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    C = np.where(ok[:, None, None, None, None], state["C_star"], voigt_to_tensor(material.voigt))
+    return {"C": rotate4(C, lab), "sigma": rotate2(sigma, lab), "rho": np.where(ok, state["rho"], material.rho),
+            "ok": ok, "reason": np.asarray(state["reason"]).astype(str)}
 
 
 def _solve_points(C_lab, sigma_lab, rho, tol):
@@ -357,41 +377,31 @@ def surface_wave_scene(
     nsf, na = axes.shape[:2]
     shape = (len(mats), nsf, na, len(loads), len(models), len(s))
     out = {k: np.full(shape, np.nan) for k in ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho")}
-    out["polarisation"] = np.full(shape + (3,), np.nan + 0j)
-    out["decay"] = np.full(shape + (3,), np.nan + 0j)
+    for k in ("polarisation", "decay"):
+        out[k] = np.full(shape + (3,), np.nan + 0j)
     out["wave_type"] = np.full(shape, "none", dtype=object)
     out["reason"] = np.full(shape, "", dtype=object)
+    # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
+    sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
+    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape).reshape(-1, 3, 3)
+    sub = (nsf, na, len(loads), len(s))
     for im, mat in enumerate(mats):
-        # sigma in crystal axes for every (surface*angle, loading, stress): (nsf*na, nl, ns, 3, 3)
-        sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
         for it, use in enumerate(models):
-            C, sigma, rho, ok, why = _state(mat, sig, use)
-            R = np.broadcast_to(flat_axes[:, None, None], sig.shape)     # lab axes per point
-            C_lab = rotate4(C, R).reshape(-1, 3, 3, 3, 3)
-            sigma_lab = rotate2(sigma, R).reshape(-1, 3, 3)
-            rho = np.broadcast_to(rho, sig.shape[:-2]).reshape(-1)
-            res = _solve_points(C_lab, sigma_lab, rho, tol)
-            sub = (nsf, na, len(loads), len(s))
+            st = _stressed_frames(mat, sig.reshape(-1, 3, 3), point_axes, use)
+            ok = st["ok"]
+            res = {k: np.full((ok.size,) + out[k].shape[len(shape):], out[k].flat[0], dtype=out[k].dtype) for k in out}
+            res["reason"][~ok] = np.char.add("no stressed state: ", st["reason"][~ok]).astype(object)
+            res["rho"][ok] = st["rho"][ok]
+            if ok.any():
+                r = _solve_points(st["C"][ok], st["sigma"][ok], st["rho"][ok], tol)
+                for name, key in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
+                                  ("penetration_depth", "penetration_depth"), ("wave_type", "wave_type"),
+                                  ("reason", "reason"), ("polarisation", "polarisation"), ("decay", "decay")):
+                    res[name][ok] = r[key]
             idx = (im, slice(None), slice(None), slice(None), it, slice(None))
-            out["c_R"][idx] = np.asarray(res["c"], dtype=float).reshape(sub)
-            out["c_R_imag"][idx] = np.asarray(res["c_imag"], dtype=float).reshape(sub)
-            out["decay"][idx] = np.asarray(res["decay"], dtype=complex).reshape(sub + (3,))
-            out["c_limit"][idx] = np.asarray(res["c_limit"], dtype=float).reshape(sub)
-            out["penetration_depth"][idx] = np.asarray(res["penetration_depth"], dtype=float).reshape(sub)
-            out["rho"][idx] = rho.reshape(sub)
-            out["wave_type"][idx] = np.asarray(res["wave_type"]).astype(str).reshape(sub)
-            out["reason"][idx] = np.asarray(res["reason"]).astype(str).reshape(sub)
-            out["polarisation"][idx] = np.asarray(res["polarisation"], dtype=complex).reshape(sub + (3,))
-            bad = ~ok.reshape(sub)  # no stressed state (e.g. the TOEC solve did not converge)
-            if bad.any():
-                for name in ("c_R", "c_R_imag", "c_limit", "penetration_depth"):
-                    out[name][idx] = np.where(bad, np.nan, out[name][idx])
-                for name in ("polarisation", "decay"):
-                    out[name][idx] = np.where(bad[..., None], np.nan, out[name][idx])
-                out["wave_type"][idx] = np.where(bad, "none", out["wave_type"][idx])
-                out["reason"][idx] = np.where(bad, "no stressed state: " + why.reshape(sub).astype(str),
-                                              out["reason"][idx])
+            for name, arr in res.items():
+                out[name][idx] = arr.reshape(sub + arr.shape[1:])
     ds = _dataset(out, [m.name for m in mats], list(surfaces), angles, loads, models, s, stressed,
                   directions)
     width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
