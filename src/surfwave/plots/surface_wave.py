@@ -91,8 +91,10 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     axes[0, 0].set_ylabel("speed (m/s)")
     axes[0, 0].set_ylim(bottom=0)
     handles = [Line2D([], [], color=colours(i % 10), lw=2, label=str(m)) for i, m in enumerate(ds.material.values)]
+    leaky = bool((ds.wave_type == "pseudo").any())
     handles += [Line2D([], [], color="k", ls="-", lw=1.8, label=r"$c_R$ surface wave"),
-                Line2D([], [], color="k", ls="--", lw=1.4, label="pseudo-SAW (leaky, real part)"),
+                Line2D([], [], color="k", ls="--", lw=1.4, label="pseudo-SAW (leaky, real part)") if leaky
+                else Line2D([], [], ls="", label="gaps: no subsonic wave\n(pseudo-SAW not computed)"),
                 Line2D([], [], color="k", ls="", marker="o", mfc="none", label="sagittal, above $v_L$ (mirror)"),
                 Line2D([], [], color="k", ls=":", lw=1.0, label=r"$v_L$ limiting speed")]
     fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8, frameon=False)
@@ -135,6 +137,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     s = ds.stress.values
     i0 = int(np.argmin(np.abs(s)))
     cmap = plt.get_cmap("tab10")
+    n_load = ds.sizes["loading"]
     for r, mat in enumerate(mats):
         for k, (sf, j) in enumerate(cols):
             ax = axes[r, k]
@@ -144,7 +147,10 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 for tv in point.toec.values:
                     p = point.sel(loading=ld, toec=tv)
                     c = np.where(p.wave_type.values.astype(str) == "pseudo", np.nan, p.c_R.values)
-                    ax.plot(s, 100.0 * (c / c[i0] - 1.0), "-" if tv else "--", color=col, lw=1.4)
+                    # fixed constants: interleaved dashes, so that coinciding loadings (along
+                    # and biaxial; across is flat) stay visible
+                    style = "-" if tv else (2.5 * li, (2.5, 2.5 * (n_load - 1) or 2.5))
+                    ax.plot(s, 100.0 * (c / c[i0] - 1.0), linestyle=style, color=col, lw=1.4)
             c0 = float(point.c_R.isel(loading=0, toec=0, stress=i0))
             ax.set_title(f"{mat} {sf} {labels[j]}: $c_R$ = {c0:.0f} m/s", fontsize=8)
             ax.axhline(0, color="0.6", lw=0.6)

@@ -141,9 +141,9 @@ def write_table(ds: xr.Dataset, md_path: str | Path, csv_path: str | Path) -> tu
         w.writeheader()
         w.writerows(table)
 
-    def fmt(v):
+    def fmt(v):  # coefficients to 1e-6 / TPa: a zero by symmetry prints as 0
         if isinstance(v, float):
-            return "n/a" if not np.isfinite(v) else (f"{v:.1f}" if abs(v) >= 100 else f"{v:.3g}")
+            return "n/a" if not np.isfinite(v) else (f"{v:.1f}" if abs(v) >= 100 else f"{round(v, 6) + 0.0:.3g}")
         return str(v)
 
     h = float(np.min(np.abs(ds.stress.values[ds.stress.values != 0])))
