@@ -37,7 +37,7 @@ rule scene_summary:
         cubes=lambda wildcards: [
             t
             for t in targets(SCENES, [wildcards.scene])
-            if not t.endswith("/crystal.nc")
+            if not t.endswith("crystal.nc")
         ],
         code=code("report.summary"),
     output:
