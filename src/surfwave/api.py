@@ -1,8 +1,8 @@
 """The library's front door: one call per question.
 
 :func:`point` answers "what are the bulk speeds and the Rayleigh speed of this prestressed
-model crystal at these strains?"; :func:`material` answers the same for a real cubic
-crystal from measured elastic constants.
+model crystal at these strains?"; :func:`material` answers the same for a real crystal from
+measured elastic constants (or a material name), optionally with third-order constants.
 """
 from __future__ import annotations
 
@@ -215,6 +215,86 @@ def _stressed_constants(C6: np.ndarray, stress, x1: np.ndarray) -> tuple[np.ndar
     return voigt_to_tensor(C6), sigma
 
 
+def _toec_state(C6, C3, sigma_c, R, rho):
+    """Stressed state with third-order constants, for each direction.
+
+    Returns C* (m, 3, 3, 3, 3) crystal axes, the deformed lab axes (m, 3, 3) (x1 along F m0,
+    x2 along F^-T n0), the stressed density (m,), ok (m,) and reason (m,) (see
+    :func:`surfwave.continuum.toec.stressed_state`; a stress that loads the deformed surface
+    is not ok either).
+    """
+    from surfwave.continuum.acoustoelastic import REASON_TRACTION, TRACTION_TOL
+    from surfwave.continuum.toec import stressed_state
+
+    st = stressed_state(C6, C3, sigma_c, rho)
+    ok, reason = st["ok"].copy(), st["reason"].astype(object)
+    F = np.where(ok[:, None, None], st["F"], np.eye(3))
+    x1 = np.einsum("mij,mj->mi", F, R[:, 0])
+    x2 = np.einsum("mji,mj->mi", np.linalg.inv(F), R[:, 1])
+    x1 /= np.linalg.norm(x1, axis=-1, keepdims=True)
+    x2 /= np.linalg.norm(x2, axis=-1, keepdims=True)
+    R_def = np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    scale = np.maximum(np.abs(sigma_c).max(axis=(-2, -1)), 1e-300)
+    loaded = ok & (np.abs(np.einsum("mij,mj->mi", sigma_c, x2)).max(-1) > TRACTION_TOL * scale)
+    reason = np.where(loaded, REASON_TRACTION, reason)
+    ok &= ~loaded
+    C_star = np.where(ok[:, None, None, None, None], st["C_star"], voigt_to_tensor(C6))
+    return C_star, R_def, np.where(ok, st["rho"], rho), ok, reason
+
+
+def _resolve_material(C11, C12, C44, rho, voigt, toec):
+    """(Voigt C (6, 6), rho, C3 Voigt (6, 6, 6) or None, label) from the material arguments."""
+    from surfwave.continuum.toec import cubic_toec
+    from surfwave.data.materials import CUBIC_TOEC, Material, get_material
+
+    name = None
+    C3 = None
+    if isinstance(C11, (str, Material)):
+        m = get_material(C11)
+        name = m.name
+        if any(v is not None for v in (C12, C44, voigt)):
+            raise InputError(f"material {m.name!r} given by name: do not also give C12, C44 or voigt=")
+        C6 = np.array(m.voigt)
+        rho = m.rho if rho is None else rho
+        if toec is True:
+            if m.toec is None:
+                raise InputError(f"no third-order elastic constants for {m.name} in the materials database "
+                                 f"(missing: {', '.join(CUBIC_TOEC)}); give toec=(C111, C112, C123, C144, "
+                                 "C155, C456) in GPa")
+            C3 = m.toec_voigt
+    elif voigt is not None:
+        if any(v is not None for v in (C11, C12, C44)):
+            raise InputError("give either voigt= or C11, C12, C44, not both")
+        C6 = np.asarray(voigt, dtype=float)
+        if C6.shape != (6, 6):
+            raise InputError(f"voigt must be a 6 x 6 stiffness (GPa), got shape {C6.shape}")
+        if not np.allclose(C6, C6.T, rtol=1e-10, atol=0):
+            raise InputError("the Voigt stiffness must be symmetric")
+    else:
+        for key, value in (("C11", C11), ("C12", C12), ("C44", C44)):
+            if value is None:
+                raise InputError(f"{key} is missing: give C11, C12, C44 (GPa), voigt= or a material name")
+        C6 = cubic_voigt(C11, C12, C44)
+    if toec is True and name is None:
+        raise InputError("toec=True takes the third-order constants from the materials database: "
+                         "give the material by name (e.g. material('Cu', ...)) or pass toec=(C111, ...)")
+    if toec is not None and toec is not True and toec is not False:
+        t = np.asarray(toec, dtype=float)
+        if t.shape == (6,):
+            C3 = cubic_toec(*t)
+        elif t.shape == (6, 6, 6):
+            C3 = t
+        else:
+            raise InputError("toec must be True, (C111, C112, C123, C144, C155, C456) in GPa or a (6, 6, 6) "
+                             f"Voigt array; got shape {t.shape}")
+        if not np.all(np.isfinite(C3)):
+            raise InputError(f"third-order constants must be finite, got {toec!r}")
+        if np.abs(C3).max() > MAX_GPA:
+            raise InputError(f"third-order constants must be in GPa; the largest is {np.abs(C3).max():.4g}, "
+                             "which looks like Pa (divide by 1e9)")
+    return C6, rho, C3
+
+
 def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """Born (Wallace) stability of a prestressed crystal: the stability tensor is positive definite.
 
@@ -230,29 +310,28 @@ def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     -------
     ndarray of bool, shape (...)
     """
-    from surfwave.continuum.tensors import tensor_to_voigt
+    from surfwave.continuum.toec import wallace_tensor
 
-    e = np.eye(3)
-    B = C + 0.5 * (np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
-                   + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
-                   - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
-    B6 = tensor_to_voigt(B)
-    B6 = 0.5 * (B6 + np.swapaxes(B6, -1, -2))
+    B6 = wallace_tensor(C, sigma)
     return np.linalg.eigvalsh(B6)[..., 0] > 0
 
 
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
-             voigt=None, angle=None) -> dict:
+             voigt=None, angle=None, toec=None) -> dict:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
     ----------
     C11, C12, C44 : float
-        Cubic elastic constants, GPa (taken as the stressed crystal's constants). Or:
+        Cubic elastic constants, GPa. Without ``toec`` they are taken as the stressed crystal's
+        constants (fixed-C model); with ``toec`` they are the unstressed (natural-state) ones.
+        Or C11 is a material name from the database (``"Cu"``, ``"copper"``, ``"GaAs"``, ...,
+        :func:`surfwave.data.materials.available_materials`), which supplies the constants and
+        the density (an explicit ``rho`` wins). Or:
     voigt : array_like, shape (6, 6), keyword only
         A full Voigt stiffness of any symmetry, crystal axes, GPa (instead of C11, C12, C44).
     rho : float
-        Density, kg/m^3.
+        Density, kg/m^3 (natural state with ``toec``).
     direction : str or float or array_like of float
         A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
         surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
@@ -264,6 +343,16 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         "(hkl)".
     angle : float or array_like, optional, keyword only
         Same as an angle ``direction`` (wins over it).
+    toec : None, True or sequence of 6 floats or array_like (6, 6, 6), keyword only
+        Third-order elastic constants (C111, C112, C123, C144, C155, C456) in GPa, Brugger
+        convention (Lagrangian strain, energy per unit natural volume, as tabulated), or a
+        Voigt (6, 6, 6) array; True takes them from the database (the material must be given
+        by name). The crystal then deforms under the stress
+        (:func:`surfwave.continuum.toec.stressed_state`): the constants C* and density rho0/J of
+        the stressed state are used, the wave propagates along F m0 (m0 the given direction of
+        the unstressed crystal) on the surface of normal F^-T n0, and speeds are true phase
+        speeds in the stressed state (docs/physics/third-order-constants.md). A stress beyond the
+        model's range gives NaN with the reason.
 
     Returns
     -------
@@ -274,13 +363,16 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         NaN where imaginary), ``wave_type``, ``reason``, ``stable`` (Born stability and
         positive acoustic tensor in every direction), ``polarisation`` (..., 3) and ``decay``
         (..., 3) complex (see :func:`surfwave.continuum.stroh.surface_wave`),
-        ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``.
+        ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
+        ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
 
     Raises
     ------
     InputError
         Missing or non-finite constants, constants in Pa (hint given), rho <= 0, a direction
-        not in the surface, a stress with sigma . n != 0 (component named).
+        not in the surface, a stress with sigma . n != 0 (component named), an unknown material
+        name (known ones listed), toec=True for a material without third-order constants (the
+        material and the missing constants named).
 
     Examples
     --------
@@ -288,21 +380,11 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     >>> round(r["c_R"] ** 2 / 1.0, 6)               # (3 - sqrt 3)/2 C44/rho, m^2/s^2
     0.633975
     >>> round(material(168.4, 121.4, 75.4, 8960, "[1-10]", surface="(111)")["c_R"], 1)
-    1727.3
+    1613.5
+    >>> round(material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"], 2)  # 2012.12 unstressed
+    2019.06
     """
-    if voigt is not None:
-        if any(v is not None for v in (C11, C12, C44)):
-            raise InputError("give either voigt= or C11, C12, C44, not both")
-        C6 = np.asarray(voigt, dtype=float)
-        if C6.shape != (6, 6):
-            raise InputError(f"voigt must be a 6 x 6 stiffness (GPa), got shape {C6.shape}")
-        if not np.allclose(C6, C6.T, rtol=1e-10, atol=0):
-            raise InputError("the Voigt stiffness must be symmetric")
-    else:
-        for name, value in (("C11", C11), ("C12", C12), ("C44", C44)):
-            if value is None:
-                raise InputError(f"{name} is missing: give C11, C12, C44 (GPa) or voigt=")
-        C6 = cubic_voigt(C11, C12, C44)
+    C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
         raise InputError("the density rho (kg/m^3) is missing")
     if not np.all(np.isfinite(C6)):
@@ -326,22 +408,35 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     if np.abs(traction).max() > 1e-9 * max(np.abs(sigma_c).max(), 1e-300):
         raise InputError(f"prestress must lie in the surface plane {surface}: its traction sigma . n = "
                          f"{np.round(traction[0], 12).tolist()} GPa (crystal axes) is not zero")
-    C = rotate4(C_c, R)
-    sigma = rotate2(sigma_c, R)
+    rho_m = np.full(R.shape[0], float(rho))
+    R_lab = R
+    why = np.full(R.shape[0], REASON_BORN, dtype=object)
+    if C3 is not None:  # third-order constants: the crystal deforms, C and the frame follow
+        C_c, R_lab, rho_m, state_ok, state_reason = _toec_state(C6, C3, sigma_c, R, float(rho))
+        why = np.where(state_ok, why, state_reason)
+    else:
+        C_c = np.broadcast_to(C_c, (R.shape[0],) + C_c.shape)
+        state_ok = np.ones(R.shape[0], dtype=bool)
+    C = rotate4(C_c, R_lab)
+    sigma = rotate2(sigma_c, R_lab)
+    sigma[..., 1, :] = np.where(state_ok[:, None], sigma[..., 1, :], 0.0)   # placeholder where no state
+    sigma[..., :, 1] = sigma[..., 1, :]
     A = stroh.wave_propagation_tensor(C, sigma) * 1e9                        # Pa
-    sw = stroh.surface_wave(A, rho)
-    born = born_stable(C_c, sigma_c)
-    acoustic, _, _ = elastic.long_wave_stability(np.broadcast_to(C_c, (R.shape[0],) + C_c.shape), sigma_c)
+    sw = stroh.surface_wave(A, rho_m)
+    born = born_stable(C_c, sigma_c) & state_ok
+    acoustic, _, _ = elastic.long_wave_stability(np.ascontiguousarray(C_c), sigma_c)
     S = elastic.stress_derivatives(sigma, C) * 1e9
     out: dict = {}
-    for key, value in elastic.sound_speeds(S, rho).items():
-        out["c" + key[2:]] = np.sqrt(np.where(value > 0, value, np.nan))
+    for key, value in elastic.sound_speeds(S, rho_m).items():
+        out["c" + key[2:]] = np.sqrt(np.where((value > 0) & state_ok, value, np.nan))
     c = np.where(born, sw["c"], np.nan)
-    out.update(c_R=c, c_R_imag=np.where(born, sw["c_imag"], np.nan), c_limit=sw["c_limit"],
+    out.update(c_R=c, c_R_imag=np.where(born, sw["c_imag"], np.nan),
+               c_limit=np.where(state_ok, sw["c_limit"], np.nan),
                wave_type=np.where(born, sw["wave_type"], "none").astype(object),
-               reason=np.where(born, sw["reason"], REASON_BORN).astype(object),
+               reason=np.where(born, sw["reason"], why).astype(object),
                stable=born & acoustic, polarisation=sw["polarisation"], decay=sw["decay"],
-               penetration_depth=sw["penetration_depth"], method=sw["method"])
+               penetration_depth=sw["penetration_depth"], method=sw["method"],
+               rho=np.where(state_ok, rho_m, np.nan), toec=np.full(R.shape[0], C3 is not None))
     from surfwave.continuum.orientation import reference_direction, surface_normal
 
     ref = reference_direction(surface)
@@ -351,4 +446,5 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         for key in ("wave_type", "reason", "method"):
             out[key] = str(out[key])
         out["stable"] = bool(out["stable"])
+        out["toec"] = bool(out["toec"])
     return out

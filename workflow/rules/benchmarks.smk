@@ -7,6 +7,7 @@ from pathlib import Path
 # benchmark -> library modules it exercises (inputs, so a code change reruns it)
 BENCH_MODULES = {
     "rayleigh": ("api", "continuum.rayleigh"),
+    "stroh": ("continuum.stroh", "continuum.impedance", "continuum.rayleigh"),
     "phonons": ("continuum.phonons",),
     "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
     "entropy": ("dynamics.entropy",),

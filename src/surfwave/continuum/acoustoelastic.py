@@ -1,79 +1,47 @@
 """Surface waves of real crystals under in-plane stress, and their acoustoelastic coefficients.
 
 The stressed crystal comes from :func:`surfwave.continuum.toec.stressed_state` (natural-state
-C2, Brugger C3, Cauchy stress sigma in crystal axes); its surface wave from the
-wave-propagation coefficients A_ijkl = C*_ijkl + sigma_jl delta_ik in the laboratory frame
-of the *deformed* crystal: x along F m0 (the image of the given crystal direction m0),
-y along F^-T n0 (the normal of the deformed surface, into the crystal), z = x cross y.
-At mirror directions (the sagittal plane xy a mirror plane of the stressed crystal) the
-sagittal wave decouples and Eq. (17) on S (Eq. A11, which gives the same equations of motion
-and, with sigma . n = 0, the same traction condition) is exact; elsewhere the general
-solver is needed and this module returns NaN with that reason.
+C2, Brugger C3, Cauchy stress sigma in crystal axes); its surface wave from the general solver
+(:func:`surfwave.continuum.stroh.surface_wave`, which uses Eq. (17) at mirror directions) with
+the wave-propagation coefficients A_ijkl = C*_ijkl + sigma_jl delta_ik in the laboratory
+frame of the *deformed* crystal: x1 along F m0 (the image of the given crystal direction m0),
+x2 along F^-T n0 (the normal of the deformed surface, into the crystal), x3 = x1 x x2
+(:func:`deformed_axes`). Speeds are true phase speeds in the stressed state, m/s.
 
-Speeds are true phase speeds in the stressed state, m/s (wavelength measured in the
-deformed crystal). The acoustoelastic coefficient is (1/v) dv/dsigma at zero stress, 1/GPa,
-by a central difference of step :data:`DEFAULT_STEP` = 1e-4 GPa. The step is chosen from a
-measured scan (``benchmarks/bench_toec.py``: the 8 database crystals with TOEC, (001)[100]
-and [110], three loadings, with and without TOEC, against a Richardson-extrapolated
-reference): the largest relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at
-1e-3 GPa and 8e-9 at 1e-4 GPa, then grows again as 1/h (round-off of the deformation solve
-and of Eq. 17: 1e-7 at 1e-6 GPa). 1e-4 GPa is the bottom of that valley.
+The acoustoelastic coefficient is (1/v) dv/dsigma at zero stress, 1/GPa, by a central
+difference of step :data:`DEFAULT_STEP` = 1e-4 GPa. The step is chosen from a measured scan
+(``benchmarks/bench_toec.py``: the 8 database crystals with TOEC, (001)[100] and [110], three
+loadings, with and without TOEC, against a Richardson-extrapolated reference): the largest
+relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at 1e-3 GPa and 8e-9 at
+1e-4 GPa, then grows again as 1/h (round-off of the deformation solve and of the speed:
+1e-7 at 1e-6 GPa). 1e-4 GPa is the bottom of that valley.
 """
 from __future__ import annotations
 
-import re
-
 import numpy as np
 
-from surfwave.continuum import elastic, rayleigh
-from surfwave.continuum.tensors import rotate2, rotate4
+from surfwave.continuum import stroh
+from surfwave.continuum.orientation import lab_axes, parse_direction, surface_normal
+from surfwave.continuum.tensors import rotate2, rotate4, voigt_to_tensor
 from surfwave.continuum.toec import DEFAULT_TOL, stressed_state
 from surfwave.errors import InputError
 
 #: Loading kinds: uniaxial along / across the propagation direction (in the surface),
-#: equi-biaxial in the surface plane, uniaxial along a given crystal axis.
+#: equi-biaxial in the surface plane, uniaxial along a given crystal axis in the surface.
 LOADINGS = ("along", "across", "biaxial", "axis")
 #: Central-difference step of the acoustoelastic coefficient, GPa.
 DEFAULT_STEP = 1e-4
-#: Largest coupling between sagittal and shear-horizontal motion (relative to max |A|)
-#: accepted as a mirror direction.
-MIRROR_TOL = 1e-10
+#: Largest traction sigma . n on the deformed surface, relative to max |sigma|, accepted.
+TRACTION_TOL = 1e-9
+REASON_TRACTION = ("the deformed surface is loaded: sigma . n != 0 on the normal F^-T n0 (the stress "
+                   "turns the surface plane), so the free surface is not in equilibrium")
 
 
-def miller(index, kind: str = "direction") -> np.ndarray:
-    """A crystal vector from Miller indices: ``"[110]"``, ``"(001)"``, ``"[1-10]"`` or a 3-vector.
-
-    Returns the unit vector, shape (3,), in cubic crystal axes (for a plane: its normal).
-    """
-    if isinstance(index, str):
-        digits = re.findall(r"-?\d", index.strip().strip("[]()<>{}").replace(" ", "").replace(",", ""))
-        if len(digits) != 3:
-            raise InputError(f"{kind} {index!r} is not three Miller indices like '[110]' or '(001)'")
-        v = np.array([float(d) for d in digits])
-    else:
-        v = np.asarray(index, dtype=float)
-        if v.shape != (3,):
-            raise InputError(f"{kind} must be a Miller string or a 3-vector, got {index!r}")
-    norm = np.linalg.norm(v)
-    if not np.isfinite(norm) or norm == 0:
-        raise InputError(f"{kind} {index!r} is not a direction")
-    return v / norm
-
-
-def natural_axes(surface="(001)", direction="[100]") -> np.ndarray:
-    """Laboratory axes of the unstressed crystal, rows x (propagation), y (inward normal), z.
-
-    Returns
-    -------
-    ndarray, shape (3, 3)
-        Orthonormal rows in crystal axes; z = x cross y (for (001)[100]: x = [100],
-        y = [001], z = [0-10], as in the FCC model crystals of PHYSICS.md).
-    """
-    n = miller(surface, "surface")
-    m = miller(direction, "direction")
-    if abs(float(m @ n)) > 1e-12:
-        raise InputError(f"direction {direction!r} does not lie in the surface {surface!r}")
-    return np.stack([m, n, np.cross(m, n)])
+def _axes(surface, direction) -> np.ndarray:
+    R = lab_axes(surface, direction)
+    if R.ndim != 2:
+        raise InputError(f"one propagation direction per call, got {np.shape(direction)} angles")
+    return R
 
 
 def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axis=None) -> np.ndarray:
@@ -95,7 +63,7 @@ def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axi
     """
     if kind not in LOADINGS:
         raise InputError(f"unknown loading {kind!r}; choose one of {list(LOADINGS)}")
-    x, _, z = natural_axes(surface, direction)
+    x, _, z = _axes(surface, direction)
     if kind == "along":
         unit = np.outer(x, x)
     elif kind == "across":
@@ -105,8 +73,9 @@ def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axi
     else:
         if axis is None:
             raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
-        a = miller(axis, "axis")
-        if abs(float(a @ miller(surface, "surface"))) > 1e-12:
+        a = parse_direction(axis) if isinstance(axis, str) else np.asarray(axis, dtype=float)
+        a = a / np.linalg.norm(a)
+        if abs(float(a @ surface_normal(surface))) > 1e-12:
             raise InputError(f"axis {axis!r} does not lie in the surface {surface!r} (out-of-plane stress)")
         unit = np.outer(a, a)
     s = np.asarray(magnitude, dtype=float)
@@ -121,7 +90,7 @@ def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float = 1e-12
     The free surface is in equilibrium only if sigma . n = 0; in the natural laboratory
     frame (x propagation, y normal, z in-plane) that is sigma_yy = sigma_xy = sigma_yz = 0.
     """
-    lab = rotate2(np.asarray(sigma, dtype=float), natural_axes(surface, direction))
+    lab = rotate2(np.asarray(sigma, dtype=float), _axes(surface, direction))
     for name, (i, j) in (("sigma_yy", (1, 1)), ("sigma_xy", (0, 1)), ("sigma_yz", (1, 2))):
         v = lab[..., i, j]
         if np.any(np.abs(v) > tol):
@@ -141,7 +110,7 @@ def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
     -------
     ndarray, shape (..., 3, 3), orthonormal rows (F m0 . F^-T n0 = m0 . n0 = 0).
     """
-    x0, y0, _ = natural_axes(surface, direction)
+    x0, y0, _ = _axes(surface, direction)
     x = np.einsum("...ij,j->...i", F, x0)
     y = np.einsum("...ji,j->...i", np.linalg.inv(F), y0)
     x = x / np.linalg.norm(x, axis=-1, keepdims=True)
@@ -150,7 +119,7 @@ def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
 
 
 def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", *, tol: float = DEFAULT_TOL) -> dict:
-    """Surface-wave speed of a real crystal under in-plane stress (mirror directions, Eq. 17).
+    """Surface-wave speed of a real crystal under in-plane stress (general solver).
 
     Parameters
     ----------
@@ -162,15 +131,19 @@ def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", 
         Natural-state density, kg/m^3.
     sigma : array_like, shape (..., 3, 3)
         Cauchy stress, crystal axes, GPa; in-plane only (else InputError naming the component).
-    surface, direction : str or 3-vector
-        Surface plane and propagation direction of the natural crystal.
+    surface : str or 3-vector
+        "(hkl)" of the natural crystal.
+    direction : str or float
+        A Miller direction in the surface or an angle in degrees from the surface's reference
+        direction (:func:`surfwave.continuum.orientation.lab_axes`).
 
     Returns
     -------
     dict
-        ``c_R`` (..., m/s, NaN where none), ``wave_type``, ``reason`` (str, "" if fine),
-        ``ok`` (the stressed state exists and the direction is a mirror direction), ``rho``
-        (kg/m^3), ``F`` (..., 3, 3), ``axes`` (..., 3, 3) deformed lab axes, ``c_SH`` (m/s).
+        Shapes sigma.shape[:-2]: ``c_R`` (m/s, NaN where none; real part for a pseudo wave),
+        ``c_limit`` (m/s), ``wave_type``, ``reason`` (str, "" if fine), ``ok`` (the stressed
+        state exists and its surface is traction-free), ``rho`` (kg/m^3); ``F`` (..., 3, 3)
+        and ``axes`` (..., 3, 3), the deformed lab axes (rows, crystal axes).
     """
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
@@ -187,30 +160,24 @@ def _surface_wave_speed(C2, C3, rho0, sigma, surface, direction, tol) -> dict:
     reason = st["reason"].astype(object)
     F = np.where(ok[..., None, None], st["F"], np.eye(3))
     axes = deformed_axes(F, surface, direction)
-    C_lab = rotate4(np.nan_to_num(st["C_star"]), axes)
     s_lab = rotate2(sigma, axes)
-    # Sagittal (x, y) and shear-horizontal (z) motion decouple iff every component with an
-    # odd number of z indices vanishes (mirror plane z -> -z).
-    odd = (np.indices((3, 3, 3, 3)) == 2).sum(0) % 2 == 1
-    coupling = np.abs(C_lab[..., odd]).max(-1) + np.abs(s_lab[..., [0, 1], [2, 2]]).max(-1)
-    scale = np.abs(C_lab).max(axis=(-4, -3, -2, -1))
-    mirror = coupling <= MIRROR_TOL * np.maximum(scale, 1e-300)
-    no_mirror = ok & ~mirror
-    reason = np.where(no_mirror, "not a mirror direction of the stressed crystal: needs the general (Stroh) "
-                      "solver", reason)
-    ok &= mirror
-    rho = np.where(ok, st["rho"], np.nan)
-    S = elastic.stress_derivatives(s_lab, C_lab) * 1e9  # Pa
-    ray = rayleigh.solve(S, np.where(ok, rho, 1.0))
-    c2 = np.where(ok, ray["c2_R"], np.nan)
-    with np.errstate(invalid="ignore"):
-        c_R = np.sqrt(np.where(c2 > 0, c2, np.nan))
-        c2_SH = S[..., 0, 2, 2, 0] / rho
-        c_SH = np.sqrt(np.where(c2_SH > 0, c2_SH, np.nan))
-    wave_type = np.where(ok, ray["wave_type"], "none")
-    reason = np.where(ok, ray["reason"], reason).astype(str)
-    return {"c_R": c_R, "wave_type": wave_type, "reason": reason, "ok": ok, "rho": rho,
-            "F": st["F"], "axes": axes, "c_SH": c_SH}
+    scale = np.maximum(np.abs(sigma).max(axis=(-2, -1)), 1e-300)
+    loaded = ok & (np.abs(s_lab[..., 1, :]).max(-1) > TRACTION_TOL * scale)
+    reason = np.where(loaded, REASON_TRACTION, reason)
+    ok &= ~loaded
+    C2t = np.asarray(C2, dtype=float)
+    C2t = voigt_to_tensor(C2t) if C2t.shape == (6, 6) else C2t
+    C_star = np.where(ok[..., None, None, None, None], st["C_star"], C2t)  # placeholder where not ok
+    s_lab = np.where(ok[..., None, None], s_lab, 0.0)
+    s_lab[..., 1, :] = s_lab[..., :, 1] = 0.0  # zero to round-off already; exactly zero for the solver
+    A = stroh.wave_propagation_tensor(rotate4(C_star, axes), s_lab) * 1e9  # Pa
+    rho = np.where(ok, st["rho"], float(rho0))
+    sw = stroh.surface_wave(A, rho)
+    c_R = np.where(ok, sw["c"], np.nan)
+    return {"c_R": c_R, "c_limit": np.where(ok, sw["c_limit"], np.nan),
+            "wave_type": np.where(ok, sw["wave_type"], "none").astype(str),
+            "reason": np.where(ok, sw["reason"], reason).astype(str), "ok": ok,
+            "rho": np.where(ok, rho, np.nan), "F": st["F"], "axes": axes}
 
 
 def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]", *,

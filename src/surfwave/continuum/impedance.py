@@ -23,8 +23,10 @@ import numpy as np
 LIMIT_GRID = 48
 #: Local minima of the grid refined (the lowest ones).
 LIMIT_CANDIDATES = 3
-#: Successive parabolic-interpolation steps refining the limiting speed.
-LIMIT_STEPS = 14
+#: ... among those within this relative distance of the grid's best value.
+LIMIT_WINDOW = 0.05
+#: Newton steps refining the limiting speed (quadratic convergence from the grid).
+LIMIT_STEPS = 4
 
 
 def stroh_blocks(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -50,9 +52,39 @@ def acoustic(Q, R, T, phi) -> np.ndarray:
     return c * c * Q[:, None] + s * c * RR + s * s * T[:, None]
 
 
-def _trace_x(Q, R, T, phi) -> np.ndarray:
-    """Lowest rho v_trace^2 = lambda_min(Gamma(n)) / cos^2 phi of the bulk waves, shape (m, k)."""
-    lam = np.linalg.eigvalsh(acoustic(Q, R, T, phi))[..., 0]
+def _lowest_eig_closed(Q, R, T, phi) -> np.ndarray:
+    """Lowest eigenvalue of Gamma(n) (see :func:`acoustic`) in closed form, shape (m, k).
+
+    Built component by component (no (m, k, d, d) temporaries); 2 x 2 directly, 3 x 3 by the
+    trigonometric solution of the characteristic cubic: cheap but only accurate to ~1e-8
+    relative near degenerate eigenvalues, so used for the coarse grid only.
+    """
+    c, s = np.cos(phi), np.sin(phi)
+    cc, sc, ss = c * c, s * c, s * s
+
+    def comp(i, j):
+        return cc * Q[:, i, j, None] + sc * (R[:, i, j] + R[:, j, i])[:, None] + ss * T[:, i, j, None]
+
+    if Q.shape[-1] == 2:
+        a, b, c2 = comp(0, 0), comp(0, 1), comp(1, 1)
+        return 0.5 * (a + c2) - np.hypot(0.5 * (a - c2), b)
+    g00, g11, g22, d, e, f = comp(0, 0), comp(1, 1), comp(2, 2), comp(0, 1), comp(0, 2), comp(1, 2)
+    q = (g00 + g11 + g22) / 3.0
+    a, b, c3 = g00 - q, g11 - q, g22 - q
+    p = np.sqrt((a * a + b * b + c3 * c3 + 2.0 * (d * d + e * e + f * f)) / 6.0)
+    det = a * (b * c3 - f * f) - d * (d * c3 - f * e) + e * (d * f - b * e)
+    with np.errstate(all="ignore"):
+        r = det / (2.0 * p**3)
+    ang = np.arccos(np.clip(np.nan_to_num(r), -1.0, 1.0)) / 3.0
+    return q + 2.0 * p * np.cos(ang + 2.0 * np.pi / 3.0)
+
+
+def _trace_x(Q, R, T, phi, exact: bool = True) -> np.ndarray:
+    """Lowest rho v_trace^2 = lambda_min(Gamma(n)) / cos^2 phi of the bulk waves, shape (m, k).
+
+    ``exact``: LAPACK eigenvalues (accurate to rounding); else the closed form.
+    """
+    lam = np.linalg.eigvalsh(acoustic(Q, R, T, phi))[..., 0] if exact else _lowest_eig_closed(Q, R, T, phi)
     return lam / np.cos(phi) ** 2
 
 
@@ -61,9 +93,9 @@ def limiting_x(Q, R, T) -> tuple[np.ndarray, np.ndarray]:
 
     With p = tan phi (phi the angle of the bulk wave normal from x1 in the sagittal plane)
     this is the lowest trace velocity along x1 of all bulk waves. A grid of ``LIMIT_GRID``
-    angles finds the local minima; the ``LIMIT_CANDIDATES`` lowest are refined by successive
-    parabolic interpolation (golden-section when a parabola step is not admissible) and the
-    lowest result is kept; the value at a smooth minimum is then accurate to rounding.
+    angles finds the local minima; the ``LIMIT_CANDIDATES`` lowest are refined by Newton's
+    method on the branch and the lowest result is kept; the value at a smooth minimum is then accurate to rounding.
+    (Newton on the branch, :func:`_refine`.)
 
     Parameters
     ----------
@@ -78,59 +110,66 @@ def limiting_x(Q, R, T) -> tuple[np.ndarray, np.ndarray]:
     m = Q.shape[0]
     h = np.pi / LIMIT_GRID
     grid = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
-    g = _trace_x(Q, R, T, np.broadcast_to(grid, (m, LIMIT_GRID)))
-    # refine the LIMIT_CANDIDATES lowest local minima of the grid: two branches may have
-    # minima within the grid's resolution of each other (e.g. SH at p = 0, sagittal at p != 0)
+    g = _trace_x(Q, R, T, np.broadcast_to(grid, (m, LIMIT_GRID)), exact=False)
+    # refine the lowest local minima of the grid (up to LIMIT_CANDIDATES, those within
+    # LIMIT_WINDOW of the best): two branches may have minima within the grid's resolution
+    # of each other (e.g. SH at p = 0, sagittal at p != 0)
     pad = np.pad(g, ((0, 0), (1, 1)), constant_values=np.inf)
     local = (g <= pad[:, :-2]) & (g <= pad[:, 2:])
-    order = np.argsort(np.where(local, g, np.inf), axis=1)[:, :LIMIT_CANDIDATES]
-    cand = np.take_along_axis(np.where(local, g, np.inf), order, axis=1)
-    order = np.where(np.isfinite(cand), order, order[:, :1])                # pad with the best
-    k = order.shape[1]
-    rep = lambda M: np.repeat(M, k, axis=0)
-    xf, pf = _refine(rep(Q), rep(R), rep(T), grid[order].reshape(-1), h)
-    xf, pf = xf.reshape(m, k), pf.reshape(m, k)
-    j = np.argmin(xf, axis=1)[:, None]
-    return np.take_along_axis(xf, j, 1)[:, 0], np.tan(np.take_along_axis(pf, j, 1)[:, 0])
+    gl = np.where(local, g, np.inf)
+    order = np.argsort(gl, axis=1)[:, :LIMIT_CANDIDATES]
+    cand = np.take_along_axis(gl, order, axis=1)
+    best = cand[:, :1]
+    keep = np.isfinite(cand) & (cand <= best + LIMIT_WINDOW * np.abs(best))
+    keep[:, 0] = True
+    rows, cols = np.nonzero(keep)
+    xf, pf = _refine(Q[rows], R[rows], T[rows], grid[order[rows, cols]], h)
+    X_L = np.full(m, np.inf)
+    np.minimum.at(X_L, rows, xf)
+    win = xf == X_L[rows]
+    phi = np.empty(m)
+    phi[rows[win]] = pf[win]
+    return X_L, np.tan(phi)
 
 
-def _refine(Q, R, T, x, h):
-    """Minimise _trace_x from x (shape (m,)) inside (x - h, x + h): successive parabolic
-    interpolation with golden-section fallback (Brent's minimiser, vectorised).
+def _refine(Q, R, T, phi0, h):
+    """Minimise the lowest branch lam(p) of Gamma(p) = Q + p (R + R^T) + p^2 T from p = tan(phi0).
+
+    Newton's method on lam'(p) = 0 with analytic derivatives (eigenvectors a_j, eigenvalues
+    w_j of Gamma): lam' = a_0 . Gamma' a_0, lam'' = 2 a_0 . T a_0 + 2 sum_j (a_j . Gamma' a_0)^2 /
+    (w_0 - w_j), Gamma' = R + R^T + 2 p T; steps limited to the grid cell, a non-positive
+    curvature steps downhill by half a cell; the lowest value seen is kept. Degenerate pairs
+    (|w_0 - w_j| < 1e-9 scale, e.g. isotropic SH and SV) contribute nothing to lam''.
 
     Returns
     -------
-    fx, x : ndarray, shape (m,)
-        The minimum value and its angle phi.
+    fx, phi : ndarray, shape (m,)
+        The minimum value of lam and its angle phi = arctan p.
     """
-    fx = _trace_x(Q, R, T, x[:, None])[:, 0]
-    a = np.maximum(x - h, -0.5 * np.pi + 1e-9)
-    b = np.minimum(x + h, 0.5 * np.pi - 1e-9)
-    w, fw = x.copy(), fx.copy()
-    v, fv = x.copy(), fx.copy()
-    gold = 0.3819660112501051
-    for _ in range(LIMIT_STEPS):
-        # parabola through (v, w, x); its vertex u unless outside (a, b) or degenerate
-        r = (x - w) * (fx - fv)
-        q = (x - v) * (fx - fw)
-        num = (x - v) * q - (x - w) * r
-        den = 2.0 * (q - r)
+    p = np.tan(phi0)
+    trust = h * (1.0 + p * p)                                      # the grid cell in p
+    RR = R + np.swapaxes(R, -1, -2)
+    best, best_p = np.full(p.shape, np.inf), p.copy()
+    for _ in range(LIMIT_STEPS + 1):
+        G = Q + p[:, None, None] * RR + (p * p)[:, None, None] * T
+        w, V = np.linalg.eigh(G)
+        lam = w[:, 0]
+        better = lam < best
+        best, best_p = np.where(better, lam, best), np.where(better, p, best_p)
+        a0 = V[:, :, 0]
+        G1a = np.einsum("mij,mj->mi", RR + 2.0 * p[:, None, None] * T, a0)
+        d1 = np.einsum("mi,mi->m", a0, G1a)
+        d2 = 2.0 * np.einsum("mi,mij,mj->m", a0, T, a0)
+        scale = np.abs(w).max(axis=1)
+        for j in (1, 2)[: Q.shape[-1] - 1]:
+            gap = w[:, 0] - w[:, j]
+            c = np.einsum("mi,mi->m", V[:, :, j], G1a)
+            with np.errstate(all="ignore"):
+                d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
         with np.errstate(all="ignore"):
-            u = x - num / den
-        mid = 0.5 * (a + b)
-        golden = x + gold * np.where(x < mid, b - x, a - x)
-        ok = np.isfinite(u) & (u > a) & (u < b) & (np.abs(u - x) > 1e-15)
-        u = np.where(ok, u, golden)
-        fu = _trace_x(Q, R, T, u[:, None])[:, 0]
-        better = fu <= fx
-        left = u < x
-        a = np.where(better, np.where(left, a, x), np.where(left, u, a))
-        b = np.where(better, np.where(left, x, b), np.where(left, b, u))
-        second = ~better & (fu <= fw)
-        v, fv = np.where(better | second, w, v), np.where(better | second, fw, fv)
-        w, fw = np.where(better, x, np.where(second, u, w)), np.where(better, fx, np.where(second, fu, fw))
-        x, fx = np.where(better, u, x), np.where(better, fu, fx)
-    return fx, x
+            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust)
+        p = p + np.clip(np.nan_to_num(step), -trust, trust)
+    return best, np.arctan(best_p)
 
 
 def stroh_matrix(Q, R, T, X) -> np.ndarray:
@@ -145,7 +184,7 @@ def stroh_matrix(Q, R, T, X) -> np.ndarray:
     return np.concatenate([top, bottom], axis=-2)
 
 
-def impedance(Q, R, T, X) -> dict:
+def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
     """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
 
     Parameters
@@ -154,6 +193,11 @@ def impedance(Q, R, T, X) -> dict:
         Stroh blocks (scaled so that their entries are of order one).
     X : ndarray, shape (m,)
         rho v^2 in the units of Q.
+    derivative : bool
+        Also return the lowest eigenvalue of Z and its derivative in X (below).
+    N0 : ndarray, shape (m, 2d, 2d), optional
+        ``stroh_matrix(Q, R, T, 0)``, to save its recomputation in a root search
+        (N(X) = N0 + X [[0, 0], [I, 0]]).
 
     Returns
     -------
@@ -161,10 +205,24 @@ def impedance(Q, R, T, X) -> dict:
         ``Z`` (m, d, d) complex Hermitian impedance (NaN where not subsonic); ``p`` (m, d)
         complex, the eigenvalues with Im p > 0 in ascending Im p; ``subsonic`` (m,) bool:
         no eigenvalue within 1e-10 of the real axis; ``f`` (m,) real: det Z, whose sign
-        change in X marks the surface wave.
+        change in X marks the surface wave (not computed, NaN, with ``derivative``). With
+        ``derivative``: ``lam`` (m,) the lowest
+        eigenvalue of Z, ``u`` (m, d) its unit eigenvector, ``dlam`` (m,) d lam / dX.
+
+    Notes
+    -----
+    The derivative: M = B A^-1 solves the Riccati equation M N1 + M N2 M = N3 + N4 M (N in
+    blocks N1..N4); as dN3/dX = I, dM/dX solves the Sylvester equation
+    dM K1 - K2 dM = I with K1 = N1 + N2 M (eigenvalues: the decaying p) and K2 = N4 - M N2
+    (the growing ones), solved as a d^2 x d^2 linear system. Then dZ = -i dM and
+    d lam / dX = u^H dZ u (first-order perturbation of a simple eigenvalue).
     """
     d = Q.shape[-1]
-    N = stroh_matrix(Q, R, T, X)
+    if N0 is None:
+        N = stroh_matrix(Q, R, T, X)
+    else:
+        N = N0.copy()
+        N[:, d:, :d] += X[:, None, None] * np.eye(d)
     ev = np.linalg.eigvals(N)
     order = np.argsort(ev.imag, axis=-1)
     ev = np.take_along_axis(ev, order, axis=-1)
@@ -178,11 +236,29 @@ def impedance(Q, R, T, X) -> dict:
     W1H = np.conj(np.swapaxes(W1, -1, -2))
     with np.errstate(all="ignore"):
         M = np.linalg.solve(np.swapaxes(W1 @ W1H, -1, -2), np.swapaxes(W2 @ W1H, -1, -2))
-    Z = -1j * np.swapaxes(M, -1, -2)
+    M = np.swapaxes(M, -1, -2)                                     # B A^-1
+    Z = -1j * M
     Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
-    f = np.linalg.det(Z).real
+    f = np.linalg.det(Z).real if not derivative else np.full(len(X), np.nan)
     bad = ~subsonic
     if bad.any():
         Z[bad] = np.nan
         f[bad] = np.nan
-    return {"Z": Z, "p": upper, "subsonic": subsonic, "f": f}
+    out = {"Z": Z, "p": upper, "subsonic": subsonic, "f": f}
+    if derivative:
+        Zs = np.where(bad[:, None, None], np.eye(d), Z)
+        w, v = np.linalg.eigh(Zs)
+        u = v[..., 0]
+        n1, n2, n4 = N[:, :d, :d], N[:, :d, d:], N[:, d:, d:]
+        K1 = n1 + n2 @ M
+        K2 = n4 - M @ n2
+        e = np.eye(d)
+        L = (np.einsum("ia,...bj->...ijab", e, K1) - np.einsum("...ia,bj->...ijab", K2, e)).reshape(-1, d * d, d * d)
+        with np.errstate(all="ignore"):
+            dM = np.linalg.solve(np.where(bad[:, None, None], np.eye(d * d), L),
+                                 np.broadcast_to(e.reshape(d * d), (len(X), d * d))[..., None])[..., 0]
+        dZ = -1j * dM.reshape(-1, d, d)
+        out["lam"] = np.where(bad, np.nan, w[:, 0])
+        out["u"] = u
+        out["dlam"] = np.where(bad, np.nan, np.einsum("mi,mij,mj->m", np.conj(u), dZ, u).real)
+    return out

@@ -8,9 +8,10 @@ traction, A_i2kl u_k,l = 0. Stroh blocks, limiting speed and impedance: :mod:`im
 
 Root finding. The impedance Z(X) (X = rho v^2) is Hermitian below the limiting X_L, positive
 definite at X = 0 for a stable crystal and decreasing in X; a subsonic surface wave is where
-det Z changes sign (at most once). The root is bracketed in X = X_L (1 - t^2), t in
-(T_MIN, 1] (t removes the square-root behaviour of Z at X_L) and found by the
-Anderson-Bjorck regula falsi, vectorised, until the bracket is below ``tol`` relative in X.
+the lowest eigenvalue lam of Z crosses zero (at most once). The root is bracketed in
+X = X_L (1 - t^2), t in (T_MIN, 1] (t removes the square-root behaviour of Z at X_L), and
+found by Newton's method in t safeguarded by bisection, with d lam / dX from the Sylvester
+equation of the impedance's Riccati equation (:func:`impedance.impedance`).
 
 Where the sagittal plane x1 x2 is a mirror (the components of A with an odd number of
 indices 3 vanish) the sagittal motion decouples; its 2 x 2 problem may hold a surface wave
@@ -33,19 +34,23 @@ T_MIN = 1e-6
 #: Relative size below which a component of A counts as zero (symmetry detection).
 SYMMETRY_TOL = 1e-10
 MAX_ITER = 100
+#: Starting point of the Newton iteration, t = sqrt(1 - X/X_L) (X = 0.91 X_L).
+T_START = 0.3
 
 WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 REASON_UNSTABLE = "no surface wave: a bulk wave in the sagittal plane has rho v^2 <= 0 (unstable crystal)"
 REASON_T = "no surface wave: T_ik = A_i2k2 is not positive definite (unstable normal to the surface)"
-REASON_NOROOT = ("no subsonic surface wave: det Z stays positive up to the limiting speed v_L; "
-                 "a leaky pseudo-surface wave above v_L is not computed")
+REASON_PSEUDO = ("pseudo-surface wave: no subsonic root (the lowest eigenvalue of the impedance stays "
+                 "positive up to v_L (1 - 1e-12)): off a mirror the surface wave has left the subsonic "
+                 "range through v_L and leaks into the bulk; its complex speed is not computed")
 REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sagittal motion, "
                         "below its own limiting speed")
 
 VARIABLES: dict[str, dict] = {
     "c": {"long_name": "phase speed of the surface wave (real part for a pseudo wave)", "dims": ()},
-    "c_imag": {"long_name": "imaginary part of the complex speed of a pseudo wave (0 otherwise)", "dims": ()},
+    "c_imag": {"long_name": "imaginary part of the complex speed of a pseudo wave (0 for real waves; NaN where "
+               "not computed)", "dims": ()},
     "c_limit": {"long_name": "limiting speed v_L: lowest trace velocity along x1 of the bulk waves", "dims": ()},
     "wave_type": {"long_name": "surface, supersonic_decoupled, pseudo or none", "dims": ()},
     "reason": {"long_name": "why the speed is NaN (empty if it is not)", "dims": ()},
@@ -110,53 +115,84 @@ def _relative_max(A: np.ndarray, comps, scale: np.ndarray) -> np.ndarray:
     return np.abs(A[(slice(None),) + comps]).max(axis=-1) / scale
 
 
-def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, np.ndarray]:
-    """Subsonic root X of det Z(X) in (0, XL) per point (module docstring); NaN where none."""
+def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
+    """Subsonic root X of Z(X)'s lowest eigenvalue lam in (0, XL) per point; NaN where none.
+
+    Returns X (m,), found (m,) bool, and from the last evaluation (within ``tol`` of the root)
+    the unit null vector u (m, d) of Z (the surface displacement) and the decaying p (m, d).
+
+    Safeguarded Newton in t = sqrt(1 - X/XL) from ``T_START`` (d lam / dX from the Sylvester
+    equation of :func:`impedance.impedance`), vectorised over the points not yet converged.
+    The bracket (lo, hi) starts as (T_MIN, 1) and shrinks with the sign of each lam
+    (lam decreases with X, i.e. increases with t); a Newton step that leaves it is replaced
+    by bisection. A point driven to t = T_MIN with lam > 0 there has no subsonic root (within
+    T_MIN^2 of X_L); one converging near X = 0 has lam(X = 0) > 0 verified. Converged when the
+    Newton step changes X by less than ``tol`` relative.
+    """
     m = Q.shape[0]
     X = np.full(m, np.nan)
     found = np.zeros(m, dtype=bool)
+    d = Q.shape[-1]
+    U = np.full((m, d), np.nan + 0j)
+    P = np.full((m, d), np.nan + 0j)
     if m == 0:
-        return X, found
+        return X, found, U, P
+    N0 = imp.stroh_matrix(Q, R, T, np.zeros(m))
 
-    def f(idx, t):
-        return imp.impedance(Q[idx], R[idx], T[idx], XL[idx] * (1.0 - t * t))["f"]
+    def ev(i, t):
+        r = imp.impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), derivative=True, N0=N0[i])
+        return r["lam"], r["dlam"] * (-2.0 * t * XL[i]), r["u"], r["p"]   # d lam / dt
 
-    all_idx = np.arange(m)
-    fa = f(all_idx, np.ones(m))                     # X = 0: Z positive definite if stable
-    fb = f(all_idx, np.full(m, T_MIN))
-    has = np.isfinite(fa) & (fa > 0) & np.isfinite(fb) & (fb <= 0)
-    idx = all_idx[has]
-    a, b = np.ones(idx.size), np.full(idx.size, T_MIN)
-    fa, fb = fa[has], fb[has]
+    idx = np.arange(m)
+    lo, hi = np.full(m, T_MIN), np.ones(m)
+    hi_checked = np.zeros(m, dtype=bool)
+    t = np.full(m, T_START)
     for _ in range(MAX_ITER):
         if idx.size == 0:
             break
+        lam, dlam, u, p = ev(idx, t)
+        bad = ~np.isfinite(lam)
+        lam = np.where(bad, -1.0, lam)                             # supersonic by rounding: root lies above
+        neg = lam <= 0
+        lo, hi = np.where(neg, t, lo), np.where(neg, hi, t)
+        hi_checked |= ~neg
+        none = ~neg & (t <= T_MIN)                                 # lam > 0 even at X_L (1 - T_MIN^2)
         with np.errstate(all="ignore"):
-            c = (a * fb - b * fa) / (fb - fa)
-        lo, hi = np.minimum(a, b), np.maximum(a, b)
-        inside = np.isfinite(c) & (c > lo) & (c < hi)
-        c = np.where(inside, c, 0.5 * (a + b))
-        fc = f(idx, c)
-        fc = np.where(np.isfinite(fc), fc, -np.abs(fb))  # supersonic by rounding: root is above
-        flip = fc * fb < 0
-        mfac = 1.0 - fc / np.where(fb != 0, fb, 1.0)
-        mfac = np.where(mfac > 0, mfac, 0.5)
-        a, fa = np.where(flip, b, a), np.where(flip, fb, fa * mfac)
-        b, fb = c, fc
-        Xa, Xb = XL[idx] * (1 - a * a), XL[idx] * (1 - b * b)
-        done = (np.abs(Xa - Xb) <= tol * np.abs(Xb)) | (fc == 0)
-        X[idx[done]] = Xb[done]
-        found[idx[done]] = True
+            step = lam / dlam
+        new = np.maximum(t - step, T_MIN)
+        inside = np.isfinite(new) & (new >= lo) & (new < hi) & ~bad & (new != t)
+        exact = lam == 0
+        new = np.where(exact, t, np.where(inside, new, 0.5 * (lo + hi)))
+        dX = np.abs(2.0 * t * step) * XL[idx]                      # |dX| of the Newton step, to first order
+        Xn = XL[idx] * (1.0 - new * new)
+        done = (inside & (dX <= tol * Xn)) | exact
+        done |= (hi - lo) * 2.0 * hi * XL[idx] <= tol * Xn         # bracket below tolerance
+        # a root near X = 0 needs lam(X = 0) > 0 verified; points converging there check it
+        need = done & ~hi_checked & (new > 0.99)
+        if need.any():
+            lam1 = ev(idx[need], np.ones(need.sum()))[0]
+            bad1 = np.flatnonzero(need)[~(np.isfinite(lam1) & (lam1 > 0))]
+            new[bad1] = np.nan
+        new = np.where(none, np.nan, new)
+        done |= none
+        X[idx[done]] = XL[idx[done]] * (1.0 - new[done] ** 2)
+        found[idx[done]] = np.isfinite(new[done])
+        U[idx[done]], P[idx[done]] = u[done], p[done]
         keep = ~done
-        idx, a, b, fa, fb = idx[keep], a[keep], b[keep], fa[keep], fb[keep]
-    return X, found
+        idx, lo, hi, t, hi_checked = idx[keep], lo[keep], hi[keep], new[keep], hi_checked[keep]
+    return X, found, U, P
 
 
 def _null_vector(Z: np.ndarray) -> np.ndarray:
     """Unit eigenvector of the Hermitian Z (m, d, d) with the smallest |eigenvalue|; u2 real >= 0."""
     w, v = np.linalg.eigh(Z)
     j = np.argmin(np.abs(w), axis=-1)
-    u = np.take_along_axis(v, j[:, None, None], axis=-1)[..., 0]
+    return _phase(np.take_along_axis(v, j[:, None, None], axis=-1)[..., 0])
+
+
+def _phase(u: np.ndarray) -> np.ndarray:
+    """Unit vectors u (m, d) with the phase convention of :func:`surface_wave`."""
+    u = u / np.linalg.norm(u, axis=-1, keepdims=True)
     # phase convention: u2 real and non-negative; if u2 ~ 0, u1 real and non-negative
     ref = np.where(np.abs(u[:, 1]) > 1e-8, u[:, 1], u[:, 0])
     phase = np.where(np.abs(ref) > 0, np.conj(ref) / np.where(np.abs(ref) > 0, np.abs(ref), 1), 1)
@@ -248,8 +284,10 @@ def surface_wave(A, rho=1.0, *, mirror=None, tol: float = 1e-12) -> dict:
     method = np.full(n, "stroh", dtype=object)
     # 1. full (coupled) subsonic search where no mirror
     gen = stable & ~mir
+    pol = np.full((n, d), np.nan + 0j)
+    decay = np.full((n, d), np.nan + 0j)
     if gen.any():
-        X[gen], found[gen] = _root_search(Q[gen], R[gen], T[gen], XL[gen], tol)
+        X[gen], found[gen], pol[gen], decay[gen] = _root_search(Q[gen], R[gen], T[gen], XL[gen], tol)
     # 2. mirror points: the sagittal 2 x 2 problem (Eq. 17 when orthotropic)
     Q2, R2, T2 = Q[:, :2, :2], R[:, :2, :2], T[:, :2, :2]
     e17 = stable & eq17
@@ -264,25 +302,23 @@ def surface_wave(A, rho=1.0, *, mirror=None, tol: float = 1e-12) -> dict:
     XL2 = np.full(n, np.nan)
     if sag.any():
         XL2[sag], _ = imp.limiting_x(Q2[sag], R2[sag], T2[sag])
-        X[sag], found[sag] = _root_search(Q2[sag], R2[sag], T2[sag], XL2[sag], tol)
+        X[sag], found[sag] = _root_search(Q2[sag], R2[sag], T2[sag], XL2[sag], tol)[:2]
 
     supersonic = found & mir & (X >= XL * (1 - 1e-12))
-    wave_type = np.where(found, np.where(supersonic, "supersonic_decoupled", "surface"), "none").astype(object)
+    pseudo = stable & ~found & ~mir
+    wave_type = np.where(found, np.where(supersonic, "supersonic_decoupled", "surface"),
+                         np.where(pseudo, "pseudo", "none")).astype(object)
     reason = np.full(n, "", dtype=object)
-    reason[~found] = np.where(mir[~found], REASON_NOROOT_MIRROR, REASON_NOROOT)
+    reason[~found] = np.where(mir[~found], REASON_NOROOT_MIRROR, REASON_PSEUDO)
     reason[~stable] = REASON_UNSTABLE
     reason[~Tpd] = REASON_T
 
     # polarisation and decay constants at the root
-    pol = np.full((n, d), np.nan + 0j)
-    decay = np.full((n, d), np.nan + 0j)
     depth = np.full(n, np.nan)
     full = found & ~mir
     if full.any():
-        ev = imp.impedance(Q[full], R[full], T[full], X[full])
-        pol[full] = _null_vector(ev["Z"])
-        decay[full] = ev["p"]
-        depth[full] = 1.0 / (2 * np.pi * ev["p"].imag.min(axis=-1))
+        pol[full] = _phase(pol[full])
+        depth[full] = 1.0 / (2 * np.pi * decay[full].imag.min(axis=-1))
     sagf = found & mir
     if sagf.any():
         ev = imp.impedance(Q2[sagf], R2[sagf], T2[sagf], X[sagf])

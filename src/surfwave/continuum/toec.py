@@ -122,12 +122,14 @@ def lagrangian_strain(F) -> np.ndarray:
 
 def _tangent(C2, C3, eta) -> np.ndarray:
     """d^2 W / d eta^2 = C2 + C3 : eta, shape (..., 3, 3, 3, 3)."""
-    return C2 + np.einsum("...ijklmn,...mn->...ijkl", C3, eta)
+    C3m = C3.reshape(C3.shape[:-6] + (81, 9))
+    contracted = (C3m @ eta.reshape(eta.shape[:-2] + (9, 1)))
+    return C2 + contracted.reshape(contracted.shape[:-2] + (3, 3, 3, 3))
 
 
 def _pk2(C2, C3, eta) -> np.ndarray:
     """T = C2 : eta + 1/2 C3 : eta : eta, shape (..., 3, 3)."""
-    return np.einsum("...ijkl,...kl->...ij", C2 + 0.5 * np.einsum("...ijklmn,...mn->...ijkl", C3, eta), eta)
+    return np.einsum("...ijkl,...kl->...ij", 0.5 * (C2 + _tangent(C2, C3, eta)), eta)
 
 
 def cauchy_stress(F, C2, C3) -> np.ndarray:
@@ -182,22 +184,50 @@ def stressed_constants(C2, C3, F) -> np.ndarray:
     return out / np.linalg.det(F)[..., None, None, None, None]
 
 
+def wallace_tensor(C, sigma) -> np.ndarray:
+    """Wallace's stability tensor of a stressed crystal, Voigt form, symmetrised.
+
+    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2
+    (Wallace; Wang, Yip, Phillpot and Wolf 1993), with C the constants of the stressed state.
+    The stressed crystal is stable against homogeneous deformation where it is positive definite.
+
+    Parameters
+    ----------
+    C : array_like, shape (..., 3, 3, 3, 3)
+    sigma : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+    """
+    e = np.eye(3)
+    sigma = np.asarray(sigma, dtype=float)
+    B = np.asarray(C, dtype=float) + 0.5 * (
+        np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
+        + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
+        - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
+    B6 = tensor_to_voigt(B)
+    return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
+
+
 def _stress_and_jacobian(F, C2, C3):
     """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
-    (..., 6, 3, 3), plus the tangent C2 + C3 : eta."""
+    (..., 6, 3, 3), plus the tangent C2 + C3 : eta (matrix products: einsum chains are slow)."""
     eta = lagrangian_strain(F)
     K = _tangent(C2, C3, eta)
-    T = np.einsum("...ijkl,...kl->...ij", C2 + 0.5 * (K - C2), eta)
+    T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
     J = np.linalg.det(F)
     Finv = np.linalg.inv(F)
-    sigma = np.einsum("...ip,...pq,...jq->...ij", F, T, F) / J[..., None, None]
+    Ft = np.swapaxes(F, -1, -2)
+    sigma = F @ T @ Ft / J[..., None, None]
+    F1, Ft1, T1 = F[..., None, :, :], Ft[..., None, :, :], T[..., None, :, :]
     dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
-    FtdF = np.einsum("...ki,...bkj->...bij", F, dF)
+    FtdF = Ft1 @ dF
     deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
-    dT = np.einsum("...ijkl,...bkl->...bij", K, deta)
-    term = (np.einsum("...bip,...pq,...jq->...bij", dF, T, F)
-            + np.einsum("...ip,...bpq,...jq->...bij", F, dT, F)
-            + np.einsum("...ip,...pq,...bjq->...bij", F, T, dF))
+    K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
+    dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
+    dFTFt = dF @ T1 @ Ft1
+    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
     trace = np.einsum("...ij,...bji->...b", Finv, dF)
     dsigma = term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
     return sigma, dsigma, K
@@ -273,14 +303,19 @@ def deformation_for_stress(sigma, C2, C3, *, tol: float = DEFAULT_TOL, max_itera
             except np.linalg.LinAlgError:
                 du = -np.einsum("mab,mb->ma", np.linalg.pinv(jac), r[active])
             step = np.einsum("ma,aij->mij", du, _BASIS)
-            best_F, best_res = F[active], residual[active]
+            # Full Newton step where it lowers the residual; step halving only for the others.
+            F_a, res_a, tgt = F[active], residual[active], target[active]
+            todo = np.ones(len(F_a), dtype=bool)
             for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
-                trial = F[active] + alpha * step
-                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - target[active]), axis=-1)
-                better = np.isfinite(rt) & (rt < best_res) & (best_res == residual[active])
-                best_F = np.where(better[:, None, None], trial, best_F)
-                best_res = np.where(better, rt, best_res)
-            F[active] = best_F
+                trial = F_a[todo] + alpha * step[todo]
+                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - tgt[todo]), axis=-1)
+                better = np.isfinite(rt) & (rt < res_a[todo])
+                idx = np.flatnonzero(todo)[better]
+                F_a[idx] = trial[better]
+                todo[idx] = False
+                if not todo.any():
+                    break
+            F[active] = F_a
         eta = lagrangian_strain(F)
         J = np.linalg.det(F)
         K_min = np.linalg.eigvalsh(tensor_to_voigt(_tangent(C2, C3, eta)))[..., 0]
@@ -326,8 +361,9 @@ def stressed_state(C2, C3, sigma, rho0, *, tol: float = DEFAULT_TOL) -> dict:
     dict
         ``F`` (..., 3, 3), ``C_star`` (..., 3, 3, 3, 3) GPa, ``rho`` (...,) kg/m^3, ``sigma``
         (..., 3, 3) GPa, ``ok`` (...,) bool, ``reason`` (...,) str. Where the deformation solve
-        fails or C* is not Born-stable (Voigt matrix not positive definite), ``ok`` is False,
-        the reason is given and F, C_star, rho are NaN.
+        fails or the stressed crystal is not Born-stable (Wallace's B = C* + stress terms,
+        :func:`wallace_tensor`, not positive definite), ``ok`` is False, the reason is given
+        and F, C_star, rho are NaN.
     """
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
@@ -351,11 +387,11 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
         C_star = stressed_constants(C2, C3, F)
         rho = float(rho0) / np.linalg.det(F)
-    born = np.linalg.eigvalsh(np.nan_to_num(tensor_to_voigt(C_star)))[..., 0]
+    born = np.linalg.eigvalsh(wallace_tensor(np.nan_to_num(C_star), sigma))[..., 0]
     lost = ok & ~(born > 0)
     if np.any(lost):
-        why = np.vectorize(lambda b: f"stressed constants C* not Born-stable (lowest Voigt eigenvalue {b:.3g} GPa)",
-                           otypes=[object])(born)
+        why = np.vectorize(lambda b: "stressed crystal not Born-stable (lowest eigenvalue of Wallace's "
+                           f"B = C* + stress terms: {b:.3g} GPa)", otypes=[object])(born)
         reason = np.where(lost, why, reason)
         ok = ok & ~lost
     F = np.where(ok[..., None, None], F, np.nan)

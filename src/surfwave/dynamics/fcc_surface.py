@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import sparse
+from scipy.linalg import eigh
 from scipy.sparse.linalg import eigsh
 
 import dataclasses
@@ -57,6 +58,8 @@ from surfwave.continuum.potentials import PairPotential, get_potential
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
 #: "the sagittal motion decouples".
 DECOUPLING_TOL = 1e-13
+#: Largest slab (unknowns) solved with the dense eigensolver.
+DENSE_MAX = 800
 
 
 def bond_force_constants(crystal: Crystal, potential: str | PairPotential) -> np.ndarray:
@@ -167,6 +170,8 @@ def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2, shift: float = 0.0)
 
     Shift-invert Lanczos about omega^2 = ``shift`` (sparse LU of the banded matrix, O(N)
     work); a shift just below the wanted eigenvalue makes Lanczos converge in a few steps.
+    Slabs of at most ``DENSE_MAX`` unknowns use the dense Hermitian solver instead (the
+    lowest n_modes; Lanczos needs many restarts there, as the low spectrum is dense).
 
     Returns
     -------
@@ -178,6 +183,9 @@ def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2, shift: float = 0.0)
     """
     d = a0.shape[-1]
     h = slab_matrix(a0, a0s, a1, n_layers)
+    if d * n_layers <= DENSE_MAX:
+        w, v = eigh(h.toarray(), subset_by_index=[0, n_modes - 1])
+        return w, v.T.reshape(n_modes, n_layers, d)
     v0 = np.ones(d * n_layers, dtype=complex)  # deterministic start
     w, v = eigsh(h, k=n_modes, sigma=shift, which="LM", v0=v0, tol=0.0, ncv=min(20, h.shape[0] - 1))
     order = np.argsort(w)
@@ -283,7 +291,8 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
     else:
         a0, a0s, a1 = a0[0], a0s[0], a1[0]
     # e^{-kappa k y}: the deeper half starts ~14 e-folds down if kappa >= 1/2 (else grown)
-    n_layers = int(np.ceil(60.0 / (k * h[0])))
+    # (off the mirrors the wave reaches deeper, as the coupled SH motion decays slowly: 1.6 x)
+    n_layers = int(np.ceil((60.0 if mirror else 96.0) / (k * h[0])))
     while n_layers <= max_layers:
         # off the mirrors the surface wave is the lowest mode: one Lanczos eigenpair suffices
         w, v = slab_modes(a0, a0s, a1, n_layers, n_modes=2 if mirror else 1, shift=shift)

@@ -8,7 +8,7 @@ Examples
 --------
 >>> files = module_closure("continuum.rayleigh")
 >>> sorted(f.rsplit("surfwave/", 1)[1] for f in files)
-['__init__.py', 'continuum/__init__.py', 'continuum/rayleigh.py']
+['__init__.py', 'continuum/__init__.py', 'continuum/rayleigh.py', 'errors.py']
 """
 from __future__ import annotations
 

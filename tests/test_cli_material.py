@@ -1,0 +1,62 @@
+"""`surfwave material`: any surface, direction or angle sweep, Voigt input, stress tensor.
+
+References: the library call with the same arguments (surfwave.material), which
+tests/test_stroh.py checks against closed forms and Eq. (17).
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import surfwave
+from surfwave.cli import main
+
+CU = ["--C11", "168.4", "--C12", "121.4", "--C44", "75.4", "--rho", "8960"]   # PHYSICS.md copper
+
+
+def test_surface_and_direction_json_equals_library(capsys):
+    assert main(["material", *CU, "--surface", "(111)", "--direction", "[1-10]", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = surfwave.material(168.4, 121.4, 75.4, 8960.0, "[1-10]", surface="(111)")
+    assert out["c_R"] == pytest.approx(ref["c_R"], rel=1e-15)
+    assert out["c_limit"] == pytest.approx(ref["c_limit"], rel=1e-15)
+    assert out["wave_type"] == ref["wave_type"]
+    pol = np.array(out["polarisation"]["re"]) + 1j * np.array(out["polarisation"]["im"])
+    np.testing.assert_allclose(pol, ref["polarisation"], atol=1e-15)
+
+
+def test_angle_sweep_prints_a_table(capsys):
+    assert main(["material", *CU, "--surface", "(110)", "--angle", "0:90:15"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    rows = [ln.split() for ln in lines[2:]]
+    assert [float(r[0]) for r in rows] == [0, 15, 30, 45, 60, 75, 90]
+    ref = surfwave.material(168.4, 121.4, 75.4, 8960.0, angle=np.arange(0, 91, 15.0), surface="(110)")
+    np.testing.assert_allclose([float(r[1]) for r in rows], ref["c_R"], atol=0.006)
+
+
+def test_voigt_and_stress_tensor(capsys):
+    C6 = np.zeros((6, 6))
+    C6[:3, :3] = 121.4
+    C6[np.arange(3), np.arange(3)] = 168.4
+    C6[np.arange(3, 6), np.arange(3, 6)] = 75.4
+    stress = ["-1", "0", "0", "0", "0", "0", "0", "0", "0"]
+    assert main(["material", "--voigt", *map(str, C6.ravel()), "--rho", "8960", "--angle", "20",
+                 "--stress", *stress, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = surfwave.material(168.4, 121.4, 75.4, 8960.0, angle=20.0, stress=np.diag([-1.0, 0, 0]))
+    assert out["c_R"] == pytest.approx(ref["c_R"], rel=1e-14)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--C11", "168.4e9", "--C12", "121.4", "--C44", "75.4", "--rho", "8960"], "looks like Pa"),
+    ([*CU, "--direction", "[111]"], "does not lie in the surface"),
+    ([*CU, "--stress", "0", "0", "0", "0", "0", "0", "0", "0", "1"], "traction"),
+    ([*CU, "--angle", "0:90"], "START:STOP:STEP"),
+    (["--C11", "168.4", "--rho", "8960"], "--C12"),
+])
+def test_errors_are_one_line(capsys, args, message):
+    assert main(["material", *args]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
