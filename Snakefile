@@ -16,7 +16,8 @@ sys.path.insert(0, str(Path(workflow.basedir, "src")))
 
 from surfwave.data import cache
 from surfwave.data.integrity import set_aside_damaged
-from surfwave.pipeline.scenes import SceneError, validate_config
+from surfwave.pipeline.knobs import expected_cost
+from surfwave.pipeline.scenes import SceneError, selected, validate_config
 
 min_version("9.13.1")
 
@@ -33,6 +34,10 @@ os.environ.update(
 configfile: "config/config.yaml"
 
 
+# Front page of `snakemake --report report.html`: what the workflow is.
+report: "workflow/report/workflow.rst"
+
+
 # Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
 try:
     SCENES = validate_config(
@@ -41,6 +46,10 @@ try:
 except SceneError as exc:
     raise WorkflowError(str(exc)) from None
 
+
+# Stages expected to run long (costly accuracy settings) are announced before any job.
+for _line in expected_cost(SCENES, selected(config, SCENES)):
+    print(_line, file=sys.stderr)
 
 # A damaged cube (truncated, not netCDF) is set aside as <file>.damaged and rebuilt,
 # instead of failing every figure and report job that reads it.
@@ -54,6 +63,18 @@ wildcard_constraints:
 
 onstart:
     cache.start_run(cache.DEFAULT_ROOT)  # `surfwave cache info` counts hits from here
+
+
+# Each job writes its progress and its summary line to its own log; the run ends with the
+# summary lines of every cached stage ("bulk, scene x: 22 points, 14 from the cache, ...").
+onsuccess:
+    for _line in cache.run_summary(cache.DEFAULT_ROOT):
+        print(_line, file=sys.stderr)
+
+
+onerror:
+    for _line in cache.run_summary(cache.DEFAULT_ROOT):
+        print(_line, file=sys.stderr)
 
 
 include: "workflow/rules/common.smk"

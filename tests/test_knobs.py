@@ -104,7 +104,42 @@ def test_inject_refuses_mismatched_knob_lists():
         knobs.inject(raw)
 
 
-def test_estimated_cost_scales_with_supercell():
-    """Cost model: N^6 for phonopy's supercell (atoms^2), mesh^3 for the zone scan."""
-    t = knobs.estimated_cost("bulk", {"supercell": 4, "zone_mesh": 16}, 0.01)
-    assert np.isclose(t, 0.01 * 2**6 * 2**3)
+def test_costly_settings_announced_before_any_job():
+    """supercell 8, zone_mesh 200 ran for minutes per point with no sign of life: the
+    expected time is stated up front (cost model measured on supercell 2..4, mesh 8..64);
+    the defaults stay silent."""
+    cfg = {"scenes": {"big": {"lattice": "fcc", "loading": "in_plane_hydrostatic", "potentials": ["lj"],
+                              "d_over_d0": [0.99, 1.0], "quantities": ["elastic", "bulk"],
+                              "accuracy": {"bulk": {"supercell": 8, "zone_mesh": 200}}}}}
+    sc = validate_config(cfg)
+    (line,) = knobs.expected_cost(sc, ["big"])
+    assert "bulk, scene big: 4 points" in line and "supercell 8" in line
+    per_point = knobs.estimated_cost("bulk", {"supercell": 8, "zone_mesh": 200}, 0.0)
+    assert 10 < per_point < 300  # minutes for the scene, not milliseconds and not days
+    cfg["scenes"]["big"]["accuracy"] = {}
+    assert knobs.expected_cost(validate_config(cfg), ["big"]) == []
+
+
+def test_implausible_phonopy_speeds_become_nan_with_reason():
+    """c2 ~ 1e194 (what displacement 10 d0 gave) against the analytic long-wave speed: NaN,
+    stable_phonon False, a reason; a point within 1e-6 of the analytic value is kept.
+    Reference: the analytic cube values themselves (Eq. A11 route)."""
+    import xarray as xr
+
+    from surfwave.continuum.sanity import check_bulk
+
+    dims = ("potential", "direction", "strain")
+    coords = {"potential": ["lj"], "direction": ["[100]"], "strain": [0.0, 0.01]}
+    ana = xr.Dataset({n: (dims, np.full((1, 1, 2), v)) for n, v in
+                      {"c2_L_par": 1.0, "c2_T_par": 0.5, "c2_L_perp": 1.0, "c2_T_perp": 0.5, "c2_SH": 0.5}.items()},
+                     coords=coords)
+    bulk = xr.Dataset({f"{n}_phonopy": ana[n] * (1 + 1e-6) for n in ana}, coords=coords)
+    bulk["c2_L_par_phonopy"][0, 0, 1] = 1e194
+    bulk["stable_phonon"] = (dims, np.ones((1, 1, 2), bool))
+    bulk["reason"] = (dims, np.full((1, 1, 2), ""))
+    out, n = check_bulk(bulk, ana)
+    assert n == 1
+    assert np.isnan(out["c2_T_par_phonopy"][0, 0, 1]) and not bool(out["stable_phonon"][0, 0, 1])
+    assert "implausible" in str(out["reason"][0, 0, 1].values)
+    assert bool(out["stable_phonon"][0, 0, 0]) and str(out["reason"][0, 0, 0].values) == ""
+    assert float(out["c2_T_par_phonopy"][0, 0, 0]) == pytest.approx(0.5, rel=1e-5)

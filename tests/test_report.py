@@ -205,26 +205,6 @@ def test_claims_run_on_fcc_cubes(tmp_path):
     assert len(ub) == 4 and {c.verdict for c in ub} == {PASS}  # 0.3+3x <= 0.5+4x on the grid
 
 
-def test_benchmark_table(tmp_path):
-    good = xr.Dataset({"error": ("n", [1e-2, 1e-4], {"units": "1"}), "time": ("n", [0.1, 1.0])},
-                      coords={"n": [8, 32]},
-                      attrs={"method": "slab", "knob": "n", "default": 32, "default_reason": "1e-4"})
-    (tmp_path / "a").mkdir()
-    good.to_netcdf(tmp_path / "a" / "slab.nc", engine="h5netcdf")
-    (tmp_path / "b").mkdir()
-    xr.Dataset({"max_dev": ("k", [1e-3, 1e-5]), "time_k": ("k", [1.0, 2.0])}, coords={"k": [1, 2]},
-               attrs={"title": "odd", "default_k": 2}).to_netcdf(tmp_path / "b" / "odd.nc",
-                                                                   engine="h5netcdf")
-    text = report.benchmark_table([tmp_path / "a", tmp_path / "b", tmp_path / "c"],
-                                  tmp_path / "t.md")
-    lines = text.splitlines()
-    assert lines[2].startswith("| slab | n in [8, 32] | 1.000e-04 1 (range 1.000e-04 .. 0.01) | 1 s")
-    assert "n = 32: 1e-4" in lines[2]
-    assert lines[3] == ("| odd | k in [1, 2] | max_dev: 1.000e-05 .. 0.001 | time_k: 1 .. 2 s "
-                        "| default_k: 2 |")
-    assert "| c | | | | not computed |" in lines[4]
-
-
 def test_rapid_110_compares_both_directions_at_one_strain():
     """[110] ends (NaN) early at a small drop, [100] runs on to a large one: comparing each
     at its own last point would say [100] falls faster; at a common strain [110] does."""

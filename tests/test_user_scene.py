@@ -42,10 +42,17 @@ def test_user_scene_does_not_schedule_the_paper_report(built, tmp_path):
     (A dry run: the real run was checked by hand, see the report of issue 12.)"""
     wd = own_copy(built, tmp_path / "wf")
     (wd / "my.yaml").write_text(MINE)
+    # In the same run: a truncated cube (which made every figure and report job fail with
+    # an h5py traceback) is named in one line and set aside, so Snakemake rebuilds it.
+    damaged = wd / "results" / "tiny_fcc" / "rayleigh.nc"
+    damaged.write_bytes(damaged.read_bytes()[:4000])
     dry = smk(wd, "-n", "--configfile", "config/config.yaml", "my.yaml")
     text = dry.stdout + dry.stderr
     assert "rule report_md:" not in text
     assert ("scene_summary", "mine") in scheduled(dry)
+    line = next(ln for ln in text.splitlines() if "is damaged" in ln)
+    assert "results/tiny_fcc/rayleigh.nc" in line and "truncated" in line and "rebuilds it" in line
+    assert not damaged.exists() and damaged.with_name("rayleigh.nc.damaged").exists()
 
 
 def test_scene_summary_counts(tmp_path):

@@ -325,7 +325,10 @@ def _cmd_scenes(args) -> int:
         rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
                      "lattice": sc["lattice"], "loading": sc["loading"], "potentials": sc["potentials"],
                      "directions": sc["directions"], "d_over_d0": [min(d), max(d), len(d)],
-                     "n_theta": len(sc["theta"]), "quantities": sc["quantities"]})
+                     "n_theta": len(sc["theta"]), "quantities": sc["quantities"],
+                     # the knobs the scene's jobs use (crystal.nc, always built, uses symmetry)
+                     "accuracy": {k: v for k, v in sc["accuracy"].items()
+                                  if k == "symmetry" or k in sc["quantities"]}})
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0

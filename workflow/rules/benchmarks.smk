@@ -70,7 +70,7 @@ rule benchmark_table:
     """Markdown table (method, knob, error, time, default and why) for the README."""
     input:
         dirs=BENCH_DIRS,
-        code=code("report.reproduction"),
+        code=code("report.benchmarks"),
     output:
         report(
             "results/benchmarks/README_table.md",

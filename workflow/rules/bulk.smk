@@ -3,7 +3,7 @@ rule bulk:
     input:
         crystal="results/{scene}/crystal.nc",
         elastic="results/{scene}/elastic.nc",
-        code=code("continuum.phonons", "data.cache", "data.cube"),
+        code=code("continuum.phonons", "continuum.sanity", "data.cache", "data.cube"),
     output:
         "results/{scene}/bulk.nc",
     log:

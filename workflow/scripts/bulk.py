@@ -6,7 +6,7 @@ By hand (from the repository root): python workflow/scripts/bulk.py SCENE [CONFI
 import sys
 
 from surfwave.data import cache, cube
-from surfwave.continuum import phonons
+from surfwave.continuum import phonons, sanity
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -24,11 +24,15 @@ for pot in job["potentials"]:
         r = cache.cached_points(
             "bulk", key, job["d_over_d0"],
             lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),
-            snakemake.params.cache, chunk=cache.CHUNK)
+            snakemake.params.cache, chunk=cache.CHUNK,
+            label=f"bulk, scene {job['scene']}")
         blocks[(pot, direction)] = cube.documented(r, phonons.VARIABLES, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"], "direction": job["directions"]},
                 job["d_over_d0"], phonons.VARIABLES)
 analytic = cube.open_cube(snakemake.input.elastic)
+ds, n_implausible = sanity.check_bulk(ds, analytic)
+if n_implausible:
+    print(f"{n_implausible} points with implausible phonopy speeds set to NaN (see `reason`)", file=sys.stderr)
 for name in ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH"):
     dev = ds[f"{name}_phonopy"] - analytic[name].sel(potential=ds.potential, direction=ds.direction)
     ds[f"{name}_deviation"] = dev.assign_attrs(

@@ -31,7 +31,8 @@ for pot in job["potentials"]:
     r.update(cache.cached_points(
         "surface_mode", key, job["d_over_d0"],
         lambda d: lattice_dynamics.surface_mode(pot, d, theta, tol=tol), snakemake.params.cache,
-        chunk=cache.CHUNK))
+        chunk=cache.CHUNK,
+        label=f"surface_mode, scene {job['scene']}"))
     r["omega_lattice_deviation"] = r["omega_lattice"] - r["omega"]
     blocks[(pot,)] = cube.documented(r, meta, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"]}, job["d_over_d0"], meta,

@@ -21,7 +21,8 @@ for pot in job["potentials"]:
     key = cache.job_key(job, "dynamics.entropy", "entropy.surface_entropy", potential=pot, tol=tol)
     r = cache.cached_points("entropy", key, job["d_over_d0"],
                             lambda d: entropy.surface_entropy(pot, d, tol=tol), snakemake.params.cache,
-                            chunk=cache.CHUNK)
+                            chunk=cache.CHUNK,
+                            label=f"entropy, scene {job['scene']}")
     blocks[(pot,)] = cube.documented(r, entropy.VARIABLES, sys.stderr)
 ds = cube.build(blocks, {"potential": job["potentials"]}, job["d_over_d0"], entropy.VARIABLES)
 cube.finish(ds, snakemake, what="entropy", crystal=snakemake.input.crystal,

@@ -7,7 +7,6 @@ from surfwave.plots.dispersion import plot_displacements
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821 (defined by Snakemake)
 pot = snakemake.wildcards.potential  # noqa: F821
-ds = open_cube(snakemake.input.cube).sel(potential=pot)  # noqa: F821
+ds = open_cube(snakemake.input.cube)  # noqa: F821
 ds = ds.isel(theta=nearest_indices(ds["theta"].values, FIG3_THETA), row=slice(0, FIG3_ROWS))
-plot_displacements(ds, snakemake.output[0],  # noqa: F821
-                   title=f"Fig. 3: triangular lattice, {pot}, zero stress")
+plot_displacements(ds, snakemake.output[0], potential=pot)  # noqa: F821

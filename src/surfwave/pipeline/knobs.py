@@ -33,7 +33,9 @@ class Knob:
     minimum: float | None = None
     maximum: float | None = None
     why: str = ""
-    #: seconds per point at the default, times (value / default) ** cost_power
+    #: this knob's share of the seconds per point at the default (2-core machine) ...
+    cost_seconds: float = 0.0
+    #: ... scaled by (value / default) ** cost_power
     cost_power: float = 0.0
 
 
@@ -49,21 +51,23 @@ def _table() -> dict[str, dict[str, Knob]]:
         "bulk": {
             "supercell": Knob(phonons.DEFAULT_SUPERCELL, 2, 8,
                               "N of the N x N x N supercell: 2 is the smallest in which "
-                              "nearest-neighbour images are unambiguous; cost grows as N^6",
-                              cost_power=6.0),
+                              "nearest-neighbour images are unambiguous; cost grows as N^4",
+                              cost_seconds=0.015, cost_power=4.0),
             "displacement": Knob(phonons.DEFAULT_DISPLACEMENT, 1.0e-6, 1.0e-2,
                                  "finite-displacement amplitude in d0: the error grows as "
                                  "amplitude^2 (1e-4 relative at 1e-2) and roundoff as "
                                  "1e-16/amplitude (1e-10 at 1e-6)"),
             "zone_mesh": Knob(phonons.DEFAULT_ZONE_MESH, 2, 200,
                               "q points per axis of the full-zone stability scan; cost "
-                              "grows as mesh^3", cost_power=3.0),
+                              "grows as mesh^3", cost_seconds=0.0022, cost_power=3.0),
             "long_wave": Knob(phonons.DEFAULT_LONG_WAVE),
         },
         "dispersion": {
-            "tol": Knob(_keyword_default(triangular_surface.surface_mode, "tol"), 1.0e-13, 1.0e-2,
-                        "relative decimation tolerance: rounding limits the surface-mode "
-                        "error estimate to about 3e-14, so a tolerance below 1e-13 cannot be met"),
+            "tol": Knob(_keyword_default(triangular_surface.surface_mode, "tol"), 1.0e-14, 1.0e-2,
+                        "coupling left to the rows beyond the decimation depth, relative to the "
+                        "row coupling: the error of omega_lattice against Eq. (15) stops "
+                        "improving (about 5e-9) below tol = 1e-8 (benchmarks/bench_dispersion.py); "
+                        "below 1e-14 only the time grows"),
         },
         "displacements": {
             "n_rows": Knob(None, 1, 10_000, "rows below the surface"),
@@ -117,10 +121,56 @@ def inject(schema: dict) -> dict:
 
 
 def estimated_cost(block: str, settings: dict, seconds_at_default: float) -> float:
-    """Rough seconds per point for ``settings``: the default's cost scaled by each knob's power law."""
-    factor = 1.0
+    """Rough seconds per point for ``settings``.
+
+    Knobs with a cost model (:attr:`Knob.cost_seconds`, :attr:`Knob.cost_power`) add their
+    own terms, cost_seconds * (value / default) ** cost_power (phonopy: force constants
+    ~ N^4 in the supercell size, zone scan ~ mesh^3; measured on the 2-core machine,
+    supercell 2..4 and zone_mesh 8..64); a method without such knobs costs
+    ``seconds_at_default``.
+    """
+    terms = []
     for name, knob in knobs().get(block, {}).items():
-        value = settings.get(name, knob.default)
-        if knob.cost_power and isinstance(value, (int, float)) and knob.default:
-            factor *= (float(value) / float(knob.default)) ** knob.cost_power
-    return seconds_at_default * factor
+        if knob.cost_power:
+            value = settings.get(name, knob.default)
+            terms.append(knob.cost_seconds * (float(value) / float(knob.default)) ** knob.cost_power)
+    return sum(terms) if terms else seconds_at_default
+
+
+#: Seconds per point at the default accuracy, measured on the 2-core development machine
+#: (README, "Speed and accuracy"; upper ends of the measured ranges): phonopy bulk speeds
+#: and zone scan per strain point; the surface-mode solve per strain and theta; the
+#: entropy quadratures per strain.
+SECONDS_PER_POINT = {"bulk": 0.017, "dispersion": 0.7 / (8 * 40), "entropy": 0.008}
+#: Jobs expected to run longer than this get a line before the run starts.
+ANNOUNCE_SECONDS = 10.0
+
+
+def expected_cost(scenes: dict, names, announce: float = ANNOUNCE_SECONDS) -> list[str]:
+    """Lines stating the expected time of each costly stage of the named scenes (before any job).
+
+    Parameters
+    ----------
+    scenes : dict
+        Expanded scenes (:func:`surfwave.pipeline.scenes.validate_config`).
+    names : iterable of str
+        Scenes the run builds.
+    announce : float
+        Only stages expected to take longer than this many seconds are listed.
+    """
+    lines = []
+    for name in names:
+        sc = scenes[name]
+        n_pot, n_d = len(sc["potentials"]), len(sc["d_over_d0"])
+        for stage in ("bulk", "dispersion", "entropy"):
+            if stage not in sc["quantities"]:
+                continue
+            points = n_pot * n_d * (len(sc["directions"]) if stage == "bulk" else 1)
+            per = SECONDS_PER_POINT[stage] * (len(sc["theta"]) if stage == "dispersion" else 1)
+            seconds = points * estimated_cost(stage, sc["accuracy"].get(stage, {}), per)
+            if seconds > announce:
+                settings = ", ".join(f"{k} {v}" for k, v in sc["accuracy"].get(stage, {}).items())
+                lines.append(f"surfwave: {stage}, scene {name}: {points} points at {settings or 'defaults'}, "
+                             f"expected about {seconds:.0f} s ({seconds / 60:.1f} min) before the "
+                             "cache; progress in results/" + f"{name}/logs/")
+    return lines

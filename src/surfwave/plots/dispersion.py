@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from surfwave.errors import InputError  # noqa: E402
+from surfwave.plots.labels import D_OVER_D0, OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
 
 
 def _get(data, name: str):
@@ -92,29 +93,50 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
         if lattice is not None:
             every = max(1, th.size // 25)
             ax.plot(x[::every], lattice[i, ::every], "k.", ms=4, label="lattice dynamics")
-        ax.set_title(f"d/d0 = {d[i]:.3g}", fontsize=9)
-        ax.set_xlabel(r"$\theta / \pi = k d_x / \pi$")
+        ax.set_title(rf"$d/d_0 = {d[i]:.3g}$", fontsize=9)
+        ax.set_xlabel(THETA_OVER_PI)
         ax.set_xlim(0, 1)
-    axes[0, 0].set_ylabel(r"$\omega$ / (K/m)$^{1/2}$")
+    axes[0, 0].set_ylabel(OMEGA)
     axes[0, 0].legend(fontsize=7, loc="upper left")
     if title:
         fig.suptitle(title, fontsize=10)
     return _save(fig, path)
 
 
+def _identical_potentials(data, potential, i) -> list[str]:
+    """Other potentials of ``data`` whose u, v at strain index ``i`` equal ``potential``'s."""
+    if isinstance(data, dict) or "potential" not in getattr(data, "dims", ()):
+        return []
+    ref = data.sel(potential=potential)
+    same = []
+    for other in data["potential"].values:
+        if str(other) == str(potential):
+            continue
+        o = data.sel(potential=other)
+        if all(np.allclose(np.asarray(o[n].values)[i], np.asarray(ref[n].values)[i], rtol=0, atol=1e-9)
+               for n in ("u", "v")):
+            same.append(str(other))
+    return same
+
+
 def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: int | None = None,
-                       n_columns: int = 8, scale: float = 0.35, title: str = "") -> Path:
+                       n_columns: int = 6, scale: float = 0.35, title: str = "",
+                       potential: str | None = None) -> Path:
     """Fig. 3 of the paper: displacement patterns of the surface wave, one panel per theta.
 
-    Atoms of rows I = 0 (surface, top) downwards sit at x = (I + 2J) d_x, y = I d_y (crosses);
-    each atom's trajectory Re[(u_I, v_I) exp(i theta (I + 2J) - i omega t)] over one period is
-    drawn as an ellipse (scaled by ``scale``; y into the crystal drawn downwards), the dot marks
-    t = 0.
+    Atoms of rows I = 0 (surface, top) downwards sit at x = (I + 2J) d_x, y = I d_y (grey
+    crosses); each atom's trajectory Re[(u_I, v_I) exp(i theta (I + 2J) - i omega t)] over one
+    period is drawn as an ellipse, magnified so that the largest amplitude (1 by the
+    normalisation of :func:`surfwave.dynamics.dispersion.displacements`) is ``scale`` d0 long
+    (scale bar in the first panel); y into the crystal is drawn downwards; the dot marks
+    t = 0. Rows are labelled on the left axis, x along the surface in units of d0 below.
 
     Parameters
     ----------
     data : dict or xarray.Dataset
-        ``u``, ``v`` of shape (strain, theta, row) (from :func:`surfwave.dynamics.dispersion.displacements`).
+        ``u``, ``v`` of shape (strain, theta, row) (from
+        :func:`surfwave.dynamics.dispersion.displacements`), or a Dataset with a
+        ``potential`` dimension together with ``potential``.
     path : str or Path
     d_over_d0, theta : array_like, optional with a Dataset.
     strain_index : int, optional
@@ -123,17 +145,30 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
         Atoms per row drawn.
     scale : float
         Drawn length (units of d0) of a unit displacement.
+    title : str, optional
+        Default: "Fig. 3: ... <potential>, d/d0 = ...".
+    potential : str, optional
+        With a Dataset over potentials: the one to draw. The figure then says which other
+        potentials give the identical pattern (at zero stress only K = phi''(d0) enters).
     """
+    full = data
+    if potential is not None and not isinstance(data, dict) and "potential" in data.dims:
+        data = data.sel(potential=potential)
+    elif potential is None and not isinstance(data, dict) and "potential" in data.coords \
+            and data["potential"].ndim == 0:
+        potential = str(data["potential"].values)
     d, th = _coords(data, d_over_d0, theta)
     u, v = _get(data, "u"), _get(data, "v")
     i = int(np.argmin(np.abs(d - 1.0))) if strain_index is None else strain_index
     dx, dy = 0.5 * d[i], np.sqrt(1 - (0.5 * d[i]) ** 2)
     rows = np.arange(u.shape[-1])
     width = 2 * dx * n_columns
-    panel_h = 2.8 * (rows[-1] * dy + 1.4) / (width + 0.5)
-    fig, axes = plt.subplots(1, th.size, figsize=(2.8 * th.size, panel_h + 0.8), squeeze=False)
+    height = (rows[-1] + 1.2) * dy
+    panel_w = 2.3
+    fig, axes = plt.subplots(1, th.size, figsize=(panel_w * th.size + 0.6, panel_w * height / (width + 0.6) + 1.5),
+                             sharey=True, squeeze=False, layout="constrained")
     t = np.linspace(0, 2 * np.pi, 41)
-    for ax, k in zip(axes[0], range(th.size)):
+    for n, (ax, k) in enumerate(zip(axes[0], range(th.size))):
         # atoms with 0 <= x < width in every row (J shifted so that the panel is rectangular)
         I = np.repeat(rows, n_columns + 1)
         JJ = np.tile(np.arange(n_columns + 1), rows.size) - (I + 1) // 2
@@ -145,15 +180,35 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
         # trajectory over one period (ellipse) and the position at t = 0 (dot)
         tx = x[:, None] + scale * (cu[:, None] * np.exp(-1j * t)).real
         ty = -y[:, None] - scale * (cv[:, None] * np.exp(-1j * t)).real
-        ax.plot(x, -y, "+", color="0.6", ms=3)
-        ax.plot(tx.T, ty.T, "-", color="C0", lw=0.8)
-        ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2)
-        ax.set_title(rf"$\theta = {th[k] / np.pi:.3g}\,\pi$", fontsize=9)
+        ax.plot(x, -y, "+", color="0.55", ms=4, mew=0.8, label="equilibrium site")
+        lines = ax.plot(tx.T, ty.T, "-", color="C0", lw=0.8)
+        lines[0].set_label(f"trajectory over one period (amplitude 1 drawn as {scale:g} $d_0$)")
+        ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2.5, label="position at $t = 0$")
+        ax.set_title(rf"$\theta = k d_x = {th[k] / np.pi:.3g}\,\pi$", fontsize=10)
         ax.set_aspect("equal")
         ax.set_xlim(-0.5, width)
-        ax.set_ylim(-(rows[-1] + 0.7) * dy, 0.7)
-        ax.axis("off")
-    fig.suptitle(title or f"surface-wave displacements, d/d0 = {d[i]:.3g} (row 0 = surface, top)", fontsize=10)
+        ax.set_ylim(-(rows[-1] + 0.8) * dy, 1.25)
+        ax.set_xlabel(r"$x / d_0$ along the surface")
+        ax.tick_params(labelsize=8)
+        if n == 0:  # displacement scale bar: the largest amplitude (1) as drawn
+            x0, y0 = 0.0, 0.85
+            ax.plot([x0, x0 + scale], [y0, y0], "k-", lw=2)
+            ax.text(x0 + scale + 0.15, y0, "scale: amplitude 1", ha="left", va="center", fontsize=7)
+    step = max(1, rows.size // 8)
+    axes[0, 0].set_yticks(-rows[::step] * dy)
+    axes[0, 0].set_yticklabels(["0 (surface)"] + [str(r) for r in rows[::step][1:]])
+    axes[0, 0].set_ylabel("row below the surface")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=3, frameon=False, fontsize=8)
+    who = potential_label(potential) if potential is not None else ""
+    stress = "zero stress" if abs(d[i] - 1.0) < 1e-12 else f"$d/d_0 = {d[i]:.3g}$"
+    head = title or f"Fig. 3: surface-wave displacements, triangular lattice, {who + ', ' if who else ''}{stress}"
+    same = _identical_potentials(full, potential, i) if potential is not None else []
+    if same:
+        head += ("\nidentical for " + ", ".join(potential_label(p) for p in same)
+                 + r": at zero stress only $K = \phi''(d_0)$ enters, the same for every potential"
+                 if abs(d[i] - 1.0) < 1e-12 else "\nidentical for " + ", ".join(map(potential_label, same)))
+    fig.suptitle(head, fontsize=10)
     return _save(fig, path)
 
 
@@ -174,9 +229,9 @@ def plot_theta_c(data, path, *, d_over_d0=None, title: str = "", potential_label
     fig, ax = plt.subplots(figsize=(4.5, 3.4))
     for item, label in zip(items, labels):
         d, _ = _coords(item, d_over_d0, theta=[0.0])
-        ax.plot(d, _get(item, "theta_c") / np.pi, ".-", label=label)
+        ax.plot(d, _get(item, "theta_c") / np.pi, ".-", label=potential_label(label) if label else None)
     ax.axhline(1 / 8, color="0.5", lw=0.8, ls=":", label=r"$\pi/8$ (paper, zero stress)")
-    ax.set_xlabel("d/d0 = 2 d_x / d0")
+    ax.set_xlabel(r"$d/d_0 = 2 d_x/d_0$")
     ax.set_ylabel(r"$\theta_c / \pi$")
     ax.legend(fontsize=8)
     if title:

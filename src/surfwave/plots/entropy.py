@@ -16,6 +16,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
+from surfwave.plots.labels import potential_label  # noqa: E402
 
 #: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
 #: src/surfwave/data/paper_values.yaml (the one copy of the paper's numbers).
@@ -87,22 +88,23 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
         sub = ds.sel(potential=pot)
         x = sub["strain"].values
         c = colors[i % len(colors)]
-        ax.plot(x, sub["S_surface_exact"].values, "-", color=c, label=f"{pot}: exact (lattice dynamics)")
-        ax.plot(x, sub["S_surface_estimate"].values, "--", color=c, label=f"{pot}: estimate, Eq. (25)")
-        axb.plot(x, sub["bulk_mean_log_omega"].values, "-", color=c, label=str(pot))
+        name = potential_label(pot)
+        ax.plot(x, sub["S_surface_exact"].values, "-", color=c, label=f"{name}: exact (lattice dynamics)")
+        ax.plot(x, sub["S_surface_estimate"].values, "--", color=c, label=f"{name}: estimate, Eq. (25)")
+        axb.plot(x, sub["bulk_mean_log_omega"].values, "-", color=c, label=name)
     markers = iter("o^s")
     for label, key in PAPER_ZERO_STRESS.items():
         ax.plot([0.0], [_paper_value(key)], next(markers), color="k", mfc="none", label=f"paper: {label}")
-    ax.set_xlabel("strain d/d0 - 1")
-    ax.set_ylabel("surface entropy per surface atom (k_B)")
+    ax.set_xlabel(r"strain $d/d_0 - 1$")
+    ax.set_ylabel(r"surface entropy per surface atom ($k_B$)")
     ax.set_title(title or "Surface entropy, triangular lattice, uniaxial stress")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     axb.axhline(_paper_value("huckaby_bulk_mean_log_omega"), color="k", lw=0.5, ls=":", label="Huckaby, zero stress")
-    axb.set_xlabel("strain d/d0 - 1")
+    axb.set_xlabel(r"strain $d/d_0 - 1$")
     for a in (ax, axb):  # few enough ticks that the labels never overlap
         a.xaxis.set_major_locator(plt.MaxNLocator(5))
-    axb.set_ylabel("<ln(omega/omega0)> over bulk modes")
+    axb.set_ylabel(r"$\langle \ln(\omega/\omega_0) \rangle$ over bulk modes")
     axb.set_title("Bulk mean log frequency")
     axb.legend(fontsize=7)
     axb.grid(alpha=0.3)

@@ -25,7 +25,7 @@ from surfwave.data.cube import open_cube  # noqa: E402
 
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"
-POTENTIAL_NAMES = {"harmonic": "harmonic (Hooke) springs", "lj": "Lennard-Jones 12-6"}
+from surfwave.plots.labels import POTENTIAL_NAMES, potential_label  # noqa: E402,F401
 # quantity -> (legend label, colour, line width)
 CURVES = {
     "c2_L_par": (r"$c_{L\parallel}^2$", "tab:blue", 1.2),
@@ -116,8 +116,13 @@ def _unstable_spans(x: np.ndarray, stable: np.ndarray) -> list[tuple[float, floa
     return spans
 
 
+#: Curves closer than this (K d0^2/m, everywhere drawn) are one curve to the eye: drawn
+#: dashed over each other and named together in the legend.
+COINCIDE = 1e-9
+
+
 def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential: str,
-                 ymax: float = 1.6) -> None:
+                 ymax: float = 1.6) -> set:
     """Draw sound speeds squared and c_R^2 versus stress for one potential on ``ax``.
 
     Bulk speeds come from ``elastic`` (c2_L_par, c2_T_par, c2_L_perp, c2_T_perp, c2_SH),
@@ -125,8 +130,18 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
     to the shear instability (c_T,par^2 = 0) or the stress extremum (dotted lines, one grid
     point beyond drawn); where our full long-wave check finds the bulk lattice unstable
     (``stable`` False) the background is shaded grey. Points where ``wave_type`` is
-    ``supersonic_decoupled`` are marked with open circles.
+    ``supersonic_decoupled`` are marked with open circles. A curve that coincides with one
+    drawn before (c_SH^2 = c_T,par^2 along [100] under uniaxial stress: y and z are
+    equivalent) is drawn with gaps so that both colours show.
+
+    Returns
+    -------
+    set
+        What was drawn, for the legend: curve names, directions, ``"supersonic"``,
+        ``"limit"`` (dotted lines), ``"unstable"`` (shading) and ``("same", a, b)`` for
+        coinciding curves.
     """
+    drawn: set = set()
     el = elastic.sel(potential=potential)
     ra = None if rayleigh is None else rayleigh.sel(potential=potential)
     directions = [d for d in DIRECTION_STYLES if d in [str(v) for v in el["direction"].values]]
@@ -144,6 +159,8 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
         if "stable" in e:
             spans += _unstable_spans(xs, np.asarray(e["stable"].values)[idx])
         ls = DIRECTION_STYLES[direction]
+        drawn.add(direction)
+        done: dict[str, np.ndarray] = {}
         for name, (_, colour, lw) in CURVES.items():
             if name == "c2_R":
                 if ra is None:
@@ -153,37 +170,58 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
                 y = np.asarray(e[name].values, float)
             else:
                 continue
-            ax.plot(xs, y[idx], ls=ls, color=colour, lw=lw)
+            twin = next((o for o, yo in done.items() if yo.shape == y[idx].shape
+                         and np.all(np.abs(yo - y[idx]) <= COINCIDE)), None)
+            if twin is not None:  # on top of an earlier curve: gaps let that one show
+                ax.plot(xs, y[idx], color=colour, lw=lw, dashes=(3, 3))
+                drawn.add(("same", twin, name))
+            else:
+                ax.plot(xs, y[idx], ls=ls, color=colour, lw=lw)
+            done[name] = y[idx]
+            drawn.add(name)
             if name == "c2_R" and "wave_type" in ra:
                 wt = np.asarray(ra.sel(direction=direction)["wave_type"].values).astype(str)[idx]
                 m = np.flatnonzero(wt == "supersonic_decoupled")[::3]
                 if m.size:
                     ax.plot(xs[m], y[idx][m], "o", mfc="white", mec=colour, ms=3.5, mew=0.8)
+                    drawn.add("supersonic")
     pad = 0.03 * (xmax - xmin)
     ax.set_xlim(xmin - pad, xmax + pad)
     for lo, hi in spans:
         ax.axvspan(lo, hi, color="0.8", alpha=0.35, lw=0, zorder=0)
+        drawn.add("unstable")
     for edge in edges:
-        ax.axvline(edge, color="0.2", ls=":", lw=1.4)
+        if xmin - pad <= edge <= xmax + pad:
+            ax.axvline(edge, color="0.2", ls=":", lw=1.4)
+            drawn.add("limit")
     ax.axhline(0, color="0.6", lw=0.6)
     ax.axvline(0, color="0.6", lw=0.6)
     ax.set_ylim(-0.05, ymax)
     ax.set_xlabel(STRESS_LABEL)
     ax.set_ylabel(f"sound speed squared $c^2$ ({SPEED_UNITS})")
-    ax.set_title(POTENTIAL_NAMES.get(potential, potential))
+    ax.set_title(potential_label(potential))
     ax.grid(alpha=0.3)
+    return drawn
 
 
-def _legend_handles(has_supersonic: bool) -> list[Line2D]:
-    handles = [Line2D([], [], color=c, lw=lw, label=lab) for lab, c, lw in CURVES.values()]
-    handles += [Line2D([], [], color="k", ls=ls, label=d) for d, ls in DIRECTION_STYLES.items()]
-    if has_supersonic:
+def _legend_handles(drawn: set) -> list:
+    """Legend entries for exactly what :func:`speeds_panel` drew (union over the panels)."""
+    handles = [Line2D([], [], color=c, lw=lw, label=lab) for name, (lab, c, lw) in CURVES.items()
+               if name in drawn]
+    for _, a, b in sorted(x for x in drawn if isinstance(x, tuple)):
+        (la, ca, wa), (lb, cb, wb) = CURVES[a], CURVES[b]
+        handles.append((Line2D([], [], color=ca, lw=wa), Line2D([], [], color=cb, lw=wb, dashes=(3, 3)),
+                        f"{lb} = {la} (curves coincide)"))
+    handles += [Line2D([], [], color="k", ls=ls, label=d) for d, ls in DIRECTION_STYLES.items() if d in drawn]
+    if "supersonic" in drawn:
         handles.append(Line2D([], [], ls="none", marker="o", mfc="none", mec="k",
                               label="supersonic, decoupled by symmetry"))
-    handles.append(Line2D([], [], color="0.2", ls=":", lw=1.4,
-                          label="shear instability ($c_{T\\parallel}^2=0$) or stress extremum"))
-    handles.append(plt.Rectangle((0, 0), 1, 1, color="0.8", alpha=0.35,
-                                 label="bulk lattice unstable (full long-wave check)"))
+    if "limit" in drawn:
+        handles.append(Line2D([], [], color="0.2", ls=":", lw=1.4,
+                              label="shear instability ($c_{T\\parallel}^2=0$) or stress extremum"))
+    if "unstable" in drawn:
+        handles.append(plt.Rectangle((0, 0), 1, 1, color="0.8", alpha=0.35,
+                                     label="bulk lattice unstable (full long-wave check)"))
     return handles
 
 
@@ -212,13 +250,17 @@ def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
     pots = [str(p) for p in el["potential"].values]
     order = [p for p in ("harmonic", "lj") if p in pots] + [p for p in pots if p not in ("harmonic", "lj")]
     fig, axes = plt.subplots(1, len(order), figsize=(6.2 * len(order), 5.0), squeeze=False)
+    drawn: set = set()
     for k, (ax, pot) in enumerate(zip(axes[0], order)):
-        speeds_panel(ax, el, ra, pot, ymax=ymax)
+        drawn |= speeds_panel(ax, el, ra, pot, ymax=ymax)
         ax.set_title(f"({chr(ord('a') + k)}) {ax.get_title()}")
-    sup = (ra is not None and "wave_type" in ra
-           and bool((ra["wave_type"].astype(str) == "supersonic_decoupled").any()))
-    fig.legend(handles=_legend_handles(sup), loc="upper center", ncol=6, frameon=False, fontsize=9,
-               bbox_to_anchor=(0.5, 0.0))
+    entries = _legend_handles(drawn)
+    handles = [h if not isinstance(h, tuple) else h[:2] for h in entries]
+    labels = [h.get_label() if not isinstance(h, tuple) else h[2] for h in entries]
+    from matplotlib.legend_handler import HandlerTuple
+
+    fig.legend(handles, labels, loc="upper center", ncol=5, frameon=False, fontsize=9,
+               bbox_to_anchor=(0.5, 0.0), handler_map={tuple: HandlerTuple(ndivide=1, pad=0)})
     if title:
         fig.suptitle(title)
     fig.tight_layout()

@@ -18,8 +18,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import json
-import math
 from importlib import resources
 from pathlib import Path
 from typing import Iterable
@@ -127,37 +125,80 @@ def table1_entries(elastic: xr.Dataset | None, rayleigh: xr.Dataset | None,
     return out
 
 
-def table1_markdown(entries: list[dict], paper_values: dict | None = None) -> str:
-    """Table I as Markdown: paper beside ours, then ours - paper in units of 1e-4."""
+#: Short column heads of Table I (terminal width); the long labels are in paper_values.yaml.
+TABLE1_HEADS = {"stress": "stress", "c2_L_par_100": "cL2[100]", "c2_L_par_110": "cL2[110]",
+                "c2_T_par": "cT2 par", "c2_L_perp": "cL2 perp", "c2_T_perp": "cT2 perp",
+                "c2_R_100": "cR2[100]", "c2_R_110": "cR2[110]"}
+
+
+def table1_stability(elastic: xr.Dataset | None, paper_values: dict | None = None) -> dict[float, bool]:
+    """d/d0 -> long-wave stable in every direction (``stable`` of elastic.nc, all directions)."""
+    if elastic is None or "stable" not in elastic:
+        return {}
+    pv = paper_values or load_paper_values()
+    da = _pick(elastic["stable"], "potential", pv["table1"]["potential"])
+    if da is None:
+        return {}
+    out = {}
+    for row in pv["table1"]["rows"]:
+        sub = sel_strain(da, float(row[0]))
+        if sub is not None:
+            out[float(row[0])] = bool(np.all(sub.values))
+    return out
+
+
+def _md_table(head: list[str], rows: list[list[str]]) -> list[str]:
+    """A Markdown table with padded columns (readable as plain text in a terminal)."""
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(head)]
+    line = lambda cells: "| " + " | ".join(c.rjust(w) for c, w in zip(cells, widths)) + " |"  # noqa: E731
+    return [line(head), "|" + "|".join("-" * (w + 1) + ":" for w in widths) + "|"] + [line(r) for r in rows]
+
+
+def table1_markdown(entries: list[dict], paper_values: dict | None = None,
+                    stable: dict[float, bool] | None = None) -> str:
+    """Table I as Markdown for a terminal: our values, then ours - paper in units of 1e-4.
+
+    Parameters
+    ----------
+    entries : list of dict
+        :func:`table1_entries`.
+    paper_values : dict, optional
+    stable : dict, optional
+        d/d0 -> stable (:func:`table1_stability`); unstable rows are flagged.
+    """
     pv = paper_values or load_paper_values()
     cols = pv["table1"]["columns"]
+    stable = stable or {}
     by_row: dict[float, dict[str, dict]] = {}
     for e in entries:
         by_row.setdefault(e["d_over_d0"], {})[e["key"]] = e
-    head = "| d/d0 | " + " | ".join(f"{c['label']} paper | ours" for c in cols) + " |"
-    lines = ["Paper (printed) beside ours:", "", head,
-             "|" + "---|" * (1 + 2 * len(cols))]
+    heads = [TABLE1_HEADS.get(c["key"], c["label"]) for c in cols]
+    legend = "; ".join(f"{TABLE1_HEADS[c['key']]} = {c['label']}" for c in cols if c["key"] in TABLE1_HEADS)
+    flag = lambda d: {True: "yes", False: "NO"}.get(stable.get(d), "?")  # noqa: E731
+    ours_rows, diff_rows = [], []
     for d, row in by_row.items():
-        cells = []
+        ours, diffs = [], []
         for c in cols:
             e = row[c["key"]]
-            ours = "n/a" if e["ours"] is None else f"{e['ours']:.6f}"
-            cells += [f"{e['paper']:.4f}", ours]
-        lines.append(f"| {d:.2f} | " + " | ".join(cells) + " |")
-    lines += ["", "Ours - paper, in units of 1e-4 (a printed 4-decimal number is matched "
-              "within 0.5); failures in bold:", "",
-              "| d/d0 | " + " | ".join(c["label"] for c in cols) + " |",
-              "|" + "---|" * (1 + len(cols))]
-    for d, row in by_row.items():
-        cells = []
-        for c in cols:
-            e = row[c["key"]]
+            ours.append("n/a" if e["ours"] is None else f"{e['ours']:.5f}")
             if e["difference"] is None:
-                cells.append("not computed")
+                diffs.append("n/a")
             else:
-                s = f"{e['difference'] * 1e4:+.2f}"
-                cells.append(f"**{s} FAIL**" if e["verdict"] == FAIL else s)
-        lines.append(f"| {d:.2f} | " + " | ".join(cells) + " |")
+                text = f"{e['difference'] * 1e4:+.2f}"
+                diffs.append(f"**{text} FAIL**" if e["verdict"] == FAIL else text)
+        ours_rows.append([f"{d:.2f}", flag(d)] + ours)
+        diff_rows.append([f"{d:.2f}"] + diffs)
+    lines = [f"Columns: {legend}.", ""]
+    unstable = [f"{d:.2f}" for d in by_row if stable.get(d) is False]
+    if unstable:
+        lines += [f"**Unstable rows** (stable = NO): d/d0 = {', '.join(unstable)}. The full long-wave "
+                  "check (elastic.nc `stable`) finds a bulk sound speed squared <= 0 in some direction "
+                  "there, although the paper's c_T,par^2 is still positive; the values are kept.", ""]
+    lines += ["Our values (5 decimals; the paper prints 4):", ""]
+    lines += _md_table(["d/d0", "stable"] + heads, ours_rows)
+    lines += ["", "Ours - paper, in units of 1e-4 (a printed 4-decimal number is matched "
+              "within 0.5); failures in bold:", ""]
+    lines += _md_table(["d/d0"] + heads, diff_rows)
     return "\n".join(lines) + "\n"
 
 
@@ -178,13 +219,17 @@ def table1(elastic_path, rayleigh_path, out_md, out_csv,
         The entries (see `table1_entries`).
     """
     pv = load_paper_values(paper_values_path)
-    entries = table1_entries(open_cube(elastic_path), open_cube(rayleigh_path), pv)
+    elastic = open_cube(elastic_path)
+    entries = table1_entries(elastic, open_cube(rayleigh_path), pv)
     n_fail = sum(e["verdict"] == FAIL for e in entries)
     n_nc = sum(e["verdict"] == NOT_COMPUTED for e in entries)
-    title = (f"# Table I: {pv['table1']['source']}\n\n"
+    source = str(pv["table1"]["source"])
+    if source.startswith("Table I"):  # the heading already says it
+        source = source.split(":", 1)[-1].strip()
+    title = (f"# Table I\n\n{source}.\n\n"
              f"{len(entries)} printed numbers: {len(entries) - n_fail - n_nc} PASS, "
              f"{n_fail} FAIL, {n_nc} not computed.\n\n")
-    Path(out_md).write_text(title + table1_markdown(entries, pv))
+    Path(out_md).write_text(title + table1_markdown(entries, pv, table1_stability(elastic, pv)))
     with open(out_csv, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(["d_over_d0", "quantity", "label", "paper", "ours_100", "ours_110",
@@ -309,7 +354,9 @@ def render(numbers: list[Check], claims: list[Check], entries: list[dict], cubes
             out.append(f"- {c.name}: {c.source}")
         if c.evidence:
             out.append(f"  - {_title(c)}: {c.evidence}")
-    out += ["", "## Table I", "", table1_markdown(entries, paper_values),
+    out += ["", "## Table I", "", table1_markdown(
+        entries, paper_values, table1_stability(cubes.get(paper_values["table1"]["scene"], "elastic"),
+                                                paper_values)),
             "## Claims of the paper", ""]
     groups: dict[str, list[Check]] = {}
     for c in claims:
@@ -338,116 +385,6 @@ def write_report(cube_paths: Iterable[str | Path], out_md: str | Path,
     numbers, claims, entries = build_checks(cubes, pv)
     Path(out_md).write_text(render(numbers, claims, entries, cubes, pv))
     return numbers + claims
-
-
-# --------------------------------------------------------------------------- benchmarks
-BENCH_CONVENTION = """\
-Benchmark cube convention (benchmarks/bench_*.py OUTDIR -> OUTDIR/<name>.nc + PNG):
-global attributes `method`, `knob` (name of the swept dimension), `default` (the chosen
-knob value), `default_reason` (why); data variables `error` (with `units`) and `time`
-(seconds) along the knob dimension. Pure timings: attribute `kind = "timing"` and a
-variable `time` along any one dimension, one table row per label. A cube may instead give
-its rows itself: attribute `readme_rows`, a JSON list of [method, knob, error, time, default
-and why]. Anything else is summarised generically (per dimension: the ranges of variables
-named *error*/*dev* and *time*, and the `default*` attributes)."""
-
-
-def _span(values) -> str:
-    values = np.asarray(values)
-    if values.dtype.kind in "iuf" and values.size > 1:
-        return f"[{_fmt_cell(values.min())}, {_fmt_cell(values.max())}]"
-    labels = [str(v) for v in values]
-    return ", ".join(labels[:4]) + (", ..." if len(labels) > 4 else "")
-
-
-def _generic_rows(ds: xr.Dataset, name: str) -> list[list[str]]:
-    a = ds.attrs
-    method = str(a.get("method") or a.get("title") or name)
-    defaults = "; ".join(f"{k}: {v}" for k, v in a.items() if k.startswith("default") or k == "target")
-    rows = []
-    for dim in ds.dims:
-        errs = [v for v in ds.data_vars if dim in ds[v].dims and ("error" in v or "dev" in v)
-                and "reported" not in v]
-        times = [v for v in ds.data_vars if dim in ds[v].dims and "time" in v]
-        if not errs and not times:
-            continue
-
-        def rng(names, unit_default=""):
-            return "; ".join(f"{v}: {_fmt_cell(float(ds[v].min()))} .. {_fmt_cell(float(ds[v].max()))}"
-                             f" {ds[v].attrs.get('units', unit_default)}".strip() for v in names)
-
-        rows.append([method, f"{dim} in {_span(ds[dim].values) if dim in ds.coords else ds.sizes[dim]}",
-                     rng(errs), rng(times, "s"), defaults if not rows else "(see above)"])
-    return rows or [[method, "?", "see " + name, "see " + name, defaults]]
-
-
-def _fmt_cell(x) -> str:
-    try:
-        return fmt(float(x), 3)
-    except (TypeError, ValueError):
-        return str(x)
-
-
-def benchmark_rows(path: str | Path) -> list[list[str]]:
-    """Table rows [method, knob, error, time, default and why] of one benchmark cube."""
-    ds = open_cube(path)
-    name = Path(path).name
-    if ds is None:
-        return [[name, "", "", "", "not computed"]]
-    a = ds.attrs
-    method = str(a.get("method", Path(path).stem))
-    if "readme_rows" in a:
-        return [[str(c) for c in row] for row in json.loads(a["readme_rows"])]
-    if a.get("kind") == "timing" and "time" in ds:
-        t = ds["time"]
-        dim = t.dims[0] if t.dims else None
-        if dim is None:
-            return [[method, "", "", f"{float(t):.3g} s", str(a.get("default_reason", ""))]]
-        return [[method, f"{dim} = {lab}", "", f"{float(v):.3g} s", str(a.get("default_reason", ""))]
-                for lab, v in zip(t[dim].values, t.values)]
-    knob = str(a.get("knob", ""))
-    if "error" not in ds or "time" not in ds or knob not in ds["error"].dims:
-        return _generic_rows(ds, name)
-    err, tim = ds["error"], ds["time"]
-    values = ds[knob].values
-    default = a.get("default")
-    i = 0
-    if default is not None:
-        try:
-            i = int(np.argmin(np.abs(np.asarray(values, float) - float(default))))
-        except (TypeError, ValueError):
-            labels = [str(v) for v in values]
-            i = labels.index(str(default)) if str(default) in labels else 0
-    others = [d for d in err.dims if d != knob]
-    e_def = err.isel({knob: i}).max(others) if others else err.isel({knob: i})
-    t_def = tim.isel({knob: i}).max([d for d in tim.dims if d != knob]) if tim.ndim > 1 else tim.isel({knob: i})
-    units = err.attrs.get("units", "")
-    span = f"{knob} in [{_fmt_cell(values.min())}, {_fmt_cell(values.max())}]" if values.dtype.kind in "iuf" else knob
-    why = f"{knob} = {_fmt_cell(values[i])}: {a.get('default_reason', '')}".strip(": ")
-    return [[method, span, f"{_fmt_cell(float(e_def))} {units}".strip() +
-             f" (range {_fmt_cell(float(err.min()))} .. {_fmt_cell(float(err.max()))})",
-             f"{float(t_def):.3g} s (range {float(tim.min()):.3g} .. {float(tim.max()):.3g} s)", why]]
-
-
-def benchmark_table(dirs: Iterable[str | Path], out_md: str | Path) -> str:
-    """Write the README's benchmark table from every ``*.nc`` in ``dirs``; returns the text."""
-    lines = ["| Method | Knob | Error at default (range) | Time at default (range) | Default chosen and why |",
-             "|---|---|---|---|---|"]
-    pngs = []
-    for d in dirs:
-        d = Path(d)
-        files = sorted(d.glob("*.nc")) if d.is_dir() else []
-        if not files:
-            lines.append(f"| {d.name} | | | | not computed |")
-        for f in files:
-            lines += ["| " + " | ".join(c.replace("|", "/") for c in row) + " |"
-                      for row in benchmark_rows(f)]
-        pngs += sorted(d.glob("*.png")) if d.is_dir() else []
-    text = "\n".join(lines) + "\n"
-    if pngs:
-        text += "\nPlots: " + ", ".join(f"`{p}`" for p in pngs) + "\n"
-    Path(out_md).write_text(text)
-    return text
 
 
 def main(argv: list[str] | None = None) -> int:

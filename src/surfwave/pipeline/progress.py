@@ -1,0 +1,92 @@
+"""Visible progress of long computations: a bar on a terminal, periodic lines in a log.
+
+:class:`Progress` counts finished points. On a terminal (``stream.isatty()``) it redraws
+one bar line once the work has run for ``bar_after`` seconds; otherwise (a Snakemake job's
+log file) it writes a plain line at most every ``log_every`` seconds, so ``tail -f`` on the
+log shows life. :func:`summary_line` is the per-job line,
+"bulk, scene x: 22 points, 14 from the cache, 8 computed in 3.1 s".
+
+No dependency beyond the standard library.
+"""
+from __future__ import annotations
+
+import sys
+import time
+
+
+def summary_line(label: str, total: int, cached: int, computed: int, seconds: float) -> str:
+    """The per-job summary: points, how many came from the cache, how many were computed and how long."""
+    return (f"{label}: {total} points, {cached} from the cache, {computed} computed "
+            f"in {seconds:.1f} s")
+
+
+def _fmt_seconds(s: float) -> str:
+    return f"{s:.0f} s" if s < 120 else f"{s / 60:.1f} min"
+
+
+class Progress:
+    """Progress of ``total`` points of work labelled ``label``.
+
+    Parameters
+    ----------
+    label : str
+        What is computed, e.g. ``"bulk, scene table1, lj [100]"``.
+    total : int
+        Points to compute.
+    stream : file, optional
+        Where to write (default: ``sys.stderr`` at the time of the call).
+    bar_after, log_every : float
+        Seconds before the first terminal bar, and between two log lines.
+    """
+
+    def __init__(self, label: str, total: int, stream=None, bar_after: float = 2.0,
+                 log_every: float = 10.0):
+        self.label, self.total = label, int(total)
+        self.stream = stream if stream is not None else sys.stderr
+        self.bar_after, self.log_every = bar_after, log_every
+        self.done = 0
+        self.start = time.perf_counter()
+        self._last_log = self.start
+        self._drawn = False
+        try:
+            self.tty = bool(self.stream.isatty())
+        except (AttributeError, ValueError):
+            self.tty = False
+
+    def update(self, n: int = 1) -> None:
+        """Count ``n`` more finished points and show progress if due."""
+        self.done += int(n)
+        now = time.perf_counter()
+        elapsed = now - self.start
+        if self.tty and elapsed >= self.bar_after:
+            self._bar(elapsed)
+        elif not self.tty and now - self._last_log >= self.log_every:
+            self._last_log = now
+            self._write(f"{self.label}: {self.done}/{self.total} points in {_fmt_seconds(elapsed)}"
+                        f"{self._eta(elapsed)}\n")
+
+    def _eta(self, elapsed: float) -> str:
+        if 0 < self.done < self.total:
+            return f", about {_fmt_seconds(elapsed / self.done * (self.total - self.done))} left"
+        return ""
+
+    def _bar(self, elapsed: float) -> None:
+        width = 30
+        filled = int(width * self.done / max(self.total, 1))
+        self._write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] "
+                    f"{self.done}/{self.total} {_fmt_seconds(elapsed)}{self._eta(elapsed)}   ")
+        self._drawn = True
+
+    def close(self) -> float:
+        """End the bar (newline on a terminal); return the seconds elapsed."""
+        if self._drawn:
+            self._write("\n")
+            self._drawn = False
+        return time.perf_counter() - self.start
+
+    def _write(self, text: str) -> None:
+        try:
+            self.stream.write(text)
+            self.stream.flush()
+        except (OSError, ValueError):
+            pass
