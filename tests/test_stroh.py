@@ -277,3 +277,19 @@ def test_point_angles_shapes_and_mirror_consistency():
     np.testing.assert_allclose(a["c2_R"], b["c2_R"], rtol=1e-12)
     with pytest.raises(InputError, match="load_direction"):
         surfwave.point("fcc", "uniaxial", "lj", 20.0, s)
+
+
+def test_random_triclinic_crystals():
+    """Triclinic media (random positive definite Voigt stiffness, no symmetry at all): every
+    direction has a subsonic surface wave (Barnett-Lothe existence for a positive definite
+    stiffness without exceptional limiting waves), confirmed by the scipy-eigenvector route."""
+    rng = np.random.default_rng(3)
+    B = rng.normal(size=(20, 6, 6))
+    A = voigt_to_tensor(B @ np.swapaxes(B, 1, 2) + 2 * np.eye(6))
+    r = stroh.surface_wave(A, 1.0)
+    assert np.all(r["wave_type"] == "surface") and not r["mirror"].any()
+    assert np.all(r["c"] < r["c_limit"])
+    for i in range(0, 20, 4):
+        smin, u = _stroh_by_eigenvectors(A[i], r["c"][i] ** 2)
+        assert smin < 1e-9
+        assert abs(np.vdot(u, r["polarisation"][i])) == pytest.approx(1.0, abs=1e-8)
