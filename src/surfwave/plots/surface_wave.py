@@ -84,6 +84,9 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                         lw=1.8 if kind == "surface" else 1.4)
             sup = (wt == "supersonic_decoupled") & inside
             ax.plot(angle[sup], c[sup], "o", mfc="none", color=col, ms=5)
+            # a pseudo wave whose complex speed the solver does not give: x on v_L, where it leaks
+            leak = (wt == "pseudo") & ~np.isfinite(c) & inside
+            ax.plot(angle[leak], point.c_limit.values[leak], "x", color=col, ms=4)
         ax.set_title(f"{sf} surface")
         ax.set_xlabel("propagation angle (degree)")
         ax.set_xlim(x.min(), x.max())
@@ -91,10 +94,15 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     axes[0, 0].set_ylabel("speed (m/s)")
     axes[0, 0].set_ylim(bottom=0)
     handles = [Line2D([], [], color=colours(i % 10), lw=2, label=str(m)) for i, m in enumerate(ds.material.values)]
-    leaky = bool((ds.wave_type == "pseudo").any())
-    handles += [Line2D([], [], color="k", ls="-", lw=1.8, label=r"$c_R$ surface wave"),
-                Line2D([], [], color="k", ls="--", lw=1.4, label="pseudo-SAW (leaky, real part)") if leaky
-                else Line2D([], [], ls="", label="gaps: no subsonic wave\n(pseudo-SAW not computed)"),
+    pseudo = ds.wave_type == "pseudo"
+    with_speed = bool((pseudo & np.isfinite(ds.c_R)).any())
+    handles += [Line2D([], [], color="k", ls="-", lw=1.8, label=r"$c_R$ surface wave")]
+    if with_speed:
+        handles.append(Line2D([], [], color="k", ls="--", lw=1.4, label="pseudo-SAW (leaky, real part)"))
+    if bool((pseudo & ~np.isfinite(ds.c_R)).any()):
+        handles.append(Line2D([], [], color="k", ls="", marker="x",
+                              label="pseudo-SAW (leaky, speed not\ncomputed), marked on $v_L$"))
+    handles += [
                 Line2D([], [], color="k", ls="", marker="o", mfc="none", label="sagittal, above $v_L$ (mirror)"),
                 Line2D([], [], color="k", ls=":", lw=1.0, label=r"$v_L$ limiting speed")]
     fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8, frameon=False)
