@@ -84,6 +84,7 @@ include: "workflow/rules/rayleigh.smk"
 include: "workflow/rules/bulk.smk"
 include: "workflow/rules/dispersion.smk"
 include: "workflow/rules/entropy.smk"
+include: "workflow/rules/surface_wave.smk"
 # Figures, report, benchmarks: they define FIGURE_TARGETS and REPORT_TARGETS.
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/report.smk"
@@ -96,3 +97,4 @@ rule all:
         scene_targets(),
         globals().get("FIGURE_TARGETS", []),
         globals().get("REPORT_TARGETS", []),
+        globals().get("CRYSTAL_TARGETS", []),

@@ -52,6 +52,13 @@ scenes:
     theta: {n: 4}
     quantities: [dispersion, displacements, entropy]
     accuracy: {displacements: {n_rows: 6}}
+  tiny_crystal:
+    materials: [Cu]
+    surfaces: ["(001)"]
+    angles: [0, 22.5, 45]
+    stress: [-0.1, 0.0, 0.1]
+    loading: [along, across]
+    toec: [false, true]
 """
 
 
@@ -256,3 +263,24 @@ def test_figures_and_report_exist_without_unexpected_fail(built):
         assert name in text, f"check {name} missing from report.md"
     assert re.search(r"\| tiny_fcc \| lj \| \[110\] \| \d\.\de-0[5-9] ", text), "bulk section"
 
+
+def test_real_crystal_scene(built):
+    """A real-crystal scene end to end: cube (Cu (001)[100] 2012.12 m/s, PHYSICS.md), complex
+    polarisation readable as numbers without complex support, figures and the coefficient table."""
+    import xarray as xr
+
+    res = built / "results" / "tiny_crystal"
+    for name in ("surface_wave_angles.png", "surface_wave_vs_stress.png", "acoustoelastic.md",
+                 "acoustoelastic.csv", "summary.md"):
+        assert (res / name).exists(), name
+    assert not (res / "crystal.nc").exists()
+    with xr.open_dataset(res / "surface_wave.nc", engine="netcdf4") as plain:  # no auto_complex
+        assert plain.polarisation.dtype.kind == "f" and plain.polarisation.dims[-1] == "complex"
+        assert plain.c_R.dims == ("material", "surface", "angle", "loading", "toec", "stress")
+    ds = open_cube(res / "surface_wave.nc")
+    c = ds.c_R.sel(material="Cu", surface="(001)", angle=0.0, stress=0.0)
+    assert np.allclose(c.values, 2012.12, atol=0.01)
+    assert ds.polarisation.dtype.kind == "c"
+    assert '"toec": [false, true]' in ds.attrs["scene"] and "m/s" in ds.attrs["units_note"]
+    table = (res / "acoustoelastic.md").read_text()
+    assert table.count("| Cu | (001) |") == 6  # 3 angles x 2 loadings

@@ -321,6 +321,14 @@ def _cmd_scenes(args) -> int:
     paper = set(paper_scenes())
     rows = []
     for name, sc in scenes.items():
+        if sc.get("kind") == "crystal":  # real crystals: materials x surfaces x angles [x stress]
+            a, st = sc["angles"], sc["stress"] or [0.0]
+            rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
+                         "materials": sc["materials"], "surfaces": sc["surfaces"],
+                         "angles": [min(a), max(a), len(a)], "stress": [min(st), max(st), len(st)],
+                         "loading": sc["loading"], "toec": sc["toec"], "quantities": sc["quantities"],
+                         "accuracy": sc["accuracy"]})
+            continue
         d = sc["d_over_d0"]
         rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
                      "lattice": sc["lattice"], "loading": sc["loading"], "potentials": sc["potentials"],
@@ -335,6 +343,13 @@ def _cmd_scenes(args) -> int:
     print(f"# scenes of {', '.join(str(f) for f in files)} ('*' = built by 'snakemake', "
           "P = read by the paper's report.md)")
     for r in rows:
+        if "materials" in r:
+            (alo, ahi, na), (slo, shi, ns) = r["angles"], r["stress"]
+            print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
+                  f"{'/'.join(r['materials'])} on {' '.join(r['surfaces'])}, angles {alo:g}..{ahi:g} "
+                  f"({na}), stress {slo:g}..{shi:g} GPa ({ns}, {'/'.join(r['loading'])}, toec "
+                  f"{'/'.join(str(t).lower() for t in r['toec'])}) -> {', '.join(r['quantities'])}")
+            continue
         lo, hi, n = r["d_over_d0"]
         theta = f", {r['n_theta']} theta" if {"dispersion", "displacements"} & set(r["quantities"]) else ""
         print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "

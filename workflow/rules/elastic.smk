@@ -2,7 +2,16 @@ rule elastic:
     """Stress, C, S, bulk sound speeds and long-wave stability (analytic)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("continuum.elastic", "data.cube", "pipeline.stage"),
+        code=lambda wildcards: code(
+            "continuum.elastic",
+            "data.cube",
+            "pipeline.stage",
+            *(
+                ["continuum.fcc_angles"]
+                if SCENES[wildcards.scene].get("angles")
+                else []
+            ),
+        ),
     output:
         "results/{scene}/elastic.nc",
     log:

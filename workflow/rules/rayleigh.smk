@@ -2,7 +2,16 @@ rule rayleigh:
     """Rayleigh speed c_R^2 from Eq. (17) with root selection, and the wave type."""
     input:
         elastic="results/{scene}/elastic.nc",
-        code=code("continuum.rayleigh", "data.cube", "pipeline.stage"),
+        code=lambda wildcards: code(
+            "continuum.rayleigh",
+            "data.cube",
+            "pipeline.stage",
+            *(
+                ["continuum.fcc_angles"]
+                if SCENES[wildcards.scene].get("angles")
+                else []
+            ),
+        ),
     output:
         "results/{scene}/rayleigh.nc",
     log:

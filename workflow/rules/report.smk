@@ -34,7 +34,11 @@ rule report_md:
 rule scene_summary:
     """results/<scene>/summary.md: what a user scene computed, ranges, NaN and unstable counts."""
     input:
-        cubes=lambda wildcards: targets(SCENES, [wildcards.scene])[1:],
+        cubes=lambda wildcards: [
+            t
+            for t in targets(SCENES, [wildcards.scene])
+            if not t.endswith("crystal.nc")
+        ],
         code=code("report.summary", "pipeline.stage"),
     output:
         "results/{scene}/summary.md",

@@ -2,6 +2,7 @@
 
 By hand (from the repository root): python workflow/scripts/elastic.py SCENE [CONFIGFILE ...]
 """
+import sys
 
 from surfwave.continuum import elastic
 from surfwave.data import cube
@@ -14,9 +15,22 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
-ds = stage.block_cube(
-    job, lambda pot, direction: elastic.properties(job["lattice"], job["loading"], pot, direction,
-                                                   job["d_over_d0"]), elastic.VARIABLES)
+if job.get("angles") is not None:  # FCC propagation angles in the (001) surface (degrees)
+    from surfwave.continuum import fcc_angles
+
+    blocks = {}
+    for pot in job["potentials"]:
+        out = fcc_angles.properties_at_angles(pot, job["angles"], job["d_over_d0"], job["loading"])
+        for i, angle in enumerate(job["angles"]):
+            blocks[(pot, angle)] = cube.documented({k: v[i] for k, v in out.items()},
+                                                   elastic.VARIABLES, sys.stderr)
+    ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
+                    job["d_over_d0"], elastic.VARIABLES)
+    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+else:
+    ds = stage.block_cube(
+        job, lambda pot, direction: elastic.properties(job["lattice"], job["loading"], pot, direction,
+                                                       job["d_over_d0"]), elastic.VARIABLES)
 cube.finish(ds, snakemake, what="elastic", crystal=snakemake.input.crystal,
             method="analytic nearest-neighbour sums (docs/physics/paper.md Appendix, Eq. A11); long-wave "
             f"stability from the acoustic tensor over {elastic.STABILITY_DIRECTIONS} directions, "

@@ -24,8 +24,24 @@ def solve(pot, direction):
     return rayleigh.solve(point["S"].values, 1.0, point["c2_SH"].values)
 
 
-ds = stage.block_cube(job, solve, rayleigh.VARIABLES)
+blocks = {}
+if job.get("angles") is not None:  # FCC propagation angles: the general solver off the mirrors
+    from surfwave.continuum import fcc_angles
+
+    for pot in job["potentials"]:
+        point = elastic.sel(potential=pot).transpose("angle", "strain", ...)
+        result = fcc_angles.rayleigh_at_angles(point["C"].values, point["stress"].values,
+                                               point["S"].values, job["angles"])
+        for i, angle in enumerate(job["angles"]):
+            blocks[(pot, angle)] = {k: v[i] for k, v in result.items()}
+    ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
+                    job["d_over_d0"], fcc_angles.RAYLEIGH_VARIABLES)
+    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+else:
+    ds = stage.block_cube(job, solve, rayleigh.VARIABLES)
 ds = ds.assign_coords(space_group=elastic["space_group"])
 cube.finish(ds, snakemake, what="rayleigh",
             method="Eq. (17) secular equation; root in 0 < rho c^2 < min(S_xyyx, S_xxxx) "
-            "satisfying the unsquared boundary condition with decaying partial waves")
+            "satisfying the unsquared boundary condition with decaying partial waves"
+            + ("; off the mirror angles the general Stroh surface-impedance solver"
+               if job.get("angles") is not None else ""))

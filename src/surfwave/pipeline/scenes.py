@@ -42,6 +42,7 @@ CUBES = {
     "dispersion": "dispersion.nc",
     "displacements": "displacements.nc",
     "entropy": "entropy.nc",
+    "surface_wave": "surface_wave.nc",
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
@@ -225,6 +226,15 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
             pots.append(pot)
         except InputError as exc:
             problems.append(f"{where}, key 'potentials': value {pot!r}: {exc}")
+    angles = None
+    if isinstance(raw.get("directions"), dict) or (
+            isinstance(raw.get("directions"), list)
+            and all(isinstance(x, (int, float)) for x in raw["directions"])):
+        from surfwave.pipeline.crystal_scenes import fcc_angles
+
+        angles, found = fcc_angles(where, raw)  # propagation angles in the (001) surface
+        problems += found
+        raw = {**raw, "directions": ["[100]"]}   # the base frame the angles turn from
     directions = list(raw.get("directions") or LATTICES[lattice]["directions"])
     good_dirs = []
     for direction in directions:
@@ -267,6 +277,7 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
         "theta": [float(x) for x in theta],
         "quantities": list(raw["quantities"]),
         "accuracy": copy.deepcopy(raw["accuracy"]),
+        **({"angles": angles} if angles is not None else {}),
     }, []
 
 
@@ -295,7 +306,11 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
     for name, raw in raw_scenes.items():
         if name in broken or not isinstance(raw, dict):
             continue
-        scene, found = _check_scene(name, raw)
+        if "materials" in raw:  # a real-crystal scene (surfwave.pipeline.crystal_scenes)
+            from surfwave.pipeline.crystal_scenes import check_crystal_scene as check
+        else:
+            check = _check_scene
+        scene, found = check(name, raw)
         problems += found
         if scene is not None:
             scenes[name] = scene
@@ -319,7 +334,8 @@ def targets(scenes: dict[str, dict], names, results: str = "results") -> list[st
     """The cube paths the named scenes ask for (crystal.nc always; one cube per quantity)."""
     out = []
     for name in names:
-        out.append(f"{results}/{name}/crystal.nc")
+        if scenes[name].get("kind") != "crystal":  # real crystals have no model-lattice cell
+            out.append(f"{results}/{name}/crystal.nc")
         out += [f"{results}/{name}/{CUBES[q]}" for q in scenes[name]["quantities"]]
     return out
 
@@ -332,9 +348,11 @@ _STAGE_KEYS = {
     "dispersion": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
     "displacements": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
     "entropy": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
+    "surface_wave": ("materials", "surfaces", "angles", "directions", "stress", "loading", "toec"),
 }
 _STAGE_ACCURACY = {"crystal": "symmetry", "bulk": "bulk", "dispersion": "dispersion",
-                   "displacements": "displacements", "entropy": "entropy"}
+                   "displacements": "displacements", "entropy": "entropy",
+                   "surface_wave": "surface_wave"}
 
 
 def job_params(scene: dict, stage: str) -> dict[str, Any]:
@@ -349,6 +367,8 @@ def job_params(scene: dict, stage: str) -> dict[str, Any]:
     params.update({k: copy.deepcopy(scene[k]) for k in _STAGE_KEYS[stage]})
     acc = _STAGE_ACCURACY.get(stage)
     params["accuracy"] = copy.deepcopy(scene["accuracy"].get(acc, {})) if acc else {}
+    if scene.get("angles") is not None and stage in ("elastic", "rayleigh"):
+        params["angles"] = list(scene["angles"])  # FCC propagation angles (degrees)
     return params
 
 

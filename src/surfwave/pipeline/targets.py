@@ -13,7 +13,7 @@ REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
 
 def speeds_scenes(scenes: dict, names) -> list[str]:
     """Names (of ``names``) of the FCC scenes that make elastic and rayleigh cubes (Fig. 2)."""
-    return [n for n in names if scenes[n]["lattice"] == "fcc"
+    return [n for n in names if scenes[n].get("lattice") == "fcc" and scenes[n].get("angles") is None
             and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
 
 
@@ -25,13 +25,35 @@ def figure_targets(scenes: dict, names, results: str = "results") -> list[str]:
     """
     out = []
     for n in names:
-        q, pots = set(scenes[n]["quantities"]), scenes[n]["potentials"]
+        q, pots = set(scenes[n]["quantities"]), scenes[n].get("potentials", [])
         if "dispersion" in q:
             out += [f"{results}/{n}/dispersion_{p}.png" for p in pots] + [f"{results}/{n}/theta_c.png"]
         if "displacements" in q:
             out += [f"{results}/{n}/fig3_displacements_{p}.png" for p in pots]
         if "entropy" in q:
             out.append(f"{results}/{n}/entropy_vs_strain.png")
+    return out
+
+
+def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
+    """Figures and tables of the named real-crystal scenes (``materials:`` scenes).
+
+    ``surface_wave_angles.png`` when a scene has three or more angles;
+    ``surface_wave_vs_stress.png``, ``acoustoelastic.md`` and ``.csv`` (one job) when it has
+    two or more stresses (the table says so when the grid has no zero with a point on
+    each side, which the central differences need).
+    """
+    out = []
+    for n in names:
+        s = scenes[n]
+        if s.get("kind") != "crystal" or "surface_wave" not in s["quantities"]:
+            continue
+        if len(s["angles"]) >= 3:
+            out.append(f"{results}/{n}/surface_wave_angles.png")
+        stress = s.get("stress") or []
+        if len(stress) >= 2:
+            out += [f"{results}/{n}/{f}" for f in ("surface_wave_vs_stress.png", "acoustoelastic.md",
+                                                   "acoustoelastic.csv")]
     return out
 
 

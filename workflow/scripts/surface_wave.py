@@ -1,0 +1,25 @@
+"""Rule `surface_wave`: surface waves of real crystals over a scene's grid
+(surfwave.continuum.crystal_scene.surface_wave_scene), written as results/<scene>/surface_wave.nc.
+
+By hand (from the repository root): python workflow/scripts/surface_wave.py SCENE [CONFIGFILE ...]
+"""
+import sys
+
+from surfwave.continuum.crystal_scene import METHOD, UNITS_NOTE, surface_wave_scene
+from surfwave.data import cube
+
+if "snakemake" not in globals():  # standalone run for debugging
+    from surfwave.pipeline.standalone import standalone
+
+    snakemake = standalone("surface_wave")
+sys.stderr = open(snakemake.log[0], "w")
+
+job = snakemake.params.job
+ds = surface_wave_scene(job["materials"], job["surfaces"], job["angles"], stress=job["stress"],
+                        loadings=job["loading"], toec=job["toec"], directions=job["directions"],
+                        tol=job["accuracy"].get("tol"))
+for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):
+    print(f"{wave_type}: {int((ds.wave_type == wave_type).sum())} points", file=sys.stderr)
+ds = cube.provenance(ds, title=f"surfwave surface_wave cube, scene {job['scene']}", params=job,
+                     rule=snakemake.rule, method=METHOD, extra={"units_note": UNITS_NOTE})
+cube.write(ds, snakemake.output[0])
