@@ -3,7 +3,13 @@ rule bulk:
     input:
         crystal="results/{scene}/crystal.nc",
         elastic="results/{scene}/elastic.nc",
-        code=code("continuum.phonons", "continuum.sanity", "data.cache", "data.cube", "pipeline.stage"),
+        code=code(
+            "continuum.phonons",
+            "continuum.sanity",
+            "data.cache",
+            "data.cube",
+            "pipeline.stage",
+        ),
     output:
         "results/{scene}/bulk.nc",
     log:

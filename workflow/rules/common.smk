@@ -7,6 +7,8 @@ from surfwave.pipeline.scenes import job_params, selected, targets
 CONDA_ENV = "../envs/surfwave.yaml"
 #: The paper's printed numbers (the report's and Table I's only hand-typed values).
 PAPER_VALUES = "src/surfwave/data/paper_values.yaml"
+#: The materials database (real-crystal scenes read it).
+MATERIALS = "src/surfwave/data/materials.yaml"
 
 
 def scene_targets():

@@ -10,7 +10,8 @@ CRYSTAL_TARGETS = crystal_targets(SCENES, selected(config, SCENES))
 rule surface_wave:
     """Surface-wave speed, limiting speed, wave type and polarisation of real crystals."""
     input:
-        code=code("continuum.crystal_scene", "data.cube"),
+        code=code("continuum.crystal_scene", "data.cube", "pipeline.stage"),
+        materials=MATERIALS,
     output:
         "results/{scene}/surface_wave.nc",
     log:
@@ -27,7 +28,7 @@ rule figure_surface_wave_angles:
     """c_R and v_L against the propagation angle, one panel per surface (unstressed)."""
     input:
         cube="results/{scene}/surface_wave.nc",
-        code=code("plots.surface_wave"),
+        code=code("plots.surface_wave", "pipeline.stage"),
     output:
         report(
             "results/{scene}/surface_wave_angles.png",
@@ -48,7 +49,7 @@ rule surface_wave_stress:
     and the table of acoustoelastic coefficients (1/c_R) dc_R/dsigma at zero stress."""
     input:
         cube="results/{scene}/surface_wave.nc",
-        code=code("plots.surface_wave", "report.acoustoelastic"),
+        code=code("plots.surface_wave", "report.acoustoelastic", "pipeline.stage"),
     output:
         png=report(
             "results/{scene}/surface_wave_vs_stress.png",

@@ -7,12 +7,13 @@ import sys
 
 from surfwave.continuum.crystal_scene import METHOD, UNITS_NOTE, surface_wave_scene
 from surfwave.data import cube
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
 
     snakemake = standalone("surface_wave")
-sys.stderr = open(snakemake.log[0], "w")
+stage.open_log(snakemake)
 
 job = snakemake.params.job
 ds = surface_wave_scene(job["materials"], job["surfaces"], job["angles"], stress=job["stress"],
