@@ -66,3 +66,16 @@ def test_cartesian_rotations_identity_frame():
     cell = np.diag([1.0, 2.0, 3.0])
     rots = np.array([np.diag([-1, 1, 1])], dtype=float)
     np.testing.assert_allclose(symmetry.cartesian_rotations(cell, rots)[0], np.diag([-1.0, 1, 1]))
+
+
+def test_a_cell_seen_before_gets_the_fresh_answer():
+    """Cells analysed earlier in the process (another potential, same geometry) are answered
+    from memory; the reference is spglib on the same cells with the memory emptied."""
+    cells = build("fcc", "in_plane_hydrostatic", None, "[110]", [0.95, 1.0, 1.05]).cell3d()
+    first = symmetry.analyse(cells)
+    again = symmetry.analyse(cells)
+    symmetry._SEEN.clear()
+    fresh = symmetry.analyse(cells)
+    for key in fresh:
+        assert np.array_equal(first[key], fresh[key]) and np.array_equal(again[key], fresh[key])
+    assert fresh["space_group"].tolist() == ["I4/mmm", "Fm-3m", "I4/mmm"]

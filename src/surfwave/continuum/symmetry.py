@@ -49,6 +49,11 @@ def cartesian_rotations(cell: np.ndarray, rotations: np.ndarray) -> np.ndarray:
     return lt @ rotations @ np.linalg.inv(lt)
 
 
+#: Results of cells already analysed in this process (cell rounded to 1e-12 d0, symprec).
+_SEEN: dict = {}
+_SEEN_MAX = 10**6
+
+
 def analyse(cells: np.ndarray, symprec: float = 1e-5) -> dict[str, np.ndarray]:
     """Space group and lab-frame mirrors of one-atom cells.
 
@@ -73,6 +78,11 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5) -> dict[str, np.ndarray]:
     cells = np.asarray(cells, dtype=float)
     out = {"space_group": [], "space_group_number": [], **{k: [] for k in MIRRORS}}
     for i, cell in enumerate(cells):
+        key = (np.round(cell, 12).tobytes(), symprec)  # the same cell again (e.g. another
+        if key in _SEEN:                               # potential, same geometry): same answer
+            for name, value in zip(out, _SEEN[key]):
+                out[name].append(value)
+            continue
         try:
             ds = spglib.get_symmetry_dataset((cell, [[0.0, 0.0, 0.0]], [1]), symprec=symprec)
         except spglib.error.SpglibError as exc:
@@ -84,6 +94,8 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5) -> dict[str, np.ndarray]:
         out["space_group_number"].append(int(ds.number))
         for name, mirror in MIRRORS.items():
             out[name].append(bool(np.any(np.all(np.abs(rots - mirror) < 1e-6, axis=(1, 2)))))
+        if len(_SEEN) < _SEEN_MAX:
+            _SEEN[key] = tuple(v[-1] for v in out.values())
     return {k: np.asarray(v) for k, v in out.items()}
 
 
