@@ -25,8 +25,10 @@ env: $(STAMP)
 reproduce: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS)
 
+# One BLAS thread per test worker: two workers on two cores, no oversubscription (dense
+# eigensolves in the slab tests run ~2.5x slower with competing BLAS threads).
 test: $(STAMP)
-	$(BIN)/python -m pytest -n 2 --dist loadgroup -q
+	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 # The SLURM profile on a real single-node SLURM cluster on localhost (tests/test_slurm.py):
 # installs Debian's slurmctld, slurmd, slurm-client and munge if missing, runs a tiny scene
