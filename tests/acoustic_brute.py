@@ -3,7 +3,7 @@
 Independent of surfwave.continuum.elastic.long_wave_stability: a dense Fibonacci sphere
 (a fine angle grid in 2D), refined by zooming local grids around the best few directions
 (scipy.optimize in 2D), with Q_ik(n) = (C_ijkl + sigma_jl delta_ik) n_j n_l assembled here
-(PHYSICS.md, bulk long-wave stability) from the library's bond sums V C and V sigma.
+(docs/physics/paper.md, bulk long-wave stability) from the library's bond sums V C and V sigma.
 Used by test_stability_scan.py and test_golden_constants.py.
 """
 from __future__ import annotations

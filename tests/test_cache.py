@@ -237,7 +237,7 @@ def test_every_accuracy_knob_changes_the_key(stage):
     """A cached value computed at one accuracy must never be served for another: the point
     digest of ``job_key(..., **knobs)`` changes with every knob of the stage (each knob of
     the schema's defaults, changed by +1, by 10 % or in its last binary digit). Reference:
-    DESIGN.md ("keyed by a hash of everything that determines the value ... accuracy
+    docs/architecture.md ("keyed by a hash of everything that determines the value ... accuracy
     settings") -- the supercell 2 / supercell 3 mix-up of issue 14 is the case caught."""
     job = _default_jobs()[stage]
     knobs = job["accuracy"]

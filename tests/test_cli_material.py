@@ -13,7 +13,7 @@ import pytest
 import surfwave
 from surfwave.cli import main
 
-CU = ["--C11", "168.4", "--C12", "121.4", "--C44", "75.4", "--rho", "8960"]   # PHYSICS.md copper
+CU = ["--C11", "168.4", "--C12", "121.4", "--C44", "75.4", "--rho", "8960"]   # docs/physics/general-solver.md, copper
 
 
 def test_surface_and_direction_json_equals_library(capsys):

@@ -1,12 +1,12 @@
 """Real-crystal scenes: the cube builder (surfwave.continuum.crystal_scene) and the config checks.
 
 References, each independent of the general (Stroh) solver the cube uses:
-- Cu (001)[100] unstressed, 2012.12 m/s (PHYSICS.md, C11, C12, C44 = 168.4, 121.4, 75.4 GPa,
+- Cu (001)[100] unstressed, 2012.12 m/s (docs/physics/paper.md, C11, C12, C44 = 168.4, 121.4, 75.4 GPa,
   rho 8960 kg/m^3);
 - at mirror directions under stress along the propagation, the sagittal secular equation
   Eq. (17) of the seed paper (surfwave.continuum.rayleigh.solve) on S of Eq. (A11);
 - an isotropic solid with Poisson ratio 1/4 (C11 = 3 C44, C12 = C44): c_R / c_T =
-  sqrt(2 - 2/sqrt 3) = 0.919402 on every surface and in every direction (PHYSICS.md);
+  sqrt(2 - 2/sqrt 3) = 0.919402 on every surface and in every direction (docs/physics/paper.md);
 - the crystal's mirror symmetry: c_R(angle) = c_R(2 w - angle) about each mirror line w;
 - A = C + sigma: a stress sigma_33 across a wave travelling in the x1-x2 plane enters only
   terms with d/dx3, so with fixed constants it leaves c_R exactly unchanged.
@@ -28,9 +28,9 @@ ISOTROPIC = Material(name="iso", symmetry="cubic", rho=5000.0, voigt=cubic_voigt
 
 
 def test_copper_001_100_unstressed():
-    """2012.12 m/s (PHYSICS.md); along [110] copper's sagittal wave is faster than the slow
+    """2012.12 m/s (docs/physics/paper.md); along [110] copper's sagittal wave is faster than the slow
     shear bulk wave polarised along [1-10] (sqrt((C11 - C12)/2 rho) = 1620 m/s), so it is the
-    mirror-protected supersonic_decoupled kind (PHYSICS.md: "label it as such, don't drop it")."""
+    mirror-protected supersonic_decoupled kind (docs/physics/paper.md: a mirror-protected wave is labelled, not dropped)."""
     ds = surface_wave_scene(["Cu"], ["(001)"], [0.0, 45.0])
     c = ds.c_R.sel(material="Cu", surface="(001)")
     assert round(float(c.sel(angle=0.0)), 2) == 2012.12

@@ -5,7 +5,7 @@ References:
   directions "[100]" and "[110]" (lattice built in that frame, Eq. 17);
 - the tetragonal mirror at 45 degrees: c_R(45 + x) = c_R(45 - x) under in-plane hydrostatic
   stress (the crystal and the stress are symmetric about the (1-10) plane);
-- at zero stress the nearest-neighbour FCC crystal is cubic with C11:C12:C44 = 2:1:1 (PHYSICS.md),
+- at zero stress the nearest-neighbour FCC crystal is cubic with C11:C12:C44 = 2:1:1 (docs/physics/paper.md),
   so its speed at any angle equals the real-crystal cube's for those constants (a different
   frame, unit system and code path through the same solver).
 """

@@ -14,7 +14,7 @@ not go through the code that produced it:
   y^2 = 1 - x^2):
       c_L,par^2 = 4x^2 phi''(2x) + 2x^4,   c_T,par^2 = 2x phi'(2x) + 2x^2 y^2,
       c_L,perp^2 = 2y^4,                   c_T,perp^2 = 2x^2 y^2,
-  and the potentials typed from PHYSICS.md (not from surfwave.continuum.potentials). For
+  and the potentials typed from docs/physics/paper.md (not from surfwave.continuum.potentials). For
   Hooke springs the condition reduces to x^2 - 6x + 2 = 0, so d/d0 = 2x = 2(3 - sqrt 7).
 - bulk limits and flags: the brute-force direction scan of tests/acoustic_brute.py, bisected
   with scipy.optimize.brentq.
@@ -32,7 +32,7 @@ from surfwave.dynamics import dispersion as D
 
 
 def lj_dphi(r):
-    """phi_LJ'(r) for phi_LJ = (r^-12 - 2 r^-6)/72 (PHYSICS.md, reduced units)."""
+    """phi_LJ'(r) for phi_LJ = (r^-12 - 2 r^-6)/72 (docs/physics/paper.md, reduced units)."""
     return (r**-7 - r**-13) / 6.0
 
 

@@ -1,6 +1,6 @@
 """Surfaces, directions and lab frames (continuum.orientation).
 
-References: PHYSICS.md "Units and frames" (x = propagation, y = inward normal, z = x x y; the
+References: docs/physics/paper.md "Units and frames" (x = propagation, y = inward normal, z = x x y; the
 FCC frames along [100] and [110] of the (001) surface), and issue 10's reference directions
 ((001): [100]; (110): [001]; (111): [1-10]), written out by hand below.
 """
@@ -18,7 +18,7 @@ S2, S3, S6 = np.sqrt(2.0), np.sqrt(3.0), np.sqrt(6.0)
 
 
 def test_fcc_frames_are_the_physics_md_frames():
-    """PHYSICS.md: (001) surface, y = [001] into the crystal, z = x x y. By hand:
+    """docs/physics/paper.md: (001) surface, y = [001] into the crystal, z = x x y. By hand:
     [100] -> rows [100], [001], [0-10]; [110] -> [110]/sqrt2, [001], [1-10]/sqrt2. The lattice
     module takes its frames from lab_axes (one place for the convention)."""
     by_hand = {"[100]": np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], float),

@@ -6,7 +6,7 @@ must FAIL (or be INCONCLUSIVE), so an inverted, loosened or dropped verdict fail
 The specs are the real ones from paper_values.yaml; the probe values are derived here,
 independently of the checking code: from the paper's printed decimals (half a unit of the
 last printed digit), from the closed forms (Eq. 16, Eq. 26) and from the wording of each
-claim. Cubes are built in memory (no netCDF), with the names of DESIGN.md.
+claim. Cubes are built in memory (no netCDF), with the names of docs/cubes.md.
 
 Last test: every value and claim on the real physics of the paper's scenes (grids of
 config/config.yaml, computed with the library's public functions): the set of FAILs must be

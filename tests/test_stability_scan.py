@@ -1,6 +1,6 @@
 """Long-wave stability against an independent brute-force direction scan.
 
-Reference: PHYSICS.md -- every bulk acoustic wave, in every direction n, needs a positive
+Reference: docs/physics/paper.md (bulk stability) -- every bulk acoustic wave, in every direction n, needs a positive
 eigenvalue of Q_ik(n) = (C_ijkl + sigma_jl delta_ik) n_j n_l. Here that minimum over n is
 found without the library's search: a dense Fibonacci sphere (a fine angle grid in 2D),
 refined by zooming local grids around the best few directions (scipy.optimize in 2D), with Q assembled here from V C and

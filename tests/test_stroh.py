@@ -1,7 +1,7 @@
 """General (Stroh/impedance) surface-wave solver: closed forms, Eq. (17), another route, extremes.
 
 Constants typed here (the materials database is a separate module):
-copper C11, C12, C44 = 168.4, 121.4, 75.4 GPa, rho = 8960 kg/m^3 (PHYSICS.md / README);
+copper C11, C12, C44 = 168.4, 121.4, 75.4 GPa, rho = 8960 kg/m^3 (README, docs/materials.md);
 lead 49.5, 42.3, 14.9 GPa (Kittel, Introduction to Solid State Physics, table of cubic elastic
 constants, 4.95, 4.23, 1.49 x 10^11 dyn/cm^2), rho = 11340 kg/m^3 (CRC handbook, 11.34 g/cm^3).
 """
@@ -35,7 +35,7 @@ def _classical_xi(r: float) -> float:
 @pytest.mark.parametrize("scale", [1.0, 1e9, 1e-3])
 @pytest.mark.parametrize("mirror", [None, False])
 def test_isotropic_exact_speed_polarisation_decay(scale, mirror):
-    """Isotropic, Poisson ratio 1/4 (lambda = mu = 1): c_R = sqrt(2 - 2/sqrt 3) (PHYSICS.md), at an
+    """Isotropic, Poisson ratio 1/4 (lambda = mu = 1): c_R = sqrt(2 - 2/sqrt 3) (docs/physics/paper.md), at an
     arbitrary angle; polarisation |u1/u2| = (2 - xi)/(2 q) with u1 90 deg ahead (potential theory,
     q = sqrt(1 - xi/3), s = sqrt(1 - xi)); decay p = i q, i s, i s (the SH pair degenerate with the
     SV one: a degenerate Stroh eigenvalue); depth 1/(2 pi s). Both routes (Eq. 17 and Stroh with

@@ -2,14 +2,14 @@
 
 The potential: Mie n-m, phi = [m r^-n - n r^-m] / (n m (n - m)), here 9-6 ("mie9_6", not
 shipped with surfwave), which has phi'(1) = 0 and phi''(1) = 1 like every reduced-unit
-potential (PHYSICS.md); Mie 12-6 is the paper's Lennard-Jones. References, none of them the
+potential (docs/physics/paper.md); Mie 12-6 is the paper's Lennard-Jones. References, none of them the
 code path under test:
 - triangular lattice: the bond sums of Eq. (A12) written out by hand (in-row bond 2x,
   inclined bonds at rest: c_L,par^2 = 4x^2 phi''(2x) + 2x^4, c_T,par^2 = 2x phi'(2x) +
   2x^2 y^2, c_L,perp^2 = 2y^4, c_T,perp^2 = 2x^2 y^2, x = d_x/d0, y^2 = 1 - x^2) and
   Eq. (20) on them; Eq. (15) against the numerical lattice-dynamics surface mode;
 - FCC at zero stress: rho c_R^2 / C44 = (3 - sqrt 3)/2 along [100], (7 - sqrt 17)/4 along
-  [110] (PHYSICS.md; every potential gives C11:C12:C44 = 2:1:1 there);
+  [110] (docs/physics/paper.md; every potential gives C11:C12:C44 = 2:1:1 there);
 - FCC under stress: phonopy finite displacements against the analytic speeds, and the
   Mie 12-6 instance against the built-in "lj";
 - surface entropy at zero stress: equal to the harmonic lattice's (same force constants).

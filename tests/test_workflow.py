@@ -163,7 +163,7 @@ def test_noop_scene_change_knob_change_and_code_provenance(built, tmp_path):
     phonopy supercell goes 2 -> 3. Exactly the affected jobs rerun and exactly the affected
     points are computed: the new strain point in tiny_tri's two cached stages, and all 6
     bulk points of tiny_fcc (1 potential x 2 directions x 3 strains) -- a cache entry made
-    with supercell 2 must never be served for supercell 3 (DESIGN.md: keyed by everything
+    with supercell 2 must never be served for supercell 3 (docs/architecture.md: keyed by everything
     that determines the value, accuracy settings included)."""
     built = own_copy(built, tmp_path / "wf")  # this test reruns the workflow
     # 1. No-op rerun.
@@ -191,7 +191,7 @@ def test_noop_scene_change_knob_change_and_code_provenance(built, tmp_path):
     assert open_cube(built / "results" / "tiny_tri" / "entropy.nc").sizes["strain"] == 3
     bulk = open_cube(built / "results" / "tiny_fcc" / "bulk.nc")
     assert '"supercell": 3' in bulk.attrs["accuracy"]
-    # nearest-neighbour forces: supercell 3 is as exact as 2 (DESIGN.md, phonopy facts)
+    # nearest-neighbour forces: supercell 3 is as exact as 2 (docs/architecture.md, phonopy facts)
     assert float(abs(bulk.c2_T_par_deviation).max()) < 1e-6
     # 3. Library modules are inputs exactly where they are used.
     summary = smk(built, "--detailed-summary", "--configfile", "config/config.yaml", str(extra)).stdout
@@ -265,7 +265,7 @@ def test_figures_and_report_exist_without_unexpected_fail(built):
 
 
 def test_real_crystal_scene(built):
-    """A real-crystal scene end to end: cube (Cu (001)[100] 2012.12 m/s, PHYSICS.md), complex
+    """A real-crystal scene end to end: cube (Cu (001)[100] 2012.12 m/s, docs/physics/general-solver.md), complex
     polarisation readable as numbers without complex support, figures and the coefficient table."""
     import xarray as xr
 

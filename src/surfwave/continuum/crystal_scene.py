@@ -1,7 +1,7 @@
 """Surface waves of real crystals over a whole scene: materials x surfaces x angles, optionally
 x loading x TOEC model x stress, in one labelled cube (``surface_wave.nc``).
 
-Frames and units (PHYSICS.md, "Beyond the paper"): the lab frame of a surface has x1 along
+Frames and units (docs/physics/general-solver.md): the lab frame of a surface has x1 along
 the propagation direction, x2 along the inward surface normal and x3 = x1 x x2; ``angle`` is
 measured in degrees from the surface's reference direction toward n x reference
 (:mod:`surfwave.continuum.orientation`). Elastic constants and stresses are in GPa, densities

@@ -11,7 +11,7 @@ Eq. (17) on the mirror directions (theta a multiple of 45 degrees) and the gener
 anisotropic solver (:mod:`surfwave.continuum.stroh`) elsewhere, where the sagittal and
 shear-horizontal motions couple.
 
-Units are the reduced units of PHYSICS.md (tensors times the volume per atom, m = 1).
+Units are the reduced units of docs/physics/paper.md (tensors times the volume per atom, m = 1).
 
 Examples
 --------

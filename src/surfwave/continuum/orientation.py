@@ -1,6 +1,6 @@
 """Surfaces, propagation directions and the lab frame of a surface-wave calculation.
 
-Lab frame (PHYSICS.md): x1 = propagation direction, x2 = surface normal pointing INTO the
+Lab frame (docs/physics/paper.md): x1 = propagation direction, x2 = surface normal pointing INTO the
 crystal, x3 = x1 x x2 (right-handed); the surface is the x1 x3 plane. :func:`lab_axes`
 returns the three lab axes as the rows of a rotation matrix R written in crystal (cube)
 axes, so that lab components of a tensor are ``rotate4(C, R)`` (:mod:`surfwave.continuum.tensors`).
