@@ -19,7 +19,7 @@ import copy
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.pipeline.scenes import DECIMALS, MAX_POINTS, SceneError, expand_grid
+from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid
 
 
 #: Quantities an FCC scene with propagation angles can compute.

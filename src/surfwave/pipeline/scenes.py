@@ -25,11 +25,12 @@ import copy
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 
 from surfwave.errors import SurfwaveError, InputError
 from surfwave.continuum.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.continuum.potentials import get_potential
+from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
+from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid, theta_grid  # noqa: F401 (public)
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).
 SCHEMA_PATH = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "config.schema.yaml"
@@ -46,15 +47,6 @@ CUBES = {
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
-#: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
-DECIMALS = 12
-MAX_POINTS = 100_000
-
-
-class SceneError(SurfwaveError, ValueError):
-    """A configuration that cannot be run; the message names scene, key and value."""
-
-
 def _where(path) -> str:
     parts = list(path)
     if len(parts) >= 2 and parts[0] == "scenes":
@@ -151,69 +143,6 @@ def _schema_message(err) -> str:
     return msg + (f"; expected: {hint}" if hint else "")
 
 
-def expand_grid(spec, where: str = "grid") -> np.ndarray:
-    """Values of a grid: a list (sorted, rounded), or {start, stop, step} with stop included.
-
-    The values are start + i * step rounded to :data:`DECIMALS` decimals, so a grid from
-    0.88 by 0.01 contains exactly the float 0.93 a user would type (no drift).
-
-    Raises
-    ------
-    SceneError
-        Malformed grid (stop before start, stop not on the grid, too many points,
-        duplicate values); the message starts with ``where``.
-    """
-    if isinstance(spec, dict):
-        start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
-        bad = {k: v for k, v in zip(("start", "stop", "step"), (start, stop, step)) if not np.isfinite(v)}
-        if bad:
-            key, value = next(iter(bad.items()))
-            raise SceneError(f"{where}: {key} must be a finite number, got {value!r}")
-        if not step > 0:
-            raise SceneError(f"{where}: step must be positive, got {step!r}")
-        if stop < start:
-            raise SceneError(f"{where}: stop {stop!r} lies before start {start!r}")
-        n = (stop - start) / step
-        k = int(round(n))
-        if abs(n - k) > 1e-9 * max(1.0, abs(n)):
-            raise SceneError(
-                f"{where}: stop - start = {stop - start:.12g} is not a multiple of step {step!r}"
-            )
-        if k + 1 > MAX_POINTS:
-            raise SceneError(f"{where}: {k + 1} points exceed the limit of {MAX_POINTS}")
-        values = np.round(start + step * np.arange(k + 1), DECIMALS)
-    else:
-        values = np.round(np.sort(np.asarray(spec, dtype=float)), DECIMALS)
-        if values.ndim != 1 or values.size == 0:
-            raise SceneError(f"{where}: expected a non-empty list of numbers, got {spec!r}")
-        dup = values[1:][np.diff(values) == 0]
-        if dup.size:
-            raise SceneError(f"{where}: value {float(dup[0])!r} appears twice")
-    if not np.all(np.isfinite(values)):
-        raise SceneError(f"{where}: values must be finite, got {spec!r}")
-    return values
-
-
-def theta_grid(spec, where: str = "theta") -> np.ndarray:
-    """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi),
-    optionally with ``pi_fractions: [f, ...]`` adding the exact values f * pi (e.g. 0.125 for pi/8)."""
-    if isinstance(spec, dict):
-        n = int(spec["n"])
-        grid = (np.arange(n) + 0.5) * np.pi / n
-        extra = np.asarray(spec.get("pi_fractions", []), dtype=float) * np.pi
-        bad = extra[(extra <= 0) | (extra >= np.pi)]
-        if bad.size:
-            raise SceneError(f"{where}: pi_fractions value {bad[0] / np.pi!r} lies outside (0, 1)")
-        # An added value replaces a midpoint it coincides with (no near-duplicate columns).
-        keep = np.all(np.abs(grid[:, None] - extra[None, :]) > 1e-12, axis=1)
-        return np.sort(np.concatenate([grid[keep], extra]))
-    values = expand_grid(spec, where)
-    bad = values[(values <= 0) | (values >= np.pi)]
-    if bad.size:
-        raise SceneError(f"{where}: theta = {bad[0]!r} lies outside (0, pi)")
-    return values
-
-
 def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     """The expanded scene (None if it has problems) and every problem found."""
     where = f"scene {name!r}"
@@ -230,8 +159,6 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     if isinstance(raw.get("directions"), dict) or (
             isinstance(raw.get("directions"), list)
             and all(isinstance(x, (int, float)) for x in raw["directions"])):
-        from surfwave.pipeline.crystal_scenes import fcc_angles
-
         angles, found = fcc_angles(where, raw)  # propagation angles in the (001) surface
         problems += found
         raw = {**raw, "directions": ["[100]"]}   # the base frame the angles turn from
@@ -306,10 +233,8 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
     for name, raw in raw_scenes.items():
         if name in broken or not isinstance(raw, dict):
             continue
-        if "materials" in raw:  # a real-crystal scene (surfwave.pipeline.crystal_scenes)
-            from surfwave.pipeline.crystal_scenes import check_crystal_scene as check
-        else:
-            check = _check_scene
+        # a real-crystal scene names materials (surfwave.pipeline.crystal_scenes)
+        check = check_crystal_scene if "materials" in raw else _check_scene
         scene, found = check(name, raw)
         problems += found
         if scene is not None:

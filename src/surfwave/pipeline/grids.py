@@ -1,0 +1,81 @@
+"""Grids of a scene (d/d0, theta) and the error every config check raises.
+
+Shared by the checks of model-crystal scenes (:mod:`surfwave.pipeline.scenes`) and of
+real-crystal scenes (:mod:`surfwave.pipeline.crystal_scenes`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave.errors import SurfwaveError
+
+#: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
+DECIMALS = 12
+MAX_POINTS = 100_000
+
+
+class SceneError(SurfwaveError, ValueError):
+    """A configuration that cannot be run; the message names scene, key and value."""
+
+
+def expand_grid(spec, where: str = "grid") -> np.ndarray:
+    """Values of a grid: a list (sorted, rounded), or {start, stop, step} with stop included.
+
+    The values are start + i * step rounded to :data:`DECIMALS` decimals, so a grid from
+    0.88 by 0.01 contains exactly the float 0.93 a user would type (no drift).
+
+    Raises
+    ------
+    SceneError
+        Malformed grid (stop before start, stop not on the grid, too many points,
+        duplicate values); the message starts with ``where``.
+    """
+    if isinstance(spec, dict):
+        start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
+        bad = {k: v for k, v in zip(("start", "stop", "step"), (start, stop, step)) if not np.isfinite(v)}
+        if bad:
+            key, value = next(iter(bad.items()))
+            raise SceneError(f"{where}: {key} must be a finite number, got {value!r}")
+        if not step > 0:
+            raise SceneError(f"{where}: step must be positive, got {step!r}")
+        if stop < start:
+            raise SceneError(f"{where}: stop {stop!r} lies before start {start!r}")
+        n = (stop - start) / step
+        k = int(round(n))
+        if abs(n - k) > 1e-9 * max(1.0, abs(n)):
+            raise SceneError(
+                f"{where}: stop - start = {stop - start:.12g} is not a multiple of step {step!r}"
+            )
+        if k + 1 > MAX_POINTS:
+            raise SceneError(f"{where}: {k + 1} points exceed the limit of {MAX_POINTS}")
+        values = np.round(start + step * np.arange(k + 1), DECIMALS)
+    else:
+        values = np.round(np.sort(np.asarray(spec, dtype=float)), DECIMALS)
+        if values.ndim != 1 or values.size == 0:
+            raise SceneError(f"{where}: expected a non-empty list of numbers, got {spec!r}")
+        dup = values[1:][np.diff(values) == 0]
+        if dup.size:
+            raise SceneError(f"{where}: value {float(dup[0])!r} appears twice")
+    if not np.all(np.isfinite(values)):
+        raise SceneError(f"{where}: values must be finite, got {spec!r}")
+    return values
+
+
+def theta_grid(spec, where: str = "theta") -> np.ndarray:
+    """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi),
+    optionally with ``pi_fractions: [f, ...]`` adding the exact values f * pi (e.g. 0.125 for pi/8)."""
+    if isinstance(spec, dict):
+        n = int(spec["n"])
+        grid = (np.arange(n) + 0.5) * np.pi / n
+        extra = np.asarray(spec.get("pi_fractions", []), dtype=float) * np.pi
+        bad = extra[(extra <= 0) | (extra >= np.pi)]
+        if bad.size:
+            raise SceneError(f"{where}: pi_fractions value {bad[0] / np.pi!r} lies outside (0, 1)")
+        # An added value replaces a midpoint it coincides with (no near-duplicate columns).
+        keep = np.all(np.abs(grid[:, None] - extra[None, :]) > 1e-12, axis=1)
+        return np.sort(np.concatenate([grid[keep], extra]))
+    values = expand_grid(spec, where)
+    bad = values[(values <= 0) | (values >= np.pi)]
+    if bad.size:
+        raise SceneError(f"{where}: theta = {bad[0]!r} lies outside (0, pi)")
+    return values
