@@ -8,7 +8,7 @@ import io
 import numpy as np
 
 from surfwave.data import cache
-from surfwave.pipeline.progress import Progress, summary_line
+from surfwave.data.progress import Progress, summary_line
 
 
 class _Tty(io.StringIO):

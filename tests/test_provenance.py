@@ -1,5 +1,5 @@
 """Which library files a stage depends on (rule inputs and cache code hashes)."""
-from surfwave.pipeline.provenance import module_closure
+from surfwave.data.provenance import module_closure
 
 
 def test_module_closure_separates_stages():

@@ -1,6 +1,6 @@
 # Helpers shared by the rules. Logic lives in surfwave.pipeline.scenes; this file only wires it up.
 from surfwave.data import cache
-from surfwave.pipeline.provenance import module_closure
+from surfwave.data.provenance import module_closure
 from surfwave.pipeline.scenes import job_params, selected, targets
 
 #: Software of every rule under `--sdm conda` (the default route is the .venv from the lock).

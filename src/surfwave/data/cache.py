@@ -34,8 +34,8 @@ import numpy as np
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
 from surfwave.errors import InputError
-from surfwave.pipeline.progress import Progress, summary_line
-from surfwave.pipeline.provenance import module_closure
+from surfwave.data.progress import Progress, summary_line
+from surfwave.data.provenance import module_closure
 
 #: Default location, relative to the working directory of the workflow.
 DEFAULT_ROOT = Path("results") / "cache"
@@ -147,7 +147,7 @@ def cached_points(
         mid-way keeps the points it finished (a rerun resumes there). None: all at once.
     label : str, optional
         What the points are for, e.g. ``"bulk, scene table1"``: the summary line
-        (:func:`surfwave.pipeline.progress.summary_line`) written to ``log`` and kept in the
+        (:func:`surfwave.data.progress.summary_line`) written to ``log`` and kept in the
         run's statistics (:func:`run_summary`). Progress is shown per chunk (a bar on a
         terminal, a line every 10 s in a log file).
     log : file, optional
