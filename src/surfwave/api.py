@@ -20,48 +20,6 @@ __all__ = ["material", "point"]
 EXTRA_KEYS = ("c2_limit", "polarisation", "decay", "penetration_depth")
 
 
-def point(lattice: str, loading: str, potential: str, direction: str, d_over_d0) -> dict:
-    """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
-
-    Parameters
-    ----------
-    lattice : {"fcc", "triangular"}
-    loading : {"uniaxial", "in_plane_hydrostatic"}
-    potential : str
-        A registered potential (``"harmonic"``, ``"lj"``, ...).
-    direction : {"[100]", "[110]", "[10]"}
-        Propagation direction (``"[10]"``: the close-packed rows of the triangular lattice).
-    d_over_d0 : float or array_like, shape (n,)
-        Stretch along the propagation direction (1 = unstressed).
-
-    Returns
-    -------
-    dict
-        Arrays with leading axis n (a scalar input still gives shape (1,)):
-        ``stress`` (sigma_xx V / K d0^2), ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``,
-        ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (all in K d0^2 / m), ``wave_type``,
-        ``reason``, ``stable`` (long-wave stability in every direction),
-        ``min_acoustic_eig``, ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame),
-        ``volume`` and ``d_over_d0``.
-
-    Raises
-    ------
-    InputError, GeometryError
-        Unknown names or an impossible geometry (the message names the value).
-
-    Examples
-    --------
-    >>> import surfwave
-    >>> r = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[110]", 1.0)
-    >>> round(float(r["c2_R"][0]), 4)   # Table I: 0.3596
-    0.3596
-    """
-    out = elastic.properties(lattice, loading, potential, direction, d_over_d0)
-    ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
-    out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
-    return out
-
-
 def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
     """The general solver's outputs for lab-frame V C and V sigma (rho = m = 1)."""
     sw = stroh.surface_wave(stroh.wave_propagation_tensor(C, sigma), 1.0)
@@ -224,16 +182,13 @@ def _toec_state(C6, C3, sigma_c, R, rho):
     is not ok either).
     """
     from surfwave.continuum.acoustoelastic import REASON_TRACTION, TRACTION_TOL
-    from surfwave.continuum.toec import stressed_state
+    from surfwave.continuum.toec import deformed_axes, stressed_state
 
     st = stressed_state(C6, C3, sigma_c, rho)
     ok, reason = st["ok"].copy(), st["reason"].astype(object)
     F = np.where(ok[:, None, None], st["F"], np.eye(3))
-    x1 = np.einsum("mij,mj->mi", F, R[:, 0])
-    x2 = np.einsum("mji,mj->mi", np.linalg.inv(F), R[:, 1])
-    x1 /= np.linalg.norm(x1, axis=-1, keepdims=True)
-    x2 /= np.linalg.norm(x2, axis=-1, keepdims=True)
-    R_def = np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    R_def = deformed_axes(F, R)
+    x2 = R_def[:, 1]
     scale = np.maximum(np.abs(sigma_c).max(axis=(-2, -1)), 1e-300)
     loaded = ok & (np.abs(np.einsum("mij,mj->mi", sigma_c, x2)).max(-1) > TRACTION_TOL * scale)
     reason = np.where(loaded, REASON_TRACTION, reason)

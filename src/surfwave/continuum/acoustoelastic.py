@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum import stroh
+from surfwave.continuum import stroh, toec
 from surfwave.continuum.orientation import lab_axes, parse_direction, surface_normal
 from surfwave.continuum.tensors import rotate2, rotate4, voigt_to_tensor
 from surfwave.continuum.toec import DEFAULT_TOL, stressed_state
@@ -100,7 +100,8 @@ def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float = 1e-12
 
 
 def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
-    """Laboratory axes of the deformed crystal, rows x = F m0, y = F^-T n0, z = x cross y.
+    """Laboratory axes of the deformed crystal for a surface and direction given by name
+    (:func:`surfwave.continuum.toec.deformed_axes`): rows x = F m0, y = F^-T n0, z = x cross y.
 
     Parameters
     ----------
@@ -110,12 +111,7 @@ def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
     -------
     ndarray, shape (..., 3, 3), orthonormal rows (F m0 . F^-T n0 = m0 . n0 = 0).
     """
-    x0, y0, _ = _axes(surface, direction)
-    x = np.einsum("...ij,j->...i", F, x0)
-    y = np.einsum("...ji,j->...i", np.linalg.inv(F), y0)
-    x = x / np.linalg.norm(x, axis=-1, keepdims=True)
-    y = y / np.linalg.norm(y, axis=-1, keepdims=True)
-    return np.stack([x, y, np.cross(x, y)], axis=-2)
+    return toec.deformed_axes(F, _axes(surface, direction))
 
 
 def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", *, tol: float = DEFAULT_TOL) -> dict:

@@ -289,11 +289,7 @@ def _stressed_frames(material, sigma: np.ndarray, axes: np.ndarray, use_toec: bo
                                 material.rho)
     ok = np.asarray(state["ok"], dtype=bool)
     F = np.where(ok[:, None, None], state["F"], np.eye(3))
-    x1 = np.einsum("nij,nj->ni", F, axes[:, 0])
-    x2 = np.einsum("nji,nj->ni", np.linalg.inv(F), axes[:, 1])
-    x1 /= np.linalg.norm(x1, axis=-1, keepdims=True)
-    x2 /= np.linalg.norm(x2, axis=-1, keepdims=True)
-    lab = np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    lab = toec.deformed_axes(F, axes)
     C = np.where(ok[:, None, None, None, None], state["C_star"], voigt_to_tensor(material.voigt))
     return {"C": rotate4(C, lab), "sigma": rotate2(sigma, lab), "rho": np.where(ok, state["rho"], material.rho),
             "ok": ok, "reason": np.asarray(state["reason"]).astype(str)}

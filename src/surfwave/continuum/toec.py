@@ -156,6 +156,34 @@ def cauchy_stress(F, C2, C3) -> np.ndarray:
     return np.einsum("...ip,...pq,...jq->...ij", F, T, F) / np.linalg.det(F)[..., None, None]
 
 
+def deformed_axes(F, axes) -> np.ndarray:
+    """Lab axes carried by the deformation: rows x1 = F m0, x2 = F^-T n0, x3 = x1 x x2.
+
+    The propagation direction is a material line (it follows F); the surface normal is a
+    plane normal (it follows F^-T), so x1 . x2 = m0 . n0 = 0 stays exact.
+
+    Parameters
+    ----------
+    F : array_like, shape (..., 3, 3)
+        Deformation gradient from the natural state, crystal axes.
+    axes : array_like, shape (..., 3, 3)
+        Natural-state lab axes, rows (m0, n0, m0 x n0) in crystal axes
+        (:func:`surfwave.continuum.orientation.lab_axes`).
+
+    Returns
+    -------
+    ndarray, shape broadcast of (..., 3, 3)
+        Orthonormal rows, crystal axes.
+    """
+    F = np.asarray(F, dtype=float)
+    axes = np.asarray(axes, dtype=float)
+    x1 = np.einsum("...ij,...j->...i", F, axes[..., 0, :])
+    x2 = np.einsum("...ji,...j->...i", np.linalg.inv(F), axes[..., 1, :])
+    x1 = x1 / np.linalg.norm(x1, axis=-1, keepdims=True)
+    x2 = x2 / np.linalg.norm(x2, axis=-1, keepdims=True)
+    return np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+
+
 def stressed_constants(C2, C3, F) -> np.ndarray:
     """Constants of the stressed state C*_ijkl = F_ip F_jq F_kr F_ls (C2 + C3 : eta)_pqrs / J.
 
