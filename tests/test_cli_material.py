@@ -60,3 +60,39 @@ def test_errors_are_one_line(capsys, args, message):
     assert main(["material", *args]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+
+def _json(capsys, *args):
+    assert main(["material", *args, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_material_by_name_and_third_order_model(capsys):
+    """--material takes the database's constants and density (Cu: the README's 2012.12 m/s);
+    --toec alone takes the database's third-order constants and agrees with the library call
+    surfwave.material("Cu", ..., toec=True); six values equal to the database's give the same."""
+    from surfwave.data.materials import get_material
+
+    assert _json(capsys, "--material", "Cu", "--direction", "[100]")["c_R"] == pytest.approx(2012.12, abs=0.01)
+    lib = surfwave.material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"]
+    got = _json(capsys, "--material", "Cu", "--direction", "[100]", "--stress", "0.1", "--toec")["c_R"]
+    assert got == pytest.approx(lib, rel=1e-12) and abs(got - 2012.12) > 1.0   # the stress matters
+    t = get_material("Cu").toec
+    six = [repr(float(t[k])) for k in ("C111", "C112", "C123", "C144", "C155", "C456")]
+    explicit = _json(capsys, "--material", "Cu", "--direction", "[100]", "--stress", "0.1", "--toec", *six)
+    assert explicit["c_R"] == pytest.approx(got, rel=1e-12)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--material", "Cu", "--C11", "1"], "either --material or constants"),
+    (["--C11", "168.4", "--C12", "121.4", "--C44", "75.4"], "missing --rho"),
+    (["--material", "Pb", "--stress", "0.1", "--toec"], "Pb"),
+    (["--material", "Cu", "--toec", "1", "2"], "six"),
+])
+def test_material_cli_refuses_ambiguous_or_missing_input(capsys, args, words):
+    """Named material plus constants, no density for constants, a TOEC request for a crystal
+    without third-order constants (named), a wrong count of --toec values: one clear line each."""
+    assert main(["material", *args]) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import difflib
 import json
+import os
 import re
 import sys
 from pathlib import Path
@@ -30,19 +31,30 @@ examples:
 """
 
 EPILOG_MATERIAL = """\
-Any surface "(hkl)" of a crystal given by cubic constants or a full 6x6 Voigt stiffness
-(GPa, crystal axes). Propagation: a Miller direction in the surface, or --angle in degrees
-from the surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
-n x reference. Prestress: --stress S (uniaxial along the propagation) or nine values (the
-Cauchy tensor in crystal axes, row by row; it must lie in the surface plane). The measured
-constants are taken as those of the stressed crystal. Below v_L (the lowest bulk trace
-velocity) the surface wave is found by the Stroh/impedance solver, at mirror directions by
-Eq. (17).
+The crystal: a name from the materials database (--material Cu; 'surfwave material --list'),
+cubic constants --C11 --C12 --C44, or a full 6x6 Voigt stiffness (GPa, crystal axes), with
+--rho (kg/m^3; a named material brings its own). Propagation: a Miller direction in the
+surface, or --angle in degrees from the surface's reference direction ((001): [100];
+(110): [001]; (111): [1-10]) toward n x reference. Prestress: --stress S (uniaxial along
+the propagation) or nine values (the Cauchy tensor in crystal axes, row by row; it must lie
+in the surface plane). Below v_L (the lowest bulk trace velocity) the surface wave is found
+by the Stroh/impedance solver, at mirror directions by Eq. (17).
 
-examples (copper, room temperature):
-  surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --direction "[100]"
+Two models of the stressed crystal:
+  fixed constants (default): the given constants are those of the stressed crystal; the
+    stress enters only through the wave-propagation tensor A = C + sigma delta.
+  --toec (third-order constants; --toec alone takes them from the database, or give six
+    values C111 C112 C123 C144 C155 C456 in GPa): Brugger constants (Lagrangian strain,
+    energy per unit natural volume, the sign convention of the tables); the given second-
+    and third-order constants are those of the UNSTRESSED crystal; the crystal deforms
+    (F) under the stress, the wave travels along F m0 (m0 the given direction) on the
+    surface of normal F^-T n0, and speeds are true phase speeds in the stressed state.
+
+examples:
+  surfwave material --material Cu --direction "[100]"                    # 2012.12 m/s
+  surfwave material --material Cu --direction "[100]" --stress 0.1 --toec
   surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(111)" --direction "[1-10]"
-  surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(110)" --angle 0:90:15
+  surfwave material --material Si --surface "(110)" --angle 0:90:15
 """
 
 
@@ -121,12 +133,14 @@ def _parser() -> argparse.ArgumentParser:
         "on any surface, in any direction, under prestress.",
         epilog=EPILOG_MATERIAL, formatter_class=argparse.RawDescriptionHelpFormatter,
     )
+    mt.add_argument("--material", help="a crystal of the materials database by name (Cu, Si, GaAs, ...)")
+    mt.add_argument("--list", action="store_true", help="list the materials database and exit")
     mt.add_argument("--C11", type=float, help="cubic elastic constant C11, GPa")
     mt.add_argument("--C12", type=float, help="cubic elastic constant C12, GPa")
     mt.add_argument("--C44", type=float, help="cubic elastic constant C44, GPa")
     mt.add_argument("--voigt", type=float, nargs=36, metavar="C",
                     help="full 6x6 Voigt stiffness (36 values, row by row), GPa, crystal axes (instead of C11 C12 C44)")
-    mt.add_argument("--rho", required=True, type=float, help="density, kg/m^3")
+    mt.add_argument("--rho", type=float, help="density, kg/m^3 (a named material brings its own)")
     mt.add_argument("--surface", default="(001)", help='surface plane "(hkl)" (default "(001)")')
     where = mt.add_mutually_exclusive_group()
     where.add_argument("--direction", help='propagation direction "[uvw]" in the surface (default: the reference)')
@@ -135,6 +149,9 @@ def _parser() -> argparse.ArgumentParser:
     mt.add_argument("--stress", type=float, nargs="+", default=[0.0], metavar="S",
                     help="prestress, GPa (negative = compression): one value (uniaxial along the propagation) "
                     "or nine (Cauchy tensor in crystal axes, row by row)")
+    mt.add_argument("--toec", type=float, nargs="*", metavar="C",
+                    help="third-order model: no value = the database's constants of --material; or "
+                    "six values C111 C112 C123 C144 C155 C456, GPa (Brugger)")
     mt.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     sub.add_parser(
@@ -240,15 +257,39 @@ def _cmd_material(args) -> int:
     from surfwave.api import material
     from surfwave.errors import InputError
 
-    if args.voigt is not None:
+    if args.list:
+        from surfwave.data.materials import available_materials, get_material
+
+        for name in available_materials():
+            m = get_material(name)
+            print(f"{name:>8}  {m.symmetry:<10} rho {m.rho:7.0f} kg/m^3   TOEC: {'yes' if m.toec else 'no'}")
+        return 0
+    given = [n for n in ("C11", "C12", "C44", "voigt") if getattr(args, n) is not None]
+    if args.material is not None:
+        if given:
+            raise InputError(f"give either --material or constants, not both (got --material and --{given[0]})")
+        constants = {"C11": args.material}
+    elif args.voigt is not None:
         if any(v is not None for v in (args.C11, args.C12, args.C44)):
             raise InputError("give either --voigt or --C11 --C12 --C44, not both")
         constants = {"voigt": np.reshape(args.voigt, (6, 6))}
     else:
         missing = [n for n in ("C11", "C12", "C44") if getattr(args, n) is None]
         if missing:
-            raise InputError(f"missing {', '.join('--' + m for m in missing)} (GPa), or give --voigt")
+            raise InputError(f"missing {', '.join('--' + m for m in missing)} (GPa), or give --voigt "
+                             "or --material")
         constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
+    if args.rho is None and args.material is None:
+        raise InputError("missing --rho (kg/m^3); a named --material brings its own")
+    if args.toec is None:
+        toec = None
+    elif len(args.toec) == 0:
+        toec = True
+    elif len(args.toec) == 6:
+        toec = tuple(args.toec)
+    else:
+        raise InputError(f"--toec takes no value (database) or six (C111 C112 C123 C144 C155 C456), "
+                         f"got {len(args.toec)}")
     if len(args.stress) == 1:
         stress = args.stress[0]
     elif len(args.stress) == 9:
@@ -261,13 +302,17 @@ def _cmd_material(args) -> int:
         direction = args.direction
     else:
         direction = 0.0
-    r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, **constants)
+    r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
+                 **constants)
     rows = _material_rows(r)
     if args.json:
         print(json.dumps(rows if np.ndim(direction) else rows[0], indent=2))
         return 0
     what = f"propagation {direction}" if isinstance(direction, str) else "angle from the reference"
-    print(f"# surface {args.surface}, {what}, stress {args.stress if len(args.stress) > 1 else args.stress[0]} GPa")
+    model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
+    name = f"{args.material}, " if args.material else ""
+    print(f"# {name}surface {args.surface}, {what}, stress "
+          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, {model}")
     if np.ndim(direction) == 0:
         row = rows[0]
         for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
@@ -395,6 +440,9 @@ def main(argv: list[str] | None = None) -> int:
     except SurfwaveError as exc:
         print(f"surfwave {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader stopped early (`surfwave ... | head`): not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":
