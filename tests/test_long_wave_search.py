@@ -106,3 +106,50 @@ def test_bad_shapes_are_named():
 
     with pytest.raises(InputError, match=r"\(2, 3, 3, 3, 3\)"):
         elastic.long_wave_stability(np.zeros((2, 3, 3, 3, 3)), np.zeros((3, 3, 3)))
+
+
+@pytest.mark.parametrize("case", list(SPANS), ids=lambda c: "-".join(c))
+def test_sufficient_test_then_scan_gives_the_plain_scan_flags(case):
+    """``long_wave_stable`` (strong-convexity test, scan only where it fails) against the
+    plain scan above on 400 strains through each instability: identical flags; the
+    sufficient test never passes a point the scan finds unstable, and it spares the scan at
+    most stable points (else it would save nothing)."""
+    lattice, loading, direction, pot = case
+    lo, hi = SPANS[case]
+    c = build(lattice, loading, pot, direction, np.linspace(lo, hi, 400))
+    sigma = elastic.stress(c.bonds, pot)
+    C = elastic.elastic_constants(c.bonds, pot)
+    ref = _scan_reference(C, sigma) > 0
+    assert np.array_equal(elastic.long_wave_stable(C, sigma), ref)
+    convex = elastic.strongly_convex(C, sigma)
+    assert not (convex & ~ref).any()
+    assert convex.sum() >= 0.8 * ref.sum()
+
+
+def test_sufficient_test_without_lab_mirrors():
+    """A randomly rotated LJ crystal through its instability (no lab mirror planes): the
+    fast flags equal the plain scan's (reference: :func:`_scan_reference`)."""
+    rng = np.random.default_rng(7)
+    c = build("fcc", "uniaxial", "lj", "[110]", np.linspace(0.85, 1.20, 60))
+    C = elastic.elastic_constants(c.bonds, "lj")
+    sigma = elastic.stress(c.bonds, "lj")
+    R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    C = np.einsum("ai,bj,ck,dl,sijkl->sabcd", R, R, R, R, C)
+    sigma = np.einsum("ai,bj,sij->sab", R, R, sigma)
+    ref = _scan_reference(C, sigma) > 0
+    assert ref.any() and not ref.all()
+    assert np.array_equal(elastic.long_wave_stable(C, sigma), ref)
+
+
+def test_point_min_eig_only_when_asked():
+    """``surfwave.point`` gives the same ``stable`` flags with and without ``min_eig``
+    (reference: the full scan of ``min_eig=True``), and ``min_acoustic_eig`` only when asked."""
+    import surfwave
+
+    s = np.linspace(0.85, 1.20, 40)
+    fast = surfwave.point("fcc", "uniaxial", "lj", "[110]", s)
+    full = surfwave.point("fcc", "uniaxial", "lj", "[110]", s, min_eig=True)
+    assert "min_acoustic_eig" not in fast
+    assert np.array_equal(fast["stable"], full["stable"]) and not full["stable"].all()
+    assert np.array_equal(full["stable"], full["min_acoustic_eig"] > 0)
+    np.testing.assert_array_equal(fast["c2_R"], full["c2_R"])

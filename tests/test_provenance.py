@@ -21,3 +21,21 @@ def test_module_closure_skips_lazy_reexports(tmp_path):
         (tmp_path / f"{m}.py").write_text("")
     got = {p.rsplit("/", 1)[-1] for p in module_closure("a", package_dir=tmp_path)}
     assert got == {"__init__.py", "a.py", "b.py"}
+
+
+def test_statement_search_finds_every_import_of_the_package():
+    """Reference: ``ast.walk`` over the whole tree (every node), minus the module-level
+    ``__getattr__``; the statement-only search must find the same import nodes in every
+    source file of the package."""
+    import ast
+
+    from surfwave.pipeline import provenance
+
+    files = sorted(provenance.PACKAGE_DIR.rglob("*.py"))
+    assert len(files) > 20
+    for f in files:
+        tree = ast.parse(f.read_text(), str(f))
+        lazy = {id(n) for top in tree.body if isinstance(top, ast.FunctionDef)
+                and top.name == "__getattr__" for n in ast.walk(top)}
+        ref = {id(n) for n in ast.walk(tree) if isinstance(n, (ast.Import, ast.ImportFrom)) and id(n) not in lazy}
+        assert {id(n) for n in provenance._import_statements(tree.body)} == ref, f

@@ -27,7 +27,8 @@ def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
             "penetration_depth": sw["penetration_depth"], "_sw": sw}
 
 
-def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, load_direction=None) -> dict:
+def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, load_direction=None,
+          min_eig: bool = False) -> dict:
     """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
 
     Parameters
@@ -47,6 +48,11 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
         FCC: the direction of the uniaxial load (the stretch d/d0 is along it); None = the
         propagation direction, which must then be "[100]" or "[110]" for uniaxial loading.
         In-plane hydrostatic loading has no direction (any value is accepted and ignored).
+    min_eig : bool
+        Also return ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
+        directions (K d0^2), which needs the direction scan at every strain. Without it
+        ``stable`` comes from a sufficient test (:func:`surfwave.continuum.elastic.strongly_convex`)
+        and the scan only where that test fails: the same flags, several times faster.
 
     Returns
     -------
@@ -56,8 +62,8 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
         ``c2_L_perp``, ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (K d0^2 / m; the real
         part for a pseudo wave), ``c2_limit`` (v_L^2), ``wave_type``, ``reason``,
         ``polarisation`` (..., d) and ``decay`` (..., d) complex, ``penetration_depth``
-        (wavelengths), ``stable`` and ``min_acoustic_eig`` (n,) (long-wave stability in every
-        direction), ``C`` and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
+        (wavelengths), ``stable`` (n,) (long-wave stability in every direction),
+        ``min_acoustic_eig`` (n,) (only with ``min_eig``), ``C`` and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
         ``volume``, ``d_over_d0`` (n,), and ``angle`` (degrees from [100], FCC only).
 
     Raises
@@ -78,20 +84,19 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
     classic = isinstance(direction, str) and direction in ("[100]", "[110]", "[10]") \
         and load_direction in (None, direction)
     if classic:
-        out = elastic.properties(lattice, loading, potential, direction, d_over_d0)
+        out, sigma = elastic._properties(lattice, loading, potential, direction, d_over_d0, min_eig)
         ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
         out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
-        crystal = build(lattice, loading, potential, direction, out["d_over_d0"])
-        extra = _extras(out["C"], elastic.stress(crystal.bonds, potential))
+        extra = _extras(out["C"], sigma)
         extra.pop("_sw")
         out.update(extra)
         if lattice == "fcc":
             out["angle"] = np.full(out["c2_R"].shape, direction_angle("(001)", direction))
         return out
-    return _point_general(lattice, loading, potential, direction, d_over_d0, load_direction)
+    return _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig)
 
 
-def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction) -> dict:
+def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig) -> dict:
     """:func:`point` at any direction of the FCC (001) surface (the general solver)."""
     if lattice != "fcc":
         raise InputError(f"directions other than the mirror ones need lattice 'fcc', got {lattice!r} "
@@ -118,7 +123,11 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     S = elastic.stress_derivatives(sigma, C)
     out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[..., 0, 0]}
     out.update(elastic.sound_speeds(S))
-    out["stable"], out["min_acoustic_eig"], _ = elastic.long_wave_stability(C_l, sigma_l, elastic.STABILITY_DIRECTIONS)
+    if min_eig:
+        out["stable"], out["min_acoustic_eig"], _ = elastic.long_wave_stability(C_l, sigma_l,
+                                                                               elastic.STABILITY_DIRECTIONS)
+    else:
+        out["stable"] = elastic.long_wave_stable(C_l, sigma_l, elastic.STABILITY_DIRECTIONS)
     extra = _extras(C, sigma)
     sw = extra.pop("_sw")
     out.update(extra)

@@ -25,20 +25,35 @@ meta = {**dispersion.VARIABLES, **lattice_dynamics.VARIABLES,
                                     "units": dispersion.VARIABLES["omega"]["units"], "dims": ("theta",)}}
 
 
+d_all = np.asarray(job["d_over_d0"], dtype=float)
+sample = lattice_dynamics.check_sample(d_all.size, job["accuracy"]["check_points"])
+meta["n_surface_modes"] = {**meta["n_surface_modes"],
+                           "long_name": meta["n_surface_modes"]["long_name"] + " (-1: strain not checked)"}
+
+
 def compute(pot):
-    r = dispersion.solve(pot, job["d_over_d0"], theta)
+    r = dispersion.solve(pot, d_all, theta)
     key = cache.job_key(job, "dynamics.triangular_surface", "lattice_dynamics.surface_mode", potential=pot,
                         theta=job["theta"], tol=tol)
-    r.update(cache.cached_points(
-        "surface_mode", key, job["d_over_d0"],
+    checked = cache.cached_points(
+        "surface_mode", key, d_all[sample],
         lambda d: lattice_dynamics.surface_mode(pot, d, theta, tol=tol), snakemake.params.cache,
         chunk=cache.CHUNK,
-        label=f"surface_mode, scene {job['scene']}"))
+        label=f"surface_mode, scene {job['scene']}")
+    r.update(lattice_dynamics.scatter_sample(checked, sample, d_all.size))
     r["omega_lattice_deviation"] = r["omega_lattice"] - r["omega"]
     return r
 
 
 ds = stage.block_cube(job, compute, meta, by=("potential",), coords={"theta": theta})
+dev = np.abs(ds["omega_lattice_deviation"].values)
+ds.attrs.update(
+    lattice_check_points=f"{sample.size} of {d_all.size} strains (evenly spaced sample and the strains "
+                         "the dispersion figure draws); the others are NaN in omega_lattice, "
+                         f"reason_lattice '{lattice_dynamics.REASON_NOT_CHECKED}'",
+    lattice_check_d_over_d0=d_all[sample],
+    lattice_check_max_abs_deviation=float(np.nanmax(dev)) if np.isfinite(dev).any() else np.nan,
+)
 cube.finish(ds, snakemake, what="dispersion", crystal=snakemake.input.crystal,
             method="analytic row-by-row solution (Eqs. 3a-15) checked by a numerical "
             "lattice-dynamics surface-mode solve")

@@ -31,13 +31,15 @@ from __future__ import annotations
 
 import itertools
 import re
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
-import xarray as xr
 
 from surfwave.continuum.tensors import rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
+
+if TYPE_CHECKING:  # xarray only for the Dataset builder: scene checks at workflow parse stay light
+    import xarray as xr
 
 #: Stress kinds a scene may ask for; ``axis_<hkl>`` adds any in-plane crystal axis.
 LOADINGS = ("along", "across", "biaxial")
@@ -426,6 +428,8 @@ def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, direc
         "partial_wave": ("partial_wave", np.arange(1, 4), {"long_name": "partial wave of the Stroh "
                          "solution (1 = fastest decaying)", "units": "1"}),
     }
+    import xarray as xr
+
     ds = xr.Dataset(data_vars, coords=coords)
     if directions is not None:
         ds = ds.assign_coords(direction=("angle", np.asarray(directions, dtype=str), COORDS["direction"]))

@@ -394,7 +394,128 @@ def long_wave_stability(
     return e_best > 0.0, e_best, n_best
 
 
-def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0) -> dict:
+#: Relative margin of the sufficient test: every Cholesky pivot must exceed this times the
+#: largest |entry| of the matrix before the direction scan is skipped, so that rounding
+#: cannot turn a marginal point into a false "stable".
+_CONVEX_RTOL = 1e-9
+
+#: Weights t (times the largest |A_ijkl|) of the null Lagrangian tried in turn by
+#: :func:`strongly_convex`; the first one that makes the matrix positive definite decides.
+_NULL_WEIGHTS = (0.05, 0.2, 0.01, 0.1, 0.003, 0.3, 0.03)
+
+
+def _positive_definite(B: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """Whether each symmetric matrix of B (shape (s, m, m)) has all Cholesky pivots > tol (s,).
+
+    Gaussian elimination without pivoting, vectorised over s: a symmetric matrix is
+    positive definite if and only if all its pivots are positive.
+    """
+    B = B.copy()
+    ok = np.ones(B.shape[0], bool)
+    for k in range(B.shape[-1]):
+        piv = B[:, k, k]
+        ok &= piv > tol
+        safe = np.where(piv > tol, piv, 1.0)
+        B[:, k + 1:, k + 1:] -= B[:, k + 1:, k, None] * B[:, None, k, k + 1:] / safe[:, None, None]
+    return ok
+
+
+def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """Sufficient test of long-wave stability without a direction scan, shape (s,).
+
+    With A_ijkl = C_ijkl + sigma_jl delta_ik read as a (d^2, d^2) matrix of the index pairs
+    (ij) and (kl) (symmetric: C_ijkl = C_klij and sigma_jl delta_ik = sigma_lj delta_ki),
+    u_i Q_ik(n) u_k = X_ij A_ijkl X_kl for the rank-one matrix X = u n^T. If a form
+    positive definite on all d x d matrices agrees with A on the rank-one ones, Q(n) is
+    positive definite for every n (strong convexity implies strong ellipticity). The
+    null Lagrangian N(X) = tr(X^2) - (tr X)^2 vanishes on rank-one X, so A - t N is such a
+    form for every t; t = 0 alone fails whenever sigma has a zero or negative eigenvalue
+    (the antisymmetric X then see only sigma, e.g. the free lateral directions of a
+    uniaxial load), hence several weights t are tried (:data:`_NULL_WEIGHTS`). In 2D a
+    strictly stable point always has some such t (rank-one convex quadratic forms in two
+    dimensions are polyconvex), in 3D not always; only the listed t are tried, so False
+    means "scan the directions", not "unstable".
+
+    Parameters
+    ----------
+    C : ndarray, shape (s, d, d, d, d)
+        V C, lab frame.
+    sigma : ndarray, shape (s, d, d)
+        V sigma.
+
+    Returns
+    -------
+    ndarray of bool, shape (s,)
+        True where some A - t N is positive definite with pivots above ``_CONVEX_RTOL``
+        times the largest |A_ijkl|.
+    """
+    dim = C.shape[-1]
+    eye = np.eye(dim)
+    A = C + sigma[:, None, :, None, :] * eye[:, None, :, None]
+    A = A.reshape(C.shape[0], dim * dim, dim * dim)
+    A = 0.5 * (A + np.swapaxes(A, 1, 2))
+    N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, dim * dim)
+    scale = np.abs(A).max(axis=(1, 2))
+    ok = np.zeros(C.shape[0], bool)
+    for t in _NULL_WEIGHTS:
+        rest = np.flatnonzero(~ok)
+        if not rest.size:
+            break
+        ok[rest] = _positive_definite(A[rest] - t * scale[rest, None, None] * N, _CONVEX_RTOL * scale[rest])
+    return ok
+
+
+def long_wave_stable(C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12) -> np.ndarray:
+    """The ``stable`` flag of :func:`long_wave_stability`, scanning only where needed.
+
+    Points passing the sufficient test :func:`strongly_convex` are stable without a
+    direction scan; the others get the full search of :func:`long_wave_stability`, so the
+    flags are those of the scan (the sufficient test never calls an unstable point stable).
+
+    Parameters
+    ----------
+    C : ndarray, shape (s, d, d, d, d)
+    sigma : ndarray, shape (s, d, d)
+    n_directions, refine : int
+        As for :func:`long_wave_stability`.
+
+    Returns
+    -------
+    ndarray of bool, shape (s,)
+    """
+    C = np.asarray(C, dtype=float)
+    sigma = np.asarray(sigma, dtype=float)
+    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
+        raise InputError(
+            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
+            f"got {C.shape} and {sigma.shape}"
+        )
+    stable = strongly_convex(C, sigma)
+    scan = np.flatnonzero(~stable)
+    if scan.size:
+        stable[scan] = long_wave_stability(C[scan], sigma[scan], n_directions, refine)[0]
+    return stable
+
+
+def _properties(lattice, loading, potential, direction, d_over_d0, min_eig: bool) -> tuple[dict, np.ndarray]:
+    """:func:`properties` and the stress tensor V sigma, shape (n, d, d)."""
+    crystal = build(lattice, loading, potential, direction, d_over_d0)
+    sigma = stress(crystal.bonds, potential)
+    C = elastic_constants(crystal.bonds, potential)
+    S = stress_derivatives(sigma, C)
+    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[:, 0, 0]}
+    out.update(sound_speeds(S))
+    if min_eig:
+        out["stable"], out["min_acoustic_eig"], _ = long_wave_stability(C, sigma, STABILITY_DIRECTIONS)
+    else:
+        out["stable"] = long_wave_stable(C, sigma, STABILITY_DIRECTIONS)
+    out["C"] = C
+    out["S"] = S
+    return out, sigma
+
+
+def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0,
+               *, min_eig: bool = True) -> dict:
     """Stress, C, S, bulk sound speeds and long-wave stability of a prestressed crystal.
 
     The elastic half of :func:`surfwave.point` (which adds the Rayleigh speed); the workflow's
@@ -410,16 +531,16 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
     -------
     dict
         ``d_over_d0``, ``volume``, ``stress``, ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``,
-        ``c2_T_perp``, ``c2_SH`` (shape (n,)), ``stable``, ``min_acoustic_eig`` (shape (n,)),
-        ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame).
+        ``c2_T_perp``, ``c2_SH`` (shape (n,)), ``stable``, ``min_acoustic_eig`` (shape (n,),
+        only with ``min_eig``), ``C`` and ``S`` (shape (n, d, d, d, d), times V, lab frame).
+
+    Other Parameters
+    ----------------
+    min_eig : bool
+        Also report ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
+        directions, which needs the direction scan at every point (the elastic cube holds
+        it). Without it ``stable`` alone is computed, by the sufficient test
+        :func:`strongly_convex` and the scan only where that test fails (same flags,
+        several times faster).
     """
-    crystal = build(lattice, loading, potential, direction, d_over_d0)
-    sigma = stress(crystal.bonds, potential)
-    C = elastic_constants(crystal.bonds, potential)
-    S = stress_derivatives(sigma, C)
-    out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[:, 0, 0]}
-    out.update(sound_speeds(S))
-    out["stable"], out["min_acoustic_eig"], _ = long_wave_stability(C, sigma, STABILITY_DIRECTIONS)
-    out["C"] = C
-    out["S"] = S
-    return out
+    return _properties(lattice, loading, potential, direction, d_over_d0, min_eig)[0]

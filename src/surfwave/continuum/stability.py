@@ -45,9 +45,9 @@ def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> n
                 build_checked(lattice, loading, pot, direction, [si])
             except GeometryError:  # the geometry ends: not stable there
                 continue
-            flags[i] = bool(properties(lattice, loading, pot, direction, [si])["stable"][0])
+            flags[i] = bool(properties(lattice, loading, pot, direction, [si], min_eig=False)["stable"][0])
         return flags
-    return np.asarray(properties(lattice, loading, pot, direction, s)["stable"], bool)
+    return np.asarray(properties(lattice, loading, pot, direction, s, min_eig=False)["stable"], bool)
 
 
 def stability_scan(

@@ -28,6 +28,7 @@ import yaml
 
 from surfwave.continuum.tensors import cubic_voigt, hexagonal_voigt
 from surfwave.errors import InputError
+from surfwave.data.paper import SAFE_LOADER
 
 #: Independent second-order constants of each crystal class, in the order the constructors take.
 SECOND_ORDER = {"cubic": ("C11", "C12", "C44"), "hexagonal": ("C11", "C12", "C13", "C33", "C44")}
@@ -86,7 +87,7 @@ class Material:
 
 def _read() -> dict:
     text = resources.files("surfwave.data").joinpath("materials.yaml").read_text(encoding="utf-8")
-    return yaml.safe_load(text)
+    return yaml.load(text, Loader=SAFE_LOADER)
 
 
 def _numbers(block: dict, names: tuple, where: str, refs: dict) -> tuple[dict, str]:

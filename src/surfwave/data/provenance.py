@@ -82,13 +82,9 @@ def _imported_modules(path: str, mtime_ns: int, package_dir: str) -> tuple[str, 
     names that are not modules are dropped by :func:`module_closure`.
     """
     tree = ast.parse(Path(path).read_text(), path)
-    lazy = {id(n) for top in tree.body if isinstance(top, ast.FunctionDef)
-            and top.name == "__getattr__" for n in ast.walk(top)}
     here = Path(path).resolve().relative_to(Path(package_dir).resolve()).parent.parts
     found: list[str] = []
-    for node in ast.walk(tree):
-        if id(node) in lazy:
-            continue
+    for node in _import_statements(tree.body):
         if isinstance(node, ast.ImportFrom):
             if node.level:  # relative: resolve against this file's package
                 base = list(here[: len(here) - node.level + 1])
@@ -104,3 +100,21 @@ def _imported_modules(path: str, mtime_ns: int, package_dir: str) -> tuple[str, 
             found += [a.name.partition(".")[2] for a in node.names
                       if a.name.startswith("surfwave.")]
     return tuple(m for m in found if m and m != "__version__")
+
+
+def _import_statements(body: list, top: bool = True):
+    """Import statements in a statement list and the statement lists nested in it.
+
+    Imports are statements, so only statement bodies are searched (not the expressions,
+    most of the tree); the module-level ``__getattr__`` (lazy re-exports) is skipped.
+    """
+    for node in body:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            yield node
+            continue
+        if top and isinstance(node, ast.FunctionDef) and node.name == "__getattr__":
+            continue
+        for field in ("body", "orelse", "finalbody", "handlers", "cases"):
+            inner = getattr(node, field, None)
+            if isinstance(inner, list):
+                yield from _import_statements(inner, top=False)

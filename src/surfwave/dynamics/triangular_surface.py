@@ -289,3 +289,64 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
         "reason_lattice": reason,
     }
     return out
+
+
+#: Strains of a dispersion scene checked by :func:`surface_mode` by default (the knob
+#: ``accuracy.dispersion.check_points``): the numerical solve costs about 1 s per strain at
+#: 512 theta, the analytic solution microseconds, so a long strain grid is checked on a sample.
+DEFAULT_CHECK_POINTS = 5
+
+#: ``reason_lattice`` of the strains outside the checked sample.
+REASON_NOT_CHECKED = "not checked (sample): the lattice-dynamics check ran on a sample of the strains"
+
+
+def check_sample(n: int, check_points: int = DEFAULT_CHECK_POINTS, always: int = 5) -> np.ndarray:
+    """Indices of the strains the lattice-dynamics check runs on, shape (k,), sorted.
+
+    ``check_points`` evenly spaced indices (both ends included) united with the ``always``
+    evenly spaced ones that :func:`surfwave.plots.dispersion.plot_dispersion` draws (its
+    ``max_curves``), so the figure's markers are always checked. All strains when n is small.
+
+    Parameters
+    ----------
+    n : int
+        Number of strains of the grid.
+    check_points, always : int
+        At least 1.
+    """
+    if check_points < 1 or always < 1:
+        raise InputError(f"check_points and always must be >= 1, got {check_points} and {always}")
+    picks = [np.linspace(0, n - 1, min(k, n)).round().astype(int) for k in (check_points, always)]
+    return np.unique(np.concatenate(picks)) if n else np.zeros(0, int)
+
+
+def scatter_sample(checked: dict, index: np.ndarray, n: int) -> dict:
+    """Results of :func:`surface_mode` on a strain sample spread onto the full grid of n strains.
+
+    Strains outside ``index`` get NaN (float arrays), -1 (``n_surface_modes``: not counted)
+    and :data:`REASON_NOT_CHECKED` (``reason_lattice``).
+
+    Parameters
+    ----------
+    checked : dict
+        name -> array with leading axis len(index).
+    index : ndarray of int, shape (k,)
+    n : int
+
+    Returns
+    -------
+    dict
+        name -> array with leading axis n.
+    """
+    out = {}
+    for name, arr in checked.items():
+        arr = np.asarray(arr)
+        if arr.dtype == object:
+            full = np.full((n,) + arr.shape[1:], REASON_NOT_CHECKED, dtype=object)
+        elif np.issubdtype(arr.dtype, np.integer):
+            full = np.full((n,) + arr.shape[1:], -1, dtype=arr.dtype)
+        else:
+            full = np.full((n,) + arr.shape[1:], np.nan, dtype=arr.dtype)
+        full[index] = arr
+        out[name] = full
+    return out

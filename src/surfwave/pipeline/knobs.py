@@ -68,6 +68,11 @@ def _table() -> dict[str, dict[str, Knob]]:
                         "row coupling: the error of omega_lattice against Eq. (15) stops "
                         "improving (about 5e-9) below tol = 1e-8 (benchmarks/bench_dispersion.py); "
                         "below 1e-14 only the time grows"),
+            "check_points": Knob(triangular_surface.DEFAULT_CHECK_POINTS, 1, None,
+                                 "strains (evenly spaced, plus those the dispersion figure draws) "
+                                 "checked by the numerical lattice-dynamics solve, about 1 s each at "
+                                 "512 theta; the others are NaN in omega_lattice ('not checked "
+                                 "(sample)'); the analytic omega is computed at every strain"),
         },
         "displacements": {
             "n_rows": Knob(None, 1, 10_000, "rows below the surface"),
@@ -167,7 +172,13 @@ def expected_cost(scenes: dict, names, announce: float = ANNOUNCE_SECONDS) -> li
         for stage in ("bulk", "dispersion", "entropy"):
             if stage not in sc["quantities"]:
                 continue
-            points = n_pot * n_d * (len(sc["directions"]) if stage == "bulk" else 1)
+            if stage == "dispersion":  # the lattice-dynamics check runs on a sample of the strains
+                from surfwave.dynamics.triangular_surface import check_sample
+
+                checks = sc["accuracy"].get(stage, {}).get("check_points", _table()[stage]["check_points"].default)
+                points = n_pot * check_sample(n_d, checks).size
+            else:
+                points = n_pot * n_d * (len(sc["directions"]) if stage == "bulk" else 1)
             per = SECONDS_PER_POINT[stage] * (len(sc["theta"]) if stage == "dispersion" else 1)
             seconds = points * estimated_cost(stage, sc["accuracy"].get(stage, {}), per)
             if seconds > announce:

@@ -60,10 +60,11 @@ def load_schema(path: str | Path | None = None) -> dict:
     bounds filled in from the library (:func:`surfwave.pipeline.knobs.inject`)."""
     import yaml
 
+    from surfwave.data.paper import SAFE_LOADER
     from surfwave.pipeline.knobs import inject
 
     with open(path or SCHEMA_PATH) as fh:
-        return inject(yaml.safe_load(fh))
+        return inject(yaml.load(fh, Loader=SAFE_LOADER))
 
 
 def _validator_with_defaults(schema: dict):
@@ -301,6 +302,8 @@ def load_config(paths=("config/config.yaml",)) -> dict:
     """Read and merge YAML config files the way Snakemake does (later files win, dicts merge)."""
     import yaml
 
+    from surfwave.data.paper import SAFE_LOADER
+
     def merge(a, b):
         for k, v in b.items():
             if isinstance(v, dict) and isinstance(a.get(k), dict):
@@ -312,5 +315,5 @@ def load_config(paths=("config/config.yaml",)) -> dict:
     config: dict = {}
     for p in paths:
         with open(p) as fh:
-            merge(config, yaml.safe_load(fh) or {})
+            merge(config, yaml.load(fh, Loader=SAFE_LOADER) or {})
     return config
