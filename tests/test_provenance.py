@@ -29,7 +29,7 @@ def test_statement_search_finds_every_import_of_the_package():
     source file of the package."""
     import ast
 
-    from surfwave.pipeline import provenance
+    from surfwave.data import provenance
 
     files = sorted(provenance.PACKAGE_DIR.rglob("*.py"))
     assert len(files) > 20
