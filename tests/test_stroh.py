@@ -269,7 +269,7 @@ def test_point_angles_shapes_and_mirror_consistency():
     r = surfwave.point("fcc", "in_plane_hydrostatic", "lj", np.array([0.0, 20.0, 45.0]), s)
     assert r["c2_R"].shape == (3, 3) and r["polarisation"].shape == (3, 3, 3) and r["stable"].shape == (3,)
     for j, d in ((0, "[100]"), (2, "[110]")):
-        ref = surfwave.point("fcc", "in_plane_hydrostatic", "lj", d, s)
+        ref = surfwave.point("fcc", "in_plane_hydrostatic", "lj", d, s, details=True)
         np.testing.assert_allclose(r["c2_R"][:, j], ref["c2_R"], rtol=1e-12)
         np.testing.assert_allclose(r["c2_limit"][:, j], ref["c2_limit"], rtol=1e-12)
     a = surfwave.point("fcc", "in_plane_hydrostatic", "lj", "[210]", s)
@@ -293,3 +293,18 @@ def test_random_triclinic_crystals():
         smin, u = _stroh_by_eigenvectors(A[i], r["c"][i] ** 2)
         assert smin < 1e-9
         assert abs(np.vdot(u, r["polarisation"][i])) == pytest.approx(1.0, abs=1e-8)
+
+
+def test_point_details_are_extra_outputs_only():
+    """point(details=False) (the default) at mirror directions skips the Stroh solve: the
+    same c2_R, wave type, speeds and stability as with details=True (the reference, which
+    adds c2_limit, polarisation, decay and penetration depth), and none of those four keys."""
+    s = np.linspace(0.9, 1.08, 25)
+    for case in (("fcc", "in_plane_hydrostatic", "lj", "[110]"), ("fcc", "uniaxial", "harmonic", "[100]"),
+                 ("triangular", "uniaxial", "lj", "[10]")):
+        lean, full = surfwave.point(*case, s), surfwave.point(*case, s, details=True)
+        for key in ("c2_R", "c2_L_par", "c2_T_par", "c2_SH", "stress"):
+            np.testing.assert_array_equal(lean[key], full[key])
+        assert (lean["wave_type"] == full["wave_type"]).all() and (lean["stable"] == full["stable"]).all()
+        assert not {"c2_limit", "polarisation", "decay", "penetration_depth"} & set(lean)
+        assert np.isfinite(full["c2_limit"]).any()
