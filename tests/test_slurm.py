@@ -29,6 +29,7 @@ import time
 from pathlib import Path
 
 import pytest
+from test_workflow import make_workdir  # the workflow copy with a tiny config
 
 REPO = Path(__file__).resolve().parents[1]
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
@@ -283,17 +284,8 @@ PartitionName=debug Nodes={self.host} Default=YES MaxTime=INFINITE State=UP
         self.stop()
 
 
-def make_workdir(path: Path) -> Path:
-    """A copy of the workflow (profiles as shipped) with the tiny scenes as its only config."""
+def _mkdir(path: Path) -> Path:
     path.mkdir(parents=True)
-    shutil.copy(REPO / "Snakefile", path / "Snakefile")
-    for d in ("workflow", "profiles"):
-        shutil.copytree(REPO / d, path / d)
-    for d in ("src", "benchmarks"):
-        if (REPO / d).exists():
-            (path / d).symlink_to(REPO / d)
-    (path / "config").mkdir()
-    (path / "config" / "config.yaml").write_text(TINY)
     return path
 
 
@@ -392,10 +384,10 @@ def test_slurm_profile_on_local_cluster(tmp_path):
             cannot(error)
         t_install = time.perf_counter() - t_install
 
-        local = make_workdir(tmp_path / "local")
+        local = make_workdir(_mkdir(tmp_path / "local"), TINY)
         t_local, _ = snakemake(local, ["-j2"], deadline, dict(os.environ))
 
-        cluster = make_workdir(tmp_path / "cluster")
+        cluster = make_workdir(_mkdir(tmp_path / "cluster"), TINY)
         t_start = time.perf_counter()
         with LocalSlurm(tmp_path / "slurm") as slurm:
             slurm.start(deadline)
