@@ -185,11 +185,16 @@ def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
     if d not in _ODD or S.shape[-4:] != (d,) * 4:
         raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
     comps, idx = _ODD[d]
-    odd = np.abs(S[(Ellipsis,) + idx])                                   # (..., n_odd)
-    scale = np.abs(S).reshape(S.shape[:-4] + (-1,)).max(axis=-1)
+    flat = np.abs(S.reshape(S.shape[:-4] + (d**4,)))
+    odd_flat = np.ravel_multi_index(idx, (d,) * 4)
+    # one cheap pass: the largest odd component against max |S| of each point
+    if not flat.size or not (flat[..., odd_flat].max(axis=-1) > rtol * flat.max(axis=-1)).any():
+        return
+    odd = flat[..., odd_flat]                                              # (..., n_odd)
+    scale = flat.max(axis=-1)
     with np.errstate(all="ignore"):
         rel = odd / np.where(scale > 0, scale, 1.0)[..., None]
-    if rel.size and rel.max() > rtol:
+    if rel.max() > rtol:
         flat = rel.reshape(-1, len(comps))
         k = int(np.argmax(flat.max(axis=1)))
         worst = np.argsort(flat[k])[::-1][:4]
