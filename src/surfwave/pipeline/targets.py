@@ -6,9 +6,10 @@ from __future__ import annotations
 
 from surfwave.data.paper import load_paper_values
 
-CUBE_NAMES = ("elastic", "rayleigh", "bulk", "dispersion", "displacements", "entropy")
 #: cubes the report's checks can read (bulk.nc feeds its own section, see report_inputs)
 REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
+#: every cube the reproduction report reads (the quantities' file names: pipeline.scenes.CUBES)
+CUBE_NAMES = (*REPORT_CUBES, "bulk")
 
 
 def speeds_scenes(scenes: dict, names) -> list[str]:
