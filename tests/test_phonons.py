@@ -284,3 +284,17 @@ def test_long_wave_instability_missed_by_mesh_is_flagged():
     assert r["min_omega2"][0] > 0 and r["min_c2_phonopy"][0] < 0
     assert r["stable_long_wave"].tolist() == [False, True]
     assert r["stable_full_zone"].tolist() == [False, True]
+
+
+def test_a_bug_is_raised_not_recorded_as_a_reason(monkeypatch):
+    """Only physics failures (SurfwaveError: an impossible geometry; a singular matrix) become
+    NaN + reason; any other exception is a bug and must surface (it used to be recorded as a
+    `reason`, so a broken phonopy call looked like an unphysical point)."""
+    from surfwave.continuum import phonons
+
+    def broken(*args, **kwargs):
+        raise TypeError("planted bug")
+
+    monkeypatch.setattr(phonons, "_point", broken)
+    with pytest.raises(TypeError, match="planted bug"):
+        bulk_speeds("fcc", "in_plane_hydrostatic", "lj", "[100]", [1.0])

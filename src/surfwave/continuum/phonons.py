@@ -461,7 +461,9 @@ def bulk_speeds(
         try:
             crystal = build_checked(lattice, loading, pot, direction, [si])
             res = _point(crystal, 0, pot, supercell, displacement, zone_mesh, long_wave, secant_eps)
-        except Exception as exc:  # noqa: BLE001 - recorded per point, never raised mid-array
+        except (SurfwaveError, np.linalg.LinAlgError) as exc:
+            # a point the physics cannot take (impossible geometry, singular dynamical matrix)
+            # is NaN with its reason; anything else is a bug and is raised
             out["reason"][i] = f"{type(exc).__name__}: {exc}"
             continue
         for k in _SPEEDS:
