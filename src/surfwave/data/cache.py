@@ -258,15 +258,8 @@ def info(root: str | Path = DEFAULT_ROOT) -> dict:
                 out["size"] += f.stat().st_size
         out["kinds"][kind_dir.name] = n
         out["entries"] += n
-    records = []
-    stats = root / _STATS
-    if stats.is_dir():
-        for f in stats.glob("*.json"):
-            try:
-                records.append(json.loads(f.read_text()))
-            except (OSError, ValueError):
-                continue
-    marker = stats / _RUN_MARKER
+    records = _run_records(root)
+    marker = root / _STATS / _RUN_MARKER
     since = None
     if marker.exists():
         try:
@@ -277,7 +270,7 @@ def info(root: str | Path = DEFAULT_ROOT) -> dict:
         chosen = [r for r in records if r["time"] >= since]
     else:
         last: dict[str, dict] = {}
-        for r in sorted(records, key=lambda r: r["time"]):
+        for r in records:  # oldest first: the newest record of each kind wins
             last[r["kind"]] = r
         chosen = list(last.values())
     out["hits"] = sum(r["hits"] for r in chosen)
