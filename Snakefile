@@ -97,4 +97,3 @@ rule all:
         scene_targets(),
         globals().get("FIGURE_TARGETS", []),
         globals().get("REPORT_TARGETS", []),
-        globals().get("CRYSTAL_TARGETS", []),

@@ -23,6 +23,37 @@ def test_module_closure_skips_lazy_reexports(tmp_path):
     assert got == {"__init__.py", "a.py", "b.py"}
 
 
+def test_shallow_module_counts_without_its_imports(tmp_path):
+    """A dispatcher listed as shallow is a dependency itself, but the modules it imports
+    lazily are not (its caller lists the ones an output needs); without ``shallow`` they are."""
+    (tmp_path / "__init__.py").write_text("")
+    (tmp_path / "scene.py").write_text("def draw():\n    from . import speeds, entropy\n")
+    (tmp_path / "speeds.py").write_text("from . import labels\n")
+    for m in ("entropy", "labels"):
+        (tmp_path / f"{m}.py").write_text("")
+    names = lambda *m, **kw: {p.rsplit("/", 1)[-1] for p in module_closure(*m, package_dir=tmp_path, **kw)}  # noqa: E731
+    assert names("scene", "speeds", shallow=("scene",)) == {"__init__.py", "scene.py", "speeds.py", "labels.py"}
+    assert "entropy.py" in names("scene", "speeds")
+
+
+def test_figures_jobs_depend_on_the_plotting_code_they_use():
+    """The per-scene figures rule lists exactly the modules its outputs need
+    (surfwave.pipeline.targets.OUTPUT_NEEDS): Fig. 2 of an FCC scene does not rerun when the
+    entropy plot changes, and the triangular scene's figures do."""
+    from surfwave.pipeline.scenes import load_config, validate_config
+    from surfwave.pipeline.targets import scene_output_inputs
+
+    from pathlib import Path
+
+    scenes = validate_config(load_config([Path(__file__).parents[1] / "config" / "config.yaml"]))
+    for scene, wanted, unwanted in (("fig2", "plots/speeds.py", "plots/entropy.py"),
+                                    ("entropy", "plots/entropy.py", "plots/speeds.py")):
+        cubes, modules = scene_output_inputs(scenes, scene)
+        files = module_closure(*modules, shallow=("plots.scene",))
+        assert any(f.endswith(wanted) for f in files) and not any(f.endswith(unwanted) for f in files)
+        assert any(f.endswith("plots/scene.py") for f in files)
+
+
 def test_statement_search_finds_every_import_of_the_package():
     """Reference: ``ast.walk`` over the whole tree (every node), minus the module-level
     ``__getattr__``; the statement-only search must find the same import nodes in every

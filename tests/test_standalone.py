@@ -30,8 +30,8 @@ def workflow_copy(tmp_path, monkeypatch):
 
 
 def test_stage_and_figure_rules_fill_the_stand_in(workflow_copy):
-    """elastic (scene wildcard, params from job_params) and figure_dispersion (a second
-    wildcard given as potential=lj): paths and params are the rule's."""
+    """elastic (scene wildcard, params from job_params) and the per-scene figures rule
+    (`figures_triangular`, named after the scene): paths and params are the rule's."""
     job = standalone("elastic", ["table1"])
     assert job.input.crystal == "results/table1/crystal.nc"
     assert list(job.output) == ["results/table1/elastic.nc"]
@@ -40,12 +40,14 @@ def test_stage_and_figure_rules_fill_the_stand_in(workflow_copy):
     assert job.params.job == job_params(scenes["table1"], "elastic")
     assert any(f.endswith("surfwave/continuum/elastic.py") for f in job.input.code)
 
-    fig = standalone("figure_dispersion", ["triangular", "potential=lj"])
-    assert list(fig.output) == ["results/triangular/dispersion_lj.png"]
-    assert fig.input.cube == "results/triangular/dispersion.nc"
+    fig = standalone("figures_{scene}", ["triangular"])
+    assert fig.output.dispersion_lj == "results/triangular/dispersion_lj.png"
+    assert fig.output.theta_c == "results/triangular/theta_c.png"
+    assert fig.input.dispersion == "results/triangular/dispersion.nc"
+    assert fig.params.cubes == ["dispersion", "displacements"]
     assert os.path.isdir("results/triangular/logs")
-    with pytest.raises(SystemExit, match="potential"):
-        standalone("figure_dispersion", ["triangular"])
+    with pytest.raises(SystemExit, match="which scene"):
+        standalone("figures_{scene}", [])
     with pytest.raises(SystemExit, match="unknown scene 'nope'"):
         standalone("elastic", ["nope"])
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 from test_workflow import built, own_copy, scheduled, smk  # noqa: F401 (fixture reused)
 
-from surfwave.pipeline.targets import paper_scenes, report_inputs, summary_targets
+from surfwave.pipeline.targets import paper_scenes, report_inputs, scene_outputs
 
 pytestmark = [pytest.mark.workflow, pytest.mark.xdist_group("workflow")]
 
@@ -32,7 +32,8 @@ def test_report_inputs_ignore_user_scenes():
     mine = {"quantities": ["elastic", "rayleigh", "bulk"]}
     assert report_inputs({"mine": mine}) == []
     assert "results/table1/bulk.nc" in report_inputs({"table1": mine, "mine": mine})
-    assert summary_targets({"mine": mine, "table1": mine}, ["mine", "table1"]) == ["results/mine/summary.md"]
+    both = {"mine": mine, "table1": mine}
+    assert "summary" in scene_outputs(both, "mine") and "summary" not in scene_outputs(both, "table1")
     assert {"table1", "fig2", "triangular", "entropy"} <= set(paper_scenes())
 
 
@@ -49,7 +50,7 @@ def test_user_scene_does_not_schedule_the_paper_report(built, tmp_path):
     dry = smk(wd, "-n", "--configfile", "config/config.yaml", "my.yaml")
     text = dry.stdout + dry.stderr
     assert "rule report_md:" not in text
-    assert ("scene_summary", "mine") in scheduled(dry)
+    assert ("figures_mine", "mine") in scheduled(dry)
     line = next(ln for ln in text.splitlines() if "is damaged" in ln)
     assert "results/tiny_fcc/rayleigh.nc" in line and "truncated" in line and "rebuilds it" in line
     assert not damaged.exists() and damaged.with_name("rayleigh.nc.damaged").exists()

@@ -177,8 +177,8 @@ def test_noop_scene_change_knob_change_and_code_provenance(built, tmp_path):
     dry = smk(built, "-n", "--configfile", "config/config.yaml", str(extra))
     jobs = scheduled(dry)
     assert jobs and {scene for _, scene in jobs} == {"tiny_tri", "tiny_fcc"}, jobs
-    # bulk, and the scene's summary that reads bulk.nc
-    assert sorted(rule for rule, scene in jobs if scene == "tiny_fcc") == ["bulk", "scene_summary"], jobs
+    # bulk, and the scene's figures job, whose summary.md reads bulk.nc
+    assert sorted(rule for rule, scene in jobs if scene == "tiny_fcc") == ["bulk", "figures_tiny_fcc"], jobs
     # ... and, run for real, computes only the new points in the cached stages.
     fcc = {c: (built / "results" / "tiny_fcc" / f"{c}.nc").stat().st_mtime_ns
            for c in ("crystal", "elastic", "rayleigh")}
@@ -237,15 +237,15 @@ def test_figures_and_report_exist_without_unexpected_fail(built):
     claim of paper_values.yaml must still be listed (a check that silently vanishes fails
     here), none may be FAIL, and the bulk section must show the phonopy stage of tiny_fcc.
     (The paper scenes' known FAILs: tests/test_report_verdicts.py.)"""
-    from surfwave.pipeline.targets import figure_targets
+    from surfwave.pipeline.targets import presentation_targets
     from surfwave.report.reproduction import load_paper_values, write_report
 
     res = built / "results"
-    scenes = {"tiny_fcc": {"quantities": ["elastic", "rayleigh", "bulk"], "potentials": ["lj"]},
-              "tiny_tri": {"quantities": ["dispersion", "displacements", "entropy"], "potentials": ["harmonic"]}}
-    pngs = [res / "tiny_fcc" / "speeds_vs_stress.png"] + [
-        built / p for p in figure_targets(scenes, list(scenes))]
-    assert len(pngs) == 5
+    scenes = {"tiny_fcc": {"lattice": "fcc", "quantities": ["elastic", "rayleigh", "bulk"], "potentials": ["lj"]},
+              "tiny_tri": {"lattice": "triangular", "quantities": ["dispersion", "displacements", "entropy"],
+                           "potentials": ["harmonic"]}}
+    pngs = [built / p for p in presentation_targets(scenes, list(scenes)) if p.endswith(".png")]
+    assert len(pngs) == 5 and res / "tiny_fcc" / "speeds_vs_stress.png" in pngs
     for png in pngs:
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5_000, png
     assert not (res / "report.md").exists()

@@ -21,6 +21,8 @@ def params_for(stage):
     return lambda wildcards: job_params(SCENES[wildcards.scene], stage)
 
 
-def code(*modules):
-    """Library files a stage runs (transitive surfwave imports), as inputs: code changes rerun it."""
-    return module_closure(*modules)
+def code(*modules, shallow=()):
+    """Library files a stage runs (transitive surfwave imports), as inputs: code changes rerun it.
+    ``shallow`` modules count without their imports (surfwave.data.provenance.module_closure).
+    """
+    return module_closure(*modules, shallow=shallow)

@@ -1,156 +1,96 @@
-# Figures of the reproduction: Fig. 2 for every selected FCC scene with
-# elastic and rayleigh cubes, Table I (paper beside ours) for the `table1` scene, and for
-# triangular scenes the dispersion, theta_c, Fig. 3 (displacements) and entropy figures.
+# Figures and tables: one job per scene draws all of them (surfwave.plots.scene.draw_scene),
+# since each job's start-up (interpreter, xarray, matplotlib) costs more than a figure. What a
+# scene gets follows from its cubes (surfwave.pipeline.targets.scene_outputs): Fig. 2 for FCC
+# scenes, Table I beside the paper's numbers for the `table1` scene, the dispersion, theta_c,
+# Fig. 3 and entropy figures for triangular scenes, the angle and stress figures and the
+# acoustoelastic table for real crystals, and summary.md for every scene not the paper's.
+# The rule `figures_<scene>` of each scene lists only the cubes and library modules its
+# outputs need, so a change reruns it only where it can change what it draws.
 # FIGURE_TARGETS is what rule `all` builds.
-from surfwave.pipeline.targets import figure_targets, speeds_scenes
-from surfwave.continuum.potentials import available_potentials
-from surfwave.data.paper import load_paper_values
+from surfwave.pipeline.targets import (
+    presentation_targets,
+    scene_output_inputs,
+    scene_outputs,
+)
 
-#: The scene Table I is compared with (held in paper_values.yaml beside the table itself).
-TABLE1_SCENE = load_paper_values()["table1"]["scene"]
+FIGURE_TARGETS = presentation_targets(SCENES, selected(config, SCENES))
 
-FIGURE_TARGETS = [
-    f"results/{name}/speeds_vs_stress.png"
-    for name in speeds_scenes(SCENES, selected(config, SCENES))
-]
-if TABLE1_SCENE in speeds_scenes(SCENES, selected(config, SCENES)):
-    FIGURE_TARGETS += [
-        f"results/{TABLE1_SCENE}/table1.md",
-        f"results/{TABLE1_SCENE}/table1.csv",
-        f"results/{TABLE1_SCENE}/table1_diff.png",
-    ]
-FIGURE_TARGETS += figure_targets(SCENES, selected(config, SCENES))
-
-
-wildcard_constraints:
-    potential="|".join(available_potentials()),
-
-
-rule figure_speeds:
-    """Fig. 2: bulk sound speeds squared and c_R^2 versus stress, one panel per potential."""
-    input:
-        elastic="results/{scene}/elastic.nc",
-        rayleigh="results/{scene}/rayleigh.nc",
-        code=code("plots.speeds"),
-    output:
-        report(
-            "results/{scene}/speeds_vs_stress.png",
-            caption="../report/speeds_vs_stress.rst",
-            category="Fig. 2: sound speeds versus stress",
-            subcategory="{scene}",
-        ),
-    log:
-        "results/{scene}/logs/figure_speeds.log",
-    conda:
-        CONDA_ENV
-    params:
-        lattice=lambda wildcards: SCENES[wildcards.scene]["lattice"],
-        loading=lambda wildcards: SCENES[wildcards.scene]["loading"],
-    script:
-        "../scripts/figure_speeds.py"
+#: Report entry (caption, category) of each output kind (the key's prefix); None: no entry.
+REPORT_ENTRIES = {
+    "speeds": ("speeds_vs_stress.rst", "Fig. 2: sound speeds versus stress"),
+    "table1_png": ("table1_diff.rst", "Table I"),
+    "dispersion": ("dispersion.rst", "Triangular lattice"),
+    "theta_c": ("theta_c.rst", "Triangular lattice"),
+    "displacements": ("fig3_displacements.rst", "Triangular lattice"),
+    "entropy": ("entropy_vs_strain.rst", "Surface entropy"),
+    "surface_wave_angles": ("surface_wave_angles.rst", "Real crystals"),
+    "surface_wave_vs_stress": ("surface_wave_vs_stress.rst", "Real crystals"),
+    "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
+}
+#: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
+#: the figures ride in the job of the first cube stage listed here that the scene has. Each
+#: of these stages feeds only the figures job, so the group never has an outside job
+#: between two of its members (which Snakemake refuses).
+FIGURE_GROUPS = {
+    "dispersion": "scene_dispersion",
+    "entropy": "scene_entropy",
+    "displacements": "scene_displacements",
+    "bulk": "scene_bulk",
+    "surface_wave": "scene_crystal",
+}
 
 
-rule figure_table1:
-    """Table I: the paper's printed numbers beside ours (Markdown, CSV, difference plot)."""
-    input:
-        elastic=f"results/{TABLE1_SCENE}/elastic.nc",
-        rayleigh=f"results/{TABLE1_SCENE}/rayleigh.nc",
-        values=PAPER_VALUES,
-        code=code("report.reproduction", "plots.speeds"),
-    output:
-        md=f"results/{TABLE1_SCENE}/table1.md",
-        csv=f"results/{TABLE1_SCENE}/table1.csv",
-        png=report(
-            f"results/{TABLE1_SCENE}/table1_diff.png",
-            caption="../report/table1_diff.rst",
-            category="Table I",
-        ),
-    log:
-        f"results/{TABLE1_SCENE}/logs/figure_table1.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/figure_table1.py"
+def report_entry(key, path, scene):
+    """``path`` wrapped for `snakemake --report` when its kind has a caption (REPORT_ENTRIES)."""
+    for kind, (caption, category) in REPORT_ENTRIES.items():
+        if key == kind or key.startswith(kind + "_"):
+            return report(
+                path,
+                caption=f"../report/{caption}",
+                category=category,
+                subcategory=scene,
+            )
+    return path
 
 
-rule figure_dispersion:
-    """Triangular surface-wave dispersion omega(theta) at several strains, one potential."""
-    input:
-        cube="results/{scene}/dispersion.nc",
-        code=code("plots.dispersion", "data.cube"),
-    output:
-        report(
-            "results/{scene}/dispersion_{potential}.png",
-            caption="../report/dispersion.rst",
-            category="Triangular lattice",
-            subcategory="{scene}",
-        ),
-    log:
-        "results/{scene}/logs/figure_dispersion_{potential}.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/figure_dispersion.py"
+def figure_group(scene):
+    """SLURM group of the figures job of ``scene`` (FIGURE_GROUPS, else the light chain)."""
+    quantities = SCENES[scene]["quantities"]
+    return next((g for q, g in FIGURE_GROUPS.items() if q in quantities), "scene_light")
 
 
-rule figure_theta_c:
-    """Crossover theta_c (q complex above it) versus d/d0, every potential."""
-    input:
-        cube="results/{scene}/dispersion.nc",
-        code=code("plots.dispersion", "data.cube"),
-    output:
-        report(
-            "results/{scene}/theta_c.png",
-            caption="../report/theta_c.rst",
-            category="Triangular lattice",
-            subcategory="{scene}",
-        ),
-    log:
-        "results/{scene}/logs/figure_theta_c.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/figure_theta_c.py"
+for _scene in SCENES:
+    _outputs = scene_outputs(SCENES, _scene)
+    if not _outputs:
+        continue
+    _cubes, _modules = scene_output_inputs(SCENES, _scene)
 
-
-rule figure_displacements:
-    """Fig. 3: surface-wave displacement patterns at zero stress, a few theta, one potential."""
-    input:
-        cube="results/{scene}/displacements.nc",
-        code=code("plots.dispersion", "data.cube"),
-    output:
-        report(
-            "results/{scene}/fig3_displacements_{potential}.png",
-            caption="../report/fig3_displacements.rst",
-            category="Triangular lattice",
-            subcategory="{scene}",
-        ),
-    log:
-        "results/{scene}/logs/figure_displacements_{potential}.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/figure_displacements.py"
-
-
-rule figure_entropy:
-    """Surface entropy (Eq. 25 estimate and exact) versus strain."""
-    input:
-        cube="results/{scene}/entropy.nc",
-        code=code("plots.entropy", "data.cube"),
-    output:
-        report(
-            "results/{scene}/entropy_vs_strain.png",
-            caption="../report/entropy_vs_strain.rst",
-            category="Surface entropy",
-            subcategory="{scene}",
-        ),
-    log:
-        "results/{scene}/logs/figure_entropy.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/figure_entropy.py"
+    rule:
+        """Every figure and table of the scene (surfwave.plots.scene.draw_scene)."""
+        name:
+            f"figures_{_scene}"
+        input:
+            **{k: f"results/{{scene}}/{f}" for k, f in _cubes.items()},
+            values=PAPER_VALUES,
+            code=code(*_modules, shallow=("plots.scene",)),
+        output:
+            **{
+                k: report_entry(k, f"results/{{scene}}/{f}", _scene)
+                for k, f in _outputs.items()
+            },
+        log:
+            "results/{scene}/logs/figures.log",
+        wildcard_constraints:
+            scene=re.escape(_scene),
+        group:
+            figure_group(_scene)
+        conda:
+            CONDA_ENV
+        params:
+            spec={k: SCENES[_scene].get(k) for k in ("lattice", "loading")},
+            cubes=list(_cubes),
+        script:
+            "../scripts/figures.py"
 
 
 rule figure_stability_map:

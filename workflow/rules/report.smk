@@ -2,11 +2,11 @@
 # tested against the cubes (surfwave.report.reproduction). It reads the paper's scenes only
 # (named in paper_values.yaml), whatever `run` selects, so a user's own scene never rewrites
 # it; missing cubes are reported as "not computed". A user scene gets its own
-# results/<scene>/summary.md. REPORT_TARGETS is what rule `all` builds.
-from surfwave.pipeline.targets import paper_scenes, report_inputs, summary_targets
+# results/<scene>/summary.md (from its figures job). REPORT_TARGETS is what rule `all` builds.
+from surfwave.pipeline.targets import paper_scenes, report_inputs
 
 REPORT_INPUTS = report_inputs(SCENES)
-REPORT_TARGETS = summary_targets(SCENES, selected(config, SCENES))
+REPORT_TARGETS = []
 if REPORT_INPUTS and set(paper_scenes()) & set(selected(config, SCENES)):
     REPORT_TARGETS.append("results/report.md")
 
@@ -29,22 +29,3 @@ rule report_md:
         CONDA_ENV
     script:
         "../scripts/report.py"
-
-
-rule scene_summary:
-    """results/<scene>/summary.md: what a user scene computed, ranges, NaN and unstable counts."""
-    input:
-        cubes=lambda wildcards: [
-            t
-            for t in targets(SCENES, [wildcards.scene])
-            if not t.endswith("crystal.nc")
-        ],
-        code=code("report.summary", "pipeline.stage"),
-    output:
-        "results/{scene}/summary.md",
-    log:
-        "results/{scene}/logs/summary.log",
-    conda:
-        CONDA_ENV
-    script:
-        "../scripts/summary.py"

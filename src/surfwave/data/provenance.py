@@ -29,7 +29,8 @@ def _source(pkg: Path, name: str) -> Path | None:
     return None
 
 
-def module_closure(*modules: str, package_dir: str | Path | None = None) -> list[str]:
+def module_closure(*modules: str, package_dir: str | Path | None = None,
+                   shallow: tuple[str, ...] = ()) -> list[str]:
     """Source files of surfwave modules and of every surfwave module they import (transitively).
 
     Parameters
@@ -38,6 +39,10 @@ def module_closure(*modules: str, package_dir: str | Path | None = None) -> list
         Dotted module names below the package (``"continuum.rayleigh"``).
     package_dir : path, optional
         The package's source folder (default: this installation's).
+    shallow : tuple of str
+        Modules whose own file counts but whose imports are not followed: a dispatcher such
+        as ``plots.scene``, which imports each plotting module only where an output needs
+        it, and whose caller lists the modules its outputs need among ``modules``.
 
     Returns
     -------
@@ -69,6 +74,8 @@ def module_closure(*modules: str, package_dir: str | Path | None = None) -> list
                 files.add(str(pkg.joinpath(*parts).with_suffix(".py")))
             continue
         files.add(str(path))
+        if name in shallow:
+            continue
         todo += [m for m in _imported_modules(str(path), path.stat().st_mtime_ns, str(pkg))
                  if _source(pkg, m) is not None]
     return sorted(files)

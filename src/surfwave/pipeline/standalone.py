@@ -49,7 +49,8 @@ def standalone(rule: str, argv=None, snakefile: str | Path = "Snakefile") -> Sim
     Parameters
     ----------
     rule : str
-        Name of the rule (the script's file name without ``.py``).
+        Name of the rule (the script's file name without ``.py``); ``{scene}`` in it is
+        replaced by the scene (rules made per scene, such as ``figures_{scene}``).
     argv : list of str, optional
         ``[SCENE] [CONFIGFILE ...] [WILDCARD=VALUE ...]``; default ``sys.argv[1:]``
         (SCENE where the rule has a ``scene`` wildcard). The
@@ -65,8 +66,13 @@ def standalone(rule: str, argv=None, snakefile: str | Path = "Snakefile") -> Sim
         containers, filled by the rule), ``rule``, ``threads`` (1) and ``config``.
     """
     argv = list(sys.argv[1:] if argv is None else argv)
-    usage = f"usage: python workflow/scripts/{rule}.py [SCENE] [CONFIGFILE ...] [WILDCARD=VALUE ...]"
     scene, configs, values = _parse(argv)
+    script = Path(sys.argv[0]).name if sys.argv[0].endswith(".py") else f"{rule}.py"
+    usage = f"usage: python workflow/scripts/{script} [SCENE] [CONFIGFILE ...] [WILDCARD=VALUE ...]"
+    if "{scene}" in rule:
+        if scene is None:
+            raise SystemExit(f"which scene? {usage}")
+        rule = rule.replace("{scene}", scene)
     from snakemake.iocontainers import Wildcards
 
     files = tuple(Path(f).resolve() for f in (DEFAULT_CONFIG, *configs))

@@ -5,6 +5,7 @@ Kept free of matplotlib and xarray so that parsing the workflow stays fast.
 from __future__ import annotations
 
 from surfwave.data.paper import load_paper_values
+from surfwave.pipeline.scenes import CUBES
 
 #: cubes the report's checks can read (bulk.nc feeds its own section, see report_inputs)
 REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
@@ -18,44 +19,96 @@ def speeds_scenes(scenes: dict, names) -> list[str]:
             and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
 
 
-def figure_targets(scenes: dict, names, results: str = "results") -> list[str]:
-    """PNGs of the triangular-lattice figures the named scenes' cubes allow.
+#: What each output of a scene's figures job needs: (cubes read, library modules drawing it).
+#: Output keys with a potential suffix (``dispersion_lj``) look up their prefix.
+OUTPUT_NEEDS = {
+    "speeds": (("elastic", "rayleigh"), ("plots.speeds",)),
+    "table1": (("elastic", "rayleigh"), ("report.reproduction", "plots.speeds")),
+    "dispersion": (("dispersion",), ("plots.dispersion",)),
+    "theta_c": (("dispersion",), ("plots.dispersion",)),
+    "displacements": (("displacements",), ("plots.dispersion", "plots.speeds")),
+    "entropy": (("entropy",), ("plots.entropy",)),
+    "surface_wave": (("surface_wave",), ("plots.surface_wave",)),
+    "acoustoelastic": (("surface_wave",), ("report.acoustoelastic",)),
+    "summary": ((), ("report.summary",)),  # reads every cube of the scene but crystal.nc
+}
 
-    dispersion -> dispersion_<potential>.png and theta_c.png; displacements ->
-    fig3_displacements_<potential>.png; entropy -> entropy_vs_strain.png.
+
+def _need(key: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    for prefix, need in OUTPUT_NEEDS.items():
+        if key == prefix or key.startswith(prefix + "_"):
+            return need
+    raise KeyError(f"no entry for output {key!r} in OUTPUT_NEEDS")
+
+
+def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
+    """Figures and tables of one scene (file names in ``results/<scene>/``), by output key.
+
+    One job per scene draws them all (each job's start-up costs more than a figure). What a
+    scene gets follows from its cubes: Fig. 2 (``speeds_vs_stress.png``) for FCC scenes with
+    elastic and rayleigh cubes; Table I (Markdown, CSV, difference plot) for the scene named
+    in ``paper_values.yaml``; ``dispersion_<potential>.png`` and ``theta_c.png`` from a
+    dispersion cube; Fig. 3 (``fig3_displacements_<potential>.png``) from a displacements
+    cube; ``entropy_vs_strain.png``; for real-crystal scenes ``surface_wave_angles.png``
+    (three or more angles) and ``surface_wave_vs_stress.png`` + ``acoustoelastic.md/.csv``
+    (two or more stresses; the table says so when the grid has no zero with a point on each
+    side, which the central differences need); and ``summary.md`` for every scene that is
+    not one of the paper's.
+
+    Parameters
+    ----------
+    scenes : dict
+        ``config["scenes"]`` after validation (defaults filled in).
+    name : str
+        The scene.
+
+    Returns
+    -------
+    dict
+        Output key (a Python identifier, e.g. ``dispersion_lj``) -> file name.
     """
-    out = []
-    for n in names:
-        q, pots = set(scenes[n]["quantities"]), scenes[n].get("potentials", [])
-        if "dispersion" in q:
-            out += [f"{results}/{n}/dispersion_{p}.png" for p in pots] + [f"{results}/{n}/theta_c.png"]
-        if "displacements" in q:
-            out += [f"{results}/{n}/fig3_displacements_{p}.png" for p in pots]
-        if "entropy" in q:
-            out.append(f"{results}/{n}/entropy_vs_strain.png")
-    return out
-
-
-def crystal_targets(scenes: dict, names, results: str = "results") -> list[str]:
-    """Figures and tables of the named real-crystal scenes (``materials:`` scenes).
-
-    ``surface_wave_angles.png`` when a scene has three or more angles;
-    ``surface_wave_vs_stress.png``, ``acoustoelastic.md`` and ``.csv`` (one job) when it has
-    two or more stresses (the table says so when the grid has no zero with a point on
-    each side, which the central differences need).
-    """
-    out = []
-    for n in names:
-        s = scenes[n]
-        if s.get("kind") != "crystal" or "surface_wave" not in s["quantities"]:
-            continue
+    s = scenes[name]
+    q, pots = set(s["quantities"]), s.get("potentials", [])
+    out: dict[str, str] = {}
+    if name in speeds_scenes(scenes, [name]):
+        out["speeds"] = "speeds_vs_stress.png"
+        if name == load_paper_values()["table1"]["scene"]:
+            out.update(table1_md="table1.md", table1_csv="table1.csv", table1_png="table1_diff.png")
+    if "dispersion" in q:
+        out.update({f"dispersion_{p}": f"dispersion_{p}.png" for p in pots}, theta_c="theta_c.png")
+    if "displacements" in q:
+        out.update({f"displacements_{p}": f"fig3_displacements_{p}.png" for p in pots})
+    if "entropy" in q:
+        out["entropy"] = "entropy_vs_strain.png"
+    if s.get("kind") == "crystal" and "surface_wave" in q:
         if len(s["angles"]) >= 3:
-            out.append(f"{results}/{n}/surface_wave_angles.png")
-        stress = s.get("stress") or []
-        if len(stress) >= 2:
-            out += [f"{results}/{n}/{f}" for f in ("surface_wave_vs_stress.png", "acoustoelastic.md",
-                                                   "acoustoelastic.csv")]
+            out["surface_wave_angles"] = "surface_wave_angles.png"
+        if len(s.get("stress") or []) >= 2:
+            out.update(surface_wave_vs_stress="surface_wave_vs_stress.png",
+                       acoustoelastic_md="acoustoelastic.md", acoustoelastic_csv="acoustoelastic.csv")
+    if name not in paper_scenes():
+        out["summary"] = "summary.md"
     return out
+
+
+def scene_output_inputs(scenes: dict, name: str) -> tuple[dict[str, str], list[str]]:
+    """Cubes (name -> file name in ``results/<scene>/``) and library modules (dotted) that
+    the figures job of scene ``name`` reads: exactly what its outputs need (OUTPUT_NEEDS),
+    so that a change reruns the job only where it can change an output."""
+    keys = scene_outputs(scenes, name)
+    # the summary reads every cube of the scene, in the scene's order
+    cubes = {q: CUBES[q] for q in scenes[name]["quantities"]} if "summary" in keys else {}
+    modules: list[str] = ["plots.scene", "pipeline.stage"]
+    for key in keys:
+        names, code = _need(key)
+        cubes.update({c: CUBES[c] for c in names})
+        modules += [m for m in code if m not in modules]
+    return cubes, modules
+
+
+def presentation_targets(scenes: dict, names, results: str = "results") -> list[str]:
+    """Every figure and table (``scene_outputs``) of the named scenes, as paths."""
+    return [f"{results}/{n}/{f}" for n in names for f in scene_outputs(scenes, n).values()]
 
 
 def paper_scenes() -> list[str]:
@@ -95,9 +148,3 @@ def report_inputs(scenes: dict, results: str = "results") -> list[str]:
         have = set(scenes.get(scene, {}).get("quantities", []))
         out += [f"{results}/{scene}/{c}.nc" for c in CUBE_NAMES if c in cubes and c in have]
     return sorted(set(out))
-
-
-def summary_targets(scenes: dict, names, results: str = "results") -> list[str]:
-    """``results/<scene>/summary.md`` for each named scene that is not one of the paper's."""
-    paper = set(paper_scenes())
-    return [f"{results}/{n}/summary.md" for n in names if n not in paper]
