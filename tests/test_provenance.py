@@ -48,7 +48,7 @@ def test_figures_jobs_depend_on_the_plotting_code_they_use():
     scenes = validate_config(load_config([Path(__file__).parents[1] / "config" / "config.yaml"]))
     for scene, wanted, unwanted in (("fig2", "plots/speeds.py", "plots/entropy.py"),
                                     ("entropy", "plots/entropy.py", "plots/speeds.py")):
-        cubes, modules = scene_output_inputs(scenes, scene)
+        _, modules = scene_output_inputs(scenes, scene)
         files = module_closure(*modules, shallow=("plots.scene",))
         assert any(f.endswith(wanted) for f in files) and not any(f.endswith(unwanted) for f in files)
         assert any(f.endswith("plots/scene.py") for f in files)
