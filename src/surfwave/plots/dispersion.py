@@ -15,9 +15,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 
 from surfwave.errors import InputError  # noqa: E402
 from surfwave.plots.labels import OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
+from surfwave.plots.output import savefig  # noqa: E402
 
 
 def _get(data, name: str):
@@ -48,11 +50,7 @@ def _coords(data, d_over_d0=None, theta=None):
 
 
 def _save(fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=130, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    return savefig(fig, path, dpi=130)
 
 
 def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, max_curves: int = 5,
@@ -82,7 +80,8 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
     if isinstance(src, dict) and "omega_lattice" in src or (not isinstance(src, dict) and "omega_lattice" in src.variables):
         lattice = _get(src, "omega_lattice")
     pick = np.unique(np.linspace(0, d.size - 1, min(max_curves, d.size)).round().astype(int))
-    fig, axes = plt.subplots(1, len(pick), figsize=(3.2 * len(pick), 3.4), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, len(pick), figsize=(3.2 * len(pick), 3.4), sharey=True, squeeze=False,
+                             layout="constrained")
     for ax, i in zip(axes[0], pick):
         x = th / np.pi
         if bottom is not None:
@@ -181,8 +180,8 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
         tx = x[:, None] + scale * (cu[:, None] * np.exp(-1j * t)).real
         ty = -y[:, None] - scale * (cv[:, None] * np.exp(-1j * t)).real
         ax.plot(x, -y, "+", color="0.55", ms=4, mew=0.8, label="equilibrium site")
-        lines = ax.plot(tx.T, ty.T, "-", color="C0", lw=0.8)
-        lines[0].set_label(f"trajectory over one period (amplitude 1 drawn as {scale:g} $d_0$)")
+        ax.add_collection(LineCollection(np.stack([tx, ty], axis=-1), colors="C0", linewidths=0.8,
+                                         label=f"trajectory over one period (amplitude 1 drawn as {scale:g} $d_0$)"))
         ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2.5, label="position at $t = 0$")
         ax.set_title(rf"$\theta = k d_x = {th[k] / np.pi:.3g}\,\pi$", fontsize=10)
         ax.set_aspect("equal")
@@ -226,7 +225,7 @@ def plot_theta_c(data, path, *, d_over_d0=None, title: str = "", potential_label
     """
     items = data if isinstance(data, (list, tuple)) else [data]
     labels = potential_labels or [None] * len(items)
-    fig, ax = plt.subplots(figsize=(4.5, 3.4))
+    fig, ax = plt.subplots(figsize=(4.5, 3.4), layout="constrained")
     for item, label in zip(items, labels):
         d, _ = _coords(item, d_over_d0, theta=[0.0])
         ax.plot(d, _get(item, "theta_c") / np.pi, ".-", label=potential_label(label) if label else None)

@@ -22,6 +22,7 @@ import xarray as xr  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from surfwave.data.cube import open_cube  # noqa: E402
+from surfwave.plots.output import savefig  # noqa: E402
 
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"
@@ -42,15 +43,6 @@ def _dataset(obj) -> xr.Dataset | None:
     if obj is None or isinstance(obj, xr.Dataset):
         return obj
     return open_cube(obj) if Path(obj).is_file() else None
-
-
-def savefig(fig, path: str | Path, dpi: int = 150) -> Path:
-    """Save ``fig`` as PNG (parent directories created) and close it."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=dpi, bbox_inches="tight")
-    plt.close(fig)
-    return path
 
 
 def curve_window(strain: np.ndarray, ok: np.ndarray | None,
@@ -249,7 +241,8 @@ def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
         raise FileNotFoundError(f"no elastic cube at {elastic}")
     pots = [str(p) for p in el["potential"].values]
     order = [p for p in ("harmonic", "lj") if p in pots] + [p for p in pots if p not in ("harmonic", "lj")]
-    fig, axes = plt.subplots(1, len(order), figsize=(6.2 * len(order), 5.0), squeeze=False)
+    fig, axes = plt.subplots(1, len(order), figsize=(6.2 * len(order), 5.0), squeeze=False,
+                             layout="constrained")
     drawn: set = set()
     for k, (ax, pot) in enumerate(zip(axes[0], order)):
         drawn |= speeds_panel(ax, el, ra, pot, ymax=ymax)
@@ -259,11 +252,10 @@ def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
     labels = [h.get_label() if not isinstance(h, tuple) else h[2] for h in entries]
     from matplotlib.legend_handler import HandlerTuple
 
-    fig.legend(handles, labels, loc="upper center", ncol=5, frameon=False, fontsize=9,
-               bbox_to_anchor=(0.5, 0.0), handler_map={tuple: HandlerTuple(ndivide=1, pad=0)})
+    fig.legend(handles, labels, loc="outside lower center", ncol=5, frameon=False, fontsize=9,
+               handler_map={tuple: HandlerTuple(ndivide=1, pad=0)})
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
     return savefig(fig, out_png)
 
 

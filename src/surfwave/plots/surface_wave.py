@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from surfwave.plots.speeds import savefig  # noqa: E402
+from surfwave.plots.output import savefig  # noqa: E402
 
 #: Line styles of the wave types (the pseudo surface wave is leaky: dashed).
 TYPE_STYLES = {"surface": "-", "supersonic_decoupled": "-", "pseudo": "--"}
@@ -67,7 +67,7 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     ds, note = _unstressed(ds)
     surfaces = [str(s) for s in ds.surface.values]
     fig, axes = plt.subplots(1, len(surfaces), figsize=(4.2 * len(surfaces), 4.2), squeeze=False,
-                             sharey=True)
+                             sharey=True, layout="constrained")
     colours = plt.get_cmap("tab10")
     angle = ds.angle.values
     for ax, sf in zip(axes[0], surfaces):
@@ -105,10 +105,9 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     handles += [
                 Line2D([], [], color="k", ls="", marker="o", mfc="none", label="sagittal, above $v_L$ (mirror)"),
                 Line2D([], [], color="k", ls=":", lw=1.0, label=r"$v_L$ limiting speed")]
-    fig.legend(handles=handles, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
     fig.suptitle(f"Surface waves of cubic crystals against the propagation angle{note}"
                  + (f" ({title})" if title else ""), fontsize=10)
-    fig.tight_layout()
     return savefig(fig, path)
 
 
@@ -141,7 +140,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     cols = [(sf, j) for sf in ds.surface.values for j in range(ds.sizes["angle"])]
     mats = list(ds.material.values)
     fig, axes = plt.subplots(len(mats), len(cols), figsize=(3.3 * len(cols), 2.6 * len(mats)),
-                             squeeze=False, sharex=True)
+                             squeeze=False, sharex=True, layout="constrained")
     s = ds.stress.values
     i0 = int(np.argmin(np.abs(s)))
     cmap = plt.get_cmap("tab10")
@@ -171,9 +170,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                       label=f"loading: {ld}") for li, ld in enumerate(ds.loading.values)]
     handles += [Line2D([], [], color="k", ls="-", label="stressed-state constants (TOEC)"),
                 Line2D([], [], color="k", ls="--", label="fixed second-order constants")]
-    fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=3, fontsize=8,
-               frameon=False)
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     fig.suptitle("Surface-wave speed against in-plane stress" + (f" ({title})" if title else ""),
                  fontsize=10)
-    fig.tight_layout()
     return savefig(fig, path)
