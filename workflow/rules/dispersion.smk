@@ -26,7 +26,7 @@ rule displacements:
     """Row displacement amplitudes u, v of the triangular surface wave (Fig. 3)."""
     input:
         crystal="results/{scene}/crystal.nc",
-        code=code("dynamics.dispersion", "data.cube"),
+        code=code("dynamics.dispersion", "data.cube", "pipeline.stage"),
     output:
         "results/{scene}/displacements.nc",
     log:

@@ -10,6 +10,7 @@ import itertools
 import sys
 from typing import Any, Callable, Mapping
 
+import numpy as np
 import xarray as xr
 
 from surfwave.data import cube
@@ -29,6 +30,7 @@ def block_cube(
     variables: Mapping[str, Any],
     by: tuple[str, ...] = ("potential", "direction"),
     log=None,
+    ragged: tuple[str, tuple[str, ...]] | None = None,
     **build_kwargs,
 ) -> xr.Dataset:
     """Run ``compute`` for every block of a scene and assemble the cube.
@@ -47,6 +49,10 @@ def block_cube(
         Block dimensions, from ``("potential", "direction")``.
     log : file, optional
         Where dropped arrays are reported (default: the current stderr, i.e. the log).
+    ragged : (dim, variable names), optional
+        A last axis whose length may differ between blocks (e.g. the rows of a decay sized
+        per potential): those variables are padded with NaN to the longest, and ``dim`` gets
+        the coordinate 0, 1, ..., n - 1.
     **build_kwargs
         Passed to :func:`surfwave.data.cube.build` (``coords``, ``skip``).
 
@@ -59,4 +65,12 @@ def block_cube(
     labels = {b: list(job[_LABELS[b]]) for b in by}
     blocks = {key: cube.documented(compute(*key), variables, log)
               for key in itertools.product(*labels.values())}
+    if ragged is not None:
+        dim, names = ragged
+        n = max(np.shape(b[v])[-1] for b in blocks.values() for v in names)
+        for b in blocks.values():
+            for v in names:
+                b[v] = np.pad(b[v], [(0, 0)] * (np.ndim(b[v]) - 1) + [(0, n - np.shape(b[v])[-1])],
+                              constant_values=np.nan)
+        build_kwargs["coords"] = {**build_kwargs.get("coords", {}), dim: np.arange(n)}
     return cube.build(blocks, labels, job["d_over_d0"], variables, **build_kwargs)
