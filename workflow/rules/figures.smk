@@ -28,7 +28,7 @@ REPORT_ENTRIES = {
     "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
 }
 #: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
-#: the figures ride in the job of the first cube stage listed here that the scene has. Each
+#: the figures ride in the job of the first cube stage listed here that they read. Each
 #: of these stages feeds only the figures job, so the group never has an outside job
 #: between two of its members (which Snakemake refuses).
 FIGURE_GROUPS = {
@@ -53,10 +53,9 @@ def report_entry(key, path, scene):
     return path
 
 
-def figure_group(scene):
-    """SLURM group of the figures job of ``scene`` (FIGURE_GROUPS, else the light chain)."""
-    quantities = SCENES[scene]["quantities"]
-    return next((g for q, g in FIGURE_GROUPS.items() if q in quantities), "scene_light")
+def figure_group(cubes):
+    """SLURM group of a figures job reading ``cubes`` (FIGURE_GROUPS, else the light chain)."""
+    return next((g for q, g in FIGURE_GROUPS.items() if q in cubes), "scene_light")
 
 
 for _scene in SCENES:
@@ -83,7 +82,7 @@ for _scene in SCENES:
         wildcard_constraints:
             scene=re.escape(_scene),
         group:
-            figure_group(_scene)
+            figure_group(_cubes)
         conda:
             CONDA_ENV
         params:
