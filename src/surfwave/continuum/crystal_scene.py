@@ -37,6 +37,7 @@ import numpy as np
 
 from surfwave.continuum.tensors import rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
+from surfwave.validate import as_1d
 
 if TYPE_CHECKING:  # xarray only for the Dataset builder: scene checks at workflow parse stay light
     import xarray as xr
@@ -361,9 +362,9 @@ def surface_wave_scene(
     from surfwave.data.materials import get_material
 
     mats = [get_material(m) for m in materials]
-    angles = np.atleast_1d(np.asarray(angles, dtype=float))
+    angles = as_1d(angles, "angles")
     stressed = stress is not None
-    s = np.atleast_1d(np.asarray(stress if stressed else [0.0], dtype=float))
+    s = as_1d(stress if stressed else [0.0], "stress")
     loads = list(loadings) if stressed else ["along"]
     models = [bool(t) for t in toec] if stressed else [False]
     for m in mats:

@@ -26,6 +26,7 @@ import numpy as np
 from surfwave.continuum import elastic, rayleigh
 from surfwave.continuum.tensors import rotate4
 from surfwave.errors import InputError
+from surfwave.validate import as_1d
 
 #: The only loading whose stressed crystal is the same for every in-plane angle.
 LOADING = "in_plane_hydrostatic"
@@ -49,7 +50,7 @@ def lab_rotation(angles) -> np.ndarray:
     ndarray, shape (n, 3, 3)
         Rows: the new lab axes x', y' = y, z' written in the [100] lab axes.
     """
-    t = np.radians(np.atleast_1d(np.asarray(angles, dtype=float)))
+    t = np.radians(as_1d(angles, "angles"))
     c, s, z, o = np.cos(t), np.sin(t), np.zeros_like(t), np.ones_like(t)
     return np.stack([np.stack([c, z, -s], -1), np.stack([z, o, z], -1), np.stack([s, z, c], -1)], -2)
 

@@ -39,6 +39,7 @@ from surfwave.continuum.elastic import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.continuum.lattices import build_checked, check_combination
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.validate import as_1d
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
 DEFAULT_SUPERCELL = 2
@@ -445,7 +446,7 @@ def bulk_speeds(
             f"need an integer supercell >= 2, displacement > 0 and zone_mesh >= 2; got "
             f"supercell={supercell!r}, displacement={displacement!r}, zone_mesh={zone_mesh!r}"
         )
-    s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    s = as_1d(d_over_d0, finite=False)  # a non-finite point is NaN with its reason
     n = s.size
     out = {f"{k}_phonopy": np.full(n, np.nan) for k in _SPEEDS}
     out.update(

@@ -36,6 +36,7 @@ from surfwave.data.atomic import atomic_write
 from surfwave.errors import InputError
 from surfwave.data.progress import Progress, summary_line
 from surfwave.data.provenance import module_closure
+from surfwave.validate import as_1d
 
 #: Default location, relative to the working directory of the workflow.
 DEFAULT_ROOT = Path("results") / "cache"
@@ -161,7 +162,7 @@ def cached_points(
     if not kind or "/" in kind or kind.startswith("."):
         raise InputError(f"cache kind must be a plain directory name, got {kind!r}")
     root = Path(root)
-    d = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    d = as_1d(d_over_d0)
     ids = [point_key(kind, key, x) for x in d]
     found: dict[str, dict] = {}
     for digest, text in ids:

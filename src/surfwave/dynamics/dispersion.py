@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.continuum.lattices import as_1d
+from surfwave.validate import as_1d
 from surfwave.continuum.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import inv2, null_vector2
 from surfwave.dynamics.triangular import bond_force_constants, row_matrices
@@ -420,7 +420,7 @@ def displacements(potential: str | PairPotential, d_over_d0, theta, n_rows: int 
     if int(n_rows) < 1:
         raise InputError(f"n_rows must be >= 1, got {n_rows}")
     n_rows = int(n_rows)
-    th_in = np.atleast_1d(np.asarray(theta, dtype=float))
+    th_in = as_1d(theta, "theta")
     th = np.where((th_in > 0) & (th_in < np.pi), th_in, 0.5 * np.pi)
     A0, A0s, A1 = row_matrices(potential, d_over_d0, th)
     w2 = np.where(ok, sol["omega"], 1.0) ** 2

@@ -28,6 +28,7 @@ import numpy as np
 from surfwave.continuum import elastic, rayleigh
 from surfwave.continuum.lattices import build
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.validate import as_1d
 
 
 def bond_force_constants(potential: str | PairPotential, d_over_d0) -> np.ndarray:
@@ -74,7 +75,7 @@ def row_matrices(
         In units of K/m (omega^2 units). A0 and A0_surface are real symmetric.
     """
     phi = bond_force_constants(potential, d_over_d0)[:, None]  # (n, 1, 3, 2, 2)
-    th = np.atleast_1d(np.asarray(theta, dtype=float))[None, :, None, None]  # (1, m, 1, 1)
+    th = as_1d(theta, "theta")[None, :, None, None]  # (1, m, 1, 1)
     row, up, um = phi[:, :, 0], phi[:, :, 1], phi[:, :, 2]
     in_row = 4.0 * row * np.sin(th) ** 2  # 2 Phi_row (1 - cos 2 theta), no cancellation at 0, pi
     a0 = (in_row + 2.0 * up + 2.0 * um).astype(complex)

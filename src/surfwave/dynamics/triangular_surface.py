@@ -24,6 +24,7 @@ from surfwave.errors import InputError
 from surfwave.continuum.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import det2, inv2, null_vector2
 from surfwave.dynamics.triangular import long_wave, row_matrices
+from surfwave.validate import as_1d
 
 _W = "(K/m)^(1/2)"
 #: Metadata of every array :func:`surface_mode` returns (CF attributes).
@@ -187,9 +188,7 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     is within rounding of 0, the result is NaN with a "theta too close to 0 or pi" reason.
     """
     pot = get_potential(potential)
-    th_in = np.atleast_1d(np.asarray(theta, dtype=float))
-    if th_in.ndim != 1 or not np.all(np.isfinite(th_in)):
-        raise InputError(f"theta must be a finite 1-D array, got {th_in!r}")
+    th_in = as_1d(theta, "theta")
     bad_th = ~((th_in > 0) & (th_in < np.pi))
     th = np.where(bad_th, 0.5 * np.pi, th_in)
     A0, A0s, A1 = row_matrices(pot, d_over_d0, th)
@@ -224,7 +223,7 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     ok &= n_modes > 0
     # Pick the bracket closest to the long-wave sine law (continuity with the Rayleigh wave).
     c2 = long_wave(pot, d_over_d0)["c2_R_cauchy"]
-    dx = 0.5 * np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    dx = 0.5 * as_1d(d_over_d0)
     with np.errstate(all="ignore"):
         w_sine = np.sqrt(c2)[:, None] / dx[:, None] * np.sin(th)[None, :]
         r_sine = w_sine**2 / top

@@ -20,6 +20,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from surfwave.errors import InputError  # noqa: E402
 from surfwave.plots.labels import OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
 from surfwave.plots.output import savefig  # noqa: E402
+from surfwave.validate import as_1d  # noqa: E402
 
 
 def _get(data, name: str):
@@ -46,7 +47,7 @@ def _coords(data, d_over_d0=None, theta=None):
         theta = data["theta"].values
     if d_over_d0 is None or theta is None:
         raise InputError("pass d_over_d0 and theta (or a Dataset with those coordinates)")
-    return np.atleast_1d(np.asarray(d_over_d0, float)), np.atleast_1d(np.asarray(theta, float))
+    return as_1d(d_over_d0), as_1d(theta, "theta")
 
 
 def _save(fig, path) -> Path:

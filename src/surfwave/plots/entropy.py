@@ -18,6 +18,7 @@ import xarray as xr  # noqa: E402
 from surfwave.data.paper import load_paper_values  # noqa: E402
 from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
 from surfwave.plots.labels import potential_label  # noqa: E402
+from surfwave.validate import as_1d  # noqa: E402
 
 #: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
 #: src/surfwave/data/paper_values.yaml (the one copy of the paper's numbers).
@@ -54,7 +55,7 @@ def to_dataset(result: Mapping[str, np.ndarray], d_over_d0, potential: str) -> x
     xarray.Dataset
         Dims (potential, strain); coordinates ``strain`` = d/d0 - 1 and ``d_over_d0``.
     """
-    d = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    d = as_1d(d_over_d0)
     data = {}
     for name, arr in result.items():
         attrs = {k: v for k, v in VARIABLES.get(name, {}).items() if k != "dims"}
