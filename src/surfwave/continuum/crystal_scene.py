@@ -175,18 +175,17 @@ def symmetry_reduced_range(surface: str, voigts: Sequence) -> float:
     e1, n, e3 = axes
     width = 0.0
     for voigt in voigts:
-        lines = set()
-        for R in stiffness_symmetry(voigt):
-            Rn = R @ n
-            if not np.allclose(np.abs(Rn @ n), 1.0, atol=1e-9):
-                continue
-            M = np.array([[e1 @ R @ e1, e1 @ R @ e3], [e3 @ R @ e1, e3 @ R @ e3]])
-            if np.linalg.det(M) > 0:  # an in-plane rotation: no mirror line
-                continue
-            # Reflection about the line at angle phi: M = [[cos 2phi, sin 2phi], [sin 2phi, -cos 2phi]].
-            phi = 0.5 * np.degrees(np.arctan2(M[1, 0], M[0, 0]))
-            for line in (phi, phi + 90.0):  # -M is a reflection too (k -> -k)
-                lines.add(round(line % 180.0, 6) % 180.0)
+        R = stiffness_symmetry(voigt)  # (m, 3, 3)
+        keeps_normal = np.abs(np.abs(R @ n @ n) - 1.0) <= 1e-9  # R n = +-n
+        # the action on the in-plane directions (e1, e3)
+        M = np.einsum("i,mij,j->m", e1, R, e1), np.einsum("i,mij,j->m", e1, R, e3), \
+            np.einsum("i,mij,j->m", e3, R, e1), np.einsum("i,mij,j->m", e3, R, e3)
+        # in-plane rotations (det > 0) have no mirror line; a reflection about the line at
+        # angle phi is M = [[cos 2phi, sin 2phi], [sin 2phi, -cos 2phi]]
+        reflect = keeps_normal & (M[0] * M[3] - M[1] * M[2] < 0)
+        phi = 0.5 * np.degrees(np.arctan2(M[2][reflect], M[0][reflect]))
+        both = np.concatenate([phi, phi + 90.0])  # -M is a reflection too (k -> -k)
+        lines = set((np.round(both % 180.0, 6) % 180.0).tolist())
         ordered = np.sort(np.array(sorted(lines)))
         if ordered.size == 0 or ordered[0] > 1e-6:  # reference not on a mirror line
             return 180.0
