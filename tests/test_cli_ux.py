@@ -79,5 +79,10 @@ def test_scenes_lists_configured_scenes(tmp_path, capsys):
     assert "entropy" not in rows["table1"]["accuracy"]
     assert rows["mine"]["built_by_all"] and not rows["table1"]["built_by_all"]
     assert rows["table1"]["paper"] and not rows["mine"]["paper"]
+    # what the scene's figures job writes (pipeline.targets.scene_outputs): no Fig. 2 without
+    # a rayleigh cube, but the summary of a user scene
+    assert rows["table1"]["outputs"][:2] == ["speeds_vs_stress.png", "table1.md"]
+    assert rows["mine"]["outputs"] == ["summary.md"]
     assert main(["scenes"]) == 0
-    assert "table1" in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "table1" in text and "figures and tables: speeds_vs_stress.png, table1.md" in text

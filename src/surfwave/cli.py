@@ -354,7 +354,7 @@ def _default_configs() -> list[Path]:
 
 def _cmd_scenes(args) -> int:
     from surfwave.pipeline.scenes import load_config, selected, validate_config
-    from surfwave.pipeline.targets import paper_scenes
+    from surfwave.pipeline.targets import paper_scenes, scene_outputs
 
     files = _default_configs() + list(args.configfile)
     missing = [str(f) for f in files if not Path(f).is_file()]
@@ -372,7 +372,7 @@ def _cmd_scenes(args) -> int:
                          "materials": sc["materials"], "surfaces": sc["surfaces"],
                          "angles": [min(a), max(a), len(a)], "stress": [min(st), max(st), len(st)],
                          "loading": sc["loading"], "toec": sc["toec"], "quantities": sc["quantities"],
-                         "accuracy": sc["accuracy"]})
+                         "accuracy": sc["accuracy"], "outputs": list(scene_outputs(scenes, name).values())})
             continue
         d = sc["d_over_d0"]
         rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
@@ -381,7 +381,8 @@ def _cmd_scenes(args) -> int:
                      "n_theta": len(sc["theta"]), "quantities": sc["quantities"],
                      # the knobs the scene's jobs use (crystal.nc, always built, uses symmetry)
                      "accuracy": {k: v for k, v in sc["accuracy"].items()
-                                  if k == "symmetry" or k in sc["quantities"]}})
+                                  if k == "symmetry" or k in sc["quantities"]},
+                     "outputs": list(scene_outputs(scenes, name).values())})
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
@@ -394,12 +395,14 @@ def _cmd_scenes(args) -> int:
                   f"{'/'.join(r['materials'])} on {' '.join(r['surfaces'])}, angles {alo:g}..{ahi:g} "
                   f"({na}), stress {slo:g}..{shi:g} GPa ({ns}, {'/'.join(r['loading'])}, toec "
                   f"{'/'.join(str(t).lower() for t in r['toec'])}) -> {', '.join(r['quantities'])}")
+            print(f"{'':18}figures and tables: {', '.join(r['outputs']) or 'none'}")
             continue
         lo, hi, n = r["d_over_d0"]
         theta = f", {r['n_theta']} theta" if {"dispersion", "displacements"} & set(r["quantities"]) else ""
         print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
               f"{r['lattice']}, {r['loading']}, {'/'.join(r['potentials'])}, {' '.join(r['directions'])}, "
               f"d/d0 {lo:g}..{hi:g} ({n} points{theta}) -> {', '.join(r['quantities'])}")
+        print(f"{'':18}figures and tables: {', '.join(r['outputs']) or 'none'}")
     return 0
 
 
