@@ -113,16 +113,29 @@ def lattice_residual(cells: np.ndarray, rotations: np.ndarray) -> np.ndarray:
     """
     cells = np.asarray(cells, dtype=float)
     rotations = np.asarray(rotations, dtype=float)
-    out = np.empty((cells.shape[0], rotations.shape[0]))
-    for lo in range(0, cells.shape[0], _CHUNK):
+    n, m = cells.shape[0], rotations.shape[0]
+    out = np.empty((n, m))
+    r_t = rotations.transpose(2, 0, 1).reshape(3, 3 * m)  # [j, (m, k)] = R[m, k, j]
+    for lo in range(0, n, _CHUNK):
         lat = cells[lo:lo + _CHUNK]
-        image = lat[:, None] @ rotations.transpose(0, 2, 1)[None]  # (c, m, 3, 3): rows R a_i
-        n_real = image @ np.linalg.inv(lat)[:, None]
+        c = lat.shape[0]
+        # rows R a_i of every cell and operation: one matrix product, then per cell
+        image = (lat.reshape(3 * c, 3) @ r_t).reshape(c, 3, m, 3).transpose(0, 2, 1, 3)
+        n_real = image.reshape(c, 3 * m, 3) @ np.linalg.inv(lat)  # (c, 3m, 3): L R^T L^-1
         n_int = np.rint(n_real)
-        res = np.linalg.norm((n_real - n_int) @ lat[:, None], axis=-1).max(axis=-1)
-        unimodular = np.abs(np.abs(np.linalg.det(n_int)) - 1.0) < 0.5
-        out[lo:lo + _CHUNK] = np.where(unimodular, res, np.inf)
+        miss = (n_real - n_int) @ lat  # rotated basis vector minus the nearest lattice vector
+        sq = (miss[..., 0] ** 2 + miss[..., 1] ** 2 + miss[..., 2] ** 2).reshape(c, m, 3)
+        res = np.sqrt(np.maximum(np.maximum(sq[..., 0], sq[..., 1]), sq[..., 2]))
+        out[lo:lo + c] = np.where(np.abs(np.abs(_det3(n_int.reshape(c, m, 3, 3))) - 1) < 0.5,
+                                  res, np.inf)
     return out
+
+
+def _det3(a: np.ndarray) -> np.ndarray:
+    """Determinants of (..., 3, 3) matrices (cofactor expansion, vectorised)."""
+    return (a[..., 0, 0] * (a[..., 1, 1] * a[..., 2, 2] - a[..., 1, 2] * a[..., 2, 1])
+            - a[..., 0, 1] * (a[..., 1, 0] * a[..., 2, 2] - a[..., 1, 2] * a[..., 2, 0])
+            + a[..., 0, 2] * (a[..., 1, 0] * a[..., 2, 1] - a[..., 1, 1] * a[..., 2, 0]))
 
 
 def shell_multiplicities(cells: np.ndarray, symprec: float) -> tuple[np.ndarray, np.ndarray]:
@@ -153,7 +166,8 @@ def shell_multiplicities(cells: np.ndarray, symprec: float) -> tuple[np.ndarray,
     doubt = np.zeros(n, dtype=bool)
     for lo in range(0, n, _CHUNK):
         lat = cells[lo:lo + _CHUNK]
-        lengths = np.sort(np.linalg.norm(_HALF @ lat, axis=-1), axis=-1)  # (c, nv)
+        vec = _HALF @ lat  # (c, nv, 3)
+        lengths = np.sort(np.sqrt(np.sum(vec * vec, axis=-1)), axis=-1)  # (c, nv)
         r_max = _K / np.linalg.norm(np.linalg.inv(lat), axis=1).max(axis=-1)  # (c,)
         complete = lengths < (r_max - FAR * symprec)[:, None]
         gap = np.diff(lengths, axis=-1)
@@ -185,6 +199,12 @@ def _spglib(cell: np.ndarray, symprec: float, i: int) -> tuple[str, int, np.ndar
     if len(_SEEN) < _SEEN_MAX:
         _SEEN[key] = out
     return out
+
+
+def _proper(rotations: np.ndarray) -> np.ndarray:
+    """The proper rotations (det +1) of a lattice's operations: a lattice is centrosymmetric,
+    so R is a symmetry iff -R is, and testing the proper half suffices."""
+    return rotations[_det3(rotations) > 0]
 
 
 def _same_group(a: tuple, b: tuple) -> bool:
@@ -238,7 +258,7 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5, reference: np.ndarray | No
     calls, n_classes, doubt = 0, 0, np.zeros(n, dtype=bool)
     if n:
         ref = cells[0] if reference is None else np.asarray(reference, dtype=float)
-        ops0 = _spglib(ref, symprec, 0)[2]
+        ops0 = _proper(_spglib(ref, symprec, 0)[2])
         res0 = lattice_residual(cells, ops0)
         mult, doubt = shell_multiplicities(cells, symprec)
         doubt |= np.any((res0 > CLEAR * symprec) & (res0 < FAR * symprec), axis=1)
@@ -257,7 +277,8 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5, reference: np.ndarray | No
             if not _same_group(first, last):
                 doubt[members] = True
                 continue
-            ok = np.all(lattice_residual(cells[members], first[2]) <= CLEAR * symprec, axis=1)
+            ok = np.all(lattice_residual(cells[members], _proper(first[2])) <= CLEAR * symprec,
+                        axis=1)
             symbol[members[ok]] = first[0]
             number[members[ok]] = first[1]
             doubt[members[~ok]] = True
