@@ -80,9 +80,11 @@ N_SHELLS = 4
 #: Cells per vectorised chunk (bounds the memory: chunk x operations x 9 doubles).
 _CHUNK = 2048
 
-#: spglib results of cells already analysed in this process (cell rounded to 1e-12 d0, symprec).
+#: spglib results of cells already analysed in this process (cell rounded to 1e-12 d0,
+#: symprec), e.g. the same geometry for another potential; at most _SEEN_MAX entries of up
+#: to 48 x 9 doubles each (~20 MB).
 _SEEN: dict = {}
-_SEEN_MAX = 10**5
+_SEEN_MAX = 5000
 
 
 def cartesian_rotations(cell: np.ndarray, rotations: np.ndarray) -> np.ndarray:
