@@ -1,7 +1,8 @@
 # Speed/accuracy benchmarks: `snakemake -j2 benchmarks` (or `make bench`). Each
 # benchmarks/bench_<name>.py that exists runs on one core into results/benchmarks/<name>/
-# (a cube and a PNG); bench_workflow times the full reproduction and the no-op rerun and
-# takes both cores. README_table.md collects them for the README.
+# (a cube and a PNG); bench_workflow times the full reproduction and the no-op rerun,
+# bench_large_scene a 20000-strain user scene; both take both cores. README_table.md
+# collects them for the README.
 from pathlib import Path
 
 # benchmark -> library modules it exercises (inputs, so a code change reruns it)
@@ -22,6 +23,8 @@ BENCH_METHODS = [
 BENCH_DIRS = [f"results/benchmarks/{name}" for name in BENCH_METHODS]
 if Path(workflow.basedir, "benchmarks", "bench_workflow.py").exists():
     BENCH_DIRS.append("results/benchmarks/workflow")
+if Path(workflow.basedir, "benchmarks", "bench_large_scene.py").exists():
+    BENCH_DIRS.append("results/benchmarks/large_scene")
 
 
 wildcard_constraints:
@@ -60,6 +63,29 @@ rule benchmark_workflow:
         directory("results/benchmarks/workflow"),
     log:
         "results/benchmarks/logs/workflow.log",
+    conda:
+        CONDA_ENV
+    threads: 2
+    script:
+        "../scripts/benchmark_run.py"
+
+
+rule benchmark_large_scene:
+    """Wall time and peak memory of a 20000-strain user scene (-j2, 3 clean runs + no-op)."""
+    input:
+        script="benchmarks/bench_large_scene.py",
+        scene="benchmarks/large_scene.yaml",
+        code=code(
+            "continuum.symmetry",
+            "continuum.elastic",
+            "continuum.rayleigh",
+            "pipeline.stage",
+            "data.cube",
+        ),
+    output:
+        directory("results/benchmarks/large_scene"),
+    log:
+        "results/benchmarks/logs/large_scene.log",
     conda:
         CONDA_ENV
     threads: 2

@@ -18,16 +18,18 @@ job = snakemake.params.job
 
 
 def analyse(pot, direction):
+    stats = {}
     r = symmetry.crystal_symmetry(job["lattice"], job["loading"], pot, direction,
-                                  job["d_over_d0"], **job["accuracy"])
+                                  job["d_over_d0"], **job["accuracy"], stats=stats)
     symmetry.require_mirrors(r, job["d_over_d0"], f"scene {job['scene']!r}, {job['lattice']} "
                              f"{job['loading']} {direction}, potential {pot!r}: ")
     groups = {g: int((r["space_group"] == g).sum()) for g in dict.fromkeys(r["space_group"].tolist())}
-    print(f"{pot} {direction}: space groups (points) {groups}; mirrors x, z present", file=sys.stderr)
+    print(f"{pot} {direction}: space groups (points) {groups}; mirrors x, z present; "
+          f"{stats['classes']} symmetry classes, {stats['spglib_calls']} spglib calls "
+          f"({stats['in_doubt']} cells near a special strain)", file=sys.stderr)
     return r
 
 
 ds = stage.block_cube(job, analyse, symmetry.VARIABLES)
 cube.finish(ds, snakemake, what="crystal",
-            method="spglib space group of the one-atom primitive cell (2D lattices padded with "
-            "vacuum); lab-frame mirrors x->-x, z->-z required")
+            method=symmetry.METHOD + " (one-atom primitive cell; 2D lattices padded with vacuum)")

@@ -112,9 +112,13 @@ def build(
     """
     dims = list(outer)
     labels = [list(outer[d]) for d in dims]
-    keys = list(np.ndindex(*[len(x) for x in labels]))
+    shape = [len(x) for x in labels]
+    keys = list(np.ndindex(*shape))
     names = None
-    stacked: dict[str, list] = {}
+    # Each block is copied into its slot as soon as it is read, so a lazy ``blocks`` (see
+    # surfwave.pipeline.stage.block_cube) never holds more than one block besides the cube.
+    filled: dict[str, np.ndarray] = {}
+    strings: dict[str, list] = {}  # text: stacked at the end (the longest label sets the width)
     for idx in keys:
         key = tuple(labels[a][i] for a, i in enumerate(idx))
         if key not in blocks:
@@ -126,15 +130,27 @@ def build(
             if missing:
                 raise InputError(f"variables without metadata (long_name, units, dims): {missing}")
         for n in names:
-            stacked.setdefault(n, []).append(_as_var(block[n]))
+            value = _as_var(block[n])
+            if value.dtype.kind == "U":
+                strings.setdefault(n, []).append(value)
+                continue
+            if n not in filled:
+                filled[n] = np.empty(shape + list(value.shape), dtype=value.dtype)
+            elif filled[n].shape[len(shape):] != value.shape:
+                raise InputError(f"variable {n!r} has shape {value.shape} for {dict(zip(dims, key))}, "
+                                 f"{filled[n].shape[len(shape):]} for the first block")
+            elif np.result_type(filled[n], value) != filled[n].dtype:
+                filled[n] = filled[n].astype(np.result_type(filled[n], value))
+            filled[n][idx] = value
+        del block
     data_vars = {}
-    shape = [len(x) for x in labels]
-    for n, arrays in stacked.items():
+    for n in names or []:
         meta = dict(variables[n])
         inner = tuple(meta.pop("dims", ()))
         if inner[:1] == ("strain",):  # some modules list the leading strain axis too
             inner = inner[1:]
-        arr = np.stack(arrays).reshape(shape + list(arrays[0].shape))
+        arr = (filled[n] if n in filled else
+               np.stack(strings[n]).reshape(shape + list(strings[n][0].shape)))
         vdims = tuple(dims) + ("strain",) + inner
         if arr.ndim != len(vdims):
             raise InputError(f"variable {n!r} has shape {arr.shape[len(dims):]}, expected dims {vdims[len(dims):]}")

@@ -63,10 +63,11 @@ def block_cube(
     """
     log = sys.stderr if log is None else log
     labels = {b: list(job[_LABELS[b]]) for b in by}
-    blocks = {key: cube.documented(compute(*key), variables, log)
-              for key in itertools.product(*labels.values())}
-    if ragged is not None:
+    blocks = _Blocks(list(itertools.product(*labels.values())),
+                     lambda key: cube.documented(compute(*key), variables, log))
+    if ragged is not None:  # every block is needed to know the longest axis: computed now
         dim, names = ragged
+        blocks = {key: dict(blocks[key]) for key in blocks}
         n = max(np.shape(b[v])[-1] for b in blocks.values() for v in names)
         for b in blocks.values():
             for v in names:
@@ -74,3 +75,26 @@ def block_cube(
                               constant_values=np.nan)
         build_kwargs["coords"] = {**build_kwargs.get("coords", {}), dim: np.arange(n)}
     return cube.build(blocks, labels, job["d_over_d0"], variables, **build_kwargs)
+
+
+class _Blocks(Mapping):
+    """Blocks computed when :func:`surfwave.data.cube.build` reads them, and not kept: the
+    cube is filled block by block, so at most one block's arrays live beside it (for 80000
+    strain points of the elastic stage, 26 MB instead of 104 MB)."""
+
+    def __init__(self, keys: list[tuple], compute: Callable[[tuple], Mapping[str, Any]]):
+        self._keys, self._compute = keys, compute
+
+    def __getitem__(self, key):
+        if key not in self._keys:
+            raise KeyError(key)
+        return self._compute(key)
+
+    def __contains__(self, key) -> bool:  # Mapping's default would compute the block
+        return key in self._keys
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self) -> int:
+        return len(self._keys)
