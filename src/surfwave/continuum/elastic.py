@@ -176,6 +176,14 @@ def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
     return out
 
 
+#: The 13 high-symmetry directions (lab axes, face and body diagonals, one of each +-n pair)
+#: that every 3D direction grid of :func:`_sphere_directions` contains.
+_SYMMETRY_DIRECTIONS = np.array(
+    [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1],
+     [0, 1, 1], [0, 1, -1], [1, 1, 1], [1, 1, -1], [1, -1, 1], [-1, 1, 1]], dtype=float
+) / np.sqrt(np.array([1, 1, 1, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3], dtype=float))[:, None]
+
+
 def _sphere_directions(dim: int, n: int, octant: bool = False) -> np.ndarray:
     """Unit vectors covering half the circle/sphere (n and -n are equivalent), shape (k, dim).
 
@@ -195,12 +203,7 @@ def _sphere_directions(dim: int, n: int, octant: bool = False) -> np.ndarray:
     phi = np.pi * (1 + 5**0.5) * i
     rxy = np.sqrt(1 - zc**2)
     fib = np.column_stack([rxy * np.cos(phi), rxy * np.sin(phi), zc])
-    sym = np.array(
-        [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1],
-         [0, 1, 1], [0, 1, -1], [1, 1, 1], [1, 1, -1], [1, -1, 1], [-1, 1, 1]], dtype=float
-    )
-    sym /= np.linalg.norm(sym, axis=1, keepdims=True)
-    out = np.vstack([sym, fib])
+    out = np.vstack([_SYMMETRY_DIRECTIONS, fib])
     return np.unique(np.abs(out).round(15), axis=0) if octant else out
 
 
@@ -420,6 +423,80 @@ def _positive_definite(B: np.ndarray, tol: np.ndarray) -> np.ndarray:
     return ok
 
 
+def _odd_entries(dim: int) -> np.ndarray:
+    """Mask of the (d^2, d^2) entries ((i j), (k l)) in which some axis occurs an odd number
+    of times: the entries a mirror x_a -> -x_a of every lab axis forces to zero."""
+    idx = np.array(list(np.ndindex(dim, dim, dim, dim)))
+    counts = np.stack([(idx == a).sum(axis=1) for a in range(dim)], axis=1)
+    return (counts % 2 == 1).any(axis=1).reshape(dim * dim, dim * dim)
+
+
+_ODD_ENTRIES = {dim: _odd_entries(dim) for dim in (2, 3)}
+
+
+def _mirror_blocks(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The blocks of A (s, d^2, d^2) when every lab axis is a mirror plane, symmetrised.
+
+    Only ((i i), (k k)) and ((i j), (i j) or (j i)) entries survive, so A splits into the
+    (d, d) block D_ik = A_iikk and one (2, 2) block [[a, b], [b, c]] per axis pair i < j
+    (a = A_ijij, b = A_ijji, c = A_jiji); the null Lagrangian N has the blocks
+    delta_ik - 1 and [[0, 1], [1, 0]]. Returns D (s, d, d) and a, b, c (s, q), q = d(d-1)/2.
+    """
+    dim = int(round(np.sqrt(A.shape[-1])))
+    diag = [i * dim + i for i in range(dim)]
+    ij = np.array([i * dim + j for i in range(dim) for j in range(i + 1, dim)])
+    ji = np.array([j * dim + i for i in range(dim) for j in range(i + 1, dim)])
+    D = A[:, diag][:, :, diag]
+    return 0.5 * (D + np.swapaxes(D, 1, 2)), A[:, ij, ij], 0.5 * (A[:, ij, ji] + A[:, ji, ij]), A[:, ji, ji]
+
+
+def _blocks_positive(blocks, t: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """Whether A - t N has all Cholesky pivots > tol, from the blocks of :func:`_mirror_blocks`.
+
+    t has shape (w, s) (w trial weights, absolute), tol (s,); returns (w, s). The pivots
+    of a block-diagonal matrix are those of its blocks, each in its own order.
+    """
+    D, a, b, c = blocks
+    bt = b[None] - t[..., None]  # (w, s, q)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ok = np.all((a > tol[:, None]) & (c - bt * bt / np.where(a > 0, a, 1.0) > tol[:, None]), axis=-1)
+    dim = D.shape[-1]
+    Dt = D[None] + t[..., None, None] * (1.0 - np.eye(dim))  # (w, s, d, d)
+    w, s = t.shape
+    return ok & _positive_definite(Dt.reshape(w * s, dim, dim), np.tile(tol, w)).reshape(w, s)
+
+
+def _blocks_lowest(blocks, t: np.ndarray) -> np.ndarray:
+    """Lowest eigenvalue of A - t N (t absolute, shape (s,)) from its blocks, closed forms."""
+    D, a, b, c = blocks
+    bt = b - t[:, None]
+    e = np.min(0.5 * (a + c) - np.sqrt(0.25 * (a - c) ** 2 + bt * bt), axis=-1)
+    dim = D.shape[-1]
+    Dt = D + t[:, None, None] * (1.0 - np.eye(dim))
+    return np.minimum(e, _lowest_eigenvalue(np.stack([Dt[:, i, k] for i, k in _pairs(dim)])))
+
+
+def _best_null_weight(blocks, scale: np.ndarray, rounds: int = 40) -> np.ndarray:
+    """The weight t (absolute, shape (s,)) that maximises the lowest eigenvalue of A - t N.
+
+    That eigenvalue is a concave function of t (the minimum of linear functions u^T (A -
+    t N) u), so a golden-section search on t in [-2, 2] times the largest |A_ijkl| (beyond
+    it a 2 x 2 block is indefinite) finds the maximum, to 2e-8 of that scale in 40 rounds.
+    """
+    g = 0.5 * (np.sqrt(5.0) - 1.0)
+    lo, hi = -2.0 * scale, 2.0 * scale
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = _blocks_lowest(blocks, x1), _blocks_lowest(blocks, x2)
+    for _ in range(rounds):
+        left = f1 > f2  # the maximum lies in [lo, x2], else in [x1, hi]
+        lo, hi = np.where(left, lo, x1), np.where(left, x2, hi)
+        xn = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
+        fn = _blocks_lowest(blocks, xn)
+        x1, x2 = np.where(left, xn, x2), np.where(left, x1, xn)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    return 0.5 * (lo + hi)
+
+
 def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """Sufficient test of long-wave stability without a direction scan, shape (s,).
 
@@ -431,10 +508,12 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     null Lagrangian N(X) = tr(X^2) - (tr X)^2 vanishes on rank-one X, so A - t N is such a
     form for every t; t = 0 alone fails whenever sigma has a zero or negative eigenvalue
     (the antisymmetric X then see only sigma, e.g. the free lateral directions of a
-    uniaxial load), hence several weights t are tried (:data:`_NULL_WEIGHTS`). In 2D a
-    strictly stable point always has some such t (rank-one convex quadratic forms in two
-    dimensions are polyconvex), in 3D not always; only the listed t are tried, so False
-    means "scan the directions", not "unstable".
+    uniaxial load), hence several weights t are tried (:data:`_NULL_WEIGHTS`) and, where
+    every lab axis is a mirror plane (A then splits into small blocks,
+    :func:`_mirror_blocks`) and those fail, the best t (:func:`_best_null_weight`). In 2D
+    a strictly stable point always has some such t (rank-one convex quadratic forms in
+    two dimensions are polyconvex), in 3D not always, so False means "scan the
+    directions", not "unstable".
 
     Parameters
     ----------
@@ -450,27 +529,67 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
         times the largest |A_ijkl|.
     """
     dim = C.shape[-1]
-    eye = np.eye(dim)
-    A = C + sigma[:, None, :, None, :] * eye[:, None, :, None]
-    A = A.reshape(C.shape[0], dim * dim, dim * dim)
-    A = 0.5 * (A + np.swapaxes(A, 1, 2))
-    N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, dim * dim)
+    A = C.reshape(C.shape[0], dim * dim, dim * dim).copy()
+    for i in range(dim):  # + sigma_jl delta_ik: sigma on the diagonal blocks i = k
+        A[:, i * dim:(i + 1) * dim, i * dim:(i + 1) * dim] += sigma
     scale = np.abs(A).max(axis=(1, 2))
+    tol = _CONVEX_RTOL * scale
     ok = np.zeros(C.shape[0], bool)
+    # lab mirrors: the entries they force to zero are below 1e-12 of the scale, which moves
+    # no eigenvalue by more than 1e-10 of it, far inside the pivot margin _CONVEX_RTOL
+    mirror = np.abs(A[:, _ODD_ENTRIES[dim]]).max(axis=-1, initial=0.0) <= 1e-12 * scale
+    m = np.flatnonzero(mirror)
+    blocks = _mirror_blocks(A[m])
     for t in _NULL_WEIGHTS:
-        rest = np.flatnonzero(~ok)
+        rest = np.flatnonzero(~ok[m])
         if not rest.size:
             break
-        ok[rest] = _positive_definite(A[rest] - t * scale[rest, None, None] * N, _CONVEX_RTOL * scale[rest])
+        sub = tuple(x[rest] for x in blocks)
+        ok[m[rest]] = _blocks_positive(sub, t * scale[m[rest]][None], tol[m[rest]])[0]
+    rest = np.flatnonzero(~ok[m])
+    if rest.size:  # the best weight where the listed ones fail
+        sub = tuple(x[rest] for x in blocks)
+        t = _best_null_weight(sub, scale[m[rest]])
+        ok[m[rest]] = _blocks_positive(sub, t[None], tol[m[rest]])[0]
+    g = np.flatnonzero(~mirror)  # no lab mirrors: the full (d^2, d^2) matrices
+    if g.size:
+        eye = np.eye(dim)
+        N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
+        Ag = 0.5 * (A[g] + np.swapaxes(A[g], 1, 2))
+        for t in _NULL_WEIGHTS:
+            rest = np.flatnonzero(~ok[g])
+            if not rest.size:
+                break
+            ok[g[rest]] = _positive_definite(Ag[rest] - t * scale[g[rest], None, None] * N, tol[g[rest]])
     return ok
+
+
+#: Margin (times the largest |Q entry|) below zero of the probe eigenvalue that
+#: :func:`_surely_unstable` needs; far above the ~1e-8 error of the closed-form eigenvalue.
+_UNSTABLE_RTOL = 1e-6
+
+
+def _surely_unstable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """Points whose acoustic tensor has a clearly negative eigenvalue along one of the 13
+    :data:`_SYMMETRY_DIRECTIONS`, shape (s,); 3D only.
+
+    Every direction grid of :func:`long_wave_stability` contains these directions and its
+    search only ever lowers the eigenvalue it found, so the scan calls these points
+    unstable too; skipping it there leaves the flags unchanged.
+    """
+    M = _wave_tensor_matrix(C, sigma)
+    e = _lowest_eigenvalue(np.moveaxis(M @ _dyads(_SYMMETRY_DIRECTIONS).T, 1, 0))  # (s, 13)
+    return e.min(axis=-1) < -_UNSTABLE_RTOL * np.abs(M).max(axis=(-2, -1))
 
 
 def long_wave_stable(C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12) -> np.ndarray:
     """The ``stable`` flag of :func:`long_wave_stability`, scanning only where needed.
 
     Points passing the sufficient test :func:`strongly_convex` are stable without a
-    direction scan; the others get the full search of :func:`long_wave_stability`, so the
-    flags are those of the scan (the sufficient test never calls an unstable point stable).
+    direction scan; in 3D, points with a clearly negative eigenvalue along a symmetry
+    direction the scan also visits are unstable without it (:func:`_surely_unstable`); the
+    others get the full search of :func:`long_wave_stability`. The flags are those of the
+    scan (neither shortcut can disagree with it).
 
     Parameters
     ----------
@@ -492,6 +611,8 @@ def long_wave_stable(C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, 
         )
     stable = strongly_convex(C, sigma)
     scan = np.flatnonzero(~stable)
+    if scan.size and C.shape[-1] == 3:
+        scan = scan[~_surely_unstable(C[scan], sigma[scan])]
     if scan.size:
         stable[scan] = long_wave_stability(C[scan], sigma[scan], n_directions, refine)[0]
     return stable
