@@ -136,13 +136,14 @@ def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:
     ndarray, shape (..., d, d, d, d)
         In the units of the inputs (times V if they are).
     """
-    eye = np.eye(sigma.shape[-1])
-    return (
-        sigma[..., :, None, None, :] * eye[:, :, None]  # sigma_ad delta_bc
-        + sigma[..., None, :, None, :] * eye[:, None, :, None]  # sigma_bd delta_ac
-        - sigma[..., :, :, None, None] * eye  # sigma_ab delta_cd
-        + C
-    )
+    dim = sigma.shape[-1]
+    S = np.empty(np.broadcast_shapes(C.shape[:-4], sigma.shape[:-2]) + (dim,) * 4, np.result_type(C, sigma))
+    S[...] = C
+    for k in range(dim):  # the Kronecker deltas as in-place adds on the diagonals they select
+        S[..., :, k, k, :] += sigma  # sigma_ad delta_bc
+        S[..., k, :, k, :] += sigma  # sigma_bd delta_ac
+        S[..., :, :, k, k] -= sigma  # sigma_ab delta_cd
+    return S
 
 
 def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
@@ -538,19 +539,16 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     # lab mirrors: the entries they force to zero are below 1e-12 of the scale, which moves
     # no eigenvalue by more than 1e-10 of it, far inside the pivot margin _CONVEX_RTOL
     mirror = np.abs(A[:, _ODD_ENTRIES[dim]]).max(axis=-1, initial=0.0) <= 1e-12 * scale
-    m = np.flatnonzero(mirror)
-    blocks = _mirror_blocks(A[m])
-    for t in _NULL_WEIGHTS:
-        rest = np.flatnonzero(~ok[m])
-        if not rest.size:
+    idx = np.flatnonzero(mirror)
+    blocks = _mirror_blocks(A[idx])
+    for t in _NULL_WEIGHTS:  # in turn, each on the points the previous ones left
+        if not idx.size:
             break
-        sub = tuple(x[rest] for x in blocks)
-        ok[m[rest]] = _blocks_positive(sub, t * scale[m[rest]][None], tol[m[rest]])[0]
-    rest = np.flatnonzero(~ok[m])
-    if rest.size:  # the best weight where the listed ones fail
-        sub = tuple(x[rest] for x in blocks)
-        t = _best_null_weight(sub, scale[m[rest]])
-        ok[m[rest]] = _blocks_positive(sub, t[None], tol[m[rest]])[0]
+        passed = _blocks_positive(blocks, t * scale[idx][None], tol[idx])[0]
+        ok[idx[passed]] = True
+        idx, blocks = idx[~passed], tuple(x[~passed] for x in blocks)
+    if idx.size:  # the best weight where the listed ones fail
+        ok[idx] = _blocks_positive(blocks, _best_null_weight(blocks, scale[idx])[None], tol[idx])[0]
     g = np.flatnonzero(~mirror)  # no lab mirrors: the full (d^2, d^2) matrices
     if g.size:
         eye = np.eye(dim)
