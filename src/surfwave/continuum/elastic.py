@@ -291,24 +291,66 @@ def _lowest_eigenvalue(q: np.ndarray) -> np.ndarray:
         (accurate to ~1e-8 of the matrix scale near a double root), used to *choose*
         directions; the reported minimum is recomputed with LAPACK at the chosen direction.
     """
+    if q.ndim == 1:
+        return _lowest_eigenvalue(q[:, None])[0]
     if q.shape[0] == 3:
         h = 0.5 * (q[0] - q[1])
         return 0.5 * (q[0] + q[1]) - np.sqrt(h * h + q[2] * q[2])
+    # m = tr/3, a, b, c = diagonal - m, p2 = |q - m I|^2 / 6, det = det(q - m I),
+    # r = det / (2 p^3), lowest = m + 2 p cos(arccos(r)/3 + 2 pi/3); written with in-place
+    # buffers (the grid search calls this on ~1e5 directions per strain block), in the
+    # same order of operations as the plain expressions, so bit for bit the same values.
     xx, yy, zz, xy, xz, yz = q
-    m = (xx + yy + zz) / 3.0
+    m = xx + yy
+    m += zz
+    m /= 3.0
     a, b, c = xx - m, yy - m, zz - m
-    off = xy * xy + xz * xz + yz * yz
-    p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0
+    w = xy * xy                    # off-diagonal sum of squares, then 2 x it
+    t = xz * xz
+    w += t
+    np.multiply(yz, yz, out=t)
+    w += t
+    p2 = a * a
+    np.multiply(b, b, out=t)
+    p2 += t
+    np.multiply(c, c, out=t)
+    p2 += t
+    w *= 2.0
+    p2 += w
+    p2 /= 6.0
     p = np.sqrt(p2)
-    det = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz)
+    det = b * c                    # a (b c - yz^2) - xy (xy c - yz xz) + xz (xy yz - b xz)
+    np.multiply(yz, yz, out=t)
+    det -= t
+    det *= a
+    np.multiply(xy, c, out=w)
+    np.multiply(yz, xz, out=t)
+    w -= t
+    w *= xy
+    det -= w
+    np.multiply(xy, yz, out=w)
+    np.multiply(b, xz, out=t)
+    w -= t
+    w *= xz
+    det += w
+    np.multiply(p2, 2.0, out=t)
+    t *= p
     with np.errstate(invalid="ignore", divide="ignore"):
-        r = np.where(p2 > 0, det / (2.0 * p2 * p), 0.0)
-    phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
-    return m + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+        np.divide(det, t, out=det)  # r
+    det[~(p2 > 0)] = 0.0
+    np.clip(det, -1.0, 1.0, out=det)
+    np.arccos(det, out=det)
+    det /= 3.0
+    det += 2.0 * np.pi / 3.0
+    np.cos(det, out=det)
+    p *= 2.0
+    p *= det
+    p += m
+    return p
 
 
-#: Strain points per block of the direction search (bounds the memory to ~10 MB per array).
-_BLOCK = 256
+#: Strain points per block of the direction search (~200 kB per array: cache-sized).
+_BLOCK = 64
 
 #: The octant grid holds n_directions / _OCTANT_DIVISOR directions (1: four times the
 #: density of the half-sphere grid, at the same cost).
@@ -377,21 +419,29 @@ def long_wave_stability(
         offsets = np.array([[-1.0], [1.0]])
     rows = np.arange(s)
     for _ in range(refine):
+        # candidates component by component (length-3 axes make slow numpy reductions)
         if dim == 3:
-            helper = np.where(np.abs(n_best[:, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]])
-            t1 = np.cross(n_best, helper)
-            t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
+            tx = np.abs(n_best[:, 0]) < 0.9  # t1 = n x e_x there, else n x e_y; t2 = n x t1
+            t1 = np.column_stack([np.where(tx, 0.0, -n_best[:, 2]), np.where(tx, n_best[:, 2], 0.0),
+                                  np.where(tx, -n_best[:, 1], n_best[:, 0])])
+            t1 /= np.sqrt((t1[:, :1] * t1[:, :1] + t1[:, 1:2] * t1[:, 1:2]) + t1[:, 2:] * t1[:, 2:])
             t2 = np.cross(n_best, t1)
-            cand = n_best[:, None, :] + step * (offsets[None, :, :1] * t1[:, None] + offsets[None, :, 1:] * t2[:, None])
+            cand = [n_best[:, None, a] + step * (offsets[:, 0] * t1[:, None, a] + offsets[:, 1] * t2[:, None, a])
+                    for a in range(3)]
         else:
-            t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
-            cand = n_best[:, None, :] + step * offsets[None, :, :1] * t1[:, None]
-        cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
-        e_c = _lowest_eigenvalue(np.moveaxis(M @ np.swapaxes(_dyads(cand), 1, 2), 1, 0))
+            t1 = (-n_best[:, 1], n_best[:, 0])
+            cand = [n_best[:, None, a] + step * offsets[:, 0] * t1[a][:, None] for a in range(2)]
+        norm = cand[0] * cand[0]
+        for c in cand[1:]:
+            norm += c * c
+        np.sqrt(norm, out=norm)
+        cand = [c / norm for c in cand]                                            # (s, k) each
+        dyads = np.stack([cand[j] * cand[l] for j, l in _pairs(dim)], axis=1)    # (s, p, k)
+        e_c = _lowest_eigenvalue(np.ascontiguousarray(np.moveaxis(M @ dyads, 1, 0)))
         j = np.argmin(e_c, axis=1)
         e_j = e_c[rows, j]
         better = e_j < e_best
-        n_best = np.where(better[:, None], cand[rows, j], n_best)
+        n_best = np.where(better[:, None], np.column_stack([c[rows, j] for c in cand]), n_best)
         e_best = np.where(better, e_j, e_best)
         step *= 0.5
     e_best = np.linalg.eigvalsh(acoustic_tensor(C, sigma, n_best[:, None, :])[:, 0])[:, 0]
