@@ -31,7 +31,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
-from surfwave.continuum import elastic  # noqa: E402
+from surfwave.continuum import elastic, long_wave  # noqa: E402
 from surfwave.continuum.lattices import build  # noqa: E402
 
 CASES = [("fcc", "in_plane_hydrostatic", "lj", "[100]"), ("fcc", "in_plane_hydrostatic", "lj", "[110]"),
@@ -48,7 +48,7 @@ TARGET = 1e5
 def plain_scan(C, sigma, n_directions=elastic.STABILITY_DIRECTIONS, refine=12):
     """The previous long-wave search: LAPACK eigenvalues of every candidate direction."""
     dim = C.shape[-1]
-    grid = elastic._sphere_directions(dim, n_directions)
+    grid = long_wave._sphere_directions(dim, n_directions)
     e = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, grid))[..., 0]
     n_best, e_best = grid[e.argmin(1)], e.min(1)
     step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions

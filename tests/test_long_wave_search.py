@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from surfwave.continuum import elastic
+from surfwave.continuum import elastic, long_wave
 from surfwave.continuum.lattices import build
 
 # (lattice, loading, direction, potential) -> d/d0 span through its long-wave instabilities
@@ -36,7 +36,7 @@ def _scan_reference(C, sigma, n_directions=400, refine=12):
     """Plain scan: every direction of the half-sphere grid, LAPACK eigenvalues, then the
     shrinking 8-neighbour (2D: 2-neighbour) pattern search around the best direction."""
     dim = C.shape[-1]
-    grid = elastic._sphere_directions(dim, n_directions)
+    grid = long_wave._sphere_directions(dim, n_directions)
     e = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, grid))[..., 0]
     best = e.argmin(1)
     n_best, e_best = grid[best], e[np.arange(len(best)), best]
@@ -93,7 +93,7 @@ def test_general_anisotropy_searches_the_whole_sphere():
     R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
     C = np.einsum("ai,bj,ck,dl,sijkl->sabcd", R, R, R, R, C)
     sigma = np.einsum("ai,bj,sij->sab", R, R, sigma)
-    assert not elastic._lab_mirror_symmetric(elastic._wave_tensor_matrix(C, sigma)).any()
+    assert not long_wave._lab_mirror_symmetric(long_wave._wave_tensor_matrix(C, sigma)).any()
     stable, e_min, _ = elastic.long_wave_stability(C, sigma)
     ref = _scan_reference(C, sigma)
     assert np.array_equal(stable, ref > 0) and stable.any() and not stable.all()
@@ -126,7 +126,7 @@ def test_sufficient_test_then_scan_gives_the_plain_scan_flags(case):
     assert not (convex & ~ref).any()
     assert convex.sum() >= 0.9 * ref.sum()
     if C.shape[-1] == 3:  # the instability shortcut never condemns a point the scan finds stable
-        assert not (elastic._surely_unstable(C, sigma) & ref).any()
+        assert not (long_wave._surely_unstable(C, sigma) & ref).any()
 
 
 def test_sufficient_test_without_lab_mirrors():
@@ -177,13 +177,13 @@ def test_mirror_blocks_against_the_full_matrix(case):
     A = 0.5 * (A + np.swapaxes(A, 1, 2))
     N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
     scale = np.abs(A).max(axis=(1, 2))
-    blocks = elastic._mirror_blocks(A)
-    for w in elastic._NULL_WEIGHTS:
-        full = elastic._positive_definite(A - w * scale[:, None, None] * N, 1e-9 * scale)
-        assert np.array_equal(elastic._blocks_positive(blocks, w * scale[None], 1e-9 * scale)[0], full)
+    blocks = long_wave._mirror_blocks(A)
+    for w in long_wave._NULL_WEIGHTS:
+        full = long_wave._positive_definite(A - w * scale[:, None, None] * N, 1e-9 * scale)
+        assert np.array_equal(long_wave._blocks_positive(blocks, w * scale[None], 1e-9 * scale)[0], full)
 
     def lowest(t):
         return np.linalg.eigvalsh(A - t[:, None, None] * N)[:, 0]
 
     brute = np.max([lowest(w * scale) for w in np.linspace(-1.0, 1.0, 401)], axis=0)
-    assert np.all(lowest(elastic._best_null_weight(blocks, scale)) >= brute - 1e-7 * scale)
+    assert np.all(lowest(long_wave._best_null_weight(blocks, scale)) >= brute - 1e-7 * scale)
