@@ -226,8 +226,8 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
     min_eig : bool
         Also report ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
         directions, which needs the direction scan at every point (the elastic cube holds
-        it). Without it ``stable`` alone is computed, by the sufficient test
-        :func:`strongly_convex` and the scan only where that test fails (same flags,
-        several times faster).
+        it). Without it ``stable`` alone is computed, by :func:`long_wave_stable` (a
+        sufficient test, a certificate of instability, the scan only where neither
+        decides: same flags, several times faster).
     """
     return _properties(lattice, loading, potential, direction, d_over_d0, min_eig)[0]
