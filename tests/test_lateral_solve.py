@@ -3,8 +3,8 @@
 :func:`surfwave.continuum.lattices.solve_lateral_stretch` follows anchors by continuation
 and starts Newton at every point from their cubic Hermite interpolant. References: a
 per-point root (``scipy.optimize.brentq``, or MINPACK through ``scipy.optimize.root``) of
-the stress of all 12 neighbours written out here (not the library's bond tables), the marching route itself on single points, and the
-closed form of the harmonic [110] collapse.
+the stress of all 12 neighbours written out here (not the library's bond tables), the
+marching route itself on single points, and the closed form of the harmonic [110] collapse.
 """
 from __future__ import annotations
 
