@@ -311,6 +311,7 @@ def solve_lateral_stretch(
     else:
         anchors = np.linspace(values[0], values[-1], n_anchors)
         t_a, failed_a = _continuation(bonds_sq, anchors, pot, tol, max_iter)
+        t_a[failed_a] = 1.0  # placeholders: intervals next to a failed anchor are not interpolated
         _, jac = _lateral_stress(bonds_sq, np.column_stack([anchors, t_a]), pot, jacobian=True)
         slope = -_solve2(jac[:, :, 1:], jac[:, :, 0])  # dt/ds along the branch
         i = np.clip(np.searchsorted(anchors, values), 1, n_anchors - 1)  # interval [i - 1, i]
