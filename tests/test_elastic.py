@@ -160,3 +160,17 @@ def test_A11_matches_finite_differences_of_the_stress(case, pot, s):
     n /= np.linalg.norm(n, axis=1, keepdims=True)
     np.testing.assert_allclose(np.einsum("jikl,nj,nl->nik", S, n, n),
                                np.einsum("ijkl,nj,nl->nik", A, n, n), rtol=1e-6, atol=1e-8)
+
+
+def test_stress_derivatives_against_the_delta_sums_with_broadcasting():
+    """Eq. (A11) written with explicit Kronecker deltas by einsum (the reference) against
+    the in-place form, on random tensors whose leading axes broadcast ((4, 1) with (1, 3)),
+    in 2D and 3D."""
+    rng = np.random.default_rng(11)
+    for dim in (2, 3):
+        C = rng.normal(size=(4, 1) + (dim,) * 4)
+        sigma = rng.normal(size=(1, 3, dim, dim))
+        d = np.eye(dim)
+        ref = (np.einsum("...ad,bc->...abcd", sigma, d) + np.einsum("...bd,ac->...abcd", sigma, d)
+               - np.einsum("...ab,cd->...abcd", sigma, d) + C)
+        np.testing.assert_allclose(elastic.stress_derivatives(sigma, C), ref, rtol=0, atol=1e-14)

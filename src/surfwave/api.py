@@ -51,13 +51,14 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
     min_eig : bool
         Also return ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
         directions (K d0^2), which needs the direction scan at every strain. Without it
-        ``stable`` comes from a sufficient test (:func:`surfwave.continuum.elastic.strongly_convex`)
-        and the scan only where that test fails: the same flags, several times faster.
+        ``stable`` comes from :func:`surfwave.continuum.long_wave.long_wave_stable` (a
+        sufficient test of stability, a certificate of instability, the scan only where
+        neither decides): the same flags, several times faster.
     details : bool
         Mirror directions only: also return the general solver's ``c2_limit``,
         ``polarisation``, ``decay`` and ``penetration_depth``. Off by default: the Stroh solve
-        would cost most of the call (FCC in-plane hydrostatic: 1.6e5 strain points/s
-        without, 3e4 with, one core), and Eq. (17) alone gives ``c2_R``. Off the mirrors the
+        would cost most of the call (FCC in-plane hydrostatic: 1.9e5 strain points/s
+        without, 3.5e4 with, one core), and Eq. (17) alone gives ``c2_R``. Off the mirrors the
         general solver is the route to ``c2_R`` itself, so they are always returned there.
 
     Returns

@@ -1,4 +1,7 @@
-"""Stress, elastic constants, stress derivatives, bulk sound speeds and long-wave stability.
+"""Stress, elastic constants, stress derivatives, bulk sound speeds; the elastic half of point.
+
+Long-wave stability (the acoustic tensor over all directions) lives in
+:mod:`surfwave.continuum.long_wave`; its public functions are re-exported here.
 
 All tensors are *per atom times the volume*, i.e. V sigma and V C in K d0^2 (reduced units,
 docs/physics/paper.md), in the lab frame (x = propagation, y = surface normal, z = in-plane normal).
@@ -16,11 +19,15 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.continuum.lattices import build
+from surfwave.continuum.long_wave import (  # noqa: F401 (re-exported: the elastic half of point)
+    STABILITY_DIRECTIONS,
+    acoustic_tensor,
+    long_wave_stability,
+    long_wave_stable,
+    strongly_convex,
+)
 from surfwave.continuum.potentials import PairPotential, get_potential
 from surfwave.errors import InputError
-
-#: Accuracy of the long-wave stability search (directions on the half sphere).
-STABILITY_DIRECTIONS = 400
 
 #: Metadata of the arrays this module produces (used to build the netCDF cubes).
 VARIABLES: dict[str, dict] = {
@@ -136,13 +143,14 @@ def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:
     ndarray, shape (..., d, d, d, d)
         In the units of the inputs (times V if they are).
     """
-    eye = np.eye(sigma.shape[-1])
-    return (
-        sigma[..., :, None, None, :] * eye[:, :, None]  # sigma_ad delta_bc
-        + sigma[..., None, :, None, :] * eye[:, None, :, None]  # sigma_bd delta_ac
-        - sigma[..., :, :, None, None] * eye  # sigma_ab delta_cd
-        + C
-    )
+    dim = sigma.shape[-1]
+    S = np.empty(np.broadcast_shapes(C.shape[:-4], sigma.shape[:-2]) + (dim,) * 4, np.result_type(C, sigma))
+    S[...] = C
+    for k in range(dim):  # the Kronecker deltas as in-place adds on the diagonals they select
+        S[..., :, k, k, :] += sigma  # sigma_ad delta_bc
+        S[..., k, :, k, :] += sigma  # sigma_bd delta_ac
+        S[..., :, :, k, k] -= sigma  # sigma_ab delta_cd
+    return S
 
 
 def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
@@ -174,327 +182,6 @@ def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
     else:
         out["c2_SH"] = np.full(S.shape[:-4], np.nan)
     return out
-
-
-def _sphere_directions(dim: int, n: int, octant: bool = False) -> np.ndarray:
-    """Unit vectors covering half the circle/sphere (n and -n are equivalent), shape (k, dim).
-
-    With ``octant`` only the directions with non-negative components, at the same density
-    (about n / 2 in 2D, n / 4 in 3D): enough when the lab axes are mirror planes, since the
-    acoustic tensor's eigenvalues are then even in each component of n.
-    """
-    if dim == 2:
-        if octant:
-            phi = np.linspace(0.0, 0.5 * np.pi, n // 2 + 1)
-        else:
-            phi = np.linspace(0.0, np.pi, n, endpoint=False)
-        return np.column_stack([np.cos(phi), np.sin(phi)])
-    n_fib = max(n // _OCTANT_DIVISOR, 1) if octant else n
-    i = np.arange(n_fib) + 0.5
-    zc = i / n_fib  # upper hemisphere z in (0, 1)
-    phi = np.pi * (1 + 5**0.5) * i
-    rxy = np.sqrt(1 - zc**2)
-    fib = np.column_stack([rxy * np.cos(phi), rxy * np.sin(phi), zc])
-    sym = np.array(
-        [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, -1, 0], [1, 0, 1], [1, 0, -1],
-         [0, 1, 1], [0, 1, -1], [1, 1, 1], [1, 1, -1], [1, -1, 1], [-1, 1, 1]], dtype=float
-    )
-    sym /= np.linalg.norm(sym, axis=1, keepdims=True)
-    out = np.vstack([sym, fib])
-    return np.unique(np.abs(out).round(15), axis=0) if octant else out
-
-
-def _lab_mirror_symmetric(M: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
-    """Whether each lab axis is a mirror plane of the wave-propagation tensor, shape (s,).
-
-    Under the mirror x_a -> -x_a every component of A_ijkl with an odd number of indices
-    equal to a changes sign, so it must vanish; in the (p, p) form of
-    :func:`_wave_tensor_matrix` these are the entries whose row pair and column pair
-    together hold the axis an odd number of times.
-    """
-    dim = int(round((np.sqrt(8 * M.shape[-1] + 1) - 1) / 2))
-    pairs = _pairs(dim)
-    odd = np.zeros(M.shape[-2:], bool)
-    for a in range(dim):
-        count = np.array([(i == a) + (k == a) for i, k in pairs])
-        odd |= (count[:, None] + count[None, :]) % 2 == 1
-    scale = np.abs(M).max(axis=(-2, -1))
-    return np.abs(M[:, odd]).max(axis=-1, initial=0.0) <= rtol * scale
-
-
-def acoustic_tensor(C: np.ndarray, sigma: np.ndarray, n: np.ndarray) -> np.ndarray:
-    """Q_ik(n) = (C_ijkl + sigma_jl delta_ik) n_j n_l.
-
-    Parameters
-    ----------
-    C : ndarray, shape (s, d, d, d, d)
-    sigma : ndarray, shape (s, d, d)
-    n : ndarray, shape (s, k, d) or (k, d)
-        Unit propagation directions.
-
-    Returns
-    -------
-    ndarray, shape (s, k, d, d)
-    """
-    if n.ndim == 2:
-        n = np.broadcast_to(n, (C.shape[0],) + n.shape)
-    q = np.einsum("sijkl,snj,snl->snik", C, n, n)
-    q += np.einsum("sjl,snj,snl->sn", sigma, n, n)[..., None, None] * np.eye(C.shape[-1])
-    return q
-
-
-def _pairs(dim: int) -> list[tuple[int, int]]:
-    """Independent (i, k) index pairs of a symmetric d x d matrix: diagonal first."""
-    return [(i, i) for i in range(dim)] + [(i, k) for i in range(dim) for k in range(i + 1, dim)]
-
-
-def _wave_tensor_matrix(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
-    """The acoustic tensor as a linear map of the direction dyad, shape (s, p, p).
-
-    With p = d(d+1)/2 independent components, row (i, k) of Q and column (j, l) of
-    n_j n_l: Q_ik = sum_jl A_ijkl n_j n_l, A_ijkl = C_ijkl + sigma_jl delta_ik, the
-    off-diagonal columns counting (j, l) and (l, j) together. Q for k directions is then
-    one matrix product with the (p, k) dyads (:func:`_dyads`).
-    """
-    dim = C.shape[-1]
-    A = C + sigma[:, None, :, None, :] * np.eye(dim)[:, None, :, None]
-    pairs = _pairs(dim)
-    rows = [(i, k) for i, k in pairs]
-    M = np.empty(C.shape[:1] + (len(pairs), len(pairs)))
-    for a, (i, k) in enumerate(rows):
-        for b, (j, l) in enumerate(pairs):
-            M[:, a, b] = A[:, i, j, k, l] if j == l else A[:, i, j, k, l] + A[:, i, l, k, j]
-    return M
-
-
-def _dyads(n: np.ndarray) -> np.ndarray:
-    """n_j n_l for the independent pairs (j, l), shape (..., p) from n of shape (..., d)."""
-    return np.stack([n[..., j] * n[..., l] for j, l in _pairs(n.shape[-1])], axis=-1)
-
-
-def _lowest_eigenvalue(q: np.ndarray) -> np.ndarray:
-    """Lowest eigenvalue of symmetric 2x2 or 3x3 matrices given by components, closed form.
-
-    Parameters
-    ----------
-    q : ndarray, shape (p, ...)
-        Components in the order of :func:`_pairs` (2D: xx, yy, xy; 3D: xx, yy, zz, xy, xz, yz).
-
-    Returns
-    -------
-    ndarray, shape q.shape[1:]
-        2D: exact formula. 3D: the trigonometric solution of the characteristic cubic
-        (accurate to ~1e-8 of the matrix scale near a double root), used to *choose*
-        directions; the reported minimum is recomputed with LAPACK at the chosen direction.
-    """
-    if q.shape[0] == 3:
-        h = 0.5 * (q[0] - q[1])
-        return 0.5 * (q[0] + q[1]) - np.sqrt(h * h + q[2] * q[2])
-    xx, yy, zz, xy, xz, yz = q
-    m = (xx + yy + zz) / 3.0
-    a, b, c = xx - m, yy - m, zz - m
-    off = xy * xy + xz * xz + yz * yz
-    p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0
-    p = np.sqrt(p2)
-    det = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        r = np.where(p2 > 0, det / (2.0 * p2 * p), 0.0)
-    phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
-    return m + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
-
-
-#: Strain points per block of the direction search (bounds the memory to ~10 MB per array).
-_BLOCK = 256
-
-#: The octant grid holds n_directions / _OCTANT_DIVISOR directions (1: four times the
-#: density of the half-sphere grid, at the same cost).
-_OCTANT_DIVISOR = 1
-
-
-def long_wave_stability(
-    C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Lowest eigenvalue of the acoustic tensor over all propagation directions.
-
-    Every bulk acoustic wave must have rho c^2 > 0 in every direction (strong ellipticity
-    of A_ijkl = C_ijkl + sigma_jl delta_ik, docs/physics/paper.md); the paper checks only
-    c_T,par. A grid of directions (high-symmetry ones included) is searched, then the best
-    direction of each strain is refined by a shrinking local pattern search, vectorised
-    over strain. The search compares directions with the closed-form lowest eigenvalue
-    (the acoustic tensor of all directions is one matrix product); the minimum reported
-    is the LAPACK eigenvalue at the direction found.
-
-    Parameters
-    ----------
-    C : ndarray, shape (s, d, d, d, d)
-        V C.
-    sigma : ndarray, shape (s, d, d)
-        V sigma.
-    n_directions : int
-        Size of the initial direction grid (half sphere/circle).
-    refine : int
-        Number of refinement rounds (each halves the step).
-
-    Returns
-    -------
-    stable : ndarray of bool, shape (s,)
-        True if the lowest eigenvalue is positive.
-    min_eig : ndarray, shape (s,)
-        Lowest eigenvalue of V Q, K d0^2.
-    direction : ndarray, shape (s, d)
-        Unit vector where it occurs.
-    """
-    C = np.asarray(C, dtype=float)
-    sigma = np.asarray(sigma, dtype=float)
-    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
-        raise InputError(
-            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
-            f"got {C.shape} and {sigma.shape}"
-        )
-    dim = C.shape[-1]
-    s = C.shape[0]
-    M = _wave_tensor_matrix(C, sigma)
-    mirror = _lab_mirror_symmetric(M)
-    n_best = np.empty((s, dim))
-    for sym in (True, False):
-        grid = _sphere_directions(dim, n_directions, octant=sym)
-        grid_dyads = _dyads(grid).T  # (p, k)
-        idx = np.flatnonzero(mirror == sym)
-        for lo in range(0, idx.size, _BLOCK):
-            block = idx[lo:lo + _BLOCK]
-            e = _lowest_eigenvalue(np.swapaxes(M[block], 0, 1) @ grid_dyads)  # (b, k)
-            n_best[block] = grid[np.argmin(e, axis=1)]
-    e_best = _lowest_eigenvalue((M @ _dyads(n_best)[:, :, None])[:, :, 0].T)
-    # Local refinement: perturb along the tangent plane with a shrinking step.
-    step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions
-    if dim == 3:
-        offsets = np.array([[a, b] for a in (-1, 0, 1) for b in (-1, 0, 1) if (a, b) != (0, 0)], float)
-    else:
-        offsets = np.array([[-1.0], [1.0]])
-    rows = np.arange(s)
-    for _ in range(refine):
-        if dim == 3:
-            helper = np.where(np.abs(n_best[:, :1]) < 0.9, [[1.0, 0, 0]], [[0, 1.0, 0]])
-            t1 = np.cross(n_best, helper)
-            t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
-            t2 = np.cross(n_best, t1)
-            cand = n_best[:, None, :] + step * (offsets[None, :, :1] * t1[:, None] + offsets[None, :, 1:] * t2[:, None])
-        else:
-            t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
-            cand = n_best[:, None, :] + step * offsets[None, :, :1] * t1[:, None]
-        cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
-        e_c = _lowest_eigenvalue(np.moveaxis(M @ np.swapaxes(_dyads(cand), 1, 2), 1, 0))
-        j = np.argmin(e_c, axis=1)
-        e_j = e_c[rows, j]
-        better = e_j < e_best
-        n_best = np.where(better[:, None], cand[rows, j], n_best)
-        e_best = np.where(better, e_j, e_best)
-        step *= 0.5
-    e_best = np.linalg.eigvalsh(acoustic_tensor(C, sigma, n_best[:, None, :])[:, 0])[:, 0]
-    return e_best > 0.0, e_best, n_best
-
-
-#: Relative margin of the sufficient test: every Cholesky pivot must exceed this times the
-#: largest |entry| of the matrix before the direction scan is skipped, so that rounding
-#: cannot turn a marginal point into a false "stable".
-_CONVEX_RTOL = 1e-9
-
-#: Weights t (times the largest |A_ijkl|) of the null Lagrangian tried in turn by
-#: :func:`strongly_convex`; the first one that makes the matrix positive definite decides.
-_NULL_WEIGHTS = (0.05, 0.2, 0.01, 0.1, 0.003, 0.3, 0.03)
-
-
-def _positive_definite(B: np.ndarray, tol: np.ndarray) -> np.ndarray:
-    """Whether each symmetric matrix of B (shape (s, m, m)) has all Cholesky pivots > tol (s,).
-
-    Gaussian elimination without pivoting, vectorised over s: a symmetric matrix is
-    positive definite if and only if all its pivots are positive.
-    """
-    B = B.copy()
-    ok = np.ones(B.shape[0], bool)
-    for k in range(B.shape[-1]):
-        piv = B[:, k, k]
-        ok &= piv > tol
-        safe = np.where(piv > tol, piv, 1.0)
-        B[:, k + 1:, k + 1:] -= B[:, k + 1:, k, None] * B[:, None, k, k + 1:] / safe[:, None, None]
-    return ok
-
-
-def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
-    """Sufficient test of long-wave stability without a direction scan, shape (s,).
-
-    With A_ijkl = C_ijkl + sigma_jl delta_ik read as a (d^2, d^2) matrix of the index pairs
-    (ij) and (kl) (symmetric: C_ijkl = C_klij and sigma_jl delta_ik = sigma_lj delta_ki),
-    u_i Q_ik(n) u_k = X_ij A_ijkl X_kl for the rank-one matrix X = u n^T. If a form
-    positive definite on all d x d matrices agrees with A on the rank-one ones, Q(n) is
-    positive definite for every n (strong convexity implies strong ellipticity). The
-    null Lagrangian N(X) = tr(X^2) - (tr X)^2 vanishes on rank-one X, so A - t N is such a
-    form for every t; t = 0 alone fails whenever sigma has a zero or negative eigenvalue
-    (the antisymmetric X then see only sigma, e.g. the free lateral directions of a
-    uniaxial load), hence several weights t are tried (:data:`_NULL_WEIGHTS`). In 2D a
-    strictly stable point always has some such t (rank-one convex quadratic forms in two
-    dimensions are polyconvex), in 3D not always; only the listed t are tried, so False
-    means "scan the directions", not "unstable".
-
-    Parameters
-    ----------
-    C : ndarray, shape (s, d, d, d, d)
-        V C, lab frame.
-    sigma : ndarray, shape (s, d, d)
-        V sigma.
-
-    Returns
-    -------
-    ndarray of bool, shape (s,)
-        True where some A - t N is positive definite with pivots above ``_CONVEX_RTOL``
-        times the largest |A_ijkl|.
-    """
-    dim = C.shape[-1]
-    eye = np.eye(dim)
-    A = C + sigma[:, None, :, None, :] * eye[:, None, :, None]
-    A = A.reshape(C.shape[0], dim * dim, dim * dim)
-    A = 0.5 * (A + np.swapaxes(A, 1, 2))
-    N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, dim * dim)
-    scale = np.abs(A).max(axis=(1, 2))
-    ok = np.zeros(C.shape[0], bool)
-    for t in _NULL_WEIGHTS:
-        rest = np.flatnonzero(~ok)
-        if not rest.size:
-            break
-        ok[rest] = _positive_definite(A[rest] - t * scale[rest, None, None] * N, _CONVEX_RTOL * scale[rest])
-    return ok
-
-
-def long_wave_stable(C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12) -> np.ndarray:
-    """The ``stable`` flag of :func:`long_wave_stability`, scanning only where needed.
-
-    Points passing the sufficient test :func:`strongly_convex` are stable without a
-    direction scan; the others get the full search of :func:`long_wave_stability`, so the
-    flags are those of the scan (the sufficient test never calls an unstable point stable).
-
-    Parameters
-    ----------
-    C : ndarray, shape (s, d, d, d, d)
-    sigma : ndarray, shape (s, d, d)
-    n_directions, refine : int
-        As for :func:`long_wave_stability`.
-
-    Returns
-    -------
-    ndarray of bool, shape (s,)
-    """
-    C = np.asarray(C, dtype=float)
-    sigma = np.asarray(sigma, dtype=float)
-    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
-        raise InputError(
-            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
-            f"got {C.shape} and {sigma.shape}"
-        )
-    stable = strongly_convex(C, sigma)
-    scan = np.flatnonzero(~stable)
-    if scan.size:
-        stable[scan] = long_wave_stability(C[scan], sigma[scan], n_directions, refine)[0]
-    return stable
 
 
 def _properties(lattice, loading, potential, direction, d_over_d0, min_eig: bool) -> tuple[dict, np.ndarray]:
@@ -539,8 +226,8 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
     min_eig : bool
         Also report ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
         directions, which needs the direction scan at every point (the elastic cube holds
-        it). Without it ``stable`` alone is computed, by the sufficient test
-        :func:`strongly_convex` and the scan only where that test fails (same flags,
-        several times faster).
+        it). Without it ``stable`` alone is computed, by :func:`long_wave_stable` (a
+        sufficient test, a certificate of instability, the scan only where neither
+        decides: same flags, several times faster).
     """
     return _properties(lattice, loading, potential, direction, d_over_d0, min_eig)[0]

@@ -179,26 +179,89 @@ def _fcc_lab(direction: str) -> tuple[np.ndarray, np.ndarray]:
     return _FCC_HALF_NEIGHBOURS @ axes.T, _FCC_PRIMITIVE @ axes.T
 
 
-def _lateral_stress(bonds0: np.ndarray, stretch: np.ndarray, pot: PairPotential, jacobian: bool = False):
+def _lateral_stress(bonds_sq: np.ndarray, stretch: np.ndarray, pot: PairPotential, jacobian: bool = False):
     """V sigma_yy and V sigma_zz, shape (n, 2), for lab stretches (n, 3).
 
-    With ``jacobian`` also their derivatives with respect to (t_y, t_z), shape (n, 2, 2):
-    V sigma_aa = sum r_a^2 w(r), w = phi'(r)/r, r_a = b_a t_a, so
-    d(V sigma_aa)/dt_c = 2 delta_ac r_a^2 w / t_a + r_a^2 w'(r) r_c^2 / (r t_c).
+    ``bonds_sq`` holds the squared lab components b_a^2 of the unstressed half-neighbours,
+    shape (nb, 3). With r_a = b_a lambda_a, w = phi'(r)/r and V sigma_aa = sum_b r_a^2 w,
+    ``jacobian`` also returns the derivatives with respect to the three stretches
+    (lambda_x, lambda_y, lambda_z) = (s, t_y, t_z), shape (n, 2, 3):
+    d(V sigma_aa)/d lambda_c = 2 delta_ac V sigma_aa / lambda_a
+    + lambda_a^2 lambda_c sum_b b_a^2 b_c^2 w'(r) / r.
     """
-    r = _deform(bonds0, stretch)
-    length = np.sqrt(np.einsum("...i,...i->...", r, r))
-    d1 = pot.dphi(length)
-    w = d1 / length
-    r2 = r[..., 1:] ** 2  # (n, nb, 2)
-    f = np.einsum("nb,nba->na", w, r2)
+    lam2 = stretch * stretch
+    r2 = lam2 @ bonds_sq.T  # (n, nb) squared bond lengths
+    length = np.sqrt(r2)
+    w = pot.dphi(length) / length
+    f = (w @ bonds_sq[:, 1:]) * lam2[:, 1:]
     if not jacobian:
         return f
-    dw = (pot.d2phi(length) - w) / length  # w'(r)
-    t = stretch[:, 1:]
-    jac = np.einsum("nb,nba,nbc->nac", dw / length, r2, r2) / t[:, None, :]
-    jac[:, [0, 1], [0, 1]] += 2.0 * f / t
+    dw_r = (pot.d2phi(length) - w) / r2  # w'(r) / r
+    pairs = (bonds_sq[:, 1:, None] * bonds_sq[:, None, :]).reshape(len(bonds_sq), 6)  # b_a^2 b_c^2
+    jac = (dw_r @ pairs).reshape(-1, 2, 3) * (lam2[:, 1:, None] * stretch[:, None, :])
+    jac[:, 0, 1] += 2.0 * f[:, 0] / stretch[:, 1]
+    jac[:, 1, 2] += 2.0 * f[:, 1] / stretch[:, 2]
     return f, jac
+
+
+def _solve2(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with jac @ x = rhs for (n, 2, 2) matrices and (n, 2) right-hand sides (Cramer's rule;
+    non-finite where jac is singular)."""
+    a, b, c, d = jac[:, 0, 0], jac[:, 0, 1], jac[:, 1, 0], jac[:, 1, 1]
+    with np.errstate(all="ignore"):
+        det = a * d - b * c
+        return np.column_stack([(d * rhs[:, 0] - b * rhs[:, 1]) / det, (a * rhs[:, 1] - c * rhs[:, 0]) / det])
+
+
+def _newton(bonds_sq, s, t, pot, tol, max_iter) -> tuple[np.ndarray, np.ndarray]:
+    """Newton on sigma_yy = sigma_zz = 0 at the stretches s (n,) from the start t (n, 2).
+
+    Steps are clipped to 0.2; a point whose stretch falls to :data:`MIN_LATERAL_STRETCH` or
+    becomes non-finite fails and is frozen, and so does one not at |V sigma| < ``tol``
+    within ``max_iter`` iterations. Only the unconverged points are evaluated.
+
+    Returns
+    -------
+    t : ndarray, shape (n, 2)
+    failed : ndarray of bool, shape (n,)
+    """
+    t = np.array(t, dtype=float)
+    failed = np.zeros(s.size, dtype=bool)
+    todo = np.arange(s.size)
+    for _ in range(max_iter):
+        f, jac = _lateral_stress(bonds_sq, np.column_stack([s[todo], t[todo]]), pot, jacobian=True)
+        left = ~np.all(np.abs(f) < tol, axis=-1)
+        todo, f, jac = todo[left], f[left], jac[left]
+        if not todo.size:
+            return t, failed
+        step = _solve2(jac[:, :, 1:], f)
+        t[todo] -= np.clip(np.where(np.isfinite(step), step, 0.0), -0.2, 0.2)
+        bad = np.any(t[todo] <= MIN_LATERAL_STRETCH, axis=-1) | ~np.all(np.isfinite(t[todo]), axis=-1)
+        failed[todo[bad]] = True
+        todo = todo[~bad]
+    failed[todo] = True  # not converged within max_iter
+    return t, failed
+
+
+def _continuation(bonds_sq, s, pot, tol, max_iter) -> tuple[np.ndarray, np.ndarray]:
+    """March every point from s = 1 to its target in steps of at most 0.02, Newton at each.
+
+    Following the strain path from the unstressed lattice selects the branch connected to
+    it; a point that fails is frozen so it cannot spoil the others. Returns (t (n, 2),
+    failed (n,)).
+    """
+    t = np.ones((s.size, 2))
+    failed = np.zeros(s.size, dtype=bool)
+    steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
+    for k in range(1, steps + 1):
+        ok = np.flatnonzero(~failed)
+        t[ok], failed[ok] = _newton(bonds_sq, 1.0 + (s[ok] - 1.0) * k / steps, t[ok], pot, tol, max_iter)
+    return t, failed
+
+
+#: Spacing of the anchor stretches that :func:`solve_lateral_stretch` follows by continuation
+#: before it interpolates between them (cubic Hermite, error ~ spacing^4 / 384 t'''').
+ANCHOR_SPACING = 0.01
 
 
 def solve_lateral_stretch(
@@ -210,8 +273,12 @@ def solve_lateral_stretch(
 ) -> np.ndarray:
     """Stretches (t_y, t_z) with sigma_yy = sigma_zz = 0 for FCC stretched by s along x.
 
-    Newton's method vectorised over s, started from the unstressed lattice and continued
-    along the strain path, so the branch connected to the unstressed crystal is found.
+    The branch connected to the unstressed crystal: continuation from s = 1 in steps of at
+    most 0.02 with Newton's method at each step, vectorised over s. Many points are not
+    each marched: anchors :data:`ANCHOR_SPACING` apart across the range of s are, and every
+    point then starts Newton from the cubic Hermite interpolant of the anchors (slopes
+    dt/ds = -(d sigma/dt)^-1 d sigma/ds from the same Jacobian), which converges in one or
+    two steps; a point that fails there, or lies next to a failed anchor, is marched itself.
 
     Parameters
     ----------
@@ -221,6 +288,8 @@ def solve_lateral_stretch(
     potential : str or PairPotential
     tol : float
         Convergence threshold on |V sigma| in K d0^2.
+    max_iter : int
+        Newton iterations allowed per continuation step.
 
     Returns
     -------
@@ -233,36 +302,38 @@ def solve_lateral_stretch(
         Naming the first d/d0 whose solve does not converge or ends at a non-positive stretch.
     """
     pot = get_potential(potential)
-    bonds0, _ = _fcc_lab(direction)
+    bonds_sq = _fcc_lab(direction)[0] ** 2
     s = np.asarray(s, dtype=float)
-    # Continuation: march every point from s = 1 to its target in steps of at most 0.02,
-    # Newton at each step; a point that fails is frozen so it cannot spoil the others.
-    t = np.ones((s.size, 2))
-    steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
-    failed = np.zeros(s.size, dtype=bool)
-    for k in range(1, steps + 1):
-        s_k = 1.0 + (s - 1.0) * k / steps
-        converged = np.zeros(s.size, dtype=bool)
-        for _ in range(max_iter):
-            full = np.column_stack([s_k, t])
-            f, jac = _lateral_stress(bonds0, full, pot, jacobian=True)
-            converged = np.all(np.abs(f) < tol, axis=-1)
-            active = ~converged & ~failed
-            if not active.any():
-                break
-            with np.errstate(all="ignore"):
-                step = np.linalg.solve(jac, f[..., None])[..., 0]
-            step = np.where(np.isfinite(step) & active[:, None], step, 0.0)
-            t = t - np.clip(step, -0.2, 0.2)
-            failed |= np.any(t <= MIN_LATERAL_STRETCH, axis=-1) | ~np.all(np.isfinite(t), axis=-1)
-        failed |= ~converged
+    values, inverse = np.unique(s, return_inverse=True)
+    n_anchors = 2 + int(np.ceil((values[-1] - values[0]) / ANCHOR_SPACING)) if values.size else 0
+    if values.size <= 2 * n_anchors:
+        t, failed = _continuation(bonds_sq, values, pot, tol, max_iter)
+    else:
+        anchors = np.linspace(values[0], values[-1], n_anchors)
+        t_a, failed_a = _continuation(bonds_sq, anchors, pot, tol, max_iter)
+        t_a[failed_a] = 1.0  # placeholders: intervals next to a failed anchor are not interpolated
+        _, jac = _lateral_stress(bonds_sq, np.column_stack([anchors, t_a]), pot, jacobian=True)
+        slope = -_solve2(jac[:, :, 1:], jac[:, :, 0])  # dt/ds along the branch
+        i = np.clip(np.searchsorted(anchors, values), 1, n_anchors - 1)  # interval [i - 1, i]
+        ok_a = ~failed_a & np.all(np.isfinite(slope), axis=-1)
+        good = ok_a[i - 1] & ok_a[i]
+        h = anchors[i] - anchors[i - 1]
+        u = ((values - anchors[i - 1]) / h)[:, None]
+        start = ((1 + 2 * u) * (1 - u) ** 2 * t_a[i - 1] + u**2 * (3 - 2 * u) * t_a[i]
+                 + h[:, None] * (u * (1 - u) ** 2 * slope[i - 1] - u**2 * (1 - u) * slope[i]))
+        t = np.ones((values.size, 2))
+        failed = ~good
+        t[good], failed[good] = _newton(bonds_sq, values[good], start[good], pot, tol, max_iter)
+        if failed.any():  # march these points themselves, as with few points
+            t[failed], failed[failed] = _continuation(bonds_sq, values[failed], pot, tol, max_iter)
+    failed = failed[inverse]
     if failed.any():
         raise GeometryError(
             f"fcc uniaxial {direction} with potential {pot.name!r}: no lateral stretches with "
             f"sigma_yy = sigma_zz = 0 (the crystal collapses or the solve does not converge) "
             f"at d/d0 = {s[failed][0]:.6g}"
         )
-    return t
+    return t[inverse]
 
 
 def build(
