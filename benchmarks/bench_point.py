@@ -4,8 +4,8 @@ Usage: python benchmarks/bench_point.py OUTDIR   -> OUTDIR/point_throughput.nc
 
 surfwave.point = lattice build + bond sums + long-wave stability + Rayleigh (Eq. 17) and
 general Stroh solves. Its stability flags come from the sufficient strong-convexity test
-with the direction scan only where that test fails (``elastic.long_wave_stable``); the
-full scan at every point (``elastic.long_wave_stability``, which also gives
+with the direction scan only where that test fails (``long_wave.long_wave_stable``); the
+full scan at every point (``long_wave.long_wave_stability``, which also gives
 min_acoustic_eig) is timed beside it, with ``point(..., min_eig=True)``. The yardstick, timed in the same run on the same tensors, is the plain long-wave scan the
 library used before (the same 400-direction half-sphere grid and 12 refinement rounds,
 acoustic tensors by einsum, eigenvalues by LAPACK), which was 99 % of point's time; the
@@ -45,11 +45,11 @@ REPEATS = 3
 TARGET = 1e5
 
 
-def plain_scan(C, sigma, n_directions=elastic.STABILITY_DIRECTIONS, refine=12):
+def plain_scan(C, sigma, n_directions=long_wave.STABILITY_DIRECTIONS, refine=12):
     """The previous long-wave search: LAPACK eigenvalues of every candidate direction."""
     dim = C.shape[-1]
     grid = long_wave._sphere_directions(dim, n_directions)
-    e = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, grid))[..., 0]
+    e = np.linalg.eigvalsh(long_wave.acoustic_tensor(C, sigma, grid))[..., 0]
     n_best, e_best = grid[e.argmin(1)], e.min(1)
     step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions
     offs = [(a, b) for a in (-1, 0, 1) for b in (-1, 0, 1) if (a, b) != (0, 0)]
@@ -64,7 +64,7 @@ def plain_scan(C, sigma, n_directions=elastic.STABILITY_DIRECTIONS, refine=12):
             t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
             cand = np.stack([n_best - step * t1, n_best + step * t1], 1)
         cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
-        ec = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, cand))[..., 0]
+        ec = np.linalg.eigvalsh(long_wave.acoustic_tensor(C, sigma, cand))[..., 0]
         j = ec.argmin(1)
         better = ec[rows, j] < e_best
         n_best = np.where(better[:, None], cand[rows, j], n_best)
@@ -100,15 +100,15 @@ def main(outdir: str) -> Path:
         rate_elastic[i] = N_POINTS / cpu_time(lambda: elastic.properties(lat, load, pot, d, s))
         cf = build(lat, load, pot, d, s)
         sf, Cf = elastic.stress(cf.bonds, pot), elastic.elastic_constants(cf.bonds, pot)
-        rate_flags[i] = N_POINTS / cpu_time(lambda: elastic.long_wave_stable(Cf, sf))
-        rate_scan[i] = N_POINTS / cpu_time(lambda: elastic.long_wave_stability(Cf, sf))
+        rate_flags[i] = N_POINTS / cpu_time(lambda: long_wave.long_wave_stable(Cf, sf))
+        rate_scan[i] = N_POINTS / cpu_time(lambda: long_wave.long_wave_stability(Cf, sf))
         c = build(lat, load, pot, d, s[:: N_POINTS // N_YARDSTICK])
         sig, C = elastic.stress(c.bonds, pot), elastic.elastic_constants(c.bonds, pot)
         t_old = cpu_time(lambda: plain_scan(C, sig))
         rate_old[i] = len(sig) / t_old
-        same[i] = (np.array_equal(elastic.long_wave_stability(C, sig)[0], plain_scan(C, sig) > 0)
-                   and np.array_equal(elastic.long_wave_stable(C, sig), plain_scan(C, sig) > 0)
-                   and np.array_equal(elastic.long_wave_stable(Cf, sf), elastic.long_wave_stability(Cf, sf)[0]))
+        same[i] = (np.array_equal(long_wave.long_wave_stability(C, sig)[0], plain_scan(C, sig) > 0)
+                   and np.array_equal(long_wave.long_wave_stable(C, sig), plain_scan(C, sig) > 0)
+                   and np.array_equal(long_wave.long_wave_stable(Cf, sf), long_wave.long_wave_stability(Cf, sf)[0]))
         print(f"{lat} {load} {pot} {d}: point {rate[i]:.3g}/s (min_eig=True {rate_min_eig[i]:.3g}/s, "
               f"elastic stage {rate_elastic[i]:.3g}/s), "
               f"plain scan alone {rate_old[i]:.3g}/s, ratio {rate[i] / rate_old[i]:.1f}; stability flags "
@@ -128,10 +128,10 @@ def main(outdir: str) -> Path:
          "rate_elastic_stage": ("case", rate_elastic, {"long_name": "elastic.properties (the workflow's elastic "
                                                                    "stage, min_acoustic_eig included) strain points "
                                                                    "per CPU second", "units": "1/s"}),
-         "rate_stable_flags": ("case", rate_flags, {"long_name": "elastic.long_wave_stable (sufficient test, scan "
+         "rate_stable_flags": ("case", rate_flags, {"long_name": "long_wave.long_wave_stable (sufficient test, scan "
                                                                  "where it fails), points per CPU second",
                                                     "units": "1/s"}),
-         "rate_full_scan": ("case", rate_scan, {"long_name": "elastic.long_wave_stability (scan at every point), "
+         "rate_full_scan": ("case", rate_scan, {"long_name": "long_wave.long_wave_stability (scan at every point), "
                                                              "points per CPU second", "units": "1/s"}),
          "same_flags": ("case", same, {"long_name": "stable flags identical to the plain scan (1000 points) and "
                                                     "to the full scan (all points)", "units": "1"})},

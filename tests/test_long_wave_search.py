@@ -1,6 +1,6 @@
 """The fast long-wave stability search against the plain direction scan it replaced.
 
-:func:`surfwave.continuum.elastic.long_wave_stability` compares directions with a
+:func:`surfwave.continuum.long_wave.long_wave_stability` compares directions with a
 closed-form eigenvalue, searches only one octant when the lab axes are mirror planes and
 builds the acoustic tensor of all directions as one matrix product. The reference here is
 the straightforward route (the same direction grid over the whole half sphere, the same
@@ -37,7 +37,7 @@ def _scan_reference(C, sigma, n_directions=400, refine=12):
     shrinking 8-neighbour (2D: 2-neighbour) pattern search around the best direction."""
     dim = C.shape[-1]
     grid = long_wave._sphere_directions(dim, n_directions)
-    e = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, grid))[..., 0]
+    e = np.linalg.eigvalsh(long_wave.acoustic_tensor(C, sigma, grid))[..., 0]
     best = e.argmin(1)
     n_best, e_best = grid[best], e[np.arange(len(best)), best]
     step = 0.5 * np.sqrt(4.0 * np.pi / n_directions) if dim == 3 else np.pi / n_directions
@@ -53,7 +53,7 @@ def _scan_reference(C, sigma, n_directions=400, refine=12):
             t1 = np.column_stack([-n_best[:, 1], n_best[:, 0]])
             cand = np.stack([n_best - step * t1, n_best + step * t1], 1)
         cand /= np.linalg.norm(cand, axis=-1, keepdims=True)
-        ec = np.linalg.eigvalsh(elastic.acoustic_tensor(C, sigma, cand))[..., 0]
+        ec = np.linalg.eigvalsh(long_wave.acoustic_tensor(C, sigma, cand))[..., 0]
         j = ec.argmin(1)
         ej = ec[np.arange(len(j)), j]
         better = ej < e_best
@@ -73,13 +73,13 @@ def test_flags_and_minimum_match_the_plain_scan(case):
     c = build(lattice, loading, pot, direction, np.linspace(lo, hi, 150))
     sigma = elastic.stress(c.bonds, pot)
     C = elastic.elastic_constants(c.bonds, pot)
-    stable, e_min, n_min = elastic.long_wave_stability(C, sigma)
+    stable, e_min, n_min = long_wave.long_wave_stability(C, sigma)
     ref = _scan_reference(C, sigma)
     assert np.array_equal(stable, ref > 0)
     assert stable.any() and not stable.all()
     assert np.all(e_min <= ref + 1e-9)
     # the reported minimum is the exact eigenvalue at the reported direction
-    q = elastic.acoustic_tensor(C, sigma, n_min[:, None, :])[:, 0]
+    q = long_wave.acoustic_tensor(C, sigma, n_min[:, None, :])[:, 0]
     np.testing.assert_allclose(e_min, np.linalg.eigvalsh(q)[:, 0], atol=1e-12)
 
 
@@ -94,7 +94,7 @@ def test_general_anisotropy_searches_the_whole_sphere():
     C = np.einsum("ai,bj,ck,dl,sijkl->sabcd", R, R, R, R, C)
     sigma = np.einsum("ai,bj,sij->sab", R, R, sigma)
     assert not long_wave._lab_mirror_symmetric(long_wave._wave_tensor_matrix(C, sigma)).any()
-    stable, e_min, _ = elastic.long_wave_stability(C, sigma)
+    stable, e_min, _ = long_wave.long_wave_stability(C, sigma)
     ref = _scan_reference(C, sigma)
     assert np.array_equal(stable, ref > 0) and stable.any() and not stable.all()
     np.testing.assert_allclose(e_min, ref, atol=1e-12)
@@ -105,7 +105,7 @@ def test_bad_shapes_are_named():
     from surfwave.errors import InputError
 
     with pytest.raises(InputError, match=r"\(2, 3, 3, 3, 3\)"):
-        elastic.long_wave_stability(np.zeros((2, 3, 3, 3, 3)), np.zeros((3, 3, 3)))
+        long_wave.long_wave_stability(np.zeros((2, 3, 3, 3, 3)), np.zeros((3, 3, 3)))
 
 
 @pytest.mark.parametrize("case", list(SPANS), ids=lambda c: "-".join(c))
@@ -121,8 +121,8 @@ def test_sufficient_test_then_scan_gives_the_plain_scan_flags(case):
     sigma = elastic.stress(c.bonds, pot)
     C = elastic.elastic_constants(c.bonds, pot)
     ref = _scan_reference(C, sigma) > 0
-    assert np.array_equal(elastic.long_wave_stable(C, sigma), ref)
-    convex = elastic.strongly_convex(C, sigma)
+    assert np.array_equal(long_wave.long_wave_stable(C, sigma), ref)
+    convex = long_wave.strongly_convex(C, sigma)
     assert not (convex & ~ref).any()
     assert convex.sum() >= 0.9 * ref.sum()
     if C.shape[-1] == 3:  # the instability shortcut never condemns a point the scan finds stable
@@ -141,7 +141,7 @@ def test_sufficient_test_without_lab_mirrors():
     sigma = np.einsum("ai,bj,sij->sab", R, R, sigma)
     ref = _scan_reference(C, sigma) > 0
     assert ref.any() and not ref.all()
-    assert np.array_equal(elastic.long_wave_stable(C, sigma), ref)
+    assert np.array_equal(long_wave.long_wave_stable(C, sigma), ref)
 
 
 def test_point_min_eig_only_when_asked():

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum import elastic, rayleigh, stroh
+from surfwave.continuum import elastic, long_wave, rayleigh, stroh
 from surfwave.continuum.lattices import build
 from surfwave.continuum.orientation import direction_angle, lab_axes
 from surfwave.continuum.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
@@ -132,10 +132,10 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     out: dict = {"d_over_d0": crystal.d_over_d0, "volume": crystal.volume, "stress": sigma[..., 0, 0]}
     out.update(elastic.sound_speeds(S))
     if min_eig:
-        out["stable"], out["min_acoustic_eig"], _ = elastic.long_wave_stability(C_l, sigma_l,
-                                                                               elastic.STABILITY_DIRECTIONS)
+        out["stable"], out["min_acoustic_eig"], _ = long_wave.long_wave_stability(C_l, sigma_l,
+                                                                               long_wave.STABILITY_DIRECTIONS)
     else:
-        out["stable"] = elastic.long_wave_stable(C_l, sigma_l, elastic.STABILITY_DIRECTIONS)
+        out["stable"] = long_wave.long_wave_stable(C_l, sigma_l, long_wave.STABILITY_DIRECTIONS)
     extra = _extras(C, sigma)
     sw = extra.pop("_sw")
     out.update(extra)
@@ -396,7 +396,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     A = stroh.wave_propagation_tensor(C, sigma) * 1e9                        # Pa
     sw = stroh.surface_wave(A, rho_m)
     born = born_stable(C_c, sigma_c) & state_ok
-    acoustic, _, _ = elastic.long_wave_stability(np.ascontiguousarray(C_c), sigma_c)
+    acoustic, _, _ = long_wave.long_wave_stability(np.ascontiguousarray(C_c), sigma_c)
     S = elastic.stress_derivatives(sigma, C) * 1e9
     out: dict = {}
     for key, value in elastic.sound_speeds(S, rho_m).items():

@@ -1,7 +1,7 @@
 """Stress, elastic constants, stress derivatives, bulk sound speeds; the elastic half of point.
 
 Long-wave stability (the acoustic tensor over all directions) lives in
-:mod:`surfwave.continuum.long_wave`; its public functions are re-exported here.
+:mod:`surfwave.continuum.long_wave`.
 
 All tensors are *per atom times the volume*, i.e. V sigma and V C in K d0^2 (reduced units,
 docs/physics/paper.md), in the lab frame (x = propagation, y = surface normal, z = in-plane normal).
@@ -19,13 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.continuum.lattices import build
-from surfwave.continuum.long_wave import (  # noqa: F401 (re-exported: the elastic half of point)
-    STABILITY_DIRECTIONS,
-    acoustic_tensor,
-    long_wave_stability,
-    long_wave_stable,
-    strongly_convex,
-)
+from surfwave.continuum.long_wave import STABILITY_DIRECTIONS, long_wave_stability, long_wave_stable
 from surfwave.continuum.potentials import PairPotential, get_potential
 from surfwave.errors import InputError
 

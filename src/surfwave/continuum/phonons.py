@@ -35,7 +35,7 @@ from typing import Literal
 
 import numpy as np
 
-from surfwave.continuum.elastic import STABILITY_DIRECTIONS, long_wave_stability
+from surfwave.continuum.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.continuum.lattices import build_checked, check_combination
 from surfwave.continuum.potentials import PairPotential, get_potential
@@ -279,7 +279,7 @@ def min_acoustic(w: np.ndarray, dim: int) -> tuple[float, np.ndarray]:
     """Lowest eigenvalue of A(n) = W_ikjl n_j n_l over all directions n, and its n.
 
     The direction search (grid of directions, then a shrinking local pattern search) is
-    :func:`surfwave.continuum.elastic.long_wave_stability`, fed with C'_ijkl = W_ikjl and zero stress
+    :func:`surfwave.continuum.long_wave.long_wave_stability`, fed with C'_ijkl = W_ikjl and zero stress
     (W already holds the prestress term). In 2D only the in-plane block and in-plane
     directions count.
 

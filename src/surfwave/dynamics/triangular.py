@@ -99,7 +99,7 @@ def long_wave(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray
         ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``, ``c2_T_perp`` (Eq. A7 with S of Eq. A11
         from the bond sums, K d0^2/m); ``min_acoustic_eig`` (lowest eigenvalue of V Q(n) over
         all directions, K d0^2) and ``stable`` (bool), from
-        :func:`surfwave.continuum.elastic.long_wave_stability`; ``c2_R_cauchy``: the raw root of
+        :func:`surfwave.continuum.long_wave.long_wave_stability`; ``c2_R_cauchy``: the raw root of
         Eq. (20) (:func:`surfwave.continuum.rayleigh.cauchy_c2`; NaN where the square root is
         imaginary), K d0^2/m, not checked to lie in (0, c2_T_par).
     """
