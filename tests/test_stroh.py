@@ -308,3 +308,20 @@ def test_point_details_are_extra_outputs_only():
         assert (lean["wave_type"] == full["wave_type"]).all() and (lean["stable"] == full["stable"]).all()
         assert not {"c2_limit", "polarisation", "decay", "penetration_depth"} & set(lean)
         assert np.isfinite(full["c2_limit"]).any()
+
+
+def test_decay_pair_order_does_not_follow_rounding():
+    """Cu (001) along [100] is a mirror direction: the sagittal decay constants come as a pair
+    p, -conj(p) with equal Im p. Their order must not depend on rounding of the input: a
+    relative change of 1e-13 in the stiffness (the level at which the lateral-stretch solve or
+    a rotation may differ) leaves the decay constants where they were (reference: the
+    unperturbed solve)."""
+    A = _cubic_A(CU["C11"], CU["C12"], CU["C44"])
+    ref = stroh.surface_wave(A, CU["rho"], mirror=False)
+    pair = ref["decay"][np.isfinite(ref["decay"])]
+    assert pair.size >= 2 and abs(pair[0].imag - pair[1].imag) < 1e-9 * abs(pair[0])  # a +-Re pair
+    rng = np.random.default_rng(1)
+    for _ in range(5):
+        noise = 1 + 1e-13 * rng.standard_normal(A.shape)
+        got = stroh.surface_wave(A * noise, CU["rho"], mirror=False)
+        np.testing.assert_allclose(got["decay"], ref["decay"], rtol=1e-9, atol=1e-12)

@@ -227,6 +227,11 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
     order = np.argsort(ev.imag, axis=-1)
     ev = np.take_along_axis(ev, order, axis=-1)
     lower, upper = ev[:, :d], ev[:, d:]
+    # a pair p, -conj(p) has equal Im p (mirror directions): order it by Re p as well, so that
+    # the decay constants come out in the same order whatever the rounding of the input
+    scale = np.abs(upper).max(axis=-1, keepdims=True) + 1e-300
+    upper = np.take_along_axis(upper, np.lexsort((upper.real, np.round(upper.imag / scale, 9)), axis=-1),
+                               axis=-1)
     subsonic = (lower.imag[:, -1] < -1e-10) & (upper.imag[:, 0] > 1e-10)
     eye = np.eye(2 * d)
     W = N - lower[:, 0, None, None] * eye
