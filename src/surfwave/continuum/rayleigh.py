@@ -54,45 +54,76 @@ ORTHOTROPY_TOL = 1e-9
 REASON_NOROOT = ("no root of Eq. (17) in 0 < rho c^2 < min(S_xxxx, S_xyyx) satisfies the "
                  "unsquared boundary condition with decaying partial waves")
 
+#: Flat positions, in S.reshape(-1, d**4), of (a, b, c, d, f) = (S_xxxx, S_xyxy, S_xyyx, S_yyyy, S_yyxx).
+_SAGITTAL_FLAT = {d: np.ravel_multi_index(([0, 0, 0, 1, 1], [0, 1, 1, 1, 1], [0, 0, 1, 1, 0], [0, 1, 0, 1, 0]),
+                                          (d,) * 4) for d in (2, 3)}
+#: Candidate roots may lie this far (relative to max |a..f|) outside (0, min(a, c)) before the Newton
+#: polish; far above the polish's corrections (~1e-8 even at a double root).
+_POLISH_MARGIN = 1e-6
+_HALF_SQRT3 = 0.5 * np.sqrt(3.0)
+
+
+def _cubic_rows(c3, c2, c1, c0) -> np.ndarray:
+    """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing; shape (3, n), NaN-padded.
+
+    Inputs are 1-D, shape (n,). With x = y - B/3 the monic cubic becomes y^3 + p y + q = 0;
+    h = q/2, t = p/3, Delta = h^2 + t^3. Delta > 0: one real root, Cardano's form with the
+    cube root taken of -h - sign(h) sqrt(Delta) (no cancellation), y = u - t/u. Delta <= 0:
+    three real roots y_k = 2 sqrt(-t) cos(phi - 2 pi k/3), cos(3 phi) = -h / (-t)^(3/2),
+    k = 0, 1, 2 in descending order; cos(phi -+ 2 pi/3) from cos phi and sin phi >= 0
+    (phi in [0, pi/3]), so one arccos and one cos per point. Real arithmetic only. Points
+    with a vanishing leading coefficient (|c3| <= 1e-13 max|c|) go through numpy.roots.
+    """
+    scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
+    degenerate = np.abs(c3) <= 1e-13 * scale
+    x = np.empty((3,) + c3.shape)
+    with np.errstate(all="ignore"):
+        inv = 1.0 / np.where(degenerate, 1.0, c3)
+        B, C, D = c2 * inv, c1 * inv, c0 * inv
+        shift = B / 3.0
+        t = C / 3.0 - shift * shift                      # p / 3
+        h = shift * (shift * shift - 0.5 * C) + 0.5 * D  # q / 2
+        delta = h * h + t * t * t
+        one = delta > 0
+        u = np.cbrt(-h - np.copysign(np.sqrt(np.where(one, delta, 0.0)), h))
+        r = np.sqrt(-t)                                  # real wherever three roots are
+        cos3 = np.where(r > 0, -h / (r * r * r), 1.0)   # r = 0: triple root, any angle
+        cphi = np.cos(np.arccos(np.clip(cos3, -1.0, 1.0)) / 3.0)
+        sphi = np.sqrt(np.maximum((1.0 - cphi) * (1.0 + cphi), 0.0))
+        m = r + r
+        mc, ms = -0.5 * m * cphi, _HALF_SQRT3 * m * sphi
+        np.subtract(np.where(one, u - t / u, m * cphi), shift, out=x[0])
+        np.subtract(np.where(one, np.nan, mc + ms), shift, out=x[1])
+        np.subtract(np.where(one, np.nan, mc - ms), shift, out=x[2])
+    if degenerate.any():
+        for i in np.flatnonzero(degenerate):
+            z = np.roots([c3[i], c2[i], c1[i], c0[i]])
+            z = z[np.abs(z.imag) <= 1e-12 * np.maximum(1.0, np.abs(z))].real
+            x[:, i] = np.concatenate([z, np.full(3 - z.size, np.nan)])
+    return x
+
+
+def _polish(x, c3, c2, c1, c0, steps: int = 2) -> np.ndarray:
+    """Newton steps on c3 x^3 + c2 x^2 + c1 x + c0 = 0, elementwise (x and the c broadcast)."""
+    with np.errstate(all="ignore"):
+        for _ in range(steps):
+            f = ((c3 * x + c2) * x + c1) * x + c0
+            df = (3.0 * c3 * x + 2.0 * c2) * x + c1
+            x = np.where(df != 0, x - f / df, x)
+    return x
+
 
 def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
     """Real roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3), NaN-padded.
 
-    Real arithmetic only: the trigonometric form where there are three real roots, Cardano's
-    with real cube roots where there is one; then two Newton steps on the cubic. Points with
-    a vanishing leading coefficient fall back to numpy.roots (rare: S_yyyy = S_xyxy).
+    The closed forms of :func:`_cubic_rows`, then two Newton steps on every root (the solver
+    itself polishes only the roots it may select, :func:`_select_flat`).
     """
     c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
-    scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
-    degenerate = np.abs(c3) <= 1e-13 * scale
-    with np.errstate(all="ignore"):
-        lead = np.where(degenerate, 1.0, c3)
-        B, C, D = c2 / lead, c1 / lead, c0 / lead
-        shift = B / 3.0
-        p = C - B * shift
-        q = (2.0 / 27.0) * B**3 - C * shift + D
-        delta = 0.25 * q * q + p**3 / 27.0
-        one = delta > 0
-        sq = np.sqrt(np.where(one, delta, 0.0))
-        y1 = np.cbrt(-0.5 * q + sq) + np.cbrt(-0.5 * q - sq)
-        m = 2.0 * np.sqrt(np.where(one, 0.0, -p / 3.0))
-        cos_arg = np.where(m > 0, 3.0 * q / (p * np.where(m > 0, m, 1.0)), 0.0)
-        phi = np.arccos(np.clip(cos_arg, -1.0, 1.0)) / 3.0
-        k = np.arange(3) * (2.0 * np.pi / 3.0)
-        three = m[..., None] * np.cos(phi[..., None] - k)
-        x = np.where(one[..., None], np.stack([y1, np.full_like(y1, np.nan), np.full_like(y1, np.nan)], -1), three)
-        x = x - shift[..., None]
-        Bx, Cx, Dx = B[..., None], C[..., None], D[..., None]
-        for _ in range(2):  # Newton polish on the monic cubic
-            f = ((x + Bx) * x + Cx) * x + Dx
-            df = (3.0 * x + 2.0 * Bx) * x + Cx
-            x = np.where(df != 0, x - f / df, x)
-    if degenerate.any():
-        for idx in zip(*np.nonzero(degenerate)):
-            r = np.roots([c3[idx], c2[idx], c1[idx], c0[idx]])
-            r = r[np.abs(r.imag) <= 1e-12 * np.maximum(1.0, np.abs(r))].real
-            x[idx] = np.concatenate([r, np.full(3 - r.size, np.nan)])
-    return x
+    shape = c3.shape
+    cs = [np.ravel(v) for v in (c3, c2, c1, c0)]
+    x = _polish(_cubic_rows(*cs), *cs)
+    return np.moveaxis(x, 0, -1).reshape(shape + (3,))
 
 
 def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
@@ -129,20 +160,27 @@ def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(k2a.astype(complex)), np.sqrt(k2b.astype(complex))
 
 
+def _boundary_terms(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """G(X), its magnitude scale, s = kappa_1^2 + kappa_2^2 and p^2 = (kappa_1 kappa_2)^2; elementwise."""
+    e = f + b
+    A = a - X
+    cX = c - X
+    N = d * b
+    M = f * e - d * A
+    with np.errstate(all="ignore"):
+        s = (b * cX + d * A - e * e) / N
+        p2 = A * cX / N
+        p = np.sqrt(np.maximum(p2, 0.0))  # the real part of the principal root
+        t1, t2, t3, t4 = A * M, A * N * (s + p), -f * M * p, f * N * p * p
+    G = t1 + t2 + t3 + t4
+    scale = np.abs(t1) + np.abs(t2) + np.abs(t3) + np.abs(t4)
+    return G, scale, s, p2
+
+
 def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale."""
     X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
-    e = f + b
-    A = a - X
-    M = f * e - d * A
-    N = d * b
-    with np.errstate(all="ignore"):
-        s = (b * (c - X) + d * (a - X) - e * e) / N
-        p = np.sqrt((A * (c - X) / N).astype(complex)).real
-    terms = (A * M, A * N * (s + p), -f * M * p, f * N * p * p)
-    G = sum(terms)
-    scale = sum(np.abs(t) for t in terms)
-    return G, scale
+    return _boundary_terms(X, a, b, c, d, f)[:2]
 
 
 def _sagittal_components(S: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -162,6 +200,39 @@ def _odd_index_components(d: int) -> tuple[list[tuple[int, ...]], tuple[np.ndarr
 
 
 _ODD = {d: _odd_index_components(d) for d in (2, 3)}
+_ODD_MASK = {d: np.isin(np.arange(d**4), np.ravel_multi_index(_ODD[d][1], (d,) * 4)) for d in (2, 3)}
+
+
+def _flat_tensor(S: np.ndarray) -> np.ndarray:
+    """S (..., d, d, d, d), d = 2 or 3, as a float array of shape (n, d**4) (a view when possible)."""
+    S = np.asarray(S, dtype=float)
+    d = S.shape[-1] if S.ndim >= 4 else 0
+    if d not in _ODD or S.shape[-4:] != (d,) * 4:
+        raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
+    return S.reshape(-1, d**4)
+
+
+def _gather(flat: np.ndarray) -> np.ndarray:
+    """The rows (a, b, c, d, f) of Eq. (17) from ``flat`` (n, d**4); shape (5, n), contiguous."""
+    d = 3 if flat.shape[1] == 81 else 2
+    return flat.T[_SAGITTAL_FLAT[d]]
+
+
+def _surely_orthotropic(flat: np.ndarray, unit: np.ndarray, rtol: float) -> bool:
+    """One pass over S proving every point orthotropic, or False (then check point by point).
+
+    sqrt(sum of the squared must-vanish components over all points) bounds each of them, and
+    ``unit`` = max |a..f| of a point is at most its max |S|: a sum below (rtol min unit)^2
+    passes the exact test of :func:`check_orthotropic` at every point. Overflow or NaN
+    give False.
+    """
+    if not flat.size:
+        return True
+    with np.errstate(all="ignore"):
+        odd = np.einsum("ij,ij->j", flat, flat)[_ODD_MASK[3 if flat.shape[1] == 81 else 2]].sum()
+        thr = rtol * unit.min()
+        return bool(thr > 1e-150 and odd <= thr * thr)  # thr^2 must not underflow
+
 
 
 def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
@@ -181,60 +252,102 @@ def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
     SymmetryError
         Naming the largest offending components and their size relative to max |S|.
     """
-    d = S.shape[-1]
-    if d not in _ODD or S.shape[-4:] != (d,) * 4:
-        raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
-    comps, idx = _ODD[d]
-    flat = np.abs(S.reshape(S.shape[:-4] + (d**4,)))
-    odd_flat = np.ravel_multi_index(idx, (d,) * 4)
-    # one cheap pass: the largest odd component against max |S| of each point
-    if not flat.size or not (flat[..., odd_flat].max(axis=-1) > rtol * flat.max(axis=-1)).any():
+    S = np.asarray(S, dtype=float)
+    flat = _flat_tensor(S)
+    _check_flat(S, flat, np.abs(_gather(flat)).max(axis=0), rtol)
+
+
+def _check_flat(S: np.ndarray, flat: np.ndarray, unit: np.ndarray, rtol: float) -> None:
+    """:func:`check_orthotropic` given ``flat`` = S as (n, d**4) and ``unit`` = max |a..f|, shape (n,).
+
+    One pass (:func:`_surely_orthotropic`) settles the usual case; only otherwise is each
+    point's largest must-vanish component compared with its max |S| (a point with NaN in S
+    is never the culprit, and does not hide one).
+    """
+    if _surely_orthotropic(flat, unit, rtol):
         return
-    odd = flat[..., odd_flat]                                              # (..., n_odd)
-    scale = flat.max(axis=-1)
+    d = S.shape[-1]
+    comps = _ODD[d][0]
+    absf = np.abs(flat)
+    scale = absf.max(axis=1)
     with np.errstate(all="ignore"):
-        rel = odd / np.where(scale > 0, scale, 1.0)[..., None]
-    if rel.max() > rtol:
-        flat = rel.reshape(-1, len(comps))
-        k = int(np.argmax(flat.max(axis=1)))
-        worst = np.argsort(flat[k])[::-1][:4]
-        names = ", ".join(f"S_{''.join('xyz'[i] for i in comps[j])} = {flat[k, j]:.2g}"
-                          for j in worst if flat[k, j] > rtol)
-        raise SymmetryError(
-            "Eq. (17) needs a sagittal plane that is a mirror and orthotropic; at point "
-            f"{np.unravel_index(k, S.shape[:-4]) if S.ndim > 4 else ()} these components do not vanish "
-            f"(relative to max|S|): {names}. Use surfwave.continuum.stroh.surface_wave for general tensors."
-        )
+        rel = absf[:, _ODD_MASK[d]] / np.where(scale > 0, scale, 1.0)[:, None]   # (n, n_odd)
+        worst = np.fmax.reduce(rel, axis=1)
+        bad = worst > rtol
+    if not bad.any():
+        return
+    k = int(np.argmax(np.where(bad, worst, -np.inf)))
+    order = np.argsort(rel[k])[::-1][:4]
+    names = ", ".join(f"S_{''.join('xyz'[i] for i in comps[j])} = {rel[k, j]:.2g}"
+                      for j in order if rel[k, j] > rtol)
+    raise SymmetryError(
+        "Eq. (17) needs a sagittal plane that is a mirror and orthotropic; at point "
+        f"{np.unravel_index(k, S.shape[:-4]) if S.ndim > 4 else ()} these components do not vanish "
+        f"(relative to max|S|): {names}. Use surfwave.continuum.stroh.surface_wave for general tensors."
+    )
+
+
+def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """The admissible root X = rho c_R^2 of Eq. (17) per point and whether one exists.
+
+    Parameters
+    ----------
+    comp : ndarray, shape (5, n)
+        Rows a, b, c, d, f (:func:`_gather`), any units.
+    unit : ndarray, shape (n,)
+        max |a..f| per point; the problem is solved in units of it (scale invariance: S in
+        Pa, GPa or reduced units takes the same path).
+    rtol : float
+        Relative tolerance on the unsquared boundary condition G(X) = 0.
+
+    Returns
+    -------
+    X : ndarray, shape (n,)
+        In the units of ``comp``; meaningful only where ``has``.
+    has : ndarray of bool, shape (n,)
+
+    Notes
+    -----
+    The rule of the module docstring: among the real roots of Eq. (17) in 0 < X < min(a, c),
+    with b, d > 0 and both kappa of positive real part, those with |G| <= rtol (scale of G)
+    are admissible; the one with the smallest |G| / scale wins (normally the only one; ties
+    go to the larger root, in the order of :func:`_cubic_rows`). Only roots near that
+    interval are polished and tested, gathered into 1-D arrays.
+    """
+    n = comp.shape[1]
+    unit = np.where(unit > 0, unit, 1.0)
+    a, b, c, d, f = comp / unit
+    coef = secular_coefficients(a, b, c, d, f)
+    X = _cubic_rows(*coef)                                   # (3, n)
+    with np.errstate(invalid="ignore"):
+        near = (X > -_POLISH_MARGIN) & (X < np.minimum(a, c) + _POLISH_MARGIN) & ((b > 0) & (d > 0))
+    k, i = np.nonzero(near)
+    x = _polish(X[k, i], *(v[i] for v in coef))
+    ai, bi, ci, di, fi = a[i], b[i], c[i], d[i], f[i]
+    G, scale, s, p2 = _boundary_terms(x, ai, bi, ci, di, fi)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # Both kappa have positive real part iff kappa^2 are complex conjugates or both
+        # positive (p^2 > 0 holds inside); then p = kappa_1 kappa_2 = +sqrt(p^2) in G.
+        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((s * s < 4.0 * p2) | (s > 0))
+              & (np.abs(G) <= rtol * scale))
+        bad = np.where(ok, np.abs(G) / np.where(scale > 0, scale, 1.0), np.inf)
+    badness = np.full((3, n), np.inf)
+    badness[k, i] = bad
+    X[k, i] = x
+    best = np.minimum(np.minimum(badness[0], badness[1]), badness[2])
+    Xr = np.where(badness[0] == best, X[0], np.where(badness[1] == best, X[1], X[2]))
+    return Xr * unit, best < np.inf
 
 
 def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
-    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists (module docstring).
+    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists, any shape.
 
-    Scale invariant: the five components are divided by their largest magnitude first (so
-    constants in Pa, GPa or reduced units take the same path).
+    The five components broadcast together; see :func:`_select_flat` for the rule.
     """
     a, b, c, d, f = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (a, b, c, d, f)))
-    unit = np.maximum.reduce([np.abs(a), np.abs(b), np.abs(c), np.abs(d), np.abs(f)])
-    unit = np.where(unit > 0, unit, 1.0)
-    a, b, c, d, f = (v / unit for v in (a, b, c, d, f))
-    X = _real_cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3), NaN if not real
-    A5 = [v[..., None] for v in (a, b, c, d, f)]
-    a_, b_, c_, d_, f_ = A5
-    with np.errstate(all="ignore"):
-        inside = (X > 0) & (X < np.minimum(a_, c_)) & (b_ > 0) & (d_ > 0)
-        # Both kappa have positive real part iff kappa^2 are complex conjugates or both positive
-        # (p^2 > 0 holds inside); then p = kappa_1 kappa_2 = +sqrt(p^2) in G.
-        bd = b_ * d_
-        s_ = (b_ * (c_ - X) + d_ * (a_ - X) - (f_ + b_) ** 2) / bd
-        p2 = (a_ - X) * (c_ - X) / bd
-        decaying = (s_ * s_ < 4.0 * p2) | (s_ > 0)
-        G, scale = boundary_function(X, *A5)
-        ok = inside & decaying & (np.abs(G) <= rtol * scale)
-        # Among admissible roots (normally exactly one), take the best boundary residual.
-        badness = np.where(ok, np.abs(G) / scale, np.inf)
-    best = np.argmin(badness, axis=-1)[..., None]
-    has = np.take_along_axis(ok, best, -1)[..., 0]
-    return np.take_along_axis(X, best, -1)[..., 0] * unit, has
+    comp = np.stack([np.ravel(v) for v in (a, b, c, d, f)])
+    X, has = _select_flat(comp, np.abs(comp).max(axis=0), rtol)
+    return X.reshape(a.shape), has.reshape(a.shape)
 
 
 def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
@@ -258,13 +371,17 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
         ``kappa1``, ``kappa2`` (complex), all shape S.shape[:-4].
     """
     S = np.asarray(S, dtype=float)
-    check_orthotropic(S)
+    flat = _flat_tensor(S)
+    comp = _gather(flat)
+    unit = np.abs(comp).max(axis=0)
+    _check_flat(S, flat, unit, ORTHOTROPY_TOL)
     rho = np.asarray(rho, dtype=float)
-    a, b, c, d, f = _sagittal_components(S)
+    shape = S.shape[:-4]
+    Xr, has = (v.reshape(shape) for v in _select_flat(comp, unit, rtol))
+    a, b, c, d, f = (v.reshape(shape) for v in comp)
     if c2_SH is None:
-        c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(a.shape, np.nan)
-    c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), a.shape)
-    Xr, has = _select_root(a, b, c, d, f, rtol)
+        c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(shape, np.nan)
+    c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), shape)
     K1, K2 = decay_constants(Xr, a, b, c, d, f)
     c2_R = np.where(has, Xr / rho, np.nan)
     nan_c = complex(np.nan, np.nan)
@@ -307,9 +424,13 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     0.845299
     """
     S = np.asarray(S, dtype=float)
-    check_orthotropic(S)
-    X, has = _select_root(*_sagittal_components(S))
-    return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
+    flat = _flat_tensor(S)
+    comp = _gather(flat)                                     # (5, n): a, b, c, d, f
+    unit = np.abs(comp).max(axis=0)
+    _check_flat(S, flat, unit, ORTHOTROPY_TOL)
+    X, has = _select_flat(comp, unit)
+    X = X.reshape(S.shape[:-4])
+    return np.where(has.reshape(X.shape), X / np.asarray(rho, dtype=float), np.nan)
 
 
 def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
