@@ -60,6 +60,9 @@ _SAGITTAL_FLAT = {d: np.ravel_multi_index(([0, 0, 0, 1, 1], [0, 1, 1, 1, 1], [0,
 #: Candidate roots may lie this far (relative to max |a..f|) outside (0, min(a, c)) before the Newton
 #: polish; far above the polish's corrections (~1e-8 even at a double root).
 _POLISH_MARGIN = 1e-6
+#: Points per vectorised block: the temporaries of a block (~100 arrays of BLOCK floats) stay
+#: in the CPU cache; smaller blocks pay numpy's per-call overhead (benchmarks/bench_rayleigh.py).
+BLOCK = 8192
 _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
 
 
@@ -78,23 +81,38 @@ def _cubic_rows(c3, c2, c1, c0) -> np.ndarray:
     degenerate = np.abs(c3) <= 1e-13 * scale
     x = np.empty((3,) + c3.shape)
     with np.errstate(all="ignore"):
-        inv = 1.0 / np.where(degenerate, 1.0, c3)
+        inv = 1.0 / (np.where(degenerate, 1.0, c3) if degenerate.any() else c3)
         B, C, D = c2 * inv, c1 * inv, c0 * inv
-        shift = B / 3.0
-        t = C / 3.0 - shift * shift                      # p / 3
-        h = shift * (shift * shift - 0.5 * C) + 0.5 * D  # q / 2
+        shift = B * (1.0 / 3.0)
+        t = C * (1.0 / 3.0) - shift * shift               # p / 3
+        h = shift * (shift * shift - 0.5 * C) + 0.5 * D    # q / 2
         delta = h * h + t * t * t
         one = delta > 0
-        u = np.cbrt(-h - np.copysign(np.sqrt(np.where(one, delta, 0.0)), h))
-        r = np.sqrt(-t)                                  # real wherever three roots are
-        cos3 = np.where(r > 0, -h / (r * r * r), 1.0)   # r = 0: triple root, any angle
-        cphi = np.cos(np.arccos(np.clip(cos3, -1.0, 1.0)) / 3.0)
-        sphi = np.sqrt(np.maximum((1.0 - cphi) * (1.0 + cphi), 0.0))
-        m = r + r
-        mc, ms = -0.5 * m * cphi, _HALF_SQRT3 * m * sphi
-        np.subtract(np.where(one, u - t / u, m * cphi), shift, out=x[0])
-        np.subtract(np.where(one, np.nan, mc + ms), shift, out=x[1])
-        np.subtract(np.where(one, np.nan, mc - ms), shift, out=x[2])
+        n_one = np.count_nonzero(one)
+        if n_one:                                          # one real root: Cardano
+            u = np.cbrt(-h - np.copysign(np.sqrt(delta if n_one == one.size else np.where(one, delta, 0.0)), h))
+            y1 = u - t / u
+        if n_one < one.size:                               # three real roots: trigonometric
+            r = np.sqrt(-t)
+            # 0/0 at a triple root (r = 0, h = 0): fmin/fmax turn the NaN into 1, any angle will do
+            cos3 = np.fmax(np.fmin(-h / (r * r * r), 1.0), -1.0)
+            cphi = np.cos(np.arccos(cos3) * (1.0 / 3.0))
+            sphi = np.sqrt(np.maximum((1.0 - cphi) * (1.0 + cphi), 0.0))
+            m = r + r
+            y0 = m * cphi
+            mc, ms = -0.5 * y0, _HALF_SQRT3 * m * sphi
+            y1_3, y2_3 = mc + ms, mc - ms
+        if n_one == 0:
+            np.subtract(y0, shift, out=x[0])
+            np.subtract(y1_3, shift, out=x[1])
+            np.subtract(y2_3, shift, out=x[2])
+        elif n_one == one.size:
+            np.subtract(y1, shift, out=x[0])
+            x[1:] = np.nan
+        else:
+            np.subtract(np.where(one, y1, y0), shift, out=x[0])
+            np.subtract(np.where(one, np.nan, y1_3), shift, out=x[1])
+            np.subtract(np.where(one, np.nan, y2_3), shift, out=x[2])
     if degenerate.any():
         for i in np.flatnonzero(degenerate):
             z = np.roots([c3[i], c2[i], c1[i], c0[i]])
@@ -160,27 +178,34 @@ def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(k2a.astype(complex)), np.sqrt(k2b.astype(complex))
 
 
-def _boundary_terms(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """G(X), its magnitude scale, s = kappa_1^2 + kappa_2^2 and p^2 = (kappa_1 kappa_2)^2; elementwise."""
+def _boundary_terms(X, a, b, c, d, f) -> tuple[np.ndarray, ...]:
+    """G(X), its magnitude scale, s N and p^2 N^2 (N = b d), elementwise (module docstring).
+
+    s = kappa_1^2 + kappa_2^2 and p^2 = (kappa_1 kappa_2)^2 are returned times N and N^2 so
+    that, for N > 0, both kappa have positive real part iff (sN)^2 < 4 (p^2 N^2) or sN > 0.
+    """
     e = f + b
     A = a - X
     cX = c - X
     N = d * b
-    M = f * e - d * A
+    dA = d * A
+    M = f * e - dA
     with np.errstate(all="ignore"):
-        s = (b * cX + d * A - e * e) / N
-        p2 = A * cX / N
-        p = np.sqrt(np.maximum(p2, 0.0))  # the real part of the principal root
-        t1, t2, t3, t4 = A * M, A * N * (s + p), -f * M * p, f * N * p * p
-    G = t1 + t2 + t3 + t4
-    scale = np.abs(t1) + np.abs(t2) + np.abs(t3) + np.abs(t4)
-    return G, scale, s, p2
+        sN = b * cX + dA - e * e
+        qN = A * cX                                # p^2 N
+        pp = np.maximum(qN / N, 0.0)
+        p = np.sqrt(pp)                            # the real part of the principal root
+        t1, t2, t3, t4 = A * M, A * (sN + N * p), f * M * p, (f * N) * pp
+        G = t1 + t2 - t3 + t4
+        scale = np.abs(t1) + np.abs(t2) + np.abs(t3) + np.abs(t4)
+    return G, scale, sN, qN * N
 
 
 def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale."""
     X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
-    return _boundary_terms(X, a, b, c, d, f)[:2]
+    G, scale = _boundary_terms(X, a, b, c, d, f)[:2]
+    return G, scale
 
 
 def _sagittal_components(S: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -254,18 +279,16 @@ def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
     """
     S = np.asarray(S, dtype=float)
     flat = _flat_tensor(S)
-    _check_flat(S, flat, np.abs(_gather(flat)).max(axis=0), rtol)
+    if not _surely_orthotropic(flat, np.abs(_gather(flat)).max(axis=0), rtol):
+        _orthotropy_error(S, flat, rtol)
 
 
-def _check_flat(S: np.ndarray, flat: np.ndarray, unit: np.ndarray, rtol: float) -> None:
-    """:func:`check_orthotropic` given ``flat`` = S as (n, d**4) and ``unit`` = max |a..f|, shape (n,).
+def _orthotropy_error(S: np.ndarray, flat: np.ndarray, rtol: float) -> None:
+    """The exact test of :func:`check_orthotropic`, point by point; ``flat`` is S as (n, d**4).
 
-    One pass (:func:`_surely_orthotropic`) settles the usual case; only otherwise is each
-    point's largest must-vanish component compared with its max |S| (a point with NaN in S
-    is never the culprit, and does not hide one).
+    Each point's largest must-vanish component against its max |S| (a point with NaN in S
+    is never the culprit, and does not hide one). Raises the SymmetryError or returns.
     """
-    if _surely_orthotropic(flat, unit, rtol):
-        return
     d = S.shape[-1]
     comps = _ODD[d][0]
     absf = np.abs(flat)
@@ -316,27 +339,36 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     """
     n = comp.shape[1]
     unit = np.where(unit > 0, unit, 1.0)
-    a, b, c, d, f = comp / unit
-    coef = secular_coefficients(a, b, c, d, f)
-    X = _cubic_rows(*coef)                                   # (3, n)
+    an = comp * (1.0 / unit)                                  # (5, n), max |a..f| = 1
+    a, b, c, d, f = an
+    coef = np.empty((4, n))
+    coef[:] = secular_coefficients(a, b, c, d, f)
+    X = _cubic_rows(*coef)                                    # (3, n)
     with np.errstate(invalid="ignore"):
         near = (X > -_POLISH_MARGIN) & (X < np.minimum(a, c) + _POLISH_MARGIN) & ((b > 0) & (d > 0))
-    k, i = np.nonzero(near)
-    x = _polish(X[k, i], *(v[i] for v in coef))
-    ai, bi, ci, di, fi = a[i], b[i], c[i], d[i], f[i]
-    G, scale, s, p2 = _boundary_terms(x, ai, bi, ci, di, fi)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        # Both kappa have positive real part iff kappa^2 are complex conjugates or both
-        # positive (p^2 > 0 holds inside); then p = kappa_1 kappa_2 = +sqrt(p^2) in G.
-        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((s * s < 4.0 * p2) | (s > 0))
+    kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
+    i = kk % n                                                # their points (slot kk // n)
+    x = _polish(X.take(kk), *(v[i] for v in coef))
+    ai, bi, ci, di, fi = (v[i] for v in an)
+    G, scale, sN, pN2 = _boundary_terms(x, ai, bi, ci, di, fi)
+    with np.errstate(invalid="ignore"):
+        # inside (b, d > 0 already), decaying (both kappa with positive real part, so that
+        # p = kappa_1 kappa_2 = +sqrt(p^2) in G) and the unsquared condition
+        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((sN * sN < 4.0 * pN2) | (sN > 0))
               & (np.abs(G) <= rtol * scale))
-        bad = np.where(ok, np.abs(G) / np.where(scale > 0, scale, 1.0), np.inf)
-    badness = np.full((3, n), np.inf)
-    badness[k, i] = bad
-    X[k, i] = x
-    best = np.minimum(np.minimum(badness[0], badness[1]), badness[2])
-    Xr = np.where(badness[0] == best, X[0], np.where(badness[1] == best, X[1], X[2]))
-    return Xr * unit, best < np.inf
+    j = i[ok]
+    Xr = np.full(n, np.nan)
+    Xr[j] = x[ok]
+    has = np.zeros(n, dtype=bool)
+    has[j] = True
+    if j.size > np.count_nonzero(has):  # some point has two admissible roots: the smallest |G|/scale
+        with np.errstate(invalid="ignore", divide="ignore"):
+            bad = np.abs(G[ok]) / np.where(scale[ok] > 0, scale[ok], 1.0)
+        order = np.lexsort((kk[ok] // n, bad, j))                   # by point, then |G|/scale, then slot
+        js = j[order]
+        first = np.r_[True, js[1:] != js[:-1]]
+        Xr[js[first]] = x[ok][order][first]
+    return Xr * unit, has
 
 
 def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
@@ -348,6 +380,29 @@ def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndar
     comp = np.stack([np.ravel(v) for v in (a, b, c, d, f)])
     X, has = _select_flat(comp, np.abs(comp).max(axis=0), rtol)
     return X.reshape(a.shape), has.reshape(a.shape)
+
+
+def _solve_flat(S: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """Orthotropy check and root of Eq. (17) for S (..., d, d, d, d); X and has, shape (n,).
+
+    Blocks of :data:`BLOCK` points: each is read once from memory for the one-pass
+    orthotropy bound and the gather of a..f, and its temporaries stay in the CPU cache. If
+    a block's bound fails, the exact point-by-point check runs once over all of S.
+    """
+    flat = _flat_tensor(S)
+    n = flat.shape[0]
+    X = np.empty(n)
+    has = np.empty(n, dtype=bool)
+    checked = False
+    for lo in range(0, n, BLOCK):
+        block = flat[lo:lo + BLOCK]
+        comp = _gather(block)                                 # (5, m): a, b, c, d, f
+        unit = np.abs(comp).max(axis=0)
+        if not (checked or _surely_orthotropic(block, unit, ORTHOTROPY_TOL)):
+            _orthotropy_error(S, flat, ORTHOTROPY_TOL)        # raises unless all points pass
+            checked = True
+        X[lo:lo + BLOCK], has[lo:lo + BLOCK] = _select_flat(comp, unit, rtol)
+    return X, has
 
 
 def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
@@ -371,14 +426,10 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
         ``kappa1``, ``kappa2`` (complex), all shape S.shape[:-4].
     """
     S = np.asarray(S, dtype=float)
-    flat = _flat_tensor(S)
-    comp = _gather(flat)
-    unit = np.abs(comp).max(axis=0)
-    _check_flat(S, flat, unit, ORTHOTROPY_TOL)
-    rho = np.asarray(rho, dtype=float)
     shape = S.shape[:-4]
-    Xr, has = (v.reshape(shape) for v in _select_flat(comp, unit, rtol))
-    a, b, c, d, f = (v.reshape(shape) for v in comp)
+    Xr, has = (v.reshape(shape) for v in _solve_flat(S, rtol))
+    rho = np.asarray(rho, dtype=float)
+    a, b, c, d, f = _sagittal_components(S)
     if c2_SH is None:
         c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(shape, np.nan)
     c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), shape)
@@ -424,13 +475,8 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     0.845299
     """
     S = np.asarray(S, dtype=float)
-    flat = _flat_tensor(S)
-    comp = _gather(flat)                                     # (5, n): a, b, c, d, f
-    unit = np.abs(comp).max(axis=0)
-    _check_flat(S, flat, unit, ORTHOTROPY_TOL)
-    X, has = _select_flat(comp, unit)
-    X = X.reshape(S.shape[:-4])
-    return np.where(has.reshape(X.shape), X / np.asarray(rho, dtype=float), np.nan)
+    X, has = (v.reshape(S.shape[:-4]) for v in _solve_flat(S))
+    return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
 
 
 def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
