@@ -66,8 +66,11 @@ BLOCK = 8192
 _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
 
 
-def _cubic_rows(c3, c2, c1, c0) -> np.ndarray:
-    """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing; shape (3, n), NaN-padded.
+def _cubic_rows(c3, c2, c1, c0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing, and the monic coefficients.
+
+    Returns ``x`` (3, n), NaN-padded, and B, C, D (n,) of x^3 + B x^2 + C x + D with NaN at
+    the degenerate points (their roots come from numpy.roots and need no polish).
 
     Inputs are 1-D, shape (n,). With x = y - B/3 the monic cubic becomes y^3 + p y + q = 0;
     h = q/2, t = p/3, Delta = h^2 + t^3. Delta > 0: one real root, Cardano's form with the
@@ -97,7 +100,7 @@ def _cubic_rows(c3, c2, c1, c0) -> np.ndarray:
             # 0/0 at a triple root (r = 0, h = 0): fmin/fmax turn the NaN into 1, any angle will do
             cos3 = np.fmax(np.fmin(-h / (r * r * r), 1.0), -1.0)
             cphi = np.cos(np.arccos(cos3) * (1.0 / 3.0))
-            sphi = np.sqrt(np.maximum((1.0 - cphi) * (1.0 + cphi), 0.0))
+            sphi = np.sqrt((1.0 - cphi) * (1.0 + cphi))     # cos returns |cphi| <= 1
             m = r + r
             y0 = m * cphi
             mc, ms = -0.5 * y0, _HALF_SQRT3 * m * sphi
@@ -118,16 +121,18 @@ def _cubic_rows(c3, c2, c1, c0) -> np.ndarray:
             z = np.roots([c3[i], c2[i], c1[i], c0[i]])
             z = z[np.abs(z.imag) <= 1e-12 * np.maximum(1.0, np.abs(z))].real
             x[:, i] = np.concatenate([z, np.full(3 - z.size, np.nan)])
-    return x
+        B[degenerate] = C[degenerate] = D[degenerate] = np.nan
+    return x, B, C, D
 
 
-def _polish(x, c3, c2, c1, c0, steps: int = 2) -> np.ndarray:
-    """Newton steps on c3 x^3 + c2 x^2 + c1 x + c0 = 0, elementwise (x and the c broadcast)."""
+def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
+    """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; NaN coefficients leave x as is."""
+    B2 = B + B
     with np.errstate(all="ignore"):
         for _ in range(steps):
-            f = ((c3 * x + c2) * x + c1) * x + c0
-            df = (3.0 * c3 * x + 2.0 * c2) * x + c1
-            x = np.where(df != 0, x - f / df, x)
+            f = ((x + B) * x + C) * x + D
+            df = (3.0 * x + B2) * x + C
+            x = np.where(np.abs(df) > 0, x - f / df, x)  # NaN (degenerate point) or 0: keep x
     return x
 
 
@@ -140,7 +145,8 @@ def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
     c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
     shape = c3.shape
     cs = [np.ravel(v) for v in (c3, c2, c1, c0)]
-    x = _polish(_cubic_rows(*cs), *cs)
+    x, B, C, D = _cubic_rows(*cs)
+    x = _polish(x, B, C, D)
     return np.moveaxis(x, 0, -1).reshape(shape + (3,))
 
 
@@ -319,7 +325,8 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
         Rows a, b, c, d, f (:func:`_gather`), any units.
     unit : ndarray, shape (n,)
         max |a..f| per point; the problem is solved in units of it (scale invariance: S in
-        Pa, GPa or reduced units takes the same path).
+        Pa, GPa or reduced units takes the same path; the degenerate-cubic test compares
+        coefficients of different degree in S).
     rtol : float
         Relative tolerance on the unsquared boundary condition G(X) = 0.
 
@@ -340,15 +347,15 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     n = comp.shape[1]
     unit = np.where(unit > 0, unit, 1.0)
     an = comp * (1.0 / unit)                                  # (5, n), max |a..f| = 1
+    margin = _POLISH_MARGIN
     a, b, c, d, f = an
-    coef = np.empty((4, n))
-    coef[:] = secular_coefficients(a, b, c, d, f)
-    X = _cubic_rows(*coef)                                    # (3, n)
+    X, B, C, D = _cubic_rows(*secular_coefficients(a, b, c, d, f))   # X: (3, n)
     with np.errstate(invalid="ignore"):
-        near = (X > -_POLISH_MARGIN) & (X < np.minimum(a, c) + _POLISH_MARGIN) & ((b > 0) & (d > 0))
+        hi = np.where((b > 0) & (d > 0), np.minimum(a, c) + margin, -np.inf)
+        near = (X > -margin) & (X < hi)
     kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
     i = kk % n                                                # their points (slot kk // n)
-    x = _polish(X.take(kk), *(v[i] for v in coef))
+    x = _polish(X.take(kk), B[i], C[i], D[i])
     ai, bi, ci, di, fi = (v[i] for v in an)
     G, scale, sN, pN2 = _boundary_terms(x, ai, bi, ci, di, fi)
     with np.errstate(invalid="ignore"):
