@@ -60,13 +60,15 @@ _SAGITTAL_FLAT = {d: np.ravel_multi_index(([0, 0, 0, 1, 1], [0, 1, 1, 1, 1], [0,
 #: Candidate roots may lie this far (relative to max |a..f|) outside (0, min(a, c)) before the Newton
 #: polish; far above the polish's corrections (~1e-8 even at a double root).
 _POLISH_MARGIN = 1e-6
+#: Newton steps on each candidate root after the closed form.
+POLISH_STEPS = 2
 #: Points per vectorised block: the temporaries of a block (~100 arrays of BLOCK floats) stay
 #: in the CPU cache; smaller blocks pay numpy's per-call overhead (benchmarks/bench_rayleigh.py).
 BLOCK = 8192
 _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
 
 
-def _cubic_rows(c3, c2, c1, c0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing, and the monic coefficients.
 
     Returns ``x`` (3, n), NaN-padded, and B, C, D (n,) of x^3 + B x^2 + C x + D with NaN at
@@ -79,9 +81,16 @@ def _cubic_rows(c3, c2, c1, c0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
     k = 0, 1, 2 in descending order; cos(phi -+ 2 pi/3) from cos phi and sin phi >= 0
     (phi in [0, pi/3]), so one arccos and one cos per point. Real arithmetic only. Points
     with a vanishing leading coefficient (|c3| <= 1e-13 max|c|) go through numpy.roots.
+    ``coef_bound``, if given, bounds |c2|, |c1|, |c0| and lets that test look only at c3.
     """
-    scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
-    degenerate = np.abs(c3) <= 1e-13 * scale
+    if coef_bound is None:
+        scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
+        degenerate = np.abs(c3) <= 1e-13 * scale
+    else:  # |c2|, |c1|, |c0| <= coef_bound: only |c3| <= 1e-13 coef_bound can be degenerate
+        degenerate = np.abs(c3) <= 1e-13 * coef_bound
+        if degenerate.any():
+            m = np.flatnonzero(degenerate)
+            degenerate[m] = np.abs(c3[m]) <= 1e-13 * np.max(np.abs([c3[m], c2[m], c1[m], c0[m]]), axis=0)
     x = np.empty((3,) + c3.shape)
     with np.errstate(all="ignore"):
         inv = 1.0 / (np.where(degenerate, 1.0, c3) if degenerate.any() else c3)
@@ -184,33 +193,24 @@ def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(k2a.astype(complex)), np.sqrt(k2b.astype(complex))
 
 
-def _boundary_terms(X, a, b, c, d, f) -> tuple[np.ndarray, ...]:
-    """G(X), its magnitude scale, s N and p^2 N^2 (N = b d), elementwise (module docstring).
+def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
+    """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale.
 
-    s = kappa_1^2 + kappa_2^2 and p^2 = (kappa_1 kappa_2)^2 are returned times N and N^2 so
-    that, for N > 0, both kappa have positive real part iff (sN)^2 < 4 (p^2 N^2) or sN > 0.
+    The four-term form of the module docstring, elementwise (G also equals
+    e [A (c - b - X) + p (d A - f^2)], e = f + b; the sum of the four |terms| is its scale).
     """
+    X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
     e = f + b
     A = a - X
-    cX = c - X
+    M = f * e - d * A
     N = d * b
-    dA = d * A
-    M = f * e - dA
     with np.errstate(all="ignore"):
-        sN = b * cX + dA - e * e
-        qN = A * cX                                # p^2 N
-        pp = np.maximum(qN / N, 0.0)
+        s = (b * (c - X) + d * A - e * e) / N
+        pp = np.maximum(A * (c - X) / N, 0.0)
         p = np.sqrt(pp)                            # the real part of the principal root
-        t1, t2, t3, t4 = A * M, A * (sN + N * p), f * M * p, (f * N) * pp
-        G = t1 + t2 - t3 + t4
-        scale = np.abs(t1) + np.abs(t2) + np.abs(t3) + np.abs(t4)
-    return G, scale, sN, qN * N
-
-
-def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
-    """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale."""
-    X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
-    G, scale = _boundary_terms(X, a, b, c, d, f)[:2]
+        terms = (A * M, A * N * (s + p), -f * M * p, f * N * pp)
+    G = sum(terms)
+    scale = sum(np.abs(t) for t in terms)
     return G, scale
 
 
@@ -341,27 +341,41 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     The rule of the module docstring: among the real roots of Eq. (17) in 0 < X < min(a, c),
     with b, d > 0 and both kappa of positive real part, those with |G| <= rtol (scale of G)
     are admissible; the one with the smallest |G| / scale wins (normally the only one; ties
-    go to the larger root, in the order of :func:`_cubic_rows`). Only roots near that
+    go to the larger root). Only roots near that
     interval are polished and tested, gathered into 1-D arrays.
     """
     n = comp.shape[1]
     unit = np.where(unit > 0, unit, 1.0)
-    an = comp * (1.0 / unit)                                  # (5, n), max |a..f| = 1
+    an = comp / unit                                          # (5, n), max |a..f| = 1
     margin = _POLISH_MARGIN
     a, b, c, d, f = an
-    X, B, C, D = _cubic_rows(*secular_coefficients(a, b, c, d, f))   # X: (3, n)
+    # |c2|, |c1|, |c0| <= 16 when max |a..f| = 1 (secular_coefficients term by term); 17 for rounding
+    X, B, C, D = _cubic_rows(*secular_coefficients(a, b, c, d, f), coef_bound=17.0)   # (3, n)
     with np.errstate(invalid="ignore"):
         hi = np.where((b > 0) & (d > 0), np.minimum(a, c) + margin, -np.inf)
         near = (X > -margin) & (X < hi)
     kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
     i = kk % n                                                # their points (slot kk // n)
-    x = _polish(X.take(kk), B[i], C[i], D[i])
+    x = _polish(X.take(kk), B[i], C[i], D[i], steps=POLISH_STEPS)
     ai, bi, ci, di, fi = (v[i] for v in an)
-    G, scale, sN, pN2 = _boundary_terms(x, ai, bi, ci, di, fi)
-    with np.errstate(invalid="ignore"):
+    A = ai - x
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cX = ci - x
+        dA = di * A
+        N = bi * di
+        e = fi + bi
+        M = fi * e - dA
+        sN = bi * cX + dA - e * e                             # s N
+        pN = A * cX                                           # p^2 N
+        pp = pN / N
+        p = np.sqrt(pp)
+        # the four terms of G (module docstring, as boundary_function) and their scale
+        t1, t2, t3, t4 = A * M, A * (sN + N * p), fi * M * p, (fi * N) * pp
+        G = (t1 + t2) - (t3 - t4)
+        scale = (np.abs(t1) + np.abs(t2)) + (np.abs(t3) + np.abs(t4))
         # inside (b, d > 0 already), decaying (both kappa with positive real part, so that
         # p = kappa_1 kappa_2 = +sqrt(p^2) in G) and the unsquared condition
-        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((sN * sN < 4.0 * pN2) | (sN > 0))
+        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((sN * sN < 4.0 * pN * N) | (sN > 0))
               & (np.abs(G) <= rtol * scale))
     j = i[ok]
     Xr = np.full(n, np.nan)
@@ -371,7 +385,7 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     if j.size > np.count_nonzero(has):  # some point has two admissible roots: the smallest |G|/scale
         with np.errstate(invalid="ignore", divide="ignore"):
             bad = np.abs(G[ok]) / np.where(scale[ok] > 0, scale[ok], 1.0)
-        order = np.lexsort((kk[ok] // n, bad, j))                   # by point, then |G|/scale, then slot
+        order = np.lexsort((kk[ok] // n, bad, j))       # by point, |G|/scale, then larger X
         js = j[order]
         first = np.r_[True, js[1:] != js[:-1]]
         Xr[js[first]] = x[ok][order][first]
