@@ -135,13 +135,30 @@ def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.nda
 
 
 def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
-    """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; NaN coefficients leave x as is."""
-    B2 = B + B
+    """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; 1-D arrays of one length.
+
+    After the first step, the others only where the last correction exceeded 1e-12 |x|
+    (elsewhere a further step would change x by ~1e-24 relative). NaN coefficients
+    (degenerate points) or a vanishing derivative leave x as it is.
+    """
+    x = np.array(x, dtype=float)
+    idx = None                                       # the entries still being polished
     with np.errstate(all="ignore"):
-        for _ in range(steps):
-            f = ((x + B) * x + C) * x + D
-            df = (3.0 * x + B2) * x + C
-            x = np.where(np.abs(df) > 0, x - f / df, x)  # NaN (degenerate point) or 0: keep x
+        for step in range(steps):
+            xs, Bs, Cs, Ds = (x, B, C, D) if idx is None else (x[idx], B[idx], C[idx], D[idx])
+            f = ((xs + Bs) * xs + Cs) * xs + Ds
+            df = (3.0 * xs + (Bs + Bs)) * xs + Cs
+            dx = np.where(np.abs(df) > 0, f / df, 0.0)
+            xs = xs - dx
+            if idx is None:
+                x = xs
+            else:
+                x[idx] = xs
+            if step + 1 < steps:
+                more = np.flatnonzero(np.abs(dx) > 1e-12 * np.abs(xs))
+                if not more.size:
+                    break
+                idx = more if idx is None else idx[more]
     return x
 
 
@@ -155,7 +172,7 @@ def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
     shape = c3.shape
     cs = [np.ravel(v) for v in (c3, c2, c1, c0)]
     x, B, C, D = _cubic_rows(*cs)
-    x = _polish(x, B, C, D)
+    x = _polish(x.ravel(), *(np.tile(v, 3) for v in (B, C, D))).reshape(x.shape)
     return np.moveaxis(x, 0, -1).reshape(shape + (3,))
 
 
@@ -355,7 +372,7 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
         hi = np.where((b > 0) & (d > 0), np.minimum(a, c) + margin, -np.inf)
         near = (X > -margin) & (X < hi)
     kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
-    i = kk % n                                                # their points (slot kk // n)
+    i = kk - (kk // n) * n                                    # their points (kk // n: slot)
     x = _polish(X.take(kk), B[i], C[i], D[i], steps=POLISH_STEPS)
     ai, bi, ci, di, fi = (v[i] for v in an)
     A = ai - x
@@ -415,14 +432,15 @@ def _solve_flat(S: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarr
     X = np.empty(n)
     has = np.empty(n, dtype=bool)
     checked = False
-    for lo in range(0, n, BLOCK):
-        block = flat[lo:lo + BLOCK]
+    edges = np.linspace(0, n, max(1, round(n / BLOCK)) + 1).astype(int)  # blocks of ~BLOCK points
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        block = flat[lo:hi]
         comp = _gather(block)                                 # (5, m): a, b, c, d, f
         unit = np.abs(comp).max(axis=0)
         if not (checked or _surely_orthotropic(block, unit, ORTHOTROPY_TOL)):
             _orthotropy_error(S, flat, ORTHOTROPY_TOL)        # raises unless all points pass
             checked = True
-        X[lo:lo + BLOCK], has[lo:lo + BLOCK] = _select_flat(comp, unit, rtol)
+        X[lo:hi], has[lo:hi] = _select_flat(comp, unit, rtol)
     return X, has
 
 
