@@ -66,6 +66,8 @@ POLISH_STEPS = 2
 #: in the CPU cache; smaller blocks pay numpy's per-call overhead (benchmarks/bench_rayleigh.py).
 BLOCK = 8192
 _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
+#: |c3| / max|c| at or below which a cubic goes through numpy.roots (:func:`_cubic_rows`).
+_SMALL_LEAD = 1e-4
 
 
 def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -80,17 +82,18 @@ def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.nda
     three real roots y_k = 2 sqrt(-t) cos(phi - 2 pi k/3), cos(3 phi) = -h / (-t)^(3/2),
     k = 0, 1, 2 in descending order; cos(phi -+ 2 pi/3) from cos phi and sin phi >= 0
     (phi in [0, pi/3]), so one arccos and one cos per point. Real arithmetic only. Points
-    with a vanishing leading coefficient (|c3| <= 1e-13 max|c|) go through numpy.roots.
+    with a small leading coefficient (|c3| <= 1e-4 max|c|: a root beyond ~1e4 times the
+    others, whose depressed form would lose the small ones) go through numpy.roots.
     ``coef_bound``, if given, bounds |c2|, |c1|, |c0| and lets that test look only at c3.
     """
     if coef_bound is None:
         scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
-        degenerate = np.abs(c3) <= 1e-13 * scale
-    else:  # |c2|, |c1|, |c0| <= coef_bound: only |c3| <= 1e-13 coef_bound can be degenerate
-        degenerate = np.abs(c3) <= 1e-13 * coef_bound
+        degenerate = np.abs(c3) <= _SMALL_LEAD * scale
+    else:  # |c2|, |c1|, |c0| <= coef_bound: only |c3| <= _SMALL_LEAD coef_bound can be degenerate
+        degenerate = np.abs(c3) <= _SMALL_LEAD * coef_bound
         if degenerate.any():
             m = np.flatnonzero(degenerate)
-            degenerate[m] = np.abs(c3[m]) <= 1e-13 * np.max(np.abs([c3[m], c2[m], c1[m], c0[m]]), axis=0)
+            degenerate[m] = np.abs(c3[m]) <= _SMALL_LEAD * np.max(np.abs([c3[m], c2[m], c1[m], c0[m]]), axis=0)
     x = np.empty((3,) + c3.shape)
     with np.errstate(all="ignore"):
         inv = 1.0 / (np.where(degenerate, 1.0, c3) if degenerate.any() else c3)
@@ -137,9 +140,11 @@ def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.nda
 def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
     """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; 1-D arrays of one length.
 
-    After the first step, the others only where the last correction exceeded 1e-12 |x|
-    (elsewhere a further step would change x by ~1e-24 relative). NaN coefficients
-    (degenerate points) or a vanishing derivative leave x as it is.
+    A correction larger than 1e-6 (|x| + |B|) is refused: the closed forms are far closer
+    than that, and such a step only comes from a derivative that vanishes at a double root
+    (where rounding noise in f would throw x away). After the first step, the others only
+    where the last correction exceeded 1e-12 |x| (elsewhere a further step would change x
+    by ~1e-24 relative). NaN coefficients (degenerate points) leave x as it is.
     """
     x = np.array(x, dtype=float)
     idx = None                                       # the entries still being polished
@@ -148,7 +153,8 @@ def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
             xs, Bs, Cs, Ds = (x, B, C, D) if idx is None else (x[idx], B[idx], C[idx], D[idx])
             f = ((xs + Bs) * xs + Cs) * xs + Ds
             df = (3.0 * xs + (Bs + Bs)) * xs + Cs
-            dx = np.where(np.abs(df) > 0, f / df, 0.0)
+            dx = f / df
+            dx = np.where(np.abs(dx) <= 1e-6 * (np.abs(xs) + np.abs(Bs)), dx, 0.0)
             xs = xs - dx
             if idx is None:
                 x = xs
@@ -317,7 +323,7 @@ def _orthotropy_error(S: np.ndarray, flat: np.ndarray, rtol: float) -> None:
     absf = np.abs(flat)
     scale = absf.max(axis=1)
     with np.errstate(all="ignore"):
-        rel = absf[:, _ODD_MASK[d]] / np.where(scale > 0, scale, 1.0)[:, None]   # (n, n_odd)
+        rel = absf[:, _ODD_MASK[d]] / np.where(scale == 0, 1.0, scale)[:, None]   # NaN stays NaN
         worst = np.fmax.reduce(rel, axis=1)
         bad = worst > rtol
     if not bad.any():
