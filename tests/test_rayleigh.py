@@ -318,6 +318,17 @@ def test_cauchy_tensors_equal_eq20_across_blocks():
     np.testing.assert_array_equal([rayleigh.rayleigh_c2(s) for s in S[some]], c2[some])
 
 
+def test_boundary_function_factorises():
+    """Algebra (module docstring): the four-term G equals e [A (c - b - X) + p (d A - f^2)],
+    e = f + b, A = a - X, p = sqrt(A (c - X) / (b d)), on random X inside (0, min(a, c))."""
+    a, b, c, d, f = np.random.default_rng(2).uniform(0.1, 2.0, (5, 1000))
+    X = np.random.default_rng(4).uniform(0, 1, 1000) * np.minimum(a, c)
+    G, scale = rayleigh.boundary_function(X, a, b, c, d, f)
+    A = a - X
+    factored = (f + b) * (A * (c - b - X) + np.sqrt(A * (c - X) / (b * d)) * (d * A - f * f))
+    assert np.all(np.abs(G - factored) <= 1e-13 * scale)
+
+
 def _real_numpy_roots(c, tol):
     r = np.roots(c)
     return np.sort(r[np.abs(r.imag) <= tol * np.maximum(1.0, np.abs(r))].real)

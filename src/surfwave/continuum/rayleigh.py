@@ -19,6 +19,13 @@ Squaring away the sign of p gives the cubic Eq. (17), whose extra roots belong t
 keep those in 0 < X < min(a, c) whose two kappa have positive real part (complex allowed),
 and accept one only if it satisfies the *unsquared* G(X) = 0 with p > 0.
 
+Numerics (:func:`rayleigh_c2`, :func:`solve`): S is read in blocks of :data:`BLOCK` points;
+one pass bounds the components that must vanish (:func:`check_orthotropic`), a..f are
+gathered into (5, n) rows, the real roots of Eq. (17) come from the trigonometric or
+Cardano closed form (:func:`_cubic_rows`), and only roots near (0, min(a, c)) are gathered,
+polished (Newton) and tested (:func:`_select_flat`). About 10x the cost of Eq. (20) on the
+same S (benchmarks/bench_rayleigh.py).
+
 The initial stress enters through S (Eq. A11); the traction condition uses C_iykl, which
 equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, docs/physics/paper.md).
 """
@@ -70,7 +77,7 @@ _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
 _SMALL_LEAD = 1e-4
 
 
-def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.ndarray, ...]:
     """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing, and the monic coefficients.
 
     Returns ``x`` (3, n), NaN-padded, and B, C, D (n,) of x^3 + B x^2 + C x + D with NaN at
