@@ -416,3 +416,9 @@ def test_orthotropy_check_exact_at_the_tolerance_and_mixed_scales():
     with pytest.raises(SymmetryError, match="S_xzyy"):
         rayleigh.rayleigh_c2(S)
     assert np.isnan(rayleigh.rayleigh_c2(S[:2])[1])           # NaN in, NaN out (no error)
+    many = np.broadcast_to(isotropic_S(1.0, 1.0, 3), (13, 3, 3, 3, 3))  # 8 points per einsum row + 5
+    for k in (3, 11):
+        bad = many.copy()
+        bad[k, 1, 2, 2, 2] = 1e-8
+        with pytest.raises(SymmetryError, match=f"{k}.*S_yzzz"):
+            rayleigh.rayleigh_c2(bad)

@@ -153,7 +153,6 @@ def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
     where the last correction exceeded 1e-12 |x| (elsewhere a further step would change x
     by ~1e-24 relative). NaN coefficients (degenerate points) leave x as it is.
     """
-    x = np.array(x, dtype=float)
     idx = None                                       # the entries still being polished
     with np.errstate(all="ignore"):
         for step in range(steps):
@@ -185,7 +184,7 @@ def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
     shape = c3.shape
     cs = [np.ravel(v) for v in (c3, c2, c1, c0)]
     x, B, C, D = _cubic_rows(*cs)
-    x = _polish(x.ravel(), *(np.tile(v, 3) for v in (B, C, D))).reshape(x.shape)
+    x = _polish(x.ravel().copy(), *(np.tile(v, 3) for v in (B, C, D))).reshape(x.shape)
     return np.moveaxis(x, 0, -1).reshape(shape + (3,))
 
 
@@ -289,8 +288,14 @@ def _surely_orthotropic(flat: np.ndarray, unit: np.ndarray, rtol: float) -> bool
     """
     if not flat.size:
         return True
+    n, w = flat.shape
+    m = n - n % 8
     with np.errstate(all="ignore"):
-        odd = np.einsum("ij,ij->j", flat, flat)[_ODD_MASK[3 if flat.shape[1] == 81 else 2]].sum()
+        # column sums of squares; eight points per row of the einsum (longer inner loops)
+        sq = np.einsum("ij,ij->j", *(flat[:m].reshape(m // 8, 8 * w),) * 2).reshape(8, w).sum(axis=0)
+        if m < n:
+            sq += np.einsum("ij,ij->j", flat[m:], flat[m:])
+        odd = sq[_ODD_MASK[3 if w == 81 else 2]].sum()
         thr = rtol * unit.min()
         return bool(thr > 1e-150 and odd <= thr * thr)  # thr^2 must not underflow
 
