@@ -106,35 +106,35 @@ def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.nda
         inv = 1.0 / (np.where(degenerate, 1.0, c3) if degenerate.any() else c3)
         B, C, D = c2 * inv, c1 * inv, c0 * inv
         shift = B * (1.0 / 3.0)
-        t = C * (1.0 / 3.0) - shift * shift               # p / 3
-        h = shift * (shift * shift - 0.5 * C) + 0.5 * D    # q / 2
-        delta = h * h + t * t * t
+        s2 = shift * shift
+        mt = s2 - C * (1.0 / 3.0)                          # -p / 3
+        hn = shift * (0.5 * C - s2) - 0.5 * D              # -q / 2
+        delta = hn * hn - mt * mt * mt
         one = delta > 0
         n_one = np.count_nonzero(one)
         if n_one:                                          # one real root: Cardano
-            u = np.cbrt(-h - np.copysign(np.sqrt(delta if n_one == one.size else np.where(one, delta, 0.0)), h))
-            y1 = u - t / u
+            u = np.cbrt(hn + np.copysign(np.sqrt(delta if n_one == one.size else np.where(one, delta, 0.0)), hn))
+            y1 = u + mt / u
         if n_one < one.size:                               # three real roots: trigonometric
-            r = np.sqrt(-t)
+            r = np.sqrt(mt)
             # 0/0 at a triple root (r = 0, h = 0): fmin/fmax turn the NaN into 1, any angle will do
-            cos3 = np.fmax(np.fmin(-h / (r * r * r), 1.0), -1.0)
+            cos3 = np.fmax(np.fmin(hn / (mt * r), 1.0), -1.0)
             cphi = np.cos(np.arccos(cos3) * (1.0 / 3.0))
             sphi = np.sqrt((1.0 - cphi) * (1.0 + cphi))     # cos returns |cphi| <= 1
             m = r + r
             y0 = m * cphi
-            mc, ms = -0.5 * y0, _HALF_SQRT3 * m * sphi
-            y1_3, y2_3 = mc + ms, mc - ms
+            base = -0.5 * y0 - shift
+            ms = _HALF_SQRT3 * m * sphi
+            y1_3, y2_3 = base + ms, base - ms               # already shifted
         if n_one == 0:
             np.subtract(y0, shift, out=x[0])
-            np.subtract(y1_3, shift, out=x[1])
-            np.subtract(y2_3, shift, out=x[2])
+            x[1], x[2] = y1_3, y2_3
         elif n_one == one.size:
             np.subtract(y1, shift, out=x[0])
             x[1:] = np.nan
         else:
             np.subtract(np.where(one, y1, y0), shift, out=x[0])
-            np.subtract(np.where(one, np.nan, y1_3), shift, out=x[1])
-            np.subtract(np.where(one, np.nan, y2_3), shift, out=x[2])
+            x[1], x[2] = np.where(one, np.nan, y1_3), np.where(one, np.nan, y2_3)
     if degenerate.any():
         for i in np.flatnonzero(degenerate):
             z = np.roots([c3[i], c2[i], c1[i], c0[i]])
@@ -144,11 +144,11 @@ def _cubic_rows(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.nda
     return x, B, C, D
 
 
-def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
+def _polish(x, B, C, D, steps: int = 2, lim: float | None = None) -> np.ndarray:
     """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; 1-D arrays of one length.
 
-    A correction larger than 1e-6 (|x| + |B|) is refused: the closed forms are far closer
-    than that, and such a step only comes from a derivative that vanishes at a double root
+    A correction larger than ``lim`` (default 1e-6 (|x| + |B|)) is refused: the closed forms
+    are far closer than that; such a step only comes from a derivative vanishing at a double root
     (where rounding noise in f would throw x away). After the first step, the others only
     where the last correction exceeded 1e-12 |x| (elsewhere a further step would change x
     by ~1e-24 relative). NaN coefficients (degenerate points) leave x as it is.
@@ -160,7 +160,7 @@ def _polish(x, B, C, D, steps: int = 2) -> np.ndarray:
             f = ((xs + Bs) * xs + Cs) * xs + Ds
             df = (3.0 * xs + (Bs + Bs)) * xs + Cs
             dx = f / df
-            dx = np.where(np.abs(dx) <= 1e-6 * (np.abs(xs) + np.abs(Bs)), dx, 0.0)
+            dx = np.where(np.abs(dx) <= (1e-6 * (np.abs(xs) + np.abs(Bs)) if lim is None else lim), dx, 0.0)
             xs = xs - dx
             if idx is None:
                 x = xs
@@ -391,7 +391,7 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
         near = (X > -margin) & (X < hi)
     kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
     i = kk - (kk // n) * n                                    # their points (kk // n: slot)
-    x = _polish(X.take(kk), B[i], C[i], D[i], steps=POLISH_STEPS)
+    x = _polish(X.take(kk), B[i], C[i], D[i], steps=POLISH_STEPS, lim=_POLISH_MARGIN)
     ai, bi, ci, di, fi = (v[i] for v in an)
     A = ai - x
     with np.errstate(invalid="ignore", divide="ignore"):
