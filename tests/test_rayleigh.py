@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import surfwave
-from surfwave.continuum import elastic, rayleigh, stroh
+from surfwave.continuum import cubic, elastic, rayleigh, stroh
 from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
 from surfwave.errors import SymmetryError
 
@@ -225,6 +225,8 @@ def test_vectorised_over_leading_axes():
     out = rayleigh.rayleigh_c2(S)
     assert out.shape == (4, 5)
     assert out[1, 2] == pytest.approx(2 * out[0, 0], rel=1e-12)
+    assert rayleigh.rayleigh_c2(np.zeros((0, 3, 3, 3, 3))).shape == (0,)
+    assert rayleigh.solve(np.zeros((2, 0, 2, 2, 2, 2)))["c2_R"].shape == (2, 0)
 
 
 def test_cubic_roots_match_numpy():
@@ -372,7 +374,7 @@ def test_cubic_roots_near_degenerate_against_numpy(scale):
     rng = np.random.default_rng(3)
     rand = rng.normal(size=(200, 4))
     coef = np.vstack([NEAR_DEGENERATE, rand]) * scale
-    ours = rayleigh._real_cubic_roots(*coef.T)
+    ours = cubic.real_cubic_roots(*coef.T)
     assert ours.shape == (len(coef), 3)
     for k, (c, mine) in enumerate(zip(coef, ours)):
         got = np.sort(mine[np.isfinite(mine)])
