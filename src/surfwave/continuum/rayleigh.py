@@ -206,6 +206,12 @@ def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
     ------
     SymmetryError
         Naming the largest offending components and their size relative to max |S|.
+
+    Notes
+    -----
+    One pass over S (the sum of squares of the must-vanish components against the smallest
+    max |a..f|, :func:`_surely_orthotropic`) proves the usual case; only when that bound fails
+    are the points compared one by one, which decides.
     """
     S = np.asarray(S, dtype=float)
     flat = _flat_tensor(S)
