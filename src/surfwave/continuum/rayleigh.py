@@ -84,10 +84,13 @@ def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
     """
     g = f * f - d * a
     h = b - c
-    c3 = d * d - b * d
-    c2 = 2 * d * g - c * d * d - b * d * (2 * h - a)
-    c1 = g * g - 2 * c * d * g - b * d * (h * h - 2 * a * h)
-    c0 = -c * g * g + b * d * a * h * h
+    bd = b * d
+    cd = c * d
+    # the products of the formula above, shared (doubling is exact: the same floats)
+    c3 = d * d - bd
+    c2 = (d + d) * g - cd * d - bd * (h + h - a)
+    c1 = g * g - (cd + cd) * g - bd * (h * h - (a + a) * h)
+    c0 = -c * g * g + bd * a * h * h
     return c3, c2, c1, c0
 
 
