@@ -45,7 +45,7 @@ def real_roots_closed_form(c3, c2, c1, c0, coef_bound: float | None = None) -> t
     """
     x = np.empty((3,) + c3.shape)
     if not c3.size:
-        return x, c3, c2, c1
+        return x, np.empty(0), np.empty(0), np.empty(0)
     if coef_bound is None:
         scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
         degenerate = np.abs(c3) <= _SMALL_LEAD * scale

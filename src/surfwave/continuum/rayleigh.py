@@ -23,8 +23,8 @@ Numerics (:func:`rayleigh_c2`, :func:`solve`): S is read in blocks of :data:`BLO
 one pass bounds the components that must vanish (:func:`check_orthotropic`), a..f are
 gathered into (5, n) rows, the real roots of Eq. (17) come from the trigonometric or
 Cardano closed form (:mod:`surfwave.continuum.cubic`), and only roots near (0, min(a, c)) are gathered,
-polished (Newton) and tested (:func:`_select_flat`). About 10x the cost of Eq. (20) on the
-same S (benchmarks/bench_rayleigh.py).
+polished (Newton) and tested (:func:`_select_flat`). About 7-9x the time of Eq. (20) from
+the same S at 1e4-1e5 points per call (benchmarks/bench_rayleigh.py).
 
 The initial stress enters through S (Eq. A11); the traction condition uses C_iykl, which
 equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, docs/physics/paper.md).
