@@ -5,6 +5,8 @@ forms for nearest-neighbour FCC, the paper's Eqs. (16), (20) and (21).
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
@@ -12,8 +14,9 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import surfwave
-from surfwave.continuum import rayleigh
+from surfwave.continuum import cubic, elastic, rayleigh, stroh
 from surfwave.continuum.tensors import cubic_voigt, voigt_to_tensor
+from surfwave.errors import SymmetryError
 
 SQ3 = np.sqrt(3.0)
 
@@ -222,6 +225,8 @@ def test_vectorised_over_leading_axes():
     out = rayleigh.rayleigh_c2(S)
     assert out.shape == (4, 5)
     assert out[1, 2] == pytest.approx(2 * out[0, 0], rel=1e-12)
+    assert rayleigh.rayleigh_c2(np.zeros((0, 3, 3, 3, 3))).shape == (0,)
+    assert rayleigh.solve(np.zeros((2, 0, 2, 2, 2, 2)))["c2_R"].shape == (2, 0)
 
 
 def test_cubic_roots_match_numpy():
@@ -266,3 +271,156 @@ def test_general_solver_equals_cauchy_eq20_for_pair_forces(case, pot, s):
 
 def _cubic(C11, C12, C44):
     return voigt_to_tensor(cubic_voigt(C11, C12, C44))
+
+
+def _orthotropic_prestressed(n, rng, cauchy=False):
+    """Random orthotropic C (Voigt, lab axes) with in-plane prestress sigma_xx, sigma_zz; (S, A), each
+    (n, 3, 3, 3, 3). ``cauchy``: C12 = C66, so that S_xyxy = S_yyxx (sigma_yy = 0, Eq. A11)."""
+    C11, C22, C33 = rng.uniform(1.0, 3.0, (3, n))
+    C44, C55, C66 = rng.uniform(0.2, 1.0, (3, n))
+    V = np.zeros((n, 6, 6))
+    V[:, 0, 0], V[:, 1, 1], V[:, 2, 2] = C11, C22, C33
+    V[:, 0, 1] = V[:, 1, 0] = C66 if cauchy else rng.uniform(-0.4, 0.8, n) * np.sqrt(C11 * C22)
+    V[:, 0, 2] = V[:, 2, 0] = V[:, 1, 2] = V[:, 2, 1] = rng.uniform(0.0, 0.5, n)
+    V[:, 3, 3], V[:, 4, 4], V[:, 5, 5] = C44, C55, C66
+    C = voigt_to_tensor(V)
+    sig = np.zeros((n, 3, 3))
+    sig[:, 0, 0] = rng.uniform(-1.2 if cauchy else -0.25, 0.5 if cauchy else 0.25, n) * C66
+    sig[:, 2, 2] = rng.uniform(-0.3, 0.3, n)
+    return elastic.stress_derivatives(sig, C), stroh.wave_propagation_tensor(C, sig)
+
+
+def test_non_cauchy_orthotropic_against_stroh_route():
+    """Independent route: prestressed orthotropic crystals without the Cauchy relation
+    (S_xyxy != S_yyxx), Eq. (17) on the 3D S against the Stroh/impedance root search of
+    stroh.surface_wave on A = C + sigma delta (2 x 2 sagittal blocks, Eq. 17 switched off)."""
+    S, A = _orthotropic_prestressed(300, np.random.default_rng(7))
+    assert np.abs(S[:, 0, 1, 0, 1] - S[:, 1, 1, 0, 0]).min() > 1e-3   # really not Cauchy
+    ref = stroh.surface_wave(A[:, :2, :2, :2, :2], 1.0, mirror=False)["c"] ** 2
+    c2 = rayleigh.rayleigh_c2(S)
+    np.testing.assert_array_equal(np.isfinite(c2), np.isfinite(ref))
+    assert np.isfinite(c2).sum() > 250
+    np.testing.assert_allclose(c2, ref, rtol=1e-11)
+
+
+def test_cauchy_tensors_equal_eq20_across_blocks():
+    """Eq. (20) (closed form from the four speeds of the same S) for 20000 random Cauchy-relation
+    tensors, several vectorised blocks of rayleigh_c2; where Eq. (17) has no admissible root, Eq. (20)
+    gives no speed in (0, c_T,par^2) either. Also the block loop against single-point calls."""
+    S, _ = _orthotropic_prestressed(20000, np.random.default_rng(11), cauchy=True)
+    assert S.shape[0] > 2 * rayleigh.BLOCK
+    np.testing.assert_allclose(S[:, 0, 1, 0, 1], S[:, 1, 1, 0, 0], rtol=1e-15)
+    c2 = rayleigh.rayleigh_c2(S)
+    eq20 = rayleigh.cauchy_c2(S[:, 0, 0, 0, 0], S[:, 0, 1, 1, 0], S[:, 1, 1, 1, 1], S[:, 0, 1, 0, 1])
+    ok = np.isfinite(c2)
+    assert 0.5 < ok.mean() < 0.95
+    np.testing.assert_allclose(c2[ok], eq20[ok], rtol=1e-9, atol=1e-12)
+    assert not np.any((eq20[~ok] > 0) & (eq20[~ok] < S[~ok, 0, 1, 1, 0]))
+    some = np.arange(0, S.shape[0], 997)
+    np.testing.assert_array_equal([rayleigh.rayleigh_c2(s) for s in S[some]], c2[some])
+
+
+def test_boundary_function_factorises():
+    """Algebra (module docstring): the four-term G equals e [A (c - b - X) + p (d A - f^2)],
+    e = f + b, A = a - X, p = sqrt(A (c - X) / (b d)), on random X inside (0, min(a, c))."""
+    a, b, c, d, f = np.random.default_rng(2).uniform(0.1, 2.0, (5, 1000))
+    X = np.random.default_rng(4).uniform(0, 1, 1000) * np.minimum(a, c)
+    G, scale = rayleigh.boundary_function(X, a, b, c, d, f)
+    A = a - X
+    factored = (f + b) * (A * (c - b - X) + np.sqrt(A * (c - X) / (b * d)) * (d * A - f * f))
+    assert np.all(np.abs(G - factored) <= 1e-13 * scale)
+
+
+def _real_numpy_roots(c, tol):
+    r = np.roots(c)
+    return np.sort(r[np.abs(r.imag) <= tol * np.maximum(1.0, np.abs(r))].real)
+
+
+@functools.lru_cache(maxsize=None)
+def _mp_roots(c: tuple) -> np.ndarray:
+    """All roots of the cubic c (highest power first) to 40 digits (mpmath), complex."""
+    import mpmath as mp
+
+    with mp.workdps(60):
+        return np.array([complex(r) for r in mp.polyroots([mp.mpf(v) for v in c], maxsteps=400, extraprec=400)])
+
+
+NEAR_DEGENERATE = [
+    [1, -4, 5, -2],                 # (x - 1)^2 (x - 2): double root
+    [1, -4, 5, -2 + 1e-13],         # ... split into a close pair or a complex pair
+    [1, -4, 5, -2 - 1e-13],
+    [8, -12, 6, -1],                # (2x - 1)^3: triple root
+    [1, 0, -3, 2],                  # (x - 1)^2 (x + 2): discriminant exactly 0
+    [1, 0, -3, 2 + 4e-16],
+    [1, 0, -3, 2 - 4e-16],
+    [1, 0, -3, -2],                 # (x + 1)^2 (x - 2)
+    [1e-14, 1, -3, 2],              # vanishing leading coefficient: the numpy.roots path
+    [1e-10, 1, -3, 2],              # tiny: a root near -1e10 and the quadratic's (numpy.roots)
+    [2e-4, -1, 1e-3, -1e-7],        # small but kept: roots 1e-4, 9e-4 and 5e3 (closed form)
+    [1, 1e-9, 1e-18, 0],            # clustered tiny roots
+    [3, 0, 0, 0],                   # triple root at 0
+]
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e30, 1e-30])
+def test_cubic_roots_near_degenerate_against_numpy(scale):
+    """References: numpy.roots (companion-matrix eigenvalues) for 200 random cubics with one or
+    three real roots, and 60-digit mpmath roots for near-degenerate ones (double, triple and
+    split double roots, discriminant ~ 0, tiny leading coefficient, clustered roots), all in one
+    vectorised call of the closed forms (trigonometric / Cardano + Newton), in any units.
+    Every root returned is a root (tiny residual) near a true root (or the real part of a pair
+    split by rounding); every true real root apart from the others is found; random cubics
+    give numpy's real roots."""
+    rng = np.random.default_rng(3)
+    rand = rng.normal(size=(200, 4))
+    coef = np.vstack([NEAR_DEGENERATE, rand]) * scale
+    ours = cubic.real_cubic_roots(*coef.T)
+    assert ours.shape == (len(coef), 3)
+    for k, (c, mine) in enumerate(zip(coef, ours)):
+        got = np.sort(mine[np.isfinite(mine)])
+        assert got.size >= 1                                   # a real cubic has a real root
+        size = np.abs(c[0]) * np.abs(got) ** 3 + np.abs(c[1]) * got**2 + np.abs(c[2]) * np.abs(got) + np.abs(c[3])
+        assert np.all(np.abs(np.polyval(c, got)) <= 1e-12 * size), (k, c, got)
+        if k < len(NEAR_DEGENERATE):
+            true = _mp_roots(tuple(float(v) for v in NEAR_DEGENERATE[k]))
+            near_real = true[np.abs(true.imag) <= 1e-6 * np.maximum(1.0, np.abs(true))]
+            for x in got:                                      # near a true (or split) root
+                assert np.min(np.abs(near_real.real - x)) <= 2e-5 * max(1.0, abs(x)), (k, got, true)
+            real = true[true.imag == 0].real
+            for r in real:                                     # isolated real roots are found
+                if np.sum(np.abs(real - r) <= 1e-4 * max(1.0, abs(r))) == 1:
+                    assert np.min(np.abs(got - r)) <= 1e-9 * max(1.0, abs(r)), (k, got, r)
+        else:
+            ref = _real_numpy_roots(c, 1e-7)
+            if ref.size == got.size:
+                np.testing.assert_allclose(got, ref, rtol=1e-9, atol=1e-9 * scale ** 0)
+            else:  # only near-degenerate pairs may be classified differently
+                z = np.roots(c)
+                assert np.min(np.abs(z.imag)[np.abs(z.imag) > 0]) < 1e-4
+
+
+def test_orthotropy_check_exact_at_the_tolerance_and_mixed_scales():
+    """SymmetryError exactly where the definition says (largest must-vanish component above
+    ORTHOTROPY_TOL times max |S| of its point): components at 0.5 tol pass, also in a batch
+    mixing S in Pa with reduced units (the one-pass bound fails there, the point-by-point test
+    decides); 2 tol at one point is named with its point; a NaN point does not hide it."""
+    S = np.broadcast_to(isotropic_S(1.0, 1.0, 3), (6, 3, 3, 3, 3)).copy()
+    S[3] *= 1e9                                                # Pa next to reduced units
+    tol = rayleigh.ORTHOTROPY_TOL
+    S[:, 0, 0, 0, 1] = 0.5 * tol * np.abs(S).max(axis=(1, 2, 3, 4))
+    ok = rayleigh.rayleigh_c2(S)
+    np.testing.assert_allclose(ok[3], 1e9 * ok[0], rtol=1e-12)
+    S[4, 0, 2, 1, 1] = 2 * tol * 3.0
+    with pytest.raises(SymmetryError, match=r"at point \(np.int64\(4\),\)|at point \(4,\)") as err:
+        rayleigh.rayleigh_c2(S)
+    assert "S_xzyy" in str(err.value)
+    S[1, 1, 1, 1, 1] = np.nan
+    with pytest.raises(SymmetryError, match="S_xzyy"):
+        rayleigh.rayleigh_c2(S)
+    assert np.isnan(rayleigh.rayleigh_c2(S[:2])[1])           # NaN in, NaN out (no error)
+    many = np.broadcast_to(isotropic_S(1.0, 1.0, 3), (13, 3, 3, 3, 3))  # 8 points per einsum row + 5
+    for k in (3, 11):
+        bad = many.copy()
+        bad[k, 1, 2, 2, 2] = 1e-8
+        with pytest.raises(SymmetryError, match=f"{k}.*S_yzzz"):
+            rayleigh.rayleigh_c2(bad)

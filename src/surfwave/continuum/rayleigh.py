@@ -19,6 +19,13 @@ Squaring away the sign of p gives the cubic Eq. (17), whose extra roots belong t
 keep those in 0 < X < min(a, c) whose two kappa have positive real part (complex allowed),
 and accept one only if it satisfies the *unsquared* G(X) = 0 with p > 0.
 
+Numerics (:func:`rayleigh_c2`, :func:`solve`): S is read in blocks of :data:`BLOCK` points;
+one pass bounds the components that must vanish (:func:`check_orthotropic`), a..f are
+gathered into (5, n) rows, the real roots of Eq. (17) come from the trigonometric or
+Cardano closed form (:mod:`surfwave.continuum.cubic`), and only roots near (0, min(a, c)) are gathered,
+polished (Newton) and tested (:func:`_select_flat`). About 7-9x the time of Eq. (20) from
+the same S at 1e4-1e5 points per call (benchmarks/bench_rayleigh.py).
+
 The initial stress enters through S (Eq. A11); the traction condition uses C_iykl, which
 equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, docs/physics/paper.md).
 """
@@ -28,6 +35,9 @@ import itertools
 
 import numpy as np
 
+from surfwave.continuum.cubic import newton_polish as _polish
+from surfwave.continuum.cubic import real_cubic_roots as _real_cubic_roots  # noqa: F401 (tests)
+from surfwave.continuum.cubic import real_roots_closed_form as _cubic_rows
 from surfwave.errors import SymmetryError
 
 #: Metadata of the arrays this module produces.
@@ -54,45 +64,17 @@ ORTHOTROPY_TOL = 1e-9
 REASON_NOROOT = ("no root of Eq. (17) in 0 < rho c^2 < min(S_xxxx, S_xyyx) satisfies the "
                  "unsquared boundary condition with decaying partial waves")
 
-
-def _real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
-    """Real roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3), NaN-padded.
-
-    Real arithmetic only: the trigonometric form where there are three real roots, Cardano's
-    with real cube roots where there is one; then two Newton steps on the cubic. Points with
-    a vanishing leading coefficient fall back to numpy.roots (rare: S_yyyy = S_xyxy).
-    """
-    c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
-    scale = np.maximum(np.maximum(np.abs(c3), np.abs(c2)), np.maximum(np.abs(c1), np.abs(c0)))
-    degenerate = np.abs(c3) <= 1e-13 * scale
-    with np.errstate(all="ignore"):
-        lead = np.where(degenerate, 1.0, c3)
-        B, C, D = c2 / lead, c1 / lead, c0 / lead
-        shift = B / 3.0
-        p = C - B * shift
-        q = (2.0 / 27.0) * B**3 - C * shift + D
-        delta = 0.25 * q * q + p**3 / 27.0
-        one = delta > 0
-        sq = np.sqrt(np.where(one, delta, 0.0))
-        y1 = np.cbrt(-0.5 * q + sq) + np.cbrt(-0.5 * q - sq)
-        m = 2.0 * np.sqrt(np.where(one, 0.0, -p / 3.0))
-        cos_arg = np.where(m > 0, 3.0 * q / (p * np.where(m > 0, m, 1.0)), 0.0)
-        phi = np.arccos(np.clip(cos_arg, -1.0, 1.0)) / 3.0
-        k = np.arange(3) * (2.0 * np.pi / 3.0)
-        three = m[..., None] * np.cos(phi[..., None] - k)
-        x = np.where(one[..., None], np.stack([y1, np.full_like(y1, np.nan), np.full_like(y1, np.nan)], -1), three)
-        x = x - shift[..., None]
-        Bx, Cx, Dx = B[..., None], C[..., None], D[..., None]
-        for _ in range(2):  # Newton polish on the monic cubic
-            f = ((x + Bx) * x + Cx) * x + Dx
-            df = (3.0 * x + 2.0 * Bx) * x + Cx
-            x = np.where(df != 0, x - f / df, x)
-    if degenerate.any():
-        for idx in zip(*np.nonzero(degenerate)):
-            r = np.roots([c3[idx], c2[idx], c1[idx], c0[idx]])
-            r = r[np.abs(r.imag) <= 1e-12 * np.maximum(1.0, np.abs(r))].real
-            x[idx] = np.concatenate([r, np.full(3 - r.size, np.nan)])
-    return x
+#: Flat positions, in S.reshape(-1, d**4), of (a, b, c, d, f) = (S_xxxx, S_xyxy, S_xyyx, S_yyyy, S_yyxx).
+_SAGITTAL_FLAT = {d: np.ravel_multi_index(([0, 0, 0, 1, 1], [0, 1, 1, 1, 1], [0, 0, 1, 1, 0], [0, 1, 0, 1, 0]),
+                                          (d,) * 4) for d in (2, 3)}
+#: Candidate roots may lie this far (relative to max |a..f|) outside (0, min(a, c)) before the Newton
+#: polish; far above the polish's corrections (~1e-8 even at a double root).
+_POLISH_MARGIN = 1e-6
+#: Newton steps on each candidate root after the closed form.
+POLISH_STEPS = 2
+#: Points per vectorised block: the temporaries of a block (~100 arrays of BLOCK floats) stay
+#: in the CPU cache; smaller blocks pay numpy's per-call overhead (benchmarks/bench_rayleigh.py).
+BLOCK = 8192
 
 
 def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
@@ -102,10 +84,13 @@ def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
     """
     g = f * f - d * a
     h = b - c
-    c3 = d * d - b * d
-    c2 = 2 * d * g - c * d * d - b * d * (2 * h - a)
-    c1 = g * g - 2 * c * d * g - b * d * (h * h - 2 * a * h)
-    c0 = -c * g * g + b * d * a * h * h
+    bd = b * d
+    cd = c * d
+    # the products of the formula above, shared (doubling is exact: the same floats)
+    c3 = d * d - bd
+    c2 = (d + d) * g - cd * d - bd * (h + h - a)
+    c1 = g * g - (cd + cd) * g - bd * (h * h - (a + a) * h)
+    c0 = -c * g * g + bd * a * h * h
     return c3, c2, c1, c0
 
 
@@ -130,16 +115,21 @@ def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
 
 
 def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
-    """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale."""
+    """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale.
+
+    The four-term form of the module docstring, elementwise (G also equals
+    e [A (c - b - X) + p (d A - f^2)], e = f + b; the sum of the four |terms| is its scale).
+    """
     X, a, b, c, d, f = (np.asarray(v, dtype=float) for v in (X, a, b, c, d, f))
     e = f + b
     A = a - X
     M = f * e - d * A
     N = d * b
     with np.errstate(all="ignore"):
-        s = (b * (c - X) + d * (a - X) - e * e) / N
-        p = np.sqrt((A * (c - X) / N).astype(complex)).real
-    terms = (A * M, A * N * (s + p), -f * M * p, f * N * p * p)
+        s = (b * (c - X) + d * A - e * e) / N
+        pp = np.maximum(A * (c - X) / N, 0.0)
+        p = np.sqrt(pp)                            # the real part of the principal root
+        terms = (A * M, A * N * (s + p), -f * M * p, f * N * pp)
     G = sum(terms)
     scale = sum(np.abs(t) for t in terms)
     return G, scale
@@ -162,6 +152,45 @@ def _odd_index_components(d: int) -> tuple[list[tuple[int, ...]], tuple[np.ndarr
 
 
 _ODD = {d: _odd_index_components(d) for d in (2, 3)}
+_ODD_MASK = {d: np.isin(np.arange(d**4), np.ravel_multi_index(_ODD[d][1], (d,) * 4)) for d in (2, 3)}
+
+
+def _flat_tensor(S: np.ndarray) -> np.ndarray:
+    """S (..., d, d, d, d), d = 2 or 3, as a float array of shape (n, d**4) (a view when possible)."""
+    S = np.asarray(S, dtype=float)
+    d = S.shape[-1] if S.ndim >= 4 else 0
+    if d not in _ODD or S.shape[-4:] != (d,) * 4:
+        raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
+    return S.reshape(-1, d**4)
+
+
+def _gather(flat: np.ndarray) -> np.ndarray:
+    """The rows (a, b, c, d, f) of Eq. (17) from ``flat`` (n, d**4); shape (5, n), contiguous."""
+    d = 3 if flat.shape[1] == 81 else 2
+    return flat.T[_SAGITTAL_FLAT[d]]
+
+
+def _surely_orthotropic(flat: np.ndarray, unit: np.ndarray, rtol: float) -> bool:
+    """One pass over S proving every point orthotropic, or False (then check point by point).
+
+    sqrt(sum of the squared must-vanish components over all points) bounds each of them, and
+    ``unit`` = max |a..f| of a point is at most its max |S|: a sum below (rtol min unit)^2
+    passes the exact test of :func:`check_orthotropic` at every point. Overflow or NaN
+    give False.
+    """
+    if not flat.size:
+        return True
+    n, w = flat.shape
+    m = n - n % 8
+    with np.errstate(all="ignore"):
+        # column sums of squares; eight points per row of the einsum (longer inner loops)
+        sq = np.einsum("ij,ij->j", *(flat[:m].reshape(m // 8, 8 * w),) * 2).reshape(8, w).sum(axis=0)
+        if m < n:
+            sq += np.einsum("ij,ij->j", flat[m:], flat[m:])
+        odd = sq[_ODD_MASK[3 if w == 81 else 2]].sum()
+        thr = rtol * unit.min()
+        return bool(thr > 1e-150 and odd <= thr * thr)  # thr^2 must not underflow
+
 
 
 def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
@@ -180,61 +209,155 @@ def check_orthotropic(S: np.ndarray, rtol: float = ORTHOTROPY_TOL) -> None:
     ------
     SymmetryError
         Naming the largest offending components and their size relative to max |S|.
+
+    Notes
+    -----
+    One pass over S (the sum of squares of the must-vanish components against the smallest
+    max |a..f|, :func:`_surely_orthotropic`) proves the usual case; only when that bound fails
+    are the points compared one by one, which decides.
+    """
+    S = np.asarray(S, dtype=float)
+    flat = _flat_tensor(S)
+    if not _surely_orthotropic(flat, np.abs(_gather(flat)).max(axis=0), rtol):
+        _orthotropy_error(S, flat, rtol)
+
+
+def _orthotropy_error(S: np.ndarray, flat: np.ndarray, rtol: float) -> None:
+    """The exact test of :func:`check_orthotropic`, point by point; ``flat`` is S as (n, d**4).
+
+    Each point's largest must-vanish component against its max |S| (a point with NaN in S
+    is never the culprit, and does not hide one). Raises the SymmetryError or returns.
     """
     d = S.shape[-1]
-    if d not in _ODD or S.shape[-4:] != (d,) * 4:
-        raise SymmetryError(f"S must have shape (..., d, d, d, d) with d = 2 or 3, got {S.shape}")
-    comps, idx = _ODD[d]
-    flat = np.abs(S.reshape(S.shape[:-4] + (d**4,)))
-    odd_flat = np.ravel_multi_index(idx, (d,) * 4)
-    # one cheap pass: the largest odd component against max |S| of each point
-    if not flat.size or not (flat[..., odd_flat].max(axis=-1) > rtol * flat.max(axis=-1)).any():
-        return
-    odd = flat[..., odd_flat]                                              # (..., n_odd)
-    scale = flat.max(axis=-1)
+    comps = _ODD[d][0]
+    absf = np.abs(flat)
+    scale = absf.max(axis=1)
     with np.errstate(all="ignore"):
-        rel = odd / np.where(scale > 0, scale, 1.0)[..., None]
-    if rel.max() > rtol:
-        flat = rel.reshape(-1, len(comps))
-        k = int(np.argmax(flat.max(axis=1)))
-        worst = np.argsort(flat[k])[::-1][:4]
-        names = ", ".join(f"S_{''.join('xyz'[i] for i in comps[j])} = {flat[k, j]:.2g}"
-                          for j in worst if flat[k, j] > rtol)
-        raise SymmetryError(
-            "Eq. (17) needs a sagittal plane that is a mirror and orthotropic; at point "
-            f"{np.unravel_index(k, S.shape[:-4]) if S.ndim > 4 else ()} these components do not vanish "
-            f"(relative to max|S|): {names}. Use surfwave.continuum.stroh.surface_wave for general tensors."
-        )
+        rel = absf[:, _ODD_MASK[d]] / np.where(scale == 0, 1.0, scale)[:, None]   # NaN stays NaN
+        worst = np.fmax.reduce(rel, axis=1)
+        bad = worst > rtol
+    if not bad.any():
+        return
+    k = int(np.argmax(np.where(bad, worst, -np.inf)))
+    order = np.argsort(rel[k])[::-1][:4]
+    names = ", ".join(f"S_{''.join('xyz'[i] for i in comps[j])} = {rel[k, j]:.2g}"
+                      for j in order if rel[k, j] > rtol)
+    raise SymmetryError(
+        "Eq. (17) needs a sagittal plane that is a mirror and orthotropic; at point "
+        f"{np.unravel_index(k, S.shape[:-4]) if S.ndim > 4 else ()} these components do not vanish "
+        f"(relative to max|S|): {names}. Use surfwave.continuum.stroh.surface_wave for general tensors."
+    )
+
+
+def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """The admissible root X = rho c_R^2 of Eq. (17) per point and whether one exists.
+
+    Parameters
+    ----------
+    comp : ndarray, shape (5, n)
+        Rows a, b, c, d, f (:func:`_gather`), any units.
+    unit : ndarray, shape (n,)
+        max |a..f| per point; the problem is solved in units of it (scale invariance: S in
+        Pa, GPa or reduced units takes the same path; the degenerate-cubic test compares
+        coefficients of different degree in S).
+    rtol : float
+        Relative tolerance on the unsquared boundary condition G(X) = 0.
+
+    Returns
+    -------
+    X : ndarray, shape (n,)
+        In the units of ``comp``; meaningful only where ``has``.
+    has : ndarray of bool, shape (n,)
+
+    Notes
+    -----
+    The rule of the module docstring: among the real roots of Eq. (17) in 0 < X < min(a, c),
+    with b, d > 0 and both kappa of positive real part, those with |G| <= rtol (scale of G)
+    are admissible; the one with the smallest |G| / scale wins (normally the only one; ties
+    go to the larger root). Only roots near that interval are polished and tested, gathered
+    into 1-D arrays.
+    """
+    n = comp.shape[1]
+    unit = np.where(unit > 0, unit, 1.0)
+    an = comp / unit                                          # (5, n), max |a..f| = 1
+    margin = _POLISH_MARGIN
+    a, b, c, d, f = an
+    # |c2|, |c1|, |c0| <= 16 when max |a..f| = 1 (secular_coefficients term by term); 17 for rounding
+    X, B, C, D = _cubic_rows(*secular_coefficients(a, b, c, d, f), coef_bound=17.0)   # (3, n)
+    with np.errstate(invalid="ignore"):
+        hi = np.where((b > 0) & (d > 0), np.minimum(a, c) + margin, -np.inf)
+        near = (X > -margin) & (X < hi)
+    kk = np.flatnonzero(near)                                 # candidates, flat in (3, n)
+    i = kk - (kk // n) * n                                    # their points (kk // n: slot)
+    x = _polish(X.take(kk), B[i], C[i], D[i], steps=POLISH_STEPS, lim=_POLISH_MARGIN)
+    ai, bi, ci, di, fi = (v[i] for v in an)
+    A = ai - x
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cX = ci - x
+        dA = di * A
+        N = bi * di
+        e = fi + bi
+        M = fi * e - dA
+        sN = bi * cX + dA - e * e                             # s N
+        pN = A * cX                                           # p^2 N
+        pp = pN / N
+        p = np.sqrt(pp)
+        # the four terms of G (module docstring, as boundary_function) and their scale
+        t1, t2, t3, t4 = A * M, A * (sN + N * p), fi * M * p, (fi * N) * pp
+        G = (t1 + t2) - (t3 - t4)
+        scale = (np.abs(t1) + np.abs(t2)) + (np.abs(t3) + np.abs(t4))
+        # inside (b, d > 0 already), decaying (both kappa with positive real part, so that
+        # p = kappa_1 kappa_2 = +sqrt(p^2) in G) and the unsquared condition
+        ok = ((x > 0) & (x < np.minimum(ai, ci)) & ((sN * sN < 4.0 * pN * N) | (sN > 0))
+              & (np.abs(G) <= rtol * scale))
+    j = i[ok]
+    Xr = np.full(n, np.nan)
+    Xr[j] = x[ok]
+    has = np.zeros(n, dtype=bool)
+    has[j] = True
+    if j.size > np.count_nonzero(has):  # some point has two admissible roots: the smallest |G|/scale
+        with np.errstate(invalid="ignore", divide="ignore"):
+            bad = np.abs(G[ok]) / np.where(scale[ok] > 0, scale[ok], 1.0)
+        order = np.lexsort((kk[ok] // n, bad, j))       # by point, |G|/scale, then larger X
+        js = j[order]
+        first = np.r_[True, js[1:] != js[:-1]]
+        Xr[js[first]] = x[ok][order][first]
+    return Xr * unit, has
 
 
 def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
-    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists (module docstring).
+    """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists, any shape.
 
-    Scale invariant: the five components are divided by their largest magnitude first (so
-    constants in Pa, GPa or reduced units take the same path).
+    The five components broadcast together; see :func:`_select_flat` for the rule.
     """
     a, b, c, d, f = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (a, b, c, d, f)))
-    unit = np.maximum.reduce([np.abs(a), np.abs(b), np.abs(c), np.abs(d), np.abs(f)])
-    unit = np.where(unit > 0, unit, 1.0)
-    a, b, c, d, f = (v / unit for v in (a, b, c, d, f))
-    X = _real_cubic_roots(*secular_coefficients(a, b, c, d, f))  # (..., 3), NaN if not real
-    A5 = [v[..., None] for v in (a, b, c, d, f)]
-    a_, b_, c_, d_, f_ = A5
-    with np.errstate(all="ignore"):
-        inside = (X > 0) & (X < np.minimum(a_, c_)) & (b_ > 0) & (d_ > 0)
-        # Both kappa have positive real part iff kappa^2 are complex conjugates or both positive
-        # (p^2 > 0 holds inside); then p = kappa_1 kappa_2 = +sqrt(p^2) in G.
-        bd = b_ * d_
-        s_ = (b_ * (c_ - X) + d_ * (a_ - X) - (f_ + b_) ** 2) / bd
-        p2 = (a_ - X) * (c_ - X) / bd
-        decaying = (s_ * s_ < 4.0 * p2) | (s_ > 0)
-        G, scale = boundary_function(X, *A5)
-        ok = inside & decaying & (np.abs(G) <= rtol * scale)
-        # Among admissible roots (normally exactly one), take the best boundary residual.
-        badness = np.where(ok, np.abs(G) / scale, np.inf)
-    best = np.argmin(badness, axis=-1)[..., None]
-    has = np.take_along_axis(ok, best, -1)[..., 0]
-    return np.take_along_axis(X, best, -1)[..., 0] * unit, has
+    comp = np.stack([np.ravel(v) for v in (a, b, c, d, f)])
+    X, has = _select_flat(comp, np.abs(comp).max(axis=0), rtol)
+    return X.reshape(a.shape), has.reshape(a.shape)
+
+
+def _solve_flat(S: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+    """Orthotropy check and root of Eq. (17) for S (..., d, d, d, d); X and has, shape (n,).
+
+    Blocks of :data:`BLOCK` points: each is read once from memory for the one-pass
+    orthotropy bound and the gather of a..f, and its temporaries stay in the CPU cache. If
+    a block's bound fails, the exact point-by-point check runs once over all of S.
+    """
+    flat = _flat_tensor(S)
+    n = flat.shape[0]
+    X = np.empty(n)
+    has = np.zeros(n, dtype=bool)
+    checked = False
+    edges = np.linspace(0, n, max(1, round(n / BLOCK)) + 1).astype(int) if n else [0]  # ~BLOCK points
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        block = flat[lo:hi]
+        comp = _gather(block)                                 # (5, m): a, b, c, d, f
+        unit = np.abs(comp).max(axis=0)
+        if not (checked or _surely_orthotropic(block, unit, ORTHOTROPY_TOL)):
+            _orthotropy_error(S, flat, ORTHOTROPY_TOL)        # raises unless all points pass
+            checked = True
+        X[lo:hi], has[lo:hi] = _select_flat(comp, unit, rtol)
+    return X, has
 
 
 def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
@@ -258,13 +381,13 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
         ``kappa1``, ``kappa2`` (complex), all shape S.shape[:-4].
     """
     S = np.asarray(S, dtype=float)
-    check_orthotropic(S)
+    shape = S.shape[:-4]
+    Xr, has = (v.reshape(shape) for v in _solve_flat(S, rtol))
     rho = np.asarray(rho, dtype=float)
     a, b, c, d, f = _sagittal_components(S)
     if c2_SH is None:
-        c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(a.shape, np.nan)
-    c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), a.shape)
-    Xr, has = _select_root(a, b, c, d, f, rtol)
+        c2_SH = S[..., 0, 2, 2, 0] / rho if S.shape[-1] == 3 else np.full(shape, np.nan)
+    c2_SH = np.broadcast_to(np.asarray(c2_SH, dtype=float), shape)
     K1, K2 = decay_constants(Xr, a, b, c, d, f)
     c2_R = np.where(has, Xr / rho, np.nan)
     nan_c = complex(np.nan, np.nan)
@@ -307,8 +430,7 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     0.845299
     """
     S = np.asarray(S, dtype=float)
-    check_orthotropic(S)
-    X, has = _select_root(*_sagittal_components(S))
+    X, has = (v.reshape(S.shape[:-4]) for v in _solve_flat(S))
     return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
 
 
