@@ -7,9 +7,9 @@ from pathlib import Path
 
 # benchmark -> library modules it exercises (inputs, so a code change reruns it)
 BENCH_MODULES = {
-    "rayleigh": ("api", "continuum.rayleigh"),
+    "rayleigh": ("api", "continuum.rayleigh", "report.benchmarks"),
     "stroh": ("continuum.stroh", "continuum.impedance", "continuum.rayleigh"),
-    "point": ("api", "continuum.elastic", "continuum.lattices"),
+    "point": ("api", "continuum.elastic", "continuum.long_wave", "continuum.lattices"),
     "phonons": ("continuum.phonons",),
     "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
     "entropy": ("dynamics.entropy",),
