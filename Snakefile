@@ -70,11 +70,13 @@ onstart:
 onsuccess:
     for _line in cache.run_summary(cache.DEFAULT_ROOT):
         print(_line, file=sys.stderr)
+    exit_now()
 
 
 onerror:
     for _line in cache.run_summary(cache.DEFAULT_ROOT):
         print(_line, file=sys.stderr)
+    exit_now()
 
 
 include: "workflow/rules/common.smk"

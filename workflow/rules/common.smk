@@ -1,7 +1,10 @@
 # Helpers shared by the rules. Logic lives in surfwave.pipeline.scenes; this file only wires it up.
+import threading
+
 from surfwave.data import cache
 from surfwave.data.provenance import module_closure
 from surfwave.pipeline.scenes import job_params, selected, targets
+from surfwave.pipeline.targets import report_entry
 
 #: Software of every rule under `--sdm conda` (the default route is the .venv from the lock).
 CONDA_ENV = "../envs/surfwave.yaml"
@@ -26,3 +29,23 @@ def code(*modules, shallow=()):
     ``shallow`` modules count without their imports (surfwave.data.provenance.module_closure).
     """
     return module_closure(*modules, shallow=shallow)
+
+
+def report_output(key, path, scene):
+    """``path`` wrapped for `snakemake --report` when its output kind has a caption
+    (surfwave.pipeline.targets.REPORT_ENTRIES), else ``path``."""
+    entry = report_entry(key)
+    if entry is None:
+        return path
+    return report(
+        path, caption=f"../report/{entry[0]}", category=entry[1], subcategory=scene
+    )
+
+
+def exit_now():
+    """Let the process end when the run has: Snakemake's scheduler leaves a non-daemon
+    threading.Timer (its once-a-second re-check of the job rate limit) pending, and Python
+    waits up to 1 s for it at exit. Cancelling it after the run changes nothing else."""
+    for thread in threading.enumerate():
+        if isinstance(thread, threading.Timer):
+            thread.cancel()

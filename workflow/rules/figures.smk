@@ -8,55 +8,13 @@
 # outputs need, so a change reruns it only where it can change what it draws.
 # FIGURE_TARGETS is what rule `all` builds.
 from surfwave.pipeline.targets import (
+    figure_group,
     presentation_targets,
     scene_output_inputs,
     scene_outputs,
 )
 
 FIGURE_TARGETS = presentation_targets(SCENES, selected(config, SCENES))
-
-#: Report entry (caption, category) of each output kind (the key's prefix); None: no entry.
-REPORT_ENTRIES = {
-    "speeds": ("speeds_vs_stress.rst", "Fig. 2: sound speeds versus stress"),
-    "table1_png": ("table1_diff.rst", "Table I"),
-    "dispersion": ("dispersion.rst", "Triangular lattice"),
-    "theta_c": ("theta_c.rst", "Triangular lattice"),
-    "displacements": ("fig3_displacements.rst", "Triangular lattice"),
-    "entropy": ("entropy_vs_strain.rst", "Surface entropy"),
-    "surface_wave_angles": ("surface_wave_angles.rst", "Real crystals"),
-    "surface_wave_vs_stress": ("surface_wave_vs_stress.rst", "Real crystals"),
-    "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
-}
-#: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
-#: the figures ride in the job of the first cube stage listed here that they read. Each
-#: of these stages feeds only the figures job, so the group never has an outside job
-#: between two of its members (which Snakemake refuses).
-FIGURE_GROUPS = {
-    "dispersion": "scene_dispersion",
-    "entropy": "scene_entropy",
-    "displacements": "scene_displacements",
-    "bulk": "scene_bulk",
-    "surface_wave": "scene_crystal",
-}
-
-
-def report_entry(key, path, scene):
-    """``path`` wrapped for `snakemake --report` when its kind has a caption (REPORT_ENTRIES)."""
-    for kind, (caption, category) in REPORT_ENTRIES.items():
-        if key == kind or key.startswith(kind + "_"):
-            return report(
-                path,
-                caption=f"../report/{caption}",
-                category=category,
-                subcategory=scene,
-            )
-    return path
-
-
-def figure_group(cubes):
-    """SLURM group of a figures job reading ``cubes`` (FIGURE_GROUPS, else the light chain)."""
-    return next((g for q, g in FIGURE_GROUPS.items() if q in cubes), "scene_light")
-
 
 for _scene in SCENES:
     _outputs = scene_outputs(SCENES, _scene)
@@ -74,7 +32,7 @@ for _scene in SCENES:
             code=code(*_modules, shallow=("plots.scene",)),
         output:
             **{
-                k: report_entry(k, f"results/{{scene}}/{f}", _scene)
+                k: report_output(k, f"results/{{scene}}/{f}", _scene)
                 for k, f in _outputs.items()
             },
         log:

@@ -34,11 +34,51 @@ OUTPUT_NEEDS = {
 }
 
 
+#: Report entry (caption file in workflow/report/, category) of each output kind (the key's
+#: prefix) for `snakemake --report`; kinds not listed (tables, summary) get none.
+REPORT_ENTRIES = {
+    "speeds": ("speeds_vs_stress.rst", "Fig. 2: sound speeds versus stress"),
+    "table1_png": ("table1_diff.rst", "Table I"),
+    "dispersion": ("dispersion.rst", "Triangular lattice"),
+    "theta_c": ("theta_c.rst", "Triangular lattice"),
+    "displacements": ("fig3_displacements.rst", "Triangular lattice"),
+    "entropy": ("entropy_vs_strain.rst", "Surface entropy"),
+    "surface_wave_angles": ("surface_wave_angles.rst", "Real crystals"),
+    "surface_wave_vs_stress": ("surface_wave_vs_stress.rst", "Real crystals"),
+    "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
+}
+#: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
+#: the figures ride in the job of the first cube stage listed here that they read. Each of
+#: these stages feeds only the figures job, so the group never has an outside job between
+#: two of its members (which Snakemake refuses).
+FIGURE_GROUPS = {
+    "dispersion": "scene_dispersion",
+    "entropy": "scene_entropy",
+    "displacements": "scene_displacements",
+    "bulk": "scene_bulk",
+    "surface_wave": "scene_crystal",
+}
+
+
+def _kind(key: str, table: dict):
+    return next((v for k, v in table.items() if key == k or key.startswith(f"{k}_")), None)
+
+
+def report_entry(key: str) -> tuple[str, str] | None:
+    """(caption file, category) of output ``key`` in the Snakemake report, or None."""
+    return _kind(key, REPORT_ENTRIES)
+
+
+def figure_group(cubes) -> str:
+    """SLURM group of a figures job that reads ``cubes`` (FIGURE_GROUPS, else the light chain)."""
+    return next((g for q, g in FIGURE_GROUPS.items() if q in cubes), "scene_light")
+
+
 def _need(key: str) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    for prefix, need in OUTPUT_NEEDS.items():
-        if key == prefix or key.startswith(prefix + "_"):
-            return need
-    raise KeyError(f"no entry for output {key!r} in OUTPUT_NEEDS")
+    need = _kind(key, OUTPUT_NEEDS)
+    if need is None:
+        raise KeyError(f"no entry for output {key!r} in OUTPUT_NEEDS")
+    return need
 
 
 def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
