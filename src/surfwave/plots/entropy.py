@@ -18,6 +18,7 @@ import xarray as xr  # noqa: E402
 from surfwave.data.paper import load_paper_values  # noqa: E402
 from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
 from surfwave.plots.labels import potential_label  # noqa: E402
+from surfwave.plots.output import savefig  # noqa: E402
 from surfwave.validate import as_1d  # noqa: E402
 
 #: The paper's zero-stress values (section III.C) drawn as markers: label -> key in
@@ -82,7 +83,7 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
     path = Path(path)
     if "potential" not in ds.dims:
         ds = ds.expand_dims(potential=["?"])
-    fig, (ax, axb) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (ax, axb) = plt.subplots(1, 2, figsize=(10, 4), layout="constrained")
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for i, pot in enumerate(ds["potential"].values):
         sub = ds.sel(potential=pot)
@@ -108,10 +109,7 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
     axb.set_title("Bulk mean log frequency")
     axb.legend(fontsize=7)
     axb.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
+    return savefig(fig, path)
 
 
 def convergence(ds: xr.Dataset, path: str | Path) -> Path:
@@ -131,7 +129,7 @@ def convergence(ds: xr.Dataset, path: str | Path) -> Path:
     Path
     """
     path = Path(path)
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4), layout="constrained")
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     styles = ["-", "--", ":", "-."]
     floor = 1e-17  # errors that are exactly 0 are drawn here
@@ -172,7 +170,4 @@ def convergence(ds: xr.Dataset, path: str | Path) -> Path:
     fig.suptitle(f"Surface entropy convergence (cases: {cases})", fontsize=10)
     for ax in axes:
         ax.grid(alpha=0.3, which="both")
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
+    return savefig(fig, path)

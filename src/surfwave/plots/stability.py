@@ -33,17 +33,17 @@ def plot_stability_map(ds: xr.Dataset, path) -> None:
     path : str or Path
         PNG file to write.
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
     from matplotlib.lines import Line2D
 
+    from surfwave.plots.output import savefig  # sets the Agg backend
+
     cmap = ListedColormap(["lightgrey", "tab:red", "tab:orange", "tab:green"])
     claim = paper_max_compression()
     pots = list(ds.potential.values)
-    fig, axes = plt.subplots(len(pots), 1, figsize=(9, 2.2 + 2.2 * len(pots)), squeeze=False)
+    fig, axes = plt.subplots(len(pots), 1, figsize=(9, 2.2 + 2.2 * len(pots)), squeeze=False,
+                             layout="constrained")
     x = ds.d_over_d0.values
     dx = x[1] - x[0] if x.size > 1 else 0.01
     cases = [(load, d) for load in ds.loading.values for d in ds.direction.values]
@@ -74,7 +74,5 @@ def plot_stability_map(ds: xr.Dataset, path) -> None:
     for mk, _, label in _MARKERS.values():
         handles.append(Line2D([], [], ls="", marker=mk, color="k", ms=8, mew=1.5))
         labels.append(label)
-    fig.legend(handles, labels, loc="upper center", ncol=3, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0, 1, 0.90))
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    fig.legend(handles, labels, loc="outside upper center", ncol=3, fontsize=8, frameon=False)
+    savefig(fig, path, dpi=120)
