@@ -206,6 +206,18 @@ _BLOCK = 64
 _OCTANT_DIVISOR = 1
 
 
+def _checked_tensors(C, sigma) -> tuple[np.ndarray, np.ndarray]:
+    """C (s, d, d, d, d) and sigma (s, d, d) as float arrays, d = 2 or 3; InputError otherwise."""
+    C = np.asarray(C, dtype=float)
+    sigma = np.asarray(sigma, dtype=float)
+    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
+        raise InputError(
+            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
+            f"got {C.shape} and {sigma.shape}"
+        )
+    return C, sigma
+
+
 def long_wave_stability(
     C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, refine: int = 12
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -239,13 +251,7 @@ def long_wave_stability(
     direction : ndarray, shape (s, d)
         Unit vector where it occurs.
     """
-    C = np.asarray(C, dtype=float)
-    sigma = np.asarray(sigma, dtype=float)
-    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
-        raise InputError(
-            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
-            f"got {C.shape} and {sigma.shape}"
-        )
+    C, sigma = _checked_tensors(C, sigma)
     dim = C.shape[-1]
     s = C.shape[0]
     M = _wave_tensor_matrix(C, sigma)
@@ -499,13 +505,7 @@ def long_wave_stable(C: np.ndarray, sigma: np.ndarray, n_directions: int = 400, 
     -------
     ndarray of bool, shape (s,)
     """
-    C = np.asarray(C, dtype=float)
-    sigma = np.asarray(sigma, dtype=float)
-    if C.ndim != 5 or sigma.shape != C.shape[:1] + C.shape[-1:] * 2 or C.shape[-1] not in (2, 3):
-        raise InputError(
-            f"need C of shape (s, d, d, d, d) and sigma of shape (s, d, d) with d = 2 or 3; "
-            f"got {C.shape} and {sigma.shape}"
-        )
+    C, sigma = _checked_tensors(C, sigma)
     stable = strongly_convex(C, sigma)
     scan = np.flatnonzero(~stable)
     if scan.size and C.shape[-1] == 3:
