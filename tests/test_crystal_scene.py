@@ -31,7 +31,7 @@ def test_copper_001_100_unstressed():
     """2012.12 m/s (docs/physics/paper.md); along [110] copper's sagittal wave is faster than the slow
     shear bulk wave polarised along [1-10] (sqrt((C11 - C12)/2 rho) = 1620 m/s), so it is the
     mirror-protected supersonic_decoupled kind (docs/physics/paper.md: a mirror-protected wave is labelled, not dropped)."""
-    ds = surface_wave_scene(["Cu"], ["(001)"], [0.0, 45.0])
+    ds = surface_wave_scene([get_material("Cu")], ["(001)"], [0.0, 45.0])
     c = ds.c_R.sel(material="Cu", surface="(001)")
     assert round(float(c.sel(angle=0.0)), 2) == 2012.12
     assert ds.wave_type.sel(material="Cu", surface="(001)").values.tolist() == ["surface",
@@ -47,7 +47,7 @@ def test_mirror_directions_under_stress_match_eq17(name):
     on S = A (Eq. A11) in the lab frame: two independent routes to the same c_R."""
     mat = get_material(name)
     stress = np.array([-0.4, 0.0, 0.3])
-    ds = surface_wave_scene([name], ["(001)"], [0.0, 45.0], stress=stress, loadings=["along"])
+    ds = surface_wave_scene([mat], ["(001)"], [0.0, 45.0], stress=stress, loadings=["along"])
     C = voigt_to_tensor(mat.voigt)
     for angle, axes in ((0.0, np.eye(3)[[0, 2, 1]] * [[1], [-1], [1]]),
                         (45.0, np.array([[1, 1, 0], [0, 0, 1], [1, -1, 0]]) / np.array([[2 ** .5], [1], [2 ** .5]]))):
@@ -62,7 +62,7 @@ def test_mirror_directions_under_stress_match_eq17(name):
 
 def test_isotropic_closed_form_every_surface_and_angle():
     """Poisson ratio 1/4: c_R = 0.919402 c_T whatever the surface and direction."""
-    ds = surface_wave_scene([ISOTROPIC], ["(001)", "(110)", "(111)"], [0.0, 17.0, 45.0, 80.0])
+    ds = surface_wave_scene([get_material(ISOTROPIC)], ["(001)", "(110)", "(111)"], [0.0, 17.0, 45.0, 80.0])
     c_T = np.sqrt(50e9 / 5000.0)
     np.testing.assert_allclose(ds.c_R.values / c_T, np.sqrt(2 - 2 / np.sqrt(3)), rtol=1e-7)
     assert set(ds.wave_type.values.ravel()) == {"surface"}
@@ -75,7 +75,7 @@ def test_mirror_symmetry_in_the_cube_and_reduced_ranges():
     offsets = np.array([3.0, 11.0, 22.0])
     for sf, w in widths.items():
         angles = np.concatenate([w - offsets, w + offsets])
-        ds = surface_wave_scene(["Cu"], [sf], angles).sel(material="Cu", surface=sf)
+        ds = surface_wave_scene([get_material("Cu")], [sf], angles).sel(material="Cu", surface=sf)
         for var in ("c_R", "c_limit"):
             v = ds[var].values
             np.testing.assert_allclose(v[:3], v[3:], rtol=1e-7, err_msg=f"{sf} {var}")
@@ -84,7 +84,7 @@ def test_mirror_symmetry_in_the_cube_and_reduced_ranges():
 def test_loadings_fixed_constants():
     """Fixed constants: 'across' leaves c_R unchanged (sigma_33 meets only d/dx3 terms),
     'biaxial' equals 'along', and axis_100 equals 'along' at angle 0 on (001)."""
-    ds = surface_wave_scene(["Cu"], ["(001)"], [0.0, 30.0], stress=[-0.5, 0.0, 0.5],
+    ds = surface_wave_scene([get_material("Cu")], ["(001)"], [0.0, 30.0], stress=[-0.5, 0.0, 0.5],
                             loadings=["along", "across", "biaxial", "axis_100"], toec=[False])
     c = ds.c_R.sel(material="Cu", surface="(001)", toec=False)
     np.testing.assert_allclose(c.sel(loading="across").values,
@@ -110,7 +110,7 @@ def test_stress_lies_in_the_surface():
 
 def test_toec_needs_third_order_constants():
     with pytest.raises(InputError, match="'W'.*C111"):
-        surface_wave_scene(["W"], ["(001)"], [0.0], stress=[0.0, 0.1], toec=[True])
+        surface_wave_scene([get_material("W")], ["(001)"], [0.0], stress=[0.0, 0.1], toec=[True])
 
 
 def _cfg(**over):
@@ -159,7 +159,7 @@ def test_acoustoelastic_coefficients_match_the_mirror_route(direction, angle):
 
     cu = get_material("Cu")
     h = 1e-3
-    ds = surface_wave_scene(["Cu"], ["(001)"], [angle], stress=[-h, 0.0, h],
+    ds = surface_wave_scene([get_material("Cu")], ["(001)"], [angle], stress=[-h, 0.0, h],
                             loadings=["along", "across", "biaxial"], toec=[False, True])
     K = coefficients(ds).K.sel(material="Cu", surface="(001)", angle=angle)
     ref = acoustoelastic_coefficients(cu.voigt, cu.toec_voigt, cu.rho, "(001)", direction)

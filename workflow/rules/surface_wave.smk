@@ -6,7 +6,9 @@
 rule surface_wave:
     """Surface-wave speed, limiting speed, wave type and polarisation of real crystals."""
     input:
-        code=code("continuum.crystal_scene", "data.cube", "pipeline.stage"),
+        code=code(
+            "continuum.crystal_scene", "data.materials", "data.cube", "pipeline.stage"
+        ),
         materials=MATERIALS,
     output:
         "results/{scene}/surface_wave.nc",

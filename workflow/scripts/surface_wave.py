@@ -7,6 +7,7 @@ import sys
 
 from surfwave.continuum.crystal_scene import METHOD, UNITS_NOTE, surface_wave_scene
 from surfwave.data import cube
+from surfwave.data.materials import get_material
 from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
@@ -16,7 +17,7 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
-ds = surface_wave_scene(job["materials"], job["surfaces"], job["angles"], stress=job["stress"],
+ds = surface_wave_scene([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"], stress=job["stress"],
                         loadings=job["loading"], toec=job["toec"], directions=job["directions"],
                         tol=job["accuracy"].get("tol"))
 for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):

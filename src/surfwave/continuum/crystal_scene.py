@@ -23,7 +23,8 @@ from the third-order constants (:func:`surfwave.continuum.toec.stressed_state`).
 
 Examples
 --------
->>> ds = surface_wave_scene(["Cu"], ["(001)"], [0.0])         # doctest: +SKIP
+>>> from surfwave.data.materials import get_material
+>>> ds = surface_wave_scene([get_material("Cu")], ["(001)"], [0.0])   # doctest: +SKIP
 >>> round(float(ds.c_R.sel(material="Cu", surface="(001)", angle=0.0)), 2)   # doctest: +SKIP
 2012.12
 """
@@ -320,8 +321,10 @@ def surface_wave_scene(
 
     Parameters
     ----------
-    materials : sequence of str
-        Names from :mod:`surfwave.data.materials`.
+    materials : sequence of Material
+        Records of :mod:`surfwave.data.materials` (``get_material(name)``) or any objects
+        with ``name``, ``voigt`` (GPa), ``rho`` (kg/m^3) and ``toec`` (None or GPa): the
+        caller looks the names up, so the physics does not depend on the database.
     surfaces : sequence of str
         Surface planes, e.g. ``["(001)", "(110)"]``.
     angles : array_like, shape (n_angle,)
@@ -354,13 +357,12 @@ def surface_wave_scene(
     Raises
     ------
     InputError
-        Unknown materials or surfaces, an ``axis_<hkl>`` loading outside a surface, or
+        Unknown surfaces, an ``axis_<hkl>`` loading outside a surface, or
         ``toec=True`` for a material without third-order constants.
     """
     from surfwave.continuum import orientation
-    from surfwave.data.materials import get_material
 
-    mats = [get_material(m) for m in materials]
+    mats = list(materials)
     angles = as_1d(angles, "angles")
     stressed = stress is not None
     s = as_1d(stress if stressed else [0.0], "stress")
