@@ -74,3 +74,22 @@ def test_damaged_cube_is_set_aside_for_rebuild(tmp_path):
     lines = set_aside_damaged([bad, good, tmp_path / "missing.nc"])
     assert len(lines) == 1 and str(bad) in lines[0] and "rebuilds" in lines[0]
     assert not bad.exists() and bad.with_name("rayleigh.nc.damaged").exists() and good.exists()
+
+
+def test_legacy_native_complex_cube_still_opens(tmp_path):
+    """A cube written before the real/imag convention (native complex as an HDF5 compound,
+    h5netcdf with invalid_netcdf) opens with open_cube as complex values (reference: the
+    values written)."""
+    import warnings
+
+    import numpy as np
+    import xarray as xr
+
+    from surfwave.data.cube import open_cube
+
+    q = np.array([1 + 2j, 3 - 1j, -0.5j])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # h5netcdf warns that the file is not plain netCDF
+        xr.Dataset({"q1": ("theta", q)}).to_netcdf(tmp_path / "old.nc", engine="h5netcdf", invalid_netcdf=True)
+    ds = open_cube(tmp_path / "old.nc")
+    assert ds.q1.dtype.kind == "c" and np.array_equal(ds.q1.values, q)

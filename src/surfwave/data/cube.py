@@ -38,8 +38,9 @@ from surfwave.data.atomic import atomic_write
 from surfwave.errors import InputError
 from surfwave.data.integrity import check_readable, rebuild_hint
 
-#: netCDF engine used on write and read.
-ENGINE = "h5netcdf"
+#: netCDF engine used on write and read: the netCDF-C library (netCDF4-python); on this
+#: machine it writes a cube 4-5x and opens one 7x faster than h5netcdf.
+ENGINE = "netcdf4"
 CONVENTIONS = "CF-1.10"
 #: Trailing dimension holding the real and imaginary parts of a complex variable.
 COMPLEX_DIM = "complex"
@@ -363,4 +364,14 @@ def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:
     if load:
         with ds:
             ds = ds.load()
-    return decode_complex(ds)
+    return decode_complex(_legacy_complex(ds))
+
+
+def _legacy_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Complex values of cubes written before the real/imag convention (HDF5 compound
+    members r, i, as h5netcdf wrote them) as complex arrays."""
+    for name, var in ds.variables.items():
+        if var.dtype.names == ("r", "i"):
+            values = np.asarray(var.values)
+            ds[name] = var.copy(data=values["r"] + 1j * values["i"])
+    return ds
