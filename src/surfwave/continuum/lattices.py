@@ -33,6 +33,7 @@ import numpy as np
 from surfwave.errors import GeometryError, InputError
 from surfwave.continuum.orientation import lab_axes
 from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.validate import as_1d
 
 Lattice = Literal["fcc", "triangular"]
 Loading = Literal["uniaxial", "in_plane_hydrostatic"]
@@ -139,16 +140,6 @@ def d_over_d0_range(lattice: str, loading: str) -> tuple[float, float]:
     if loading == "in_plane_hydrostatic":
         return (0.0, float(np.sqrt(2.0)))
     return (0.0, np.inf)  # uniaxial FCC: limited only by the lateral solve
-
-
-def as_1d(values, name: str = "d_over_d0") -> np.ndarray:
-    """``values`` (scalar or 1-D) as a float array, shape (n,); InputError naming ``name`` otherwise."""
-    a = np.atleast_1d(np.asarray(values, dtype=float))
-    if a.ndim != 1:
-        raise InputError(f"{name} must be a scalar or a 1-D array, got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:5]}")
-    return a
 
 
 def check_d_over_d0(lattice: str, loading: str, d_over_d0) -> np.ndarray:

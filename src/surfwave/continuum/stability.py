@@ -25,6 +25,7 @@ from surfwave.continuum.phonons import (
 )
 from surfwave.continuum.potentials import PairPotential, get_potential
 from surfwave.errors import GeometryError, InputError
+from surfwave.validate import as_1d
 
 
 def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
@@ -78,7 +79,7 @@ def stability_scan(
         ``min_omega2`` (n,) K/m, ``min_omega2_q`` (n, 3) rad/d0, ``min_c2_phonopy`` (n,)
         K d0^2/m, ``reason`` (n,) str. Points that cannot be built are False in both flags.
     """
-    s = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    s = as_1d(d_over_d0, finite=False)  # per point, as bulk_speeds: a non-finite point is NaN
     bulk = bulk_speeds(
         lattice,
         loading,

@@ -36,6 +36,7 @@ import spglib.error
 from surfwave.errors import SymmetryError
 from surfwave.continuum.lattices import build
 from surfwave.continuum.potentials import PairPotential
+from surfwave.validate import as_1d
 
 spglib.error.OLD_ERROR_HANDLING = False
 
@@ -327,7 +328,7 @@ def crystal_symmetry(
 
 def require_mirrors(result: dict, d_over_d0, what: str = "") -> None:
     """Raise :class:`SymmetryError` naming the first d/d0 whose lattice lacks a needed mirror."""
-    d = np.atleast_1d(np.asarray(d_over_d0, dtype=float))
+    d = as_1d(d_over_d0)
     for name in MIRRORS:
         bad = ~np.asarray(result[name], dtype=bool)
         if bad.any():
