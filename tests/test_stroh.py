@@ -325,3 +325,34 @@ def test_decay_pair_order_does_not_follow_rounding():
         noise = 1 + 1e-13 * rng.standard_normal(A.shape)
         got = stroh.surface_wave(A * noise, CU["rho"], mirror=False)
         np.testing.assert_allclose(got["decay"], ref["decay"], rtol=1e-9, atol=1e-12)
+
+
+def test_tracked_stroh_roots_equal_eigenvalues_of_n():
+    """The root search refines the decaying p of its last step by Newton on the Stroh
+    polynomial det(Q - X + p (R + R^T) + p^2 T) instead of the eigenvalues of N. Reference:
+    numpy's eigenvalues of N (LAPACK) for random triclinic media at X = X_L / 2: the
+    polynomial's roots (numpy.roots) are N's eigenvalues; tracking from guesses off by 1e-2
+    returns the decaying ones, and the impedance, its lowest eigenvalue and derivative are those
+    of the eigenvalue route. Guesses collapsing onto one root, or X above X_L (real roots), are
+    refused (ok False) so that the caller falls back to the eigenvalues."""
+    rng = np.random.default_rng(5)
+    B = rng.normal(size=(12, 6, 6))
+    A = voigt_to_tensor(B @ np.swapaxes(B, 1, 2) + 2 * np.eye(6))
+    A = A / np.abs(A).max(axis=(1, 2, 3, 4), keepdims=True)
+    Q, R, T = impedance.stroh_blocks(A)
+    X = 0.5 * impedance.limiting_x(Q, R, T)[0]
+    c = impedance.stroh_polynomial(Q, R, T, X)
+    ev = np.linalg.eigvals(impedance.stroh_matrix(Q, R, T, X))
+    up = np.sort_complex(np.where(ev.imag > 0, ev, np.nan))[:, :3]        # NaN sorts last
+    for k in range(len(X)):
+        np.testing.assert_allclose(np.sort_complex(np.roots(c[k, ::-1])), np.sort_complex(ev[k]), atol=1e-10)
+    got, ok = impedance.track_roots(c, up * (1 + 1e-2 * rng.standard_normal(up.shape)))
+    assert ok.all()
+    np.testing.assert_allclose(np.sort_complex(got), up, rtol=1e-12)
+    ref = impedance.impedance(Q, R, T, X, derivative=True)
+    new = impedance.impedance(Q, R, T, X, derivative=True, p_guess=up * (1 + 1e-3))
+    for key in ("Z", "p", "lam", "dlam"):
+        np.testing.assert_allclose(new[key], ref[key], rtol=1e-11, atol=1e-12)
+    assert not impedance.track_roots(c, up[:, [0, 0, 2]])[1].any()                 # collapsed guesses
+    XL = impedance.limiting_x(Q, R, T)[0]
+    assert not impedance.track_roots(impedance.stroh_polynomial(Q, R, T, 1.2 * XL), up)[1].any()

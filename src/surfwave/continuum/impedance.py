@@ -184,7 +184,77 @@ def stroh_matrix(Q, R, T, X) -> np.ndarray:
     return np.concatenate([top, bottom], axis=-2)
 
 
-def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
+#: Newton steps allowed when tracking the Stroh roots from a guess (else: eigenvalues of N).
+TRACK_STEPS = 8
+#: Tracked roots must be apart by this much relative to max |p|, and Im p above it (else: eigenvalues).
+TRACK_SEPARATION = 1e-6
+
+
+def _pmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Product of stacked polynomials, ascending coefficients (..., k) x (..., l) -> (..., k + l - 1)."""
+    out = np.zeros(np.broadcast_shapes(a.shape[:-1], b.shape[:-1]) + (a.shape[-1] + b.shape[-1] - 1,))
+    for i in range(a.shape[-1]):
+        out[..., i:i + b.shape[-1]] += a[..., i, None] * b
+    return out
+
+
+def stroh_polynomial(Q, R, T, X) -> np.ndarray:
+    """Coefficients of det(Q - X I + p (R + R^T) + p^2 T), ascending in p, shape (m, 2d + 1).
+
+    Its roots are the Stroh eigenvalues p (the eigenvalues of N(X)): a partial wave
+    a exp(ik(x1 + p x2)) solves the equation of motion iff this matrix annihilates a.
+    Expanded exactly (cofactors of the matrix of quadratics), no interpolation.
+    """
+    d = Q.shape[-1]
+    G = np.stack([Q - X[:, None, None] * np.eye(d), R + np.swapaxes(R, -1, -2), T], axis=-1)  # (m, d, d, 3)
+    if d == 2:
+        return _pmul(G[:, 0, 0], G[:, 1, 1]) - _pmul(G[:, 0, 1], G[:, 1, 0])
+    return (_pmul(G[:, 0, 0], _pmul(G[:, 1, 1], G[:, 2, 2]) - _pmul(G[:, 1, 2], G[:, 2, 1]))
+            - _pmul(G[:, 0, 1], _pmul(G[:, 1, 0], G[:, 2, 2]) - _pmul(G[:, 1, 2], G[:, 2, 0]))
+            + _pmul(G[:, 0, 2], _pmul(G[:, 1, 0], G[:, 2, 1]) - _pmul(G[:, 1, 1], G[:, 2, 0])))
+
+
+def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The d roots with Im p > 0 of the real polynomials c (m, 2d + 1), from nearby guesses (m, d).
+
+    Newton's method on each guess (the roots move little between the evaluations of a root
+    search). Accepted only where every root converged (last step below 1e-13 |p|, so that the
+    quadratic convergence has reached rounding), the d roots are distinct and off the real
+    axis by ``TRACK_SEPARATION`` relative: d distinct roots in the upper half plane of a real
+    polynomial of degree 2d with no real root are all of them (the others are their
+    conjugates). Elsewhere ``ok`` is False and the caller uses the eigenvalues of N.
+
+    Returns
+    -------
+    p : ndarray, shape (m, d), complex
+    ok : ndarray, shape (m,), bool
+    """
+    z = np.array(guess, dtype=complex)
+    ok = np.isfinite(z).all(axis=-1)
+    z = np.where(np.isfinite(z), z, 1j)
+    cc = c[:, ::-1, None]                                          # descending, broadcast over roots
+    conv = np.zeros(z.shape, dtype=bool)
+    with np.errstate(all="ignore"):
+        for _ in range(TRACK_STEPS):
+            P, dP = cc[:, 0] + 0j, np.zeros(z.shape, dtype=complex)
+            for k in range(1, cc.shape[1]):
+                dP = dP * z + P
+                P = P * z + cc[:, k]
+            step = P / dP
+            z = z - step
+            conv = np.abs(step) <= 1e-13 * np.abs(z)
+            if conv.all():
+                break
+        scale = np.abs(z).max(axis=-1)
+        ok &= conv.all(axis=-1) & np.isfinite(z).all(axis=-1) & (z.imag > TRACK_SEPARATION * scale[:, None]).all(axis=-1)
+        d = z.shape[-1]
+        for i in range(d):
+            for j in range(i + 1, d):
+                ok &= np.abs(z[:, i] - z[:, j]) > TRACK_SEPARATION * scale
+    return z, ok
+
+
+def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> dict:
     """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
 
     Parameters
@@ -198,6 +268,10 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
     N0 : ndarray, shape (m, 2d, 2d), optional
         ``stroh_matrix(Q, R, T, 0)``, to save its recomputation in a root search
         (N(X) = N0 + X [[0, 0], [I, 0]]).
+    p_guess : ndarray, shape (m, d), complex, optional
+        The decaying p at a nearby X (the previous step of a root search): they are then
+        refined by :func:`track_roots` on :func:`stroh_polynomial` instead of computing the
+        eigenvalues of N, where that succeeds.
 
     Returns
     -------
@@ -223,16 +297,26 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None) -> dict:
     else:
         N = N0.copy()
         N[:, d:, :d] += X[:, None, None] * np.eye(d)
-    ev = np.linalg.eigvals(N)
-    order = np.argsort(ev.imag, axis=-1)
-    ev = np.take_along_axis(ev, order, axis=-1)
-    lower, upper = ev[:, :d], ev[:, d:]
+    upper = np.full((len(X), d), np.nan + 0j)
+    ok = np.zeros(len(X), dtype=bool)
+    subsonic = np.ones(len(X), dtype=bool)                        # tracked roots have Im p > 0
+    if p_guess is not None:
+        upper, ok = track_roots(stroh_polynomial(Q, R, T, X), p_guess)
+    if not ok.all():
+        miss = ~ok
+        ev = np.linalg.eigvals(N[miss])
+        order = np.argsort(ev.imag, axis=-1)
+        ev = np.take_along_axis(ev, order, axis=-1)
+        lo, up = ev[:, :d], ev[:, d:]
+        # N is real: the lower eigenvalues are the conjugates of the upper ones (to rounding)
+        subsonic[miss] = (lo.imag[:, -1] < -1e-10) & (up.imag[:, 0] > 1e-10)
+        upper[miss] = up
+    lower = np.conj(upper)
     # a pair p, -conj(p) has equal Im p (mirror directions): order it by Re p as well, so that
     # the decay constants come out in the same order whatever the rounding of the input
     scale = np.abs(upper).max(axis=-1, keepdims=True) + 1e-300
     upper = np.take_along_axis(upper, np.lexsort((upper.real, np.round(upper.imag / scale, 9)), axis=-1),
                                axis=-1)
-    subsonic = (lower.imag[:, -1] < -1e-10) & (upper.imag[:, 0] > 1e-10)
     eye = np.eye(2 * d)
     W = N - lower[:, 0, None, None] * eye
     for j in range(1, d):

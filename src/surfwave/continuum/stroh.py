@@ -139,18 +139,19 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
         return X, found, U, P
     N0 = imp.stroh_matrix(Q, R, T, np.zeros(m))
 
-    def ev(i, t):
-        r = imp.impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), derivative=True, N0=N0[i])
+    def ev(i, t, guess=None):
+        r = imp.impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), derivative=True, N0=N0[i], p_guess=guess)
         return r["lam"], r["dlam"] * (-2.0 * t * XL[i]), r["u"], r["p"]   # d lam / dt
 
     idx = np.arange(m)
     lo, hi = np.full(m, T_MIN), np.ones(m)
     hi_checked = np.zeros(m, dtype=bool)
     t = np.full(m, T_START)
+    guess = None                                                   # the decaying p of the last step
     for _ in range(MAX_ITER):
         if idx.size == 0:
             break
-        lam, dlam, u, p = ev(idx, t)
+        lam, dlam, u, p = ev(idx, t, guess)
         bad = ~np.isfinite(lam)
         lam = np.where(bad, -1.0, lam)                             # supersonic by rounding: root lies above
         neg = lam <= 0
@@ -179,7 +180,7 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
         found[idx[done]] = np.isfinite(new[done])
         U[idx[done]], P[idx[done]] = u[done], p[done]
         keep = ~done
-        idx, lo, hi, t, hi_checked = idx[keep], lo[keep], hi[keep], new[keep], hi_checked[keep]
+        idx, lo, hi, t, hi_checked, guess = idx[keep], lo[keep], hi[keep], new[keep], hi_checked[keep], p[keep]
     return X, found, U, P
 
 
