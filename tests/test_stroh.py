@@ -356,3 +356,36 @@ def test_tracked_stroh_roots_equal_eigenvalues_of_n():
     assert not impedance.track_roots(c, up[:, [0, 0, 2]])[1].any()                 # collapsed guesses
     XL = impedance.limiting_x(Q, R, T)[0]
     assert not impedance.track_roots(impedance.stroh_polynomial(Q, R, T, 1.2 * XL), up)[1].any()
+
+
+@pytest.mark.parametrize("medium", ["triclinic", "isotropic"])
+def test_impedance_derivative_by_cayley_hamilton(medium):
+    """d lam / dX of the impedance's lowest eigenvalue, which the solver gets from the
+    Sylvester equation dM K1 - K2 dM = I through Cayley-Hamilton (dM = G f(K1)^-1). References:
+    (a) the same Sylvester equation solved as its d^2 x d^2 Kronecker linear system (numpy),
+    (b) a central finite difference of lam (step 1e-6 X, error ~1e-8). Random triclinic media,
+    and an isotropic one (equal Stroh roots: a Jordan block, where eigenvectors fail)."""
+    rng = np.random.default_rng(7)
+    if medium == "triclinic":
+        B = rng.normal(size=(8, 6, 6))
+        A = voigt_to_tensor(B @ np.swapaxes(B, 1, 2) + 2 * np.eye(6))
+    else:
+        A = np.stack([_cubic_A(3.0, 1.0, 1.0, "(001)", a) for a in (0.0, 17.0, 33.0)])
+    A = A / np.abs(A).max(axis=(1, 2, 3, 4), keepdims=True)
+    Q, R, T = impedance.stroh_blocks(A)
+    X = 0.7 * impedance.limiting_x(Q, R, T)[0]
+    r = impedance.impedance(Q, R, T, X, derivative=True)
+    N = impedance.stroh_matrix(Q, R, T, X)
+    M = 1j * r["Z"]
+    K1, K2 = N[:, :3, :3] + N[:, :3, 3:] @ M, N[:, 3:, 3:] - M @ N[:, :3, 3:]
+    e = np.eye(3)
+    L = (np.einsum("ia,mbj->mijab", e, K1) - np.einsum("mia,bj->mijab", K2, e)).reshape(-1, 9, 9)
+    dM = np.linalg.solve(L, np.broadcast_to(e.reshape(9, 1), (len(X), 9, 1)))[..., 0].reshape(-1, 3, 3)
+    u = r["u"]
+    ref = np.einsum("mi,mij,mj->m", np.conj(u), -1j * dM, u).real
+    np.testing.assert_allclose(r["dlam"], ref, rtol=1e-9)
+    h = 1e-6 * X
+    fd = (impedance.impedance(Q, R, T, X + h, derivative=True)["lam"]
+          - impedance.impedance(Q, R, T, X - h, derivative=True)["lam"]) / (2 * h)
+    np.testing.assert_allclose(r["dlam"], fd, rtol=1e-6)
+    assert np.all(r["dlam"] < 0)                                   # Z decreases with X

@@ -254,6 +254,15 @@ def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return z, ok
 
 
+def _monic(roots: np.ndarray) -> np.ndarray:
+    """Ascending coefficients c (m, d + 1) of prod_j (z - roots_j), roots (m, d); c_d = 1."""
+    c = np.zeros(roots.shape[:-1] + (roots.shape[-1] + 1,), dtype=complex)
+    c[..., 0] = 1.0
+    for j in range(roots.shape[-1]):                               # multiply by (z - r_j), descending
+        c[..., 1:j + 2] = c[..., 1:j + 2] - roots[..., j, None] * c[..., 0:j + 1]
+    return c[..., ::-1]
+
+
 def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> dict:
     """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
 
@@ -288,8 +297,11 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
     The derivative: M = B A^-1 solves the Riccati equation M N1 + M N2 M = N3 + N4 M (N in
     blocks N1..N4); as dN3/dX = I, dM/dX solves the Sylvester equation
     dM K1 - K2 dM = I with K1 = N1 + N2 M (eigenvalues: the decaying p) and K2 = N4 - M N2
-    (the growing ones), solved as a d^2 x d^2 linear system. Then dZ = -i dM and
-    d lam / dX = u^H dZ u (first-order perturbation of a simple eigenvalue).
+    (the growing ones). With f(z) = prod_j (z - conj p_j) = sum_k c_k z^k, f(K2) = 0 and
+    dM K1^k - K2^k dM = sum_{j<k} K2^j K1^(k-1-j), so dM = G f(K1)^-1 with
+    G = sum_k c_k sum_{j<k} K2^j K1^(k-1-j) (f(K1) is invertible: the spectra are disjoint).
+    Like W, this uses the roots only through f, so degenerate p cost no accuracy. Then
+    dZ = -i dM and d lam / dX = u^H dZ u (first-order perturbation of a simple eigenvalue).
     """
     d = Q.shape[-1]
     if N0 is None:
@@ -317,10 +329,13 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
     scale = np.abs(upper).max(axis=-1, keepdims=True) + 1e-300
     upper = np.take_along_axis(upper, np.lexsort((upper.real, np.round(upper.imag / scale, 9)), axis=-1),
                                axis=-1)
-    eye = np.eye(2 * d)
-    W = N - lower[:, 0, None, None] * eye
-    for j in range(1, d):
-        W = W @ (N - lower[:, j, None, None] * eye)
+    # W = f(N), f(z) = prod_j (z - conj p_j) = sum_k c_k z^k: real powers of the real N
+    c = _monic(lower)
+    W = c[:, 0, None, None] * np.eye(2 * d) + c[:, 1, None, None] * N
+    Nk = N
+    for k in range(2, d + 1):
+        Nk = Nk @ N
+        W = W + c[:, k, None, None] * Nk
     W1, W2 = W[:, :d, :], W[:, d:, :]
     W1H = np.conj(np.swapaxes(W1, -1, -2))
     with np.errstate(all="ignore"):
@@ -339,15 +354,23 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
         w, v = np.linalg.eigh(Zs)
         u = v[..., 0]
         n1, n2, n4 = N[:, :d, :d], N[:, :d, d:], N[:, d:, d:]
-        K1 = n1 + n2 @ M
-        K2 = n4 - M @ n2
-        e = np.eye(d)
-        L = (np.einsum("ia,...bj->...ijab", e, K1) - np.einsum("...ia,bj->...ijab", K2, e)).reshape(-1, d * d, d * d)
+        # f(K2) = 0 (Cayley-Hamilton: K2's eigenvalues are the growing p), so the Sylvester
+        # equation gives dM f(K1) = G := sum_k c_k sum_{j<k} K2^j K1^(k-1-j); and as N [I; M] =
+        # [I; M] K1 (the Riccati equation), f(K1) = W11 + W12 M. Only u^H G f(K1)^-1 u is needed:
+        # with y = f(K1)^-1 u, a_j = u^H K2^j, b_i = K1^i y it is sum_k c_k sum_{j<k} a_j . b_(k-1-j)
+        # (vector-matrix products only).
+        fK1 = W1[:, :, :d] + W1[:, :, d:] @ M
         with np.errstate(all="ignore"):
-            dM = np.linalg.solve(np.where(bad[:, None, None], np.eye(d * d), L),
-                                 np.broadcast_to(e.reshape(d * d), (len(X), d * d))[..., None])[..., 0]
-        dZ = -1j * dM.reshape(-1, d, d)
+            y = np.linalg.solve(np.where(bad[:, None, None], np.eye(d), fK1), u[..., None])[..., 0]
+        uc = np.conj(u)
+        aj, bi = [uc], [y]
+        for _ in range(1, d):
+            aM = np.einsum("mi,mij->mj", aj[-1], M)
+            aj.append(np.einsum("mi,mij->mj", aj[-1], n4) - np.einsum("mi,mij->mj", aM, n2))
+            bi.append(np.einsum("mij,mj->mi", n1, bi[-1]) + np.einsum("mij,mj->mi", n2, np.einsum("mij,mj->mi", M, bi[-1])))
+        uGy = sum(c[:, k] * sum(np.einsum("mi,mi->m", aj[j], bi[k - 1 - j]) for j in range(k)) for k in range(1, d + 1))
         out["lam"] = np.where(bad, np.nan, w[:, 0])
         out["u"] = u
-        out["dlam"] = np.where(bad, np.nan, np.einsum("mi,mij,mj->m", np.conj(u), dZ, u).real)
+        # d lam / dX = u^H dZ u, dZ = -i dM = -i G f(K1)^-1
+        out["dlam"] = np.where(bad, np.nan, (-1j * uGy).real)
     return out
