@@ -389,3 +389,26 @@ def test_impedance_derivative_by_cayley_hamilton(medium):
           - impedance.impedance(Q, R, T, X - h, derivative=True)["lam"]) / (2 * h)
     np.testing.assert_allclose(r["dlam"], fd, rtol=1e-6)
     assert np.all(r["dlam"] < 0)                                   # Z decreases with X
+
+
+def test_root_search_equals_bracketing_root_finder():
+    """The root search (Newton, then inverse cubic Hermite steps through the two latest points,
+    safeguarded by a bracket) against scipy's brentq (bracketing only, no derivatives) on the
+    impedance's lowest eigenvalue (numpy eigvalsh of Z, the eigenvalue route for the roots,
+    no tracking) over (0, X_L): Cu on three surfaces at non-mirror angles, Pb (strongly
+    anisotropic, root close to X_L) and a random triclinic medium; agreement to 1e-12."""
+    rng = np.random.default_rng(11)
+    B = rng.normal(size=(6, 6))
+    As = [_cubic_A(CU["C11"], CU["C12"], CU["C44"], s, a) for s, a in (("(001)", 20.0), ("(110)", 61.0), ("(111)", 7.0))]
+    As += [_cubic_A(PB["C11"], PB["C12"], PB["C44"], "(001)", 30.0), voigt_to_tensor(B @ B.T + 2 * np.eye(6))]
+    A = np.stack(As)
+    A = A / np.abs(A).max(axis=(1, 2, 3, 4), keepdims=True)
+    r = stroh.surface_wave(A, 1.0, mirror=False, tol=1e-14)
+    Q, R, T = impedance.stroh_blocks(A)
+    XL = r["c_limit"] ** 2
+    for k in range(len(A)):
+        def lam(X):
+            return np.linalg.eigvalsh(impedance.impedance(Q[k:k + 1], R[k:k + 1], T[k:k + 1], np.array([X]))["Z"][0])[0]
+        X = brentq(lam, 1e-9 * XL[k], XL[k] * (1 - 1e-13), xtol=1e-16 * XL[k], rtol=1e-15)
+        assert r["wave_type"][k] == "surface"
+        assert r["c"][k] ** 2 == pytest.approx(X, rel=1e-12)
