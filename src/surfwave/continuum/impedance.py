@@ -150,16 +150,20 @@ def _refine(Q, R, T, phi0, h):
     trust = h * (1.0 + p * p)                                      # the grid cell in p
     RR = R + np.swapaxes(R, -1, -2)
     best, best_p = np.full(p.shape, np.inf), p.copy()
+    idx = np.arange(len(p))                                        # rows still iterating
     for _ in range(LIMIT_STEPS + 1):
-        G = Q + p[:, None, None] * RR + (p * p)[:, None, None] * T
+        if idx.size == 0:
+            break
+        q, r, t, pi = Q[idx], RR[idx], T[idx], p[idx]
+        G = q + pi[:, None, None] * r + (pi * pi)[:, None, None] * t
         w, V = np.linalg.eigh(G)
         lam = w[:, 0]
-        better = lam < best
-        best, best_p = np.where(better, lam, best), np.where(better, p, best_p)
+        better = lam < best[idx]
+        best[idx], best_p[idx] = np.where(better, lam, best[idx]), np.where(better, pi, best_p[idx])
         a0 = V[:, :, 0]
-        G1a = np.einsum("mij,mj->mi", RR + 2.0 * p[:, None, None] * T, a0)
+        G1a = np.einsum("mij,mj->mi", r + 2.0 * pi[:, None, None] * t, a0)
         d1 = np.einsum("mi,mi->m", a0, G1a)
-        d2 = 2.0 * np.einsum("mi,mij,mj->m", a0, T, a0)
+        d2 = 2.0 * np.einsum("mi,mij,mj->m", a0, t, a0)
         scale = np.abs(w).max(axis=1)
         for j in (1, 2)[: Q.shape[-1] - 1]:
             gap = w[:, 0] - w[:, j]
@@ -167,8 +171,12 @@ def _refine(Q, R, T, phi0, h):
             with np.errstate(all="ignore"):
                 d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
         with np.errstate(all="ignore"):
-            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust)
-        p = p + np.clip(np.nan_to_num(step), -trust, trust)
+            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust[idx])
+        step = np.clip(np.nan_to_num(step), -trust[idx], trust[idx])
+        p[idx] = pi + step
+        # near a smooth minimum lam(p + step) = lam(p) - d2 step^2 / 2 + ...: where that gain is
+        # below the rounding of lam (eps max|w|) the row is done
+        idx = idx[~((d2 > 0) & (0.5 * d2 * step * step <= 1e-16 * scale))]
     return best, np.arctan(best_p)
 
 
