@@ -412,3 +412,23 @@ def test_root_search_equals_bracketing_root_finder():
         X = brentq(lam, 1e-9 * XL[k], XL[k] * (1 - 1e-13), xtol=1e-16 * XL[k], rtol=1e-15)
         assert r["wave_type"][k] == "surface"
         assert r["c"][k] ** 2 == pytest.approx(X, rel=1e-12)
+
+
+def test_lowest_eigenpair_closed_form_equals_lapack():
+    """impedance.lowest_eigenpair (cubic in closed form, Newton-polished, cross-product
+    eigenvector) against numpy's eigh (LAPACK) on random Hermitian 3 x 3 matrices, including
+    ones with the upper two (closed form ill-conditioned) or lower two (fallback) eigenvalues
+    equal to 1e-12, and on a 2 x 2 batch: eigenvalue to 1e-14 of max|Z|, eigenvector up to phase."""
+    rng = np.random.default_rng(13)
+    U, _ = np.linalg.qr(rng.normal(size=(300, 3, 3)) + 1j * rng.normal(size=(300, 3, 3)))
+    w = np.sort(rng.normal(size=(300, 3)), axis=-1)
+    w[100:200, 2] = w[100:200, 1] * (1 + 1e-12)                          # upper pair degenerate
+    w[200:, 1] = w[200:, 0] + 1e-12                                      # lower pair degenerate
+    Z = np.einsum("mij,mj,mkj->mik", U, w, np.conj(U))
+    Z2 = Z[:50, :2, :2]
+    for M, simple in ((Z, slice(0, 200)), (Z2, slice(None))):
+        lam, u = impedance.lowest_eigenpair(M)
+        ref, v = np.linalg.eigh(M)
+        np.testing.assert_allclose(lam, ref[:, 0], atol=1e-14 * np.abs(M).max())
+        np.testing.assert_allclose(np.linalg.norm(M @ u[..., None], axis=(1, 2)), np.abs(lam), atol=1e-13)
+        np.testing.assert_allclose(np.abs(np.einsum("mi,mi->m", np.conj(u), v[:, :, 0]))[simple], 1.0, atol=1e-12)

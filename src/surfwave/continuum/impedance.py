@@ -262,6 +262,52 @@ def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return z, ok
 
 
+def lowest_eigenpair(Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Lowest eigenvalue and a unit eigenvector of Hermitian Z, shape (m, d, d) -> (m,), (m, d).
+
+    For d = 3 in closed form: the trigonometric solution of the characteristic cubic, polished
+    by two Newton steps on det(Z - lam I) (the closed form alone loses accuracy when the upper
+    two eigenvalues nearly coincide), the eigenvector as the largest cross product of two rows
+    of Z - lam I (r_i . (r_i x r_j) = 0 holds for complex rows too). Rows whose lowest
+    eigenvalue is within 1e-4 max|Z| of the next one (eigenvector ill-determined, the cubic's
+    Newton step ill-conditioned) and d = 2 use LAPACK (numpy.linalg.eigh).
+    """
+    m, d = Z.shape[0], Z.shape[-1]
+    if d != 3:
+        w, v = np.linalg.eigh(Z)
+        return w[:, 0], v[:, :, 0]
+    a, b, c = Z[:, 0, 0].real, Z[:, 1, 1].real, Z[:, 2, 2].real
+    x, y, z = Z[:, 0, 1], Z[:, 0, 2], Z[:, 1, 2]
+    xx, yy, zz = x.real ** 2 + x.imag ** 2, y.real ** 2 + y.imag ** 2, z.real ** 2 + z.imag ** 2
+    rexyz = (x * z * np.conj(y)).real
+    q = (a + b + c) / 3.0
+    a1, b1, c1 = a - q, b - q, c - q
+    with np.errstate(all="ignore"):
+        pp = np.sqrt((a1 * a1 + b1 * b1 + c1 * c1 + 2.0 * (xx + yy + zz)) / 6.0)
+        det = a1 * b1 * c1 + 2.0 * rexyz - a1 * zz - b1 * yy - c1 * xx
+        phi = np.arccos(np.clip(np.nan_to_num(det / (2.0 * pp ** 3)), -1.0, 1.0)) / 3.0
+        lam = q + 2.0 * pp * np.cos(phi + 2.0 * np.pi / 3.0)
+        top = q + 2.0 * pp * np.cos(phi)
+        gap = (3.0 * q - top - lam) - lam                             # middle minus lowest
+        for _ in range(2):
+            al, bl, cl = a - lam, b - lam, c - lam
+            chi = al * bl * cl + 2.0 * rexyz - al * zz - bl * yy - cl * xx
+            dchi = xx + yy + zz - (bl * cl + al * cl + al * bl)
+            lam = lam - np.where(dchi != 0, chi / dchi, 0.0)
+        H = Z - lam[:, None, None] * np.eye(3)
+        r0, r1, r2 = H[:, 0], H[:, 1], H[:, 2]
+        cands = np.stack([np.cross(r0, r1), np.cross(r0, r2), np.cross(r1, r2)], axis=1)   # (m, 3, 3)
+        nrm = np.linalg.norm(cands, axis=-1)
+        k = np.argmax(nrm, axis=1)
+        u = cands[np.arange(m), k] / nrm[np.arange(m), k, None]
+    scale = np.abs(Z).max(axis=(1, 2))
+    fall = ~(np.isfinite(u).all(axis=-1) & np.isfinite(lam) & (gap > 1e-4 * scale))
+    if fall.any():
+        w, v = np.linalg.eigh(Z[fall])
+        lam[fall], u[fall] = w[:, 0], v[:, :, 0]
+    return lam, u
+
+
 def _monic(roots: np.ndarray) -> np.ndarray:
     """Ascending coefficients c (m, d + 1) of prod_j (z - roots_j), roots (m, d); c_d = 1."""
     c = np.zeros(roots.shape[:-1] + (roots.shape[-1] + 1,), dtype=complex)
@@ -359,8 +405,7 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
     out = {"Z": Z, "p": upper, "subsonic": subsonic, "f": f}
     if derivative:
         Zs = np.where(bad[:, None, None], np.eye(d), Z)
-        w, v = np.linalg.eigh(Zs)
-        u = v[..., 0]
+        lam, u = lowest_eigenpair(Zs)
         n1, n2, n4 = N[:, :d, :d], N[:, :d, d:], N[:, d:, d:]
         # f(K2) = 0 (Cayley-Hamilton: K2's eigenvalues are the growing p), so the Sylvester
         # equation gives dM f(K1) = G := sum_k c_k sum_{j<k} K2^j K1^(k-1-j); and as N [I; M] =
@@ -377,7 +422,7 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
             aj.append(np.einsum("mi,mij->mj", aj[-1], n4) - np.einsum("mi,mij->mj", aM, n2))
             bi.append(np.einsum("mij,mj->mi", n1, bi[-1]) + np.einsum("mij,mj->mi", n2, np.einsum("mij,mj->mi", M, bi[-1])))
         uGy = sum(c[:, k] * sum(np.einsum("mi,mi->m", aj[j], bi[k - 1 - j]) for j in range(k)) for k in range(1, d + 1))
-        out["lam"] = np.where(bad, np.nan, w[:, 0])
+        out["lam"] = np.where(bad, np.nan, lam)
         out["u"] = u
         # d lam / dX = u^H dZ u, dZ = -i dM = -i G f(K1)^-1
         out["dlam"] = np.where(bad, np.nan, (-1j * uGy).real)
