@@ -40,7 +40,7 @@ def acoustic(Q, R, T, phi) -> np.ndarray:
     Parameters
     ----------
     Q, R, T : ndarray, shape (m, d, d)
-    phi : ndarray, shape (m, k)
+    phi : ndarray, shape (m, k) or (1, k)
 
     Returns
     -------
@@ -63,6 +63,9 @@ def _lowest_eig_closed(Q, R, T, phi) -> np.ndarray:
     cc, sc, ss = c * c, s * c, s * s
 
     def comp(i, j):
+        if phi.shape[0] == 1:                                      # one grid for all: a BLAS product
+            coef = np.stack([Q[:, i, j], R[:, i, j] + R[:, j, i], T[:, i, j]], axis=-1)
+            return coef @ np.concatenate([cc, sc, ss])
         return cc * Q[:, i, j, None] + sc * (R[:, i, j] + R[:, j, i])[:, None] + ss * T[:, i, j, None]
 
     if Q.shape[-1] == 2:
@@ -110,7 +113,7 @@ def limiting_x(Q, R, T) -> tuple[np.ndarray, np.ndarray]:
     m = Q.shape[0]
     h = np.pi / LIMIT_GRID
     grid = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
-    g = _trace_x(Q, R, T, np.broadcast_to(grid, (m, LIMIT_GRID)), exact=False)
+    g = _trace_x(Q, R, T, grid[None], exact=False)                # (m, LIMIT_GRID)
     # refine the lowest local minima of the grid (up to LIMIT_CANDIDATES, those within
     # LIMIT_WINDOW of the best): two branches may have minima within the grid's resolution
     # of each other (e.g. SH at p = 0, sagittal at p != 0)
