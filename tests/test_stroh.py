@@ -346,6 +346,11 @@ def test_tracked_stroh_roots_equal_eigenvalues_of_n():
     up = np.sort_complex(np.where(ev.imag > 0, ev, np.nan))[:, :3]        # NaN sorts last
     for k in range(len(X)):
         np.testing.assert_allclose(np.sort_complex(np.roots(c[k, ::-1])), np.sort_complex(ev[k]), atol=1e-10)
+    Q2, R2, T2 = (m[:, :2, :2] for m in (Q, R, T))                          # the sagittal 2 x 2 problem
+    ev2 = np.linalg.eigvals(impedance.stroh_matrix(Q2, R2, T2, 0.3 * X))
+    c2 = impedance.stroh_polynomial(Q2, R2, T2, 0.3 * X)
+    for k in range(len(X)):
+        np.testing.assert_allclose(np.sort_complex(np.roots(c2[k, ::-1])), np.sort_complex(ev2[k]), atol=1e-10)
     got, ok = impedance.track_roots(c, up * (1 + 1e-2 * rng.standard_normal(up.shape)))
     assert ok.all()
     np.testing.assert_allclose(np.sort_complex(got), up, rtol=1e-12)

@@ -209,20 +209,47 @@ def _pmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def stroh_polynomial(Q, R, T, X) -> np.ndarray:
+def stroh_polynomial_parts(Q, R, T) -> np.ndarray:
+    """Coefficients of det(G(p) - X I), G(p) = Q + p (R + R^T) + p^2 T, by powers of X and p.
+
+    Returns
+    -------
+    ndarray, shape (m, d + 1, 2d + 1)
+        ``parts[:, k, j]`` multiplies X^k p^j: det(G - X I) = det G - X m2(G) + X^2 tr G - X^3
+        (d = 3; m2 the sum of the principal 2 x 2 minors), det G - X tr G + X^2 (d = 2), each a
+        polynomial in p expanded exactly (products of the quadratic entries).
+    """
+    d = Q.shape[-1]
+    G = np.stack([Q, R + np.swapaxes(R, -1, -2), T], axis=-1)       # (m, d, d, 3): entries in p
+    parts = np.zeros((Q.shape[0], d + 1, 2 * d + 1))
+    tr = sum(G[:, i, i] for i in range(d))
+    parts[:, d, 0] = (-1.0) ** d
+    parts[:, d - 1, :3] = (-1.0) ** (d - 1) * tr
+    if d == 2:
+        parts[:, 0] = _pmul(G[:, 0, 0], G[:, 1, 1]) - _pmul(G[:, 0, 1], G[:, 1, 0])
+        return parts
+
+    def minor(i, j, k, l):                                         # G_ik G_jl - G_il G_jk
+        return _pmul(G[:, i, k], G[:, j, l]) - _pmul(G[:, i, l], G[:, j, k])
+    m12, m02, m01 = minor(1, 2, 1, 2), minor(1, 2, 0, 2), minor(1, 2, 0, 1)
+    parts[:, 0] = _pmul(G[:, 0, 0], m12) - _pmul(G[:, 0, 1], m02) + _pmul(G[:, 0, 2], m01)
+    parts[:, 1, :5] = -(m12 + minor(0, 2, 0, 2) + minor(0, 1, 0, 1))
+    return parts
+
+
+def stroh_polynomial(Q, R, T, X, parts=None) -> np.ndarray:
     """Coefficients of det(Q - X I + p (R + R^T) + p^2 T), ascending in p, shape (m, 2d + 1).
 
     Its roots are the Stroh eigenvalues p (the eigenvalues of N(X)): a partial wave
     a exp(ik(x1 + p x2)) solves the equation of motion iff this matrix annihilates a.
-    Expanded exactly (cofactors of the matrix of quadratics), no interpolation.
+    Expanded exactly (:func:`stroh_polynomial_parts`, which ``parts`` may pass precomputed).
     """
-    d = Q.shape[-1]
-    G = np.stack([Q - X[:, None, None] * np.eye(d), R + np.swapaxes(R, -1, -2), T], axis=-1)  # (m, d, d, 3)
-    if d == 2:
-        return _pmul(G[:, 0, 0], G[:, 1, 1]) - _pmul(G[:, 0, 1], G[:, 1, 0])
-    return (_pmul(G[:, 0, 0], _pmul(G[:, 1, 1], G[:, 2, 2]) - _pmul(G[:, 1, 2], G[:, 2, 1]))
-            - _pmul(G[:, 0, 1], _pmul(G[:, 1, 0], G[:, 2, 2]) - _pmul(G[:, 1, 2], G[:, 2, 0]))
-            + _pmul(G[:, 0, 2], _pmul(G[:, 1, 0], G[:, 2, 1]) - _pmul(G[:, 1, 1], G[:, 2, 0])))
+    if parts is None:
+        parts = stroh_polynomial_parts(Q, R, T)
+    c = parts[:, -1]
+    for k in range(parts.shape[1] - 2, -1, -1):                    # Horner in X
+        c = c * X[:, None] + parts[:, k]
+    return c
 
 
 def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -320,7 +347,7 @@ def _monic(roots: np.ndarray) -> np.ndarray:
     return c[..., ::-1]
 
 
-def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> dict:
+def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None, parts=None) -> dict:
     """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
 
     Parameters
@@ -338,6 +365,8 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
         The decaying p at a nearby X (the previous step of a root search): they are then
         refined by :func:`track_roots` on :func:`stroh_polynomial` instead of computing the
         eigenvalues of N, where that succeeds.
+    parts : ndarray, shape (m, d + 1, 2d + 1), optional
+        ``stroh_polynomial_parts(Q, R, T)``, to save its recomputation in a root search.
 
     Returns
     -------
@@ -370,7 +399,7 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None) -> di
     ok = np.zeros(len(X), dtype=bool)
     subsonic = np.ones(len(X), dtype=bool)                        # tracked roots have Im p > 0
     if p_guess is not None:
-        upper, ok = track_roots(stroh_polynomial(Q, R, T, X), p_guess)
+        upper, ok = track_roots(stroh_polynomial(Q, R, T, X, parts), p_guess)
     if not ok.all():
         miss = ~ok
         ev = np.linalg.eigvals(N[miss])

@@ -138,9 +138,11 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
     if m == 0:
         return X, found, U, P
     N0 = imp.stroh_matrix(Q, R, T, np.zeros(m))
+    parts = imp.stroh_polynomial_parts(Q, R, T)
 
     def ev(i, t, guess=None):
-        r = imp.impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), derivative=True, N0=N0[i], p_guess=guess)
+        r = imp.impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), derivative=True, N0=N0[i], p_guess=guess,
+                          parts=parts[i])
         return r["lam"], r["dlam"] * (-2.0 * t * XL[i]), r["u"], r["p"]   # d lam / dt
 
     idx = np.arange(m)
