@@ -10,8 +10,11 @@ Root finding. The impedance Z(X) (X = rho v^2) is Hermitian below the limiting X
 definite at X = 0 for a stable crystal and decreasing in X; a subsonic surface wave is where
 the lowest eigenvalue lam of Z crosses zero (at most once). The root is bracketed in
 X = X_L (1 - t^2), t in (T_MIN, 1] (t removes the square-root behaviour of Z at X_L), and
-found by Newton's method in t safeguarded by bisection, with d lam / dX from the Sylvester
-equation of the impedance's Riccati equation (:func:`impedance.impedance`).
+found by Newton's method in t (then inverse cubic Hermite steps through the two latest
+points) safeguarded by bisection, with d lam / dX from the Sylvester equation of the
+impedance's Riccati equation (:func:`impedance.impedance`); after the first step the decaying
+Stroh roots are tracked from the previous step (Newton on the Stroh polynomial) instead of
+recomputed as eigenvalues of N.
 
 Where the sagittal plane x1 x2 is a mirror (the components of A with an odd number of
 indices 3 vanish) the sagittal motion decouples; its 2 x 2 problem may hold a surface wave
@@ -122,7 +125,9 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
     the unit null vector u (m, d) of Z (the surface displacement) and the decaying p (m, d).
 
     Safeguarded Newton in t = sqrt(1 - X/XL) from ``T_START`` (d lam / dX from the Sylvester
-    equation of :func:`impedance.impedance`), vectorised over the points not yet converged.
+    equation of :func:`impedance.impedance`; from the second step on, inverse cubic Hermite
+    steps, :func:`_hermite_correction`), vectorised over the points not yet converged; the
+    decaying p of each step are the guesses for the next (``p_guess``).
     The bracket (lo, hi) starts as (T_MIN, 1) and shrinks with the sign of each lam
     (lam decreases with X, i.e. increases with t); a Newton step that leaves it is replaced
     by bisection. A point driven to t = T_MIN with lam > 0 there has no subsonic root (within
