@@ -14,6 +14,9 @@ product annihilates the growing generalised eigenspace and is invertible on the 
 one). This needs no eigenvectors, so equal or nearly equal p (isotropic crystals, Jordan
 blocks) cost no accuracy: W depends on the roots only through symmetric functions. With
 W = [W1; W2] the surface impedance is Z = -i B A^-1 = -i W2 W1^H (W1 W1^H)^-1 (Hermitian).
+The p are also the roots of the Stroh polynomial det(Q - X I + p (R + R^T) + p^2 T); in a root
+search they are tracked from one X to the next by Newton's method on it (:func:`track_roots`),
+the eigenvalues of N serving the first step and any row where tracking cannot vouch for them.
 """
 from __future__ import annotations
 
