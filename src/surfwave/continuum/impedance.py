@@ -426,9 +426,9 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None, parts
         Nk = Nk @ N
         W = W + c[:, k, None, None] * Nk
     W1, W2 = W[:, :d, :], W[:, d:, :]
-    W1H = np.conj(np.swapaxes(W1, -1, -2))
-    with np.errstate(all="ignore"):
-        M = np.linalg.solve(np.swapaxes(W1 @ W1H, -1, -2), np.swapaxes(W2 @ W1H, -1, -2))
+    W1c = np.conj(W1)
+    with np.errstate(all="ignore"):                                # (W1 W1^H)^T, (W2 W1^H)^T
+        M = np.linalg.solve(np.einsum("mik,mjk->mji", W1, W1c), np.einsum("mik,mjk->mji", W2, W1c))
     M = np.swapaxes(M, -1, -2)                                     # B A^-1
     Z = -1j * M
     Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
@@ -447,7 +447,7 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None, parts
         # [I; M] K1 (the Riccati equation), f(K1) = W11 + W12 M. Only u^H G f(K1)^-1 u is needed:
         # with y = f(K1)^-1 u, a_j = u^H K2^j, b_i = K1^i y it is sum_k c_k sum_{j<k} a_j . b_(k-1-j)
         # (vector-matrix products only).
-        fK1 = W1[:, :, :d] + W1[:, :, d:] @ M
+        fK1 = W1[:, :, :d] + np.einsum("mik,mkj->mij", W1[:, :, d:], M)
         with np.errstate(all="ignore"):
             y = np.linalg.solve(np.where(bad[:, None, None], np.eye(d), fK1), u[..., None])[..., 0]
         uc = np.conj(u)
