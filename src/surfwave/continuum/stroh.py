@@ -171,7 +171,9 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
             step = step - _hermite_correction(lam, t, 1.0 / dlam, lp, tp, 1.0 / gp, step)
         new = np.maximum(t - step, T_MIN)
         inside = np.isfinite(new) & (new >= lo) & (new < hi) & ~bad & (new != t)
-        exact = lam == 0
+        # lam = 0, or a step below the resolution of t (t - step == t in floating point): t is the
+        # root to rounding (else such a step would count as leaving the bracket and bisect away)
+        exact = (lam == 0) | (np.isfinite(step) & ~bad & (t - step == t))
         new = np.where(exact, t, np.where(inside, new, 0.5 * (lo + hi)))
         dX = np.abs(2.0 * t * step) * XL[idx]                      # |dX| of the step, to first order
         Xn = XL[idx] * (1.0 - new * new)
