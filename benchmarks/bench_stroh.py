@@ -13,12 +13,12 @@ against tol = 1e-15 (self-convergence). Yardstick: rayleigh_c2's time per point 
 realistic S tensors, measured in the same run; the target is <= 100 x that time per point
 (>= 10^4 directions per second). Timings: min/median/max over repeats; the machine is shared.
 
-Before/after (same machine, shared and loaded, two runs each alternating, tol 1e-12, median
-of 3): the solver with LAPACK eigenvalues of N at every step, a Kronecker (d^2 x d^2) Sylvester
-solve and plain Newton steps (commit fc8fc24) took 78 us per direction, 456-481 x rayleigh_c2
-(77.5 us, 445 x in the README run); with tracked Stroh roots, the Cayley-Hamilton derivative,
-inverse Hermite steps and the closed-form impedance eigenpair it takes 48 us, 289-303 x. The
-old figure is ``BEFORE`` below, printed with each run.
+Before/after (same machine, shared, two runs each alternating, tol 1e-12, median of 3): the
+solver with LAPACK eigenvalues of N at every step, a Kronecker (d^2 x d^2) Sylvester solve and
+plain Newton steps (commit fc8fc24) took 77-78 us per direction, 468-482 x rayleigh_c2 (77.5 us,
+445 x in the README run); with tracked Stroh roots, the Cayley-Hamilton derivative, inverse
+Hermite steps, the closed-form impedance eigenpair and no bisection after convergence it takes
+40 us, 247-256 x. The old figure is ``BEFORE`` below, printed with each run.
 """
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ REPEATS = 3
 MAX_RATIO = 100.0  # target: stroh time per point <= 100 x rayleigh_c2's
 CU = (168.4, 121.4, 75.4)
 #: The figure before the tracked-root solver (commit fc8fc24, this benchmark, tol 1e-12).
-BEFORE = "before: 78 us per direction, 456-481 x rayleigh_c2 (commit fc8fc24, same machine)"
+BEFORE = "before: 77-78 us per direction, 468-482 x rayleigh_c2 (commit fc8fc24, same machine)"
 RHO = 8960.0
 
 
