@@ -18,7 +18,7 @@ solver with LAPACK eigenvalues of N at every step, a Kronecker (d^2 x d^2) Sylve
 plain Newton steps (commit fc8fc24) took 77-78 us per direction, 468-482 x rayleigh_c2 (77.5 us,
 445 x in the README run); with tracked Stroh roots, the Cayley-Hamilton derivative, inverse
 Hermite steps, the closed-form impedance eigenpair and no bisection after convergence it takes
-40 us, 247-256 x. The old figure is ``BEFORE`` below, printed with each run.
+40 us, 247-256 x. (History only: each run prints what it measures, nothing else.)
 """
 from __future__ import annotations
 
@@ -51,8 +51,6 @@ DEFAULT_TOL = 1e-12
 REPEATS = 3
 MAX_RATIO = 100.0  # target: stroh time per point <= 100 x rayleigh_c2's
 CU = (168.4, 121.4, 75.4)
-#: The figure before the tracked-root solver (commit fc8fc24, this benchmark, tol 1e-12).
-BEFORE = "before: 77-78 us per direction, 468-482 x rayleigh_c2 (commit fc8fc24, same machine)"
 RHO = 8960.0
 
 
@@ -121,7 +119,7 @@ def main(outdir: str) -> Path:
     reason = (f"tol {DEFAULT_TOL:g}: Eq. (17) error {err_m[i]:.1e}, {rate:.3g} directions/s "
               f"(min/median/max {N_DIRECTIONS / t_all[i].max():.3g}/{rate:.3g}/{N_DIRECTIONS / t_all[i].min():.3g}), "
               f"{ratio[i]:.0f} x rayleigh_c2's time per point in the same run "
-              f"(target <= {MAX_RATIO:.0f} x: {verdict}); {BEFORE}")
+              f"(target <= {MAX_RATIO:.0f} x: {verdict})")
     print(reason)
     rows = [["stroh.surface_wave (Stroh impedance, tracked roots, Newton/Hermite root search)", f"tol in [{min(TOLS):g}, {max(TOLS):g}]",
              f"{err_m[i]:.2g} vs Eq. (17); {err_s[i]:.2g} vs tol 1e-15",
@@ -144,7 +142,7 @@ def main(outdir: str) -> Path:
         attrs={"Conventions": "CF-1.10", "title": "surfwave benchmark: general surface-wave solver",
                "source": f"surfwave {surfwave.__version__}", "history": f"{time.ctime()}: bench_stroh.py",
                "method": "stroh.surface_wave", "knob": "tol", "default": DEFAULT_TOL, "default_reason": reason,
-               "n_directions": N_DIRECTIONS, "repeats": REPEATS, "target_ratio": MAX_RATIO, "before": BEFORE,
+               "n_directions": N_DIRECTIONS, "repeats": REPEATS, "target_ratio": MAX_RATIO,
                "readme_rows": json.dumps(rows)},
     )
     nc = out / "stroh_accuracy_speed.nc"
