@@ -456,3 +456,17 @@ def test_root_search_stops_at_rounding(monkeypatch):
     assert np.all(r["wave_type"] == "surface") and len(calls) <= 6
     for k in range(0, 300, 37):
         assert stroh.surface_wave(A[k], CU["rho"], mirror=False, tol=1e-14)["c"] == pytest.approx(r["c"][k], rel=1e-13)
+
+
+def test_no_wave_no_polarisation():
+    """Where no surface wave is found the polarisation and decay constants are NaN, not the
+    values the search happened to stop at: Cu (001) at 44.99 deg is flagged pseudo (the
+    subsonic root within 1e-12 of v_L, test_either_side_of_a_mirror_and_merging_into_the_bulk),
+    20 deg has a surface wave, and C44 < 0 is unstable (reference: wave_type of the same call)."""
+    A = _cubic_A(CU["C11"], CU["C12"], CU["C44"], direction=np.array([44.99, 20.0]))
+    r = stroh.surface_wave(A, CU["rho"])
+    assert list(r["wave_type"]) == ["pseudo", "surface"]
+    assert np.isnan(r["polarisation"][0]).all() and np.isnan(r["decay"][0]).all()
+    assert np.isfinite(r["polarisation"][1]).all()
+    bad = stroh.surface_wave(_cubic_A(3.0, 1.0, -1.0), 1.0)
+    assert bad["wave_type"] != "surface" and np.isnan(bad["polarisation"]).all()

@@ -364,6 +364,9 @@ def surface_wave(A, rho=1.0, *, mirror=None, tol: float = 1e-12) -> dict:
             p3 = np.where(p3.imag > 1e-12, p3, np.nan + 0j)
             decay[sagf, 2] = p3
 
+    # no wave found (pseudo, none, unstable): no polarisation or decay to report
+    pol[~found] = np.nan
+    decay[~found] = np.nan
     rho_s = scale / rho_f
     out = {
         "c": np.sqrt(X * rho_s),
