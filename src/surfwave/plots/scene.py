@@ -56,9 +56,9 @@ def draw_scene(outputs: Mapping[str, str], cubes: Mapping[str, str], scene: str,
     done: set[str] = set()
     opened: dict = {}
 
-    def cube(name):
+    def cube(name):  # opened once, read variable by variable (large scenes stay small)
         if name not in opened:
-            opened[name] = open_cube(cubes[name])
+            opened[name] = open_cube(cubes[name], load=False)
         return opened[name]
 
     if "speeds" in outputs:
@@ -121,6 +121,8 @@ def draw_scene(outputs: Mapping[str, str], cubes: Mapping[str, str], scene: str,
 
         write_summary(list(cubes.values()), outputs["summary"], scene)
         done.add("summary")
+    for ds in opened.values():
+        ds.close()
     unknown = set(outputs) - done
     if unknown:
         raise KeyError(f"draw_scene does not know how to write {sorted(unknown)}")

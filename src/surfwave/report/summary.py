@@ -26,7 +26,7 @@ def _range(values) -> str:
 def cube_lines(path: str | Path) -> list[str]:
     """Markdown lines describing one cube (dims, ranges, NaN and instability counts)."""
     path = Path(path)
-    ds = open_cube(path)
+    ds = open_cube(path, load=False)  # one variable in memory at a time (large scenes)
     out = [f"### `{path.name}`", "", f"File: `{path}`. {ds.attrs.get('method', '')}".rstrip(), ""]
     for dim in ds.dims:
         if dim in ds.coords and dim != "complex":
@@ -50,6 +50,7 @@ def cube_lines(path: str | Path) -> list[str]:
         reasons = Counter(str(r) for r in np.ravel(ds["reason"].values) if str(r))
         for reason, n in reasons.most_common(3):
             out.append(f"- {n} points: {reason}")
+    ds.close()
     return out + [""]
 
 
