@@ -26,6 +26,17 @@ if Path(workflow.basedir, "benchmarks", "bench_workflow.py").exists():
 if Path(workflow.basedir, "benchmarks", "bench_large_scene.py").exists():
     BENCH_DIRS.append("results/benchmarks/large_scene")
 
+#: Everything a whole-workflow run executes: a change anywhere reruns the workflow benchmarks.
+WORKFLOW_FILES = sorted(
+    str(p)
+    for pattern in (
+        "src/surfwave/**/*.py",
+        "workflow/rules/*.smk",
+        "workflow/scripts/*.py",
+    )
+    for p in Path(workflow.basedir).glob(pattern)
+) + [str(Path(workflow.basedir, f)) for f in ("Snakefile", "config/config.yaml")]
+
 
 wildcard_constraints:
     bench="|".join(BENCH_MODULES),
@@ -59,6 +70,7 @@ rule benchmark_workflow:
     """Wall time of the full reproduction (empty results, -j2) and of the no-op rerun."""
     input:
         script="benchmarks/bench_workflow.py",
+        code=WORKFLOW_FILES,
     output:
         directory("results/benchmarks/workflow"),
     log:
@@ -75,13 +87,7 @@ rule benchmark_large_scene:
     input:
         script="benchmarks/bench_large_scene.py",
         scene="benchmarks/large_scene.yaml",
-        code=code(
-            "continuum.symmetry",
-            "continuum.elastic",
-            "continuum.rayleigh",
-            "pipeline.stage",
-            "data.cube",
-        ),
+        code=WORKFLOW_FILES,
     output:
         directory("results/benchmarks/large_scene"),
     log:
