@@ -30,13 +30,13 @@ reproduce: $(STAMP)
 test: $(STAMP)
 	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
-# The SLURM profile on a real single-node SLURM cluster on localhost (tests/test_slurm.py):
+# The SLURM profile on a real single-node SLURM cluster on localhost (tests/workflow/test_slurm.py):
 # installs Debian's slurmctld, slurmd, slurm-client and munge if missing, runs a tiny scene
 # locally and through profiles/slurm, compares the cubes. Needs root and apt, else it skips
 # and says why. Bounded: 600 s inside the test, `timeout` as the backstop. CI runs it.
 SLURM_TIMEOUT ?= 900
 test-slurm: $(STAMP)
-	SURFWAVE_SLURM_TEST=1 timeout -k 30 $(SLURM_TIMEOUT) $(BIN)/python -m pytest -p no:cacheprovider -q -rs -s tests/test_slurm.py
+	SURFWAVE_SLURM_TEST=1 timeout -k 30 $(SLURM_TIMEOUT) $(BIN)/python -m pytest -p no:cacheprovider -q -rs -s tests/workflow/test_slurm.py
 
 bench: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS) benchmarks

@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 import surfwave
-from surfwave.continuum import phonons
+from surfwave.model_crystals import phonons
 
 SPEEDS = ["c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH"]
 PROBES = [  # stressed, long-wave stable points of the default scenes

@@ -40,10 +40,11 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
-from surfwave.continuum import elastic, rayleigh, stroh  # noqa: E402
-from surfwave.continuum.lattices import build  # noqa: E402
-from surfwave.continuum.orientation import lab_axes  # noqa: E402
-from surfwave.continuum.tensors import cubic_voigt, rotate4, voigt_to_tensor  # noqa: E402
+from surfwave.model_crystals import elastic
+from surfwave.solvers import rayleigh, stroh  # noqa: E402
+from surfwave.model_crystals.lattices import build  # noqa: E402
+from surfwave.solvers.orientation import lab_axes  # noqa: E402
+from surfwave.solvers.tensors import cubic_voigt, rotate4, voigt_to_tensor  # noqa: E402
 
 N_DIRECTIONS = 10**4
 TOLS = [1e-6, 1e-9, 1e-12, 1e-14]

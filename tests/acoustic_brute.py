@@ -1,6 +1,6 @@
 """Brute-force minimum of the acoustic tensor over all directions (test helper).
 
-Independent of surfwave.continuum.long_wave.long_wave_stability: a dense Fibonacci sphere
+Independent of surfwave.solvers.long_wave.long_wave_stability: a dense Fibonacci sphere
 (a fine angle grid in 2D), refined by zooming local grids around the best few directions
 (scipy.optimize in 2D), with Q_ik(n) = (C_ijkl + sigma_jl delta_ik) n_j n_l assembled here
 (docs/physics/paper.md, bulk long-wave stability) from the library's bond sums V C and V sigma.
@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from surfwave.continuum import elastic
-from surfwave.continuum.lattices import build
+from surfwave.model_crystals import elastic
+from surfwave.model_crystals.lattices import build
 
 
 def fibonacci_sphere(n: int) -> np.ndarray:

@@ -1,7 +1,7 @@
 """`surfwave material`: any surface, direction or angle sweep, Voigt input, stress tensor.
 
 References: the library call with the same arguments (surfwave.material), which
-tests/test_stroh.py checks against closed forms and Eq. (17).
+tests/solvers/test_stroh.py checks against closed forms and Eq. (17).
 """
 from __future__ import annotations
 
@@ -72,7 +72,7 @@ def test_material_by_name_and_third_order_model(capsys):
     """--material takes the database's constants and density (Cu: the README's 2012.12 m/s);
     --toec alone takes the database's third-order constants and agrees with the library call
     surfwave.material("Cu", ..., toec=True); six values equal to the database's give the same."""
-    from surfwave.data.materials import get_material
+    from surfwave.real_crystals.materials import get_material
 
     assert _json(capsys, "--material", "Cu", "--direction", "[100]")["c_R"] == pytest.approx(2012.12, abs=0.01)
     lib = surfwave.material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"]

@@ -15,7 +15,7 @@ import pytest
 
 import surfwave
 from surfwave.cli import main
-from surfwave.continuum.potentials import available_potentials
+from surfwave.model_crystals.potentials import available_potentials
 from surfwave.data import cache
 
 
@@ -74,7 +74,7 @@ def test_scenes_lists_configured_scenes(tmp_path, capsys):
     rows = {r["scene"]: r for r in json.loads(capsys.readouterr().out)}
     assert {"table1", "fig2", "fig2_uniaxial", "triangular", "entropy", "mine"} <= set(rows)
     assert rows["table1"]["quantities"] == ["elastic", "rayleigh", "bulk"]
-    from surfwave.continuum import phonons  # defaults filled in from the library
+    from surfwave.model_crystals import phonons  # defaults filled in from the library
     assert rows["table1"]["accuracy"]["bulk"]["supercell"] == phonons.DEFAULT_SUPERCELL
     assert "entropy" not in rows["table1"]["accuracy"]
     assert rows["mine"]["built_by_all"] and not rows["table1"]["built_by_all"]

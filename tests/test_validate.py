@@ -20,7 +20,7 @@ def test_as_1d_shapes_and_messages_name_the_argument():
 def test_bulk_speeds_non_finite_point_is_nan_with_reason():
     """phonons.bulk_speeds is per point: a NaN strain gives NaN and its reason, the other
     point the same values as computed alone (the reference)."""
-    from surfwave.continuum.phonons import bulk_speeds
+    from surfwave.model_crystals.phonons import bulk_speeds
 
     both = bulk_speeds("fcc", "in_plane_hydrostatic", "lj", "[100]", [1.0, np.nan], zone_mesh=2)
     alone = bulk_speeds("fcc", "in_plane_hydrostatic", "lj", "[100]", [1.0], zone_mesh=2)

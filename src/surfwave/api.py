@@ -8,16 +8,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum import elastic, long_wave, rayleigh, stroh
-from surfwave.continuum.lattices import build
-from surfwave.continuum.orientation import direction_angle, lab_axes
-from surfwave.continuum.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
+from surfwave.model_crystals import elastic
+from surfwave.solvers import long_wave, rayleigh, stroh
+from surfwave.model_crystals.lattices import build
+from surfwave.solvers.orientation import direction_angle, lab_axes
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
 
 __all__ = ["material", "point"]
-
-#: Extra outputs of the general solver that :func:`point` adds (see :func:`stroh.surface_wave`).
-EXTRA_KEYS = ("c2_limit", "polarisation", "decay", "penetration_depth")
 
 
 def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
@@ -51,7 +49,7 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
     min_eig : bool
         Also return ``min_acoustic_eig``, the lowest eigenvalue of V Q(n) over all
         directions (K d0^2), which needs the direction scan at every strain. Without it
-        ``stable`` comes from :func:`surfwave.continuum.long_wave.long_wave_stable` (a
+        ``stable`` comes from :func:`surfwave.solvers.long_wave.long_wave_stable` (a
         sufficient test of stability, a certificate of instability, the scan only where
         neither decides): the same flags, several times faster.
     details : bool
@@ -195,11 +193,11 @@ def _toec_state(C6, C3, sigma_c, R, rho):
 
     Returns C* (m, 3, 3, 3, 3) crystal axes, the deformed lab axes (m, 3, 3) (x1 along F m0,
     x2 along F^-T n0), the stressed density (m,), ok (m,) and reason (m,) (see
-    :func:`surfwave.continuum.toec.stressed_state`; a stress that loads the deformed surface
+    :func:`surfwave.real_crystals.toec.stressed_state`; a stress that loads the deformed surface
     is not ok either).
     """
-    from surfwave.continuum.acoustoelastic import REASON_TRACTION, TRACTION_TOL
-    from surfwave.continuum.toec import deformed_axes, stressed_state
+    from surfwave.real_crystals.acoustoelastic import REASON_TRACTION, TRACTION_TOL
+    from surfwave.real_crystals.toec import deformed_axes, stressed_state
 
     st = stressed_state(C6, C3, sigma_c, rho)
     ok, reason = st["ok"].copy(), st["reason"].astype(object)
@@ -216,8 +214,8 @@ def _toec_state(C6, C3, sigma_c, R, rho):
 
 def _resolve_material(C11, C12, C44, rho, voigt, toec):
     """(Voigt C (6, 6), rho, C3 Voigt (6, 6, 6) or None, label) from the material arguments."""
-    from surfwave.continuum.toec import cubic_toec
-    from surfwave.data.materials import CUBIC_TOEC, Material, get_material
+    from surfwave.real_crystals.toec import cubic_toec
+    from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
 
     name = None
     C3 = None
@@ -282,7 +280,7 @@ def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     -------
     ndarray of bool, shape (...)
     """
-    from surfwave.continuum.toec import wallace_tensor
+    from surfwave.real_crystals.toec import wallace_tensor
 
     B6 = wallace_tensor(C, sigma)
     return np.linalg.eigvalsh(B6)[..., 0] > 0
@@ -298,7 +296,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         Cubic elastic constants, GPa. Without ``toec`` they are taken as the stressed crystal's
         constants (fixed-C model); with ``toec`` they are the unstressed (natural-state) ones.
         Or C11 is a material name from the database (``"Cu"``, ``"copper"``, ``"GaAs"``, ...,
-        :func:`surfwave.data.materials.available_materials`), which supplies the constants and
+        :func:`surfwave.real_crystals.materials.available_materials`), which supplies the constants and
         the density (an explicit ``rho`` wins). Or:
     voigt : array_like, shape (6, 6), keyword only
         A full Voigt stiffness of any symmetry, crystal axes, GPa (instead of C11, C12, C44).
@@ -307,7 +305,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     direction : str or float or array_like of float
         A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
         surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
-        n x reference (:mod:`surfwave.continuum.orientation`).
+        n x reference (:mod:`surfwave.solvers.orientation`).
     stress : float or array_like, shape (3, 3)
         A scalar: uniaxial stress along the propagation direction; a 3 x 3 Cauchy stress in
         crystal axes. GPa, negative = compression. It must lie in the surface plane.
@@ -320,7 +318,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         convention (Lagrangian strain, energy per unit natural volume, as tabulated), or a
         Voigt (6, 6, 6) array; True takes them from the database (the material must be given
         by name). The crystal then deforms under the stress
-        (:func:`surfwave.continuum.toec.stressed_state`): the constants C* and density rho0/J of
+        (:func:`surfwave.real_crystals.toec.stressed_state`): the constants C* and density rho0/J of
         the stressed state are used, the wave propagates along F m0 (m0 the given direction of
         the unstressed crystal) on the surface of normal F^-T n0, and speeds are true phase
         speeds in the stressed state (docs/physics/third-order-constants.md). A stress beyond the
@@ -334,7 +332,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (bulk speeds along x1 and x2, m/s,
         NaN where imaginary), ``wave_type``, ``reason``, ``stable`` (Born stability and
         positive acoustic tensor in every direction), ``polarisation`` (..., 3) and ``decay``
-        (..., 3) complex (see :func:`surfwave.continuum.stroh.surface_wave`),
+        (..., 3) complex (see :func:`surfwave.solvers.stroh.surface_wave`),
         ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
         ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
 
@@ -409,7 +407,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
                stable=born & acoustic, polarisation=sw["polarisation"], decay=sw["decay"],
                penetration_depth=sw["penetration_depth"], method=sw["method"],
                rho=np.where(state_ok, rho_m, np.nan), toec=np.full(R.shape[0], C3 is not None))
-    from surfwave.continuum.orientation import reference_direction, surface_normal
+    from surfwave.solvers.orientation import reference_direction, surface_normal
 
     ref = reference_direction(surface)
     out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))

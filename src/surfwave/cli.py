@@ -158,7 +158,7 @@ def _parser() -> argparse.ArgumentParser:
         "potentials", help="list the registered pair potentials (names usable in scenes and 'point')",
         description="List the registered pair potentials: the names accepted by 'surfwave point "
         "--potential' and by a scene's 'potentials' key, with their form and parameters. New "
-        "potentials join surfwave.continuum.potentials.register(...).")
+        "potentials join surfwave.model_crystals.potentials.register(...).")
 
     sc = sub.add_parser(
         "scenes", help="list the configured scenes and what each computes",
@@ -258,7 +258,7 @@ def _cmd_material(args) -> int:
     from surfwave.errors import InputError
 
     if args.list:
-        from surfwave.data.materials import available_materials, get_material
+        from surfwave.real_crystals.materials import available_materials, get_material
 
         for name in available_materials():
             m = get_material(name)
@@ -337,7 +337,7 @@ def _cmd_material(args) -> int:
 
 
 def _cmd_potentials(args) -> int:
-    from surfwave.continuum.potentials import available_potentials, get_potential
+    from surfwave.model_crystals.potentials import available_potentials, get_potential
 
     for name in available_potentials():
         print(f"{name:>10}  {get_potential(name).description}")

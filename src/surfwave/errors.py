@@ -1,4 +1,4 @@
-"""Exception and warning classes of surfwave."""
+"""Every exception class of surfwave (one module: callers catch by these names)."""
 from __future__ import annotations
 
 
@@ -18,5 +18,13 @@ class SymmetryError(SurfwaveError):
     """A crystal lacks the mirror planes the surface-wave theory assumes."""
 
 
-class SurfwaveWarning(UserWarning):
-    """Warnings of surfwave (turned into errors in the test suite)."""
+class SceneError(SurfwaveError, ValueError):
+    """A configuration that cannot be run; the message names scene, key and value."""
+
+
+class DamagedCubeError(InputError):
+    """A result file that exists but cannot be read (truncated, not netCDF)."""
+
+
+class PhonopyPointError(SurfwaveError):
+    """Phonopy could not produce trustworthy force constants at one strain point."""

@@ -7,13 +7,22 @@ from pathlib import Path
 
 # benchmark -> library modules it exercises (inputs, so a code change reruns it)
 BENCH_MODULES = {
-    "rayleigh": ("api", "continuum.rayleigh", "report.benchmarks"),
-    "stroh": ("continuum.stroh", "continuum.impedance", "continuum.rayleigh"),
-    "point": ("api", "continuum.elastic", "continuum.long_wave", "continuum.lattices"),
-    "phonons": ("continuum.phonons",),
+    "rayleigh": ("api", "solvers.rayleigh", "report.benchmarks"),
+    "stroh": ("solvers.stroh", "solvers.impedance", "solvers.rayleigh"),
+    "point": (
+        "api",
+        "model_crystals.elastic",
+        "solvers.long_wave",
+        "model_crystals.lattices",
+    ),
+    "phonons": ("model_crystals.phonons",),
     "dispersion": ("dynamics.dispersion", "dynamics.triangular_surface"),
     "entropy": ("dynamics.entropy",),
-    "toec": ("continuum.acoustoelastic", "continuum.toec", "data.materials"),
+    "toec": (
+        "real_crystals.acoustoelastic",
+        "real_crystals.toec",
+        "real_crystals.materials",
+    ),
 }
 BENCH_METHODS = [
     name

@@ -4,8 +4,8 @@ rule bulk:
         crystal="results/{scene}/crystal.nc",
         elastic="results/{scene}/elastic.nc",
         code=code(
-            "continuum.phonons",
-            "continuum.sanity",
+            "model_crystals.phonons",
+            "model_crystals.sanity",
             "data.cache",
             "data.cube",
             "pipeline.stage",

@@ -11,7 +11,7 @@ CONDA_ENV = "../envs/surfwave.yaml"
 #: The paper's printed numbers (the report's and Table I's only hand-typed values).
 PAPER_VALUES = "src/surfwave/data/paper_values.yaml"
 #: The materials database (real-crystal scenes read it).
-MATERIALS = "src/surfwave/data/materials.yaml"
+MATERIALS = "src/surfwave/real_crystals/materials.yaml"
 
 
 def scene_targets():

@@ -1,7 +1,7 @@
 rule crystal:
     """Prestressed cells, spglib space groups and the mirror planes Eq. (17) assumes."""
     input:
-        code=code("continuum.symmetry", "data.cube", "pipeline.stage"),
+        code=code("model_crystals.symmetry", "data.cube", "pipeline.stage"),
     output:
         "results/{scene}/crystal.nc",
     log:

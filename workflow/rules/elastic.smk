@@ -3,11 +3,11 @@ rule elastic:
     input:
         crystal="results/{scene}/crystal.nc",
         code=lambda wildcards: code(
-            "continuum.elastic",
+            "model_crystals.elastic",
             "data.cube",
             "pipeline.stage",
             *(
-                ["continuum.fcc_angles"]
+                ["model_crystals.fcc_angles"]
                 if SCENES[wildcards.scene].get("angles")
                 else []
             ),

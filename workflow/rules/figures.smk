@@ -1,4 +1,4 @@
-# Figures and tables: one job per scene draws all of them (surfwave.plots.scene.draw_scene),
+# Figures and tables: one job per scene draws all of them (surfwave.plots.figure_set.draw_figure_set),
 # since each job's start-up (interpreter, xarray, matplotlib) costs more than a figure. What a
 # scene gets follows from its cubes (surfwave.pipeline.targets.scene_outputs): Fig. 2 for FCC
 # scenes, Table I beside the paper's numbers for the `table1` scene, the dispersion, theta_c,
@@ -23,13 +23,13 @@ for _scene in SCENES:
     _cubes, _modules = scene_output_inputs(SCENES, _scene)
 
     rule:
-        """Every figure and table of the scene (surfwave.plots.scene.draw_scene)."""
+        """Every figure and table of the scene (surfwave.plots.figure_set.draw_figure_set)."""
         name:
             f"figures_{_scene}"
         input:
             **{k: f"results/{{scene}}/{f}" for k, f in _cubes.items()},
             values=PAPER_VALUES,
-            code=code(*_modules, shallow=("plots.scene",)),
+            code=code(*_modules, shallow=("plots.figure_set",)),
         output:
             **{
                 k: report_output(k, f"results/{{scene}}/{f}", _scene)
@@ -54,7 +54,7 @@ rule figure_stability_map:
     """Stability map of prestressed FCC, long-wave versus full-zone (phonopy); built by the
     benchmarks target, not by rule all (it computes its own grid)."""
     input:
-        code=code("continuum.stability_map", "plots.stability", "data.cube"),
+        code=code("model_crystals.stability_map", "plots.stability", "data.cube"),
     output:
         nc="results/stability_map/stability_map.nc",
         png=report(

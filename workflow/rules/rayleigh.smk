@@ -3,11 +3,11 @@ rule rayleigh:
     input:
         elastic="results/{scene}/elastic.nc",
         code=lambda wildcards: code(
-            "continuum.rayleigh",
+            "solvers.rayleigh",
             "data.cube",
             "pipeline.stage",
             *(
-                ["continuum.fcc_angles"]
+                ["model_crystals.fcc_angles"]
                 if SCENES[wildcards.scene].get("angles")
                 else []
             ),

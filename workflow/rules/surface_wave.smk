@@ -7,7 +7,10 @@ rule surface_wave:
     """Surface-wave speed, limiting speed, wave type and polarisation of real crystals."""
     input:
         code=code(
-            "continuum.crystal_scene", "data.materials", "data.cube", "pipeline.stage"
+            "real_crystals.sweep",
+            "real_crystals.materials",
+            "data.cube",
+            "pipeline.stage",
         ),
         materials=MATERIALS,
     output:

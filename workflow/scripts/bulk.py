@@ -7,7 +7,7 @@ import sys
 
 from surfwave.data import cache, cube
 from surfwave.pipeline import stage
-from surfwave.continuum import phonons, sanity
+from surfwave.model_crystals import phonons, sanity
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -20,7 +20,7 @@ acc = job["accuracy"]
 
 
 def compute(pot, direction):
-    key = cache.job_key(job, "continuum.phonons", "phonopy", potential=pot, direction=direction, **acc)
+    key = cache.job_key(job, "model_crystals.phonons", "phonopy", potential=pot, direction=direction, **acc)
     return cache.cached_points(
         "bulk", key, job["d_over_d0"],
         lambda d: phonons.bulk_speeds(job["lattice"], job["loading"], pot, direction, d, **acc),

@@ -6,7 +6,7 @@ import sys
 
 from surfwave.data import cube
 from surfwave.pipeline import stage
-from surfwave.continuum import symmetry
+from surfwave.model_crystals import symmetry
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone

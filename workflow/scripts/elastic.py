@@ -1,10 +1,10 @@
-"""Rule `elastic`: stress, C, S, bulk sound speeds and stability (surfwave.continuum.elastic.properties).
+"""Rule `elastic`: stress, C, S, bulk sound speeds and stability (surfwave.model_crystals.elastic.properties).
 
 By hand (from the repository root): python workflow/scripts/elastic.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave.continuum import elastic
+from surfwave.model_crystals import elastic
 from surfwave.data import cube
 from surfwave.pipeline import stage
 
@@ -16,7 +16,7 @@ stage.open_log(snakemake)
 
 job = snakemake.params.job
 if job.get("angles") is not None:  # FCC propagation angles in the (001) surface (degrees)
-    from surfwave.continuum import fcc_angles
+    from surfwave.model_crystals import fcc_angles
 
     blocks = {}
     for pot in job["potentials"]:

@@ -1,7 +1,7 @@
 """Rule `figure_stability_map`: the FCC stability map (library), its cube and its figure."""
 import sys
 
-from surfwave.continuum import stability_map as sm
+from surfwave.model_crystals import stability_map as sm
 from surfwave.data import cube
 from surfwave.plots.stability import plot_stability_map
 

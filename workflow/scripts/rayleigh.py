@@ -1,12 +1,12 @@
 """Rule `rayleigh`: Rayleigh speed c_R^2 (Eq. 17, root selection) and wave type from the
-stress derivatives S of elastic.nc (surfwave.continuum.rayleigh.solve).
+stress derivatives S of elastic.nc (surfwave.solvers.rayleigh.solve).
 
 By hand (from the repository root): python workflow/scripts/rayleigh.py SCENE [CONFIGFILE ...]
 """
 
 from surfwave.data import cube
 from surfwave.pipeline import stage
-from surfwave.continuum import rayleigh
+from surfwave.solvers import rayleigh
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -26,7 +26,7 @@ def solve(pot, direction):
 
 blocks = {}
 if job.get("angles") is not None:  # FCC propagation angles: the general solver off the mirrors
-    from surfwave.continuum import fcc_angles
+    from surfwave.model_crystals import fcc_angles
 
     for pot in job["potentials"]:
         point = elastic.sel(potential=pot).transpose("angle", "strain", ...)

@@ -1,13 +1,13 @@
 """Rule `surface_wave`: surface waves of real crystals over a scene's grid
-(surfwave.continuum.crystal_scene.surface_wave_scene), written as results/<scene>/surface_wave.nc.
+(surfwave.real_crystals.sweep.surface_wave_sweep), written as results/<scene>/surface_wave.nc.
 
 By hand (from the repository root): python workflow/scripts/surface_wave.py SCENE [CONFIGFILE ...]
 """
 import sys
 
-from surfwave.continuum.crystal_scene import METHOD, UNITS_NOTE, surface_wave_scene
+from surfwave.real_crystals.sweep import METHOD, UNITS_NOTE, surface_wave_sweep
 from surfwave.data import cube
-from surfwave.data.materials import get_material
+from surfwave.real_crystals.materials import get_material
 from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
@@ -17,7 +17,7 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
-ds = surface_wave_scene([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"], stress=job["stress"],
+ds = surface_wave_sweep([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"], stress=job["stress"],
                         loadings=job["loading"], toec=job["toec"], directions=job["directions"],
                         tol=job["accuracy"].get("tol"))
 for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):

@@ -35,7 +35,7 @@ import xarray as xr
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
-from surfwave.errors import InputError
+from surfwave.errors import DamagedCubeError, InputError
 from surfwave.data.integrity import check_readable, rebuild_hint
 
 #: netCDF engine used on write and read: the netCDF-C library (netCDF4-python); on this
@@ -48,7 +48,7 @@ COMPLEX_DIM = "complex"
 COMPLEX_ATTR = "complex_dimension"
 
 COORDS: dict[str, dict[str, str]] = {
-    "potential": {"long_name": "pair potential (surfwave.continuum.potentials registry name)"},
+    "potential": {"long_name": "pair potential (surfwave.model_crystals.potentials registry name)"},
     "direction": {"long_name": "propagation direction x (crystal axes; [10]: triangular rows)"},
     "strain": {"long_name": "strain along the propagation direction, d/d0 - 1", "units": "1"},
     "d_over_d0": {"long_name": "stretch along the propagation direction, d/d0", "units": "1"},
@@ -336,9 +336,6 @@ def decode_complex(ds: xr.Dataset) -> xr.Dataset:
         out = out.drop_vars(COMPLEX_DIM, errors="ignore")
     return out
 
-
-class DamagedCubeError(InputError):
-    """A result file that exists but cannot be read (truncated, not netCDF)."""
 
 
 def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:

@@ -1,14 +1,14 @@
 """Which library source files a workflow stage runs: the rule inputs that make code changes
 rerun exactly the affected jobs, and the code hash in parameter-cache keys.
 
-Modules are named by their dotted path below the package (``"continuum.rayleigh"``,
+Modules are named by their dotted path below the package (``"solvers.rayleigh"``,
 ``"data.cube"``). Imports are read statically with :mod:`ast`, so nothing is imported.
 
 Examples
 --------
->>> files = module_closure("continuum.rayleigh")
+>>> files = module_closure("solvers.rayleigh")
 >>> sorted(f.rsplit("surfwave/", 1)[1] for f in files)
-['__init__.py', 'continuum/__init__.py', 'continuum/rayleigh.py', 'errors.py']
+['__init__.py', 'errors.py', 'solvers/__init__.py', 'solvers/cubic.py', 'solvers/rayleigh.py']
 """
 from __future__ import annotations
 
@@ -36,19 +36,19 @@ def module_closure(*modules: str, package_dir: str | Path | None = None,
     Parameters
     ----------
     *modules : str
-        Dotted module names below the package (``"continuum.rayleigh"``).
+        Dotted module names below the package (``"solvers.rayleigh"``).
     package_dir : path, optional
         The package's source folder (default: this installation's).
     shallow : tuple of str
         Modules whose own file counts but whose imports are not followed: a dispatcher such
-        as ``plots.scene``, which imports each plotting module only where an output needs
+        as ``plots.figure_set``, which imports each plotting module only where an output needs
         it, and whose caller lists the modules its outputs need among ``modules``.
 
     Returns
     -------
     list of str
         Sorted file paths. Imports inside functions count, so a rule that lists
-        ``module_closure("continuum.rayleigh")`` reruns when any code it runs changes. The
+        ``module_closure("solvers.rayleigh")`` reruns when any code it runs changes. The
         package's ``__init__.py`` (the version) and the ``__init__.py`` of every subpackage
         on the way are included, but the top-level re-exports are not followed, nor the lazy
         re-exports of a module-level ``__getattr__``: they are conveniences for users, and each

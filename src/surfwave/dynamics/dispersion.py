@@ -29,7 +29,7 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.validate import as_1d
-from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import inv2, null_vector2
 from surfwave.dynamics.triangular import bond_force_constants, row_matrices
 

@@ -47,8 +47,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from surfwave.continuum.lattices import build
-from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import positive_definite2, theta_log_dets
 from surfwave.dynamics.triangular import bond_force_constants, long_wave, row_matrices
 

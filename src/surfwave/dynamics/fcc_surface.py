@@ -51,9 +51,9 @@ from scipy.sparse.linalg import eigsh
 import dataclasses
 
 from surfwave.errors import InputError, SurfwaveError
-from surfwave.continuum.lattices import Crystal, build
-from surfwave.continuum.orientation import lab_axes
-from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.model_crystals.lattices import Crystal, build
+from surfwave.solvers.orientation import lab_axes
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
 #: "the sagittal motion decouples".

@@ -19,7 +19,7 @@ after the half crystal on one side is eliminated). Then, per row and per surface
   E = 1/det(1 - S^{-1} A1 St^{-1} A1^H) the Widom constant of the block Toeplitz matrix
   (both surfaces clamped; scalar analogue E = 1/(1 - a1^2/S^2)); the first frees the two
   surfaces, one term each (the top one reads det(1 - St^{-1} dA), equal since M dA M = dA).
-  The split is checked against finite-slab determinants in tests/test_entropy.py.
+  The split is checked against finite-slab determinants in tests/dynamics/test_entropy.py.
 * hence the surface entropy per surface atom at theta, in k_B:
   s(theta) = -X / 4 = -(1/2) ln det(1 - S^{-1} dA) + (1/4) ln det(1 - S^{-1} A1 St^{-1} A1^H).
 

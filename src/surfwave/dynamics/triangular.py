@@ -19,15 +19,16 @@ All functions are vectorised: strain axis first, theta axis second.
 :func:`long_wave` is the one place where the modules of the triangular lattice
 (:mod:`surfwave.dynamics.dispersion`, :mod:`surfwave.dynamics.triangular_surface`, :mod:`surfwave.dynamics.entropy`) get the
 long-wave sound speeds, stability and the Cauchy-case Rayleigh speed, Eq. (20): from the bond
-sums of :mod:`surfwave.continuum.elastic` (Eqs. A11, A12).
+sums of :mod:`surfwave.model_crystals.elastic` (Eqs. A11, A12).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum import elastic, rayleigh
-from surfwave.continuum.lattices import build
-from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.model_crystals import elastic
+from surfwave.solvers import rayleigh
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.validate import as_1d
 
 
@@ -99,8 +100,8 @@ def long_wave(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray
         ``c2_L_par``, ``c2_T_par``, ``c2_L_perp``, ``c2_T_perp`` (Eq. A7 with S of Eq. A11
         from the bond sums, K d0^2/m); ``min_acoustic_eig`` (lowest eigenvalue of V Q(n) over
         all directions, K d0^2) and ``stable`` (bool), from
-        :func:`surfwave.continuum.long_wave.long_wave_stability`; ``c2_R_cauchy``: the raw root of
-        Eq. (20) (:func:`surfwave.continuum.rayleigh.cauchy_c2`; NaN where the square root is
+        :func:`surfwave.solvers.long_wave.long_wave_stability`; ``c2_R_cauchy``: the raw root of
+        Eq. (20) (:func:`surfwave.solvers.rayleigh.cauchy_c2`; NaN where the square root is
         imaginary), K d0^2/m, not checked to lie in (0, c2_T_par).
     """
     props = elastic.properties("triangular", "uniaxial", potential, "[10]", d_over_d0)

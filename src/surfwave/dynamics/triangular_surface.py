@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.continuum.potentials import PairPotential, get_potential
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import det2, inv2, null_vector2
 from surfwave.dynamics.triangular import long_wave, row_matrices
 from surfwave.validate import as_1d

@@ -28,7 +28,7 @@ ANGLE_QUANTITIES = ("elastic", "rayleigh")
 
 def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
     """Angles (degrees from [100] in the (001) surface) of an FCC scene's ``directions`` grid."""
-    from surfwave.continuum.fcc_angles import LOADING
+    from surfwave.model_crystals.fcc_angles import LOADING
 
     problems = []
     if raw["lattice"] != "fcc":
@@ -49,8 +49,8 @@ def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
 
 def crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
     """Angles (degrees) of a real-crystal scene and their Miller labels (or None)."""
-    from surfwave.continuum import orientation
-    from surfwave.continuum.crystal_scene import symmetry_reduced_range
+    from surfwave.solvers import orientation
+    from surfwave.real_crystals.sweep import symmetry_reduced_range
 
     if "directions" in raw:
         if "angles" in raw:
@@ -94,9 +94,9 @@ def check_crystal_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
 
 def _expand_crystal_scene(name: str, raw: dict) -> dict:
     """Physical checks and expansion of a real-crystal scene; the first problem raises."""
-    from surfwave.continuum import orientation
-    from surfwave.continuum.crystal_scene import applied_stress
-    from surfwave.data.materials import get_material
+    from surfwave.solvers import orientation
+    from surfwave.real_crystals.sweep import applied_stress
+    from surfwave.real_crystals.materials import get_material
 
     where = f"scene {name!r}"
     mats = []

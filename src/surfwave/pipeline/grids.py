@@ -7,15 +7,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.errors import SurfwaveError
+from surfwave.errors import SceneError
 
 #: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
 DECIMALS = 12
 MAX_POINTS = 100_000
 
-
-class SceneError(SurfwaveError, ValueError):
-    """A configuration that cannot be run; the message names scene, key and value."""
 
 
 def expand_grid(spec, where: str = "grid") -> np.ndarray:

@@ -3,7 +3,7 @@
 The config schema (``workflow/schemas/config.schema.yaml``) lists the knobs with their
 types and meaning only; :func:`inject` writes the defaults and bounds below into it when
 it is loaded (:func:`surfwave.pipeline.scenes.load_schema`). The defaults are the library
-functions' own defaults (``surfwave.continuum.phonons.DEFAULT_*``, the ``tol`` keyword
+functions' own defaults (``surfwave.model_crystals.phonons.DEFAULT_*``, the ``tol`` keyword
 defaults of the surface-mode and entropy solvers), so the workflow, the schema and a
 direct library call cannot disagree. The library is the source rather than the schema
 because the library is used without the workflow (``surfwave.point``, the benchmarks),
@@ -18,7 +18,7 @@ import copy
 import inspect
 from dataclasses import dataclass
 
-from surfwave.continuum import phonons
+from surfwave.model_crystals import phonons
 
 
 def _keyword_default(func, name):

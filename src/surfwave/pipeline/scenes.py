@@ -27,8 +27,8 @@ from typing import Any
 
 
 from surfwave.errors import SurfwaveError, InputError
-from surfwave.continuum.lattices import LATTICES, build, check_combination, check_d_over_d0
-from surfwave.continuum.potentials import get_potential
+from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
+from surfwave.model_crystals.potentials import get_potential
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid, theta_grid  # noqa: F401 (public)
 
@@ -81,20 +81,6 @@ def _validator_with_defaults(schema: dict):
 
     cls = jsonschema.validators.extend(base, {"properties": set_defaults})
     return cls(schema)
-
-
-def validate_schema(config: dict, schema: dict | str | Path | None = None) -> dict:
-    """Fill defaults into ``config`` (in place) and check it against the schema.
-
-    Raises
-    ------
-    SceneError
-        Naming the scene, the key and the value of every problem (one line each).
-    """
-    messages = schema_problems(config, schema)
-    if messages:
-        raise SceneError(_join(messages))
-    return config
 
 
 def schema_problems(config: dict, schema: dict | str | Path | None = None) -> list[str]:

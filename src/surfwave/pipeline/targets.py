@@ -138,7 +138,7 @@ def scene_output_inputs(scenes: dict, name: str) -> tuple[dict[str, str], list[s
     keys = scene_outputs(scenes, name)
     # the summary reads every cube of the scene, in the scene's order
     cubes = {q: CUBES[q] for q in scenes[name]["quantities"]} if "summary" in keys else {}
-    modules: list[str] = ["plots.scene", "pipeline.stage"]
+    modules: list[str] = ["plots.figure_set", "pipeline.stage"]
     for key in keys:
         names, code = _need(key)
         cubes.update({c: CUBES[c] for c in names})

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 #: Names a reader knows, for the registered potentials of the paper.
 POTENTIAL_NAMES = {"harmonic": "harmonic (Hooke) springs", "lj": "Lennard-Jones 12-6"}
-D_OVER_D0 = r"$d/d_0$"
 THETA_OVER_PI = r"$\theta/\pi = k d_x/\pi$"
 OMEGA = r"$\omega\ /\ (K/m)^{1/2}$"
 
@@ -18,7 +17,7 @@ def potential_label(name: str) -> str:
     if name in POTENTIAL_NAMES:
         return POTENTIAL_NAMES[name]
     try:
-        from surfwave.continuum.potentials import get_potential
+        from surfwave.model_crystals.potentials import get_potential
 
         text = get_potential(name).description
     except Exception:  # an unregistered label: show it as given

@@ -1,6 +1,6 @@
 """Figure of the FCC stability map (long-wave against full-zone stability).
 
-Draws the Dataset of :func:`surfwave.continuum.stability_map.stability_map`; computing and
+Draws the Dataset of :func:`surfwave.model_crystals.stability_map.stability_map`; computing and
 writing the map belong to the library and the workflow (rule ``figure_stability_map``).
 """
 
@@ -28,7 +28,7 @@ def plot_stability_map(ds: xr.Dataset, path) -> None:
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`surfwave.continuum.stability_map.stability_map` (``state``, ``d_limit``
+        From :func:`surfwave.model_crystals.stability_map.stability_map` (``state``, ``d_limit``
         and the d/d0 coordinate).
     path : str or Path
         PNG file to write.

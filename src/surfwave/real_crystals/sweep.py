@@ -1,0 +1,440 @@
+"""Surface waves of real crystals over a whole scene: materials x surfaces x angles, optionally
+x loading x TOEC model x stress, in one labelled cube (``surface_wave.nc``).
+
+Frames and units (docs/physics/general-solver.md): the lab frame of a surface has x1 along
+the propagation direction, x2 along the inward surface normal and x3 = x1 x x2; ``angle`` is
+measured in degrees from the surface's reference direction toward n x reference
+(:mod:`surfwave.solvers.orientation`). Elastic constants and stresses are in GPa, densities
+in kg/m^3, speeds in m/s.
+
+Every applied stress lies in the surface plane (sigma . n = 0), so the free surface stays
+traction-free at the prestressed state; loadings:
+
+- ``along``: uniaxial sigma x1 x1 (along the propagation direction, turns with the angle);
+- ``across``: uniaxial sigma x3 x3 (in-plane, perpendicular to the propagation);
+- ``biaxial``: sigma (x1 x1 + x3 x3), equal in-plane biaxial stress;
+- ``axis_<hkl>``: uniaxial along a fixed crystal direction lying in the surface
+  (``axis_100``, ``axis_1-10``), the same for every angle.
+
+With ``toec=False`` the second-order constants stay those of the natural state and the
+stress enters only through the wave-propagation tensor A = C + sigma (the paper's Eq. A11
+model); with ``toec=True`` the constants and the density are those of the stressed state,
+from the third-order constants (:func:`surfwave.real_crystals.toec.stressed_state`).
+
+Examples
+--------
+>>> from surfwave.real_crystals.materials import get_material
+>>> ds = surface_wave_sweep([get_material("Cu")], ["(001)"], [0.0])   # doctest: +SKIP
+>>> round(float(ds.c_R.sel(material="Cu", surface="(001)", angle=0.0)), 2)   # doctest: +SKIP
+2012.12
+"""
+from __future__ import annotations
+
+import itertools
+import re
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
+from surfwave.errors import InputError
+from surfwave.validate import as_1d
+
+if TYPE_CHECKING:  # xarray only for the Dataset builder: scene checks at workflow parse stay light
+    import xarray as xr
+
+#: Stress kinds a scene may ask for; ``axis_<hkl>`` adds any in-plane crystal axis.
+LOADINGS = ("along", "across", "biaxial")
+_AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
+#: Names of the three displacement components of the polarisation (lab frame).
+COMPONENTS = ("u1", "u2", "u3")
+#: Trailing dimension of the vector variables.
+TRAILING = {"polarisation": "component", "decay": "partial_wave"}
+#: Speeds are given to the solver in SI: GPa -> Pa.
+GPA = 1.0e9
+
+#: The ``method`` attribute of the cube.
+METHOD = ("general anisotropic surface-wave solver (Stroh formalism, surfwave.solvers.stroh) on "
+          "A_ijkl = C_ijkl + sigma_jl delta_ik in the lab frame of each surface and angle; "
+          "stressed-state constants and density from third-order constants where toec is true "
+          "(surfwave.real_crystals.toec), natural-state constants otherwise")
+
+#: The ``units_note`` attribute of the cube (SI, unlike the model-lattice cubes).
+UNITS_NOTE = "SI units: speeds in m/s, stresses in GPa, densities in kg/m^3, angles in degrees"
+
+#: Metadata of the cube's variables (CF long_name/units); dims are set by the builder.
+VARIABLES: dict[str, dict[str, str]] = {
+    "c_R": {"long_name": "surface-wave speed (real part for a pseudo surface wave)", "units": "m s-1"},
+    "c_R_imag": {"long_name": "imaginary part of the complex speed of a leaky pseudo surface wave "
+                 "(0 for a true surface wave)", "units": "m s-1"},
+    "c_limit": {"long_name": "limiting speed v_L: lowest bulk speed with a real slowness "
+                "projection along x1 (onset of bulk radiation)", "units": "m s-1"},
+    "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
+    "reason": {"long_name": "why no surface wave exists at the point (empty when one does)"},
+    "polarisation": {"long_name": "surface displacement (u1, u2, u3) in the lab frame, complex, "
+                     "unit length, phase such that u2 is real and >= 0", "units": "1"},
+    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, "
+                          "1/(2 pi min Im p), in wavelengths", "units": "1"},
+    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the partial waves exp(ik(x1 + p x2)) of the "
+              "surface wave, ascending Im p (decoupled mirror wave: the two sagittal ones, then the SH "
+              "one or NaN), complex", "units": "1"},
+    "rho": {"long_name": "density of the (stressed) crystal", "units": "kg m-3"},
+    "symmetric_range": {"long_name": "width of the symmetry-reduced angle range [0, w]: the "
+                        "unstressed speeds repeat mirror-symmetrically about multiples of w",
+                        "units": "degree"},
+}
+
+COORDS: dict[str, dict[str, str]] = {
+    "material": {"long_name": "crystal (surfwave.real_crystals.materials name)"},
+    "surface": {"long_name": "surface plane, Miller indices in crystal axes"},
+    "angle": {"long_name": "propagation angle from the surface's reference direction ((001): [100], "
+              "(110): [001], (111): [1-10]) toward n x reference", "units": "degree"},
+    "direction": {"long_name": "propagation direction, Miller indices in crystal axes"},
+    "loading": {"long_name": "stress kind: along / across the propagation (uniaxial), in-plane "
+                "biaxial, or axis_<hkl> uniaxial along a fixed crystal axis"},
+    "toec": {"long_name": "constants of the stressed state from third-order elastic constants "
+             "(false: second-order constants of the natural state)"},
+    "stress": {"long_name": "applied in-plane stress (negative = compression)", "units": "GPa"},
+}
+
+
+# --------------------------------------------------------------------------- symmetry
+
+
+def _candidate_operations() -> np.ndarray:
+    """Point operations to test against a stiffness: m-3m (cube axes) and 6/mmm (c along x3).
+
+    Returns
+    -------
+    ndarray, shape (72, 3, 3)
+    """
+    ops = []
+    for perm in itertools.permutations(range(3)):
+        for signs in itertools.product((1.0, -1.0), repeat=3):
+            R = np.zeros((3, 3))
+            R[np.arange(3), perm] = signs
+            ops.append(R)
+    for k in range(6):
+        c, s = np.cos(k * np.pi / 3), np.sin(k * np.pi / 3)
+        rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        for m in (np.eye(3), np.diag([1.0, -1.0, 1.0])):
+            for inv in (1.0, -1.0):
+                ops.append(inv * rot @ m)
+    return np.array(ops)
+
+
+def stiffness_symmetry(voigt) -> np.ndarray:
+    """The candidate point operations that leave a stiffness unchanged.
+
+    Parameters
+    ----------
+    voigt : array_like, shape (6, 6)
+        Stiffness in crystal axes (any units).
+
+    Returns
+    -------
+    ndarray, shape (n_ops, 3, 3)
+        Orthogonal matrices R with R C R^T = C (m-3m and 6/mmm candidates only).
+    """
+    C = voigt_to_tensor(voigt)
+    ops = _candidate_operations()
+    rotated = rotate4(C[None], ops)
+    scale = np.abs(C).max()
+    keep = np.all(np.abs(rotated - C) <= 1e-9 * scale, axis=(1, 2, 3, 4))
+    return ops[keep]
+
+
+def symmetry_reduced_range(surface: str, voigts: Sequence) -> float:
+    """Width (degrees) of the propagation-angle range that every other angle maps onto.
+
+    The elastic point group of each crystal (found by testing m-3m and 6/mmm operations on
+    its stiffness) restricted to operations that keep the surface normal (or reverse it: the
+    stiffness is centrosymmetric), together with the reversal k -> -k (a wave and its reverse
+    have the same speed), acts on the in-plane propagation directions as a set of mirror
+    lines; with N lines in [0, 180) degrees the speeds repeat with mirror symmetry every
+    180/N degrees. The reference direction lies on a mirror line for the low-index cubic
+    surfaces, so the reduced range is [0, 180/N]: 45 for cubic (001), 90 for (110), 30 for
+    (111). With unequally spaced lines (a transversely isotropic stiffness passes both the
+    4- and the 6-fold tests) the smallest gap is returned, still a range every angle maps
+    into; 180 when the reference direction is on no mirror line.
+
+    Parameters
+    ----------
+    surface : str
+        Miller indices, e.g. ``"(111)"``.
+    voigts : sequence of array_like, shape (6, 6)
+        Stiffnesses of the crystals concerned: the result is the widest of their ranges.
+
+    Returns
+    -------
+    float
+        Degrees (180 when the crystal has no in-plane symmetry besides k -> -k).
+    """
+    from surfwave.solvers import orientation
+
+    axes = np.asarray(orientation.lab_axes(surface, 0.0), dtype=float).reshape(3, 3)
+    e1, n, e3 = axes
+    width = 0.0
+    for voigt in voigts:
+        R = stiffness_symmetry(voigt)  # (m, 3, 3)
+        keeps_normal = np.abs(np.abs(R @ n @ n) - 1.0) <= 1e-9  # R n = +-n
+        # the action on the in-plane directions (e1, e3)
+        M = np.einsum("i,mij,j->m", e1, R, e1), np.einsum("i,mij,j->m", e1, R, e3), \
+            np.einsum("i,mij,j->m", e3, R, e1), np.einsum("i,mij,j->m", e3, R, e3)
+        # in-plane rotations (det > 0) have no mirror line; a reflection about the line at
+        # angle phi is M = [[cos 2phi, sin 2phi], [sin 2phi, -cos 2phi]]
+        reflect = keeps_normal & (M[0] * M[3] - M[1] * M[2] < 0)
+        phi = 0.5 * np.degrees(np.arctan2(M[2][reflect], M[0][reflect]))
+        both = np.concatenate([phi, phi + 90.0])  # -M is a reflection too (k -> -k)
+        lines = set((np.round(both % 180.0, 6) % 180.0).tolist())
+        ordered = np.sort(np.array(sorted(lines)))
+        if ordered.size == 0 or ordered[0] > 1e-6:  # reference not on a mirror line
+            return 180.0
+        # Equally spaced lines (a finite group): the spacing. More lines (a transversely
+        # isotropic stiffness has both 4- and 6-fold lines): the smallest gap, a safe range.
+        gaps = np.diff(np.append(ordered, 180.0))
+        width = max(width, float(gaps.min()))
+    return width
+
+
+# --------------------------------------------------------------------------- stress
+
+
+def axis_of_loading(loading: str) -> np.ndarray | None:
+    """Unit crystal direction of an ``axis_<hkl>`` loading, or None for the other kinds.
+
+    Raises
+    ------
+    InputError
+        An unknown loading name (the message lists the kinds).
+    """
+    if loading in LOADINGS:
+        return None
+    m = _AXIS.match(loading)
+    if not m:
+        raise InputError(f"unknown loading {loading!r}; choose one of {list(LOADINGS)} or "
+                         "axis_<hkl> (e.g. axis_100, axis_1-10)")
+    d = np.array([float(g) for g in m.groups()])
+    if not np.any(d):
+        raise InputError(f"loading {loading!r}: the axis [000] has no direction")
+    return d / np.linalg.norm(d)
+
+
+def applied_stress(loading: str, axes, stress) -> np.ndarray:
+    """Applied stress tensors in crystal axes.
+
+    Parameters
+    ----------
+    loading : str
+        ``along``, ``across``, ``biaxial`` or ``axis_<hkl>``.
+    axes : array_like, shape (n_angle, 3, 3)
+        Lab axes (rows x1, x2 = inward normal, x3) in crystal axes.
+    stress : array_like, shape (n_stress,)
+        Stress magnitudes, GPa.
+
+    Returns
+    -------
+    ndarray, shape (n_angle, n_stress, 3, 3)
+        sigma_ij in crystal axes, GPa; sigma . n = 0 for every entry.
+
+    Raises
+    ------
+    InputError
+        An ``axis_<hkl>`` loading whose axis is not in the surface plane.
+    """
+    axes = np.asarray(axes, dtype=float)
+    s = np.asarray(stress, dtype=float)
+    x1, n, x3 = axes[:, 0], axes[:, 1], axes[:, 2]
+    d = axis_of_loading(loading)
+    if loading == "along":
+        unit = np.einsum("ai,aj->aij", x1, x1)
+    elif loading == "across":
+        unit = np.einsum("ai,aj->aij", x3, x3)
+    elif loading == "biaxial":
+        unit = np.einsum("ai,aj->aij", x1, x1) + np.einsum("ai,aj->aij", x3, x3)
+    else:
+        if np.any(np.abs(n @ d) > 1e-9):
+            raise InputError(f"loading {loading!r}: the axis is not in the surface plane "
+                             "(a stress with a normal component cannot act on a free surface)")
+        unit = np.broadcast_to(np.outer(d, d), (len(axes), 3, 3))
+    return unit[:, None] * s[None, :, None, None]
+
+
+# --------------------------------------------------------------------------- the scene
+
+
+def _stressed_frames(material, sigma: np.ndarray, axes: np.ndarray, use_toec: bool) -> dict:
+    """Lab-frame constants, stress and density of the stressed crystal at every point.
+
+    Parameters
+    ----------
+    material : Material
+    sigma : ndarray, shape (n, 3, 3)
+        Applied Cauchy stress, crystal axes, GPa.
+    axes : ndarray, shape (n, 3, 3)
+        Lab axes of the natural crystal (rows x1, x2 = inward normal, x3), crystal axes.
+    use_toec : bool
+        False: fixed-C model (C* = C2, rho = rho0, no deformation). True: the stressed state
+        of :func:`surfwave.real_crystals.toec.stressed_state`; the material direction x1 and the
+        surface plane move with the (pure-stretch) deformation F, so the lab axes become
+        F x1 and F^-T x2 (normalised), x3 their cross product.
+
+    Returns
+    -------
+    dict
+        ``C`` (n, 3, 3, 3, 3) and ``sigma`` (n, 3, 3) in the lab frame, GPa; ``rho`` (n,)
+        kg/m^3; ``ok`` (n,) bool and ``reason`` (n,) str where the stressed state does not
+        exist (values there are meaningless).
+    """
+    from surfwave.real_crystals import toec
+
+    state = toec.stressed_state(material.voigt, material.toec_voigt if use_toec else None, sigma,
+                                material.rho)
+    ok = np.asarray(state["ok"], dtype=bool)
+    F = np.where(ok[:, None, None], state["F"], np.eye(3))
+    lab = toec.deformed_axes(F, axes)
+    C = np.where(ok[:, None, None, None, None], state["C_star"], voigt_to_tensor(material.voigt))
+    return {"C": rotate4(C, lab), "sigma": rotate2(sigma, lab), "rho": np.where(ok, state["rho"], material.rho),
+            "ok": ok, "reason": np.asarray(state["reason"]).astype(str)}
+
+
+def _solve_points(C_lab, sigma_lab, rho, tol):
+    """The general solver on a flat batch of points (SI units in, m/s out)."""
+    from surfwave.solvers import stroh
+
+    A = stroh.wave_propagation_tensor(C_lab * GPA, sigma_lab * GPA)
+    kwargs = {} if tol is None else {"tol": tol}
+    return stroh.surface_wave(A, rho, **kwargs)
+
+
+def surface_wave_sweep(
+    materials: Sequence[str],
+    surfaces: Sequence[str],
+    angles,
+    stress=None,
+    loadings: Sequence[str] = ("along",),
+    toec: Sequence[bool] = (False,),
+    directions: Sequence[str] | None = None,
+    tol: float | None = None,
+) -> xr.Dataset:
+    """Surface waves of real crystals over a scene's whole grid, as one labelled cube.
+
+    Parameters
+    ----------
+    materials : sequence of Material
+        Records of :mod:`surfwave.real_crystals.materials` (``get_material(name)``) or any objects
+        with ``name``, ``voigt`` (GPa), ``rho`` (kg/m^3) and ``toec`` (None or GPa): the
+        caller looks the names up, so the physics does not depend on the database.
+    surfaces : sequence of str
+        Surface planes, e.g. ``["(001)", "(110)"]``.
+    angles : array_like, shape (n_angle,)
+        Propagation angles in degrees (the same for every surface).
+    stress : array_like, shape (n_stress,), optional
+        Applied stress magnitudes in GPa. None: unstressed, and the cube has no loading,
+        toec and stress dims.
+    loadings : sequence of str
+        Stress kinds (see the module docstring); used only with ``stress``.
+    toec : sequence of bool
+        Models of the stressed state: False = fixed second-order constants, True = from the
+        third-order constants (the material needs them); used only with ``stress``.
+    directions : sequence of str, optional
+        Miller labels of the angles (same length), stored as a ``direction`` coordinate.
+    tol : float, optional
+        Relative speed tolerance passed to the solver (its default when None).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims (material, surface, angle) or (material, surface, angle, loading, toec, stress)
+        for ``c_R``, ``c_R_imag``, ``c_limit`` (m/s), ``wave_type``, ``reason``,
+        ``penetration_depth`` (wavelengths), ``rho`` (kg/m^3), and the same plus a trailing
+        ``component`` (u1, u2, u3) for the complex ``polarisation`` (written to netCDF as real
+        and imaginary parts by :func:`surfwave.data.cube.write`), plus ``symmetric_range``
+        (material, surface) in degrees.
+        Every variable and coordinate has ``long_name`` (and ``units`` when numeric). No
+        global attributes: the workflow adds provenance.
+
+    Raises
+    ------
+    InputError
+        Unknown surfaces, an ``axis_<hkl>`` loading outside a surface, or
+        ``toec=True`` for a material without third-order constants.
+    """
+    from surfwave.solvers import orientation
+
+    mats = list(materials)
+    angles = as_1d(angles, "angles")
+    stressed = stress is not None
+    s = as_1d(stress if stressed else [0.0], "stress")
+    loads = list(loadings) if stressed else ["along"]
+    models = [bool(t) for t in toec] if stressed else [False]
+    for m in mats:
+        if any(models) and m.toec is None:
+            raise InputError(f"material {m.name!r} has no third-order elastic constants "
+                             "(toec: true needs C111, C112, C123, C144, C155, C456)")
+    axes = np.stack([np.asarray(orientation.lab_axes(sf, angles), dtype=float).reshape(-1, 3, 3)
+                     for sf in surfaces])                                # (nsf, na, 3, 3)
+    nsf, na = axes.shape[:2]
+    shape = (len(mats), nsf, na, len(loads), len(models), len(s))
+    out = {k: np.full(shape, np.nan) for k in ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho")}
+    for k in ("polarisation", "decay"):
+        out[k] = np.full(shape + (3,), np.nan + 0j)
+    out["wave_type"] = np.full(shape, "none", dtype=object)
+    out["reason"] = np.full(shape, "", dtype=object)
+    # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
+    flat_axes = axes.reshape(nsf * na, 3, 3)
+    sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
+    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape).reshape(-1, 3, 3)
+    sub = (nsf, na, len(loads), len(s))
+    for im, mat in enumerate(mats):
+        for it, use in enumerate(models):
+            st = _stressed_frames(mat, sig.reshape(-1, 3, 3), point_axes, use)
+            ok = st["ok"]
+            res = {k: np.full((ok.size,) + out[k].shape[len(shape):], out[k].flat[0], dtype=out[k].dtype) for k in out}
+            res["reason"][~ok] = np.char.add("no stressed state: ", st["reason"][~ok]).astype(object)
+            res["rho"][ok] = st["rho"][ok]
+            if ok.any():
+                r = _solve_points(st["C"][ok], st["sigma"][ok], st["rho"][ok], tol)
+                for name, key in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
+                                  ("penetration_depth", "penetration_depth"), ("wave_type", "wave_type"),
+                                  ("reason", "reason"), ("polarisation", "polarisation"), ("decay", "decay")):
+                    res[name][ok] = r[key]
+            idx = (im, slice(None), slice(None), slice(None), it, slice(None))
+            for name, arr in res.items():
+                out[name][idx] = arr.reshape(sub + arr.shape[1:])
+    ds = _dataset(out, [m.name for m in mats], list(surfaces), angles, loads, models, s, stressed,
+                  directions)
+    width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
+    return ds.assign(symmetric_range=(("material", "surface"), np.array(width),
+                                      VARIABLES["symmetric_range"]))
+
+
+def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, directions) -> xr.Dataset:
+    """Label the arrays of :func:`surface_wave_sweep` (drop the stress dims when unstressed)."""
+    dims = ("material", "surface", "angle", "loading", "toec", "stress")
+    data_vars = {}
+    for name, arr in out.items():
+        vdims = dims + ((TRAILING.get(name, "component"),) if arr.ndim == len(dims) + 1 else ())
+        if arr.dtype == object:
+            arr = arr.astype(str)
+        data_vars[name] = (vdims, arr, dict(VARIABLES[name]))
+    coords = {
+        "material": ("material", np.asarray(materials, dtype=str), COORDS["material"]),
+        "surface": ("surface", np.asarray(surfaces, dtype=str), COORDS["surface"]),
+        "angle": ("angle", angles, COORDS["angle"]),
+        "loading": ("loading", np.asarray(loads, dtype=str), COORDS["loading"]),
+        "toec": ("toec", np.asarray(models, dtype=bool), COORDS["toec"]),
+        "stress": ("stress", s, COORDS["stress"]),
+        "component": ("component", np.asarray(COMPONENTS), {"long_name": "lab-frame displacement "
+                      "component (u1 along the propagation, u2 along the inward normal)"}),
+        "partial_wave": ("partial_wave", np.arange(1, 4), {"long_name": "partial wave of the Stroh "
+                         "solution (1 = fastest decaying)", "units": "1"}),
+    }
+    import xarray as xr
+
+    ds = xr.Dataset(data_vars, coords=coords)
+    if directions is not None:
+        ds = ds.assign_coords(direction=("angle", np.asarray(directions, dtype=str), COORDS["direction"]))
+    if not stressed:
+        ds = ds.isel(loading=0, toec=0, stress=0, drop=True)
+    return ds

@@ -1,0 +1,429 @@
+"""Third-order elastic constants: the stressed crystal's constants from a hyperelastic model.
+
+Energy per unit *natural* (unstressed) volume, Brugger convention (Lagrangian strain
+eta = (F^T F - I)/2, constants defined at the natural state):
+
+    W(eta) = 1/2 C2_ijkl eta_ij eta_kl + 1/6 C3_ijklmn eta_ij eta_kl eta_mn
+
+    T = dW/deta = C2 : eta + 1/2 C3 : eta : eta           (second Piola-Kirchhoff stress)
+    sigma = F T F^T / J,  J = det F                         (Cauchy stress)
+    C*_ijkl = F_ip F_jq F_kr F_ls (C2 + C3 : eta)_pqrs / J  (constants of the stressed state)
+    rho = rho0 / J
+
+C* are the second strain derivatives of the energy about the stressed state per unit
+current volume (Wallace's C of the stressed crystal, the quantity Eq. A12 gives for pair
+forces); the wave-propagation coefficients are A_ijkl = C*_ijkl + sigma_jl delta_ik.
+
+Frames: every tensor is in the crystal axes. The deformation that carries a given Cauchy
+stress is unique only up to a rotation; we take F symmetric (a pure stretch, F = U, no
+rotation), so the crystal axes stay the laboratory axes to first order and a direction m0
+of the natural crystal ends up along F m0, a plane of normal n0 along F^-T n0.
+
+Voigt form of C3 (shape (6, 6, 6)): C3_IJK with I, J, K in 11, 22, 33, 23, 13, 12 (0-based
+0..5), so that C3_ijklmn = C3_IJK with no factors of 2 (as tabulated: C111, C123, C456, ...).
+
+Examples
+--------
+>>> import numpy as np
+>>> from surfwave.solvers.tensors import cubic_voigt
+>>> C2 = cubic_voigt(168.4, 121.4, 75.4)                         # Cu, GPa
+>>> C3 = cubic_toec(-1271, -814, -50, -3, -780, -95)              # Hiki & Granato (1966)
+>>> st = stressed_state(C2, C3, np.diag([0.1, 0.0, 0.0]), 8960.0)  # 100 MPa along [100]
+>>> bool(st["ok"]), round(float(st["F"][0, 0] - 1.0), 7)
+(True, 0.0014876)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
+from surfwave.errors import InputError
+
+#: Newton iterations of the deformation solve before it is declared failed.
+MAX_ITERATIONS = 60
+#: Default tolerance of the deformation solve on the Cauchy stress, GPa.
+DEFAULT_TOL = 1e-9
+
+# Symmetric basis tensors of the six Voigt components, shape (6, 3, 3).
+_BASIS = np.zeros((6, 3, 3))
+for _a, (_i, _j) in enumerate(VOIGT_PAIRS):
+    _BASIS[_a, _i, _j] = _BASIS[_a, _j, _i] = 1.0
+
+
+def cubic_toec(C111, C112, C123, C144, C155, C456) -> np.ndarray:
+    """Voigt third-order stiffness of a cubic crystal (classes 432, -43m, m-3m), cube axes.
+
+    C144 pairs a normal strain with the shear in the plane perpendicular to it (C144 = C255
+    = C366); C155 pairs it with a shear containing its axis (C155 = C166 = C244 = ...).
+
+    Parameters
+    ----------
+    C111, C112, C123, C144, C155, C456 : float or array_like
+        Brugger constants (any units; GPa throughout surfwave). Arrays broadcast.
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6, 6)
+        Fully symmetric in its three Voigt indices.
+    """
+    vals = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (C111, C112, C123, C144, C155, C456)))
+    c111, c112, c123, c144, c155, c456 = vals
+    out = np.zeros(c111.shape + (6, 6, 6))
+
+    def put(value, I, J, K):
+        for p in {(I, J, K), (I, K, J), (J, I, K), (J, K, I), (K, I, J), (K, J, I)}:
+            out[(...,) + p] = value
+
+    for a in range(3):
+        b, c = [k for k in range(3) if k != a]
+        put(c111, a, a, a)
+        put(c112, a, a, b)
+        put(c112, a, a, c)
+        put(c144, a, a + 3, a + 3)          # normal a with the shear of the plane normal to a
+        put(c155, a, b + 3, b + 3)          # normal a with the shears whose plane contains a
+        put(c155, a, c + 3, c + 3)
+    put(c123, 0, 1, 2)
+    put(c456, 3, 4, 5)
+    return out
+
+
+def toec_tensor(C3_voigt) -> np.ndarray:
+    """Full sixth-rank tensor C3_ijklmn from its Voigt form, shape (..., 6, 6, 6) -> (..., 3, 3, 3, 3, 3, 3)."""
+    C3 = np.asarray(C3_voigt, dtype=float)
+    if C3.shape[-3:] != (6, 6, 6):
+        raise InputError(f"a Voigt third-order stiffness has shape (..., 6, 6, 6), got {C3.shape}")
+    V = VOIGT_INDEX
+    return C3[..., V[:, :, None, None, None, None], V[None, None, :, :, None, None], V[None, None, None, None, :, :]]
+
+
+def _as_c2(C2) -> np.ndarray:
+    C2 = np.asarray(C2, dtype=float)
+    if C2.shape[-2:] == (6, 6) and (C2.ndim < 4 or C2.shape[-4:-2] != (3, 3)):
+        return voigt_to_tensor(C2)
+    if C2.shape[-4:] != (3, 3, 3, 3):
+        raise InputError(f"C2 must have shape (..., 6, 6) or (..., 3, 3, 3, 3), got {C2.shape}")
+    return C2
+
+
+def _as_c3(C3) -> np.ndarray:
+    C3 = np.asarray(C3, dtype=float)
+    if C3.shape[-3:] == (6, 6, 6):
+        return toec_tensor(C3)
+    if C3.shape[-6:] != (3,) * 6:
+        raise InputError(f"C3 must have shape (..., 6, 6, 6) or (..., 3, 3, 3, 3, 3, 3), got {C3.shape}")
+    return C3
+
+
+def lagrangian_strain(F) -> np.ndarray:
+    """Lagrangian (Green) strain eta = (F^T F - I)/2, shape (..., 3, 3) -> (..., 3, 3)."""
+    F = np.asarray(F, dtype=float)
+    return 0.5 * (np.einsum("...ki,...kj->...ij", F, F) - np.eye(3))
+
+
+def _tangent(C2, C3, eta) -> np.ndarray:
+    """d^2 W / d eta^2 = C2 + C3 : eta, shape (..., 3, 3, 3, 3)."""
+    C3m = C3.reshape(C3.shape[:-6] + (81, 9))
+    contracted = (C3m @ eta.reshape(eta.shape[:-2] + (9, 1)))
+    return C2 + contracted.reshape(contracted.shape[:-2] + (3, 3, 3, 3))
+
+
+def _pk2(C2, C3, eta) -> np.ndarray:
+    """T = C2 : eta + 1/2 C3 : eta : eta, shape (..., 3, 3)."""
+    return np.einsum("...ijkl,...kl->...ij", 0.5 * (C2 + _tangent(C2, C3, eta)), eta)
+
+
+def cauchy_stress(F, C2, C3) -> np.ndarray:
+    """Cauchy stress of the hyperelastic model at deformation F: sigma = F T F^T / J.
+
+    Parameters
+    ----------
+    F : array_like, shape (..., 3, 3)
+        Deformation gradient from the natural state, crystal axes.
+    C2 : array_like, shape (..., 6, 6) or (..., 3, 3, 3, 3)
+        Second-order constants at the natural state (GPa).
+    C3 : array_like, shape (..., 6, 6, 6) or (..., 3, 3, 3, 3, 3, 3), or None
+        Third-order (Brugger) constants (GPa); None means zero.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        True (Cauchy) stress in the deformed state, GPa.
+    """
+    F = np.asarray(F, dtype=float)
+    C2 = _as_c2(C2)
+    C3 = np.zeros(C2.shape[:-4] + (3,) * 6) if C3 is None else _as_c3(C3)
+    T = _pk2(C2, C3, lagrangian_strain(F))
+    return np.einsum("...ip,...pq,...jq->...ij", F, T, F) / np.linalg.det(F)[..., None, None]
+
+
+def deformed_axes(F, axes) -> np.ndarray:
+    """Lab axes carried by the deformation: rows x1 = F m0, x2 = F^-T n0, x3 = x1 x x2.
+
+    The propagation direction is a material line (it follows F); the surface normal is a
+    plane normal (it follows F^-T), so x1 . x2 = m0 . n0 = 0 stays exact.
+
+    Parameters
+    ----------
+    F : array_like, shape (..., 3, 3)
+        Deformation gradient from the natural state, crystal axes.
+    axes : array_like, shape (..., 3, 3)
+        Natural-state lab axes, rows (m0, n0, m0 x n0) in crystal axes
+        (:func:`surfwave.solvers.orientation.lab_axes`).
+
+    Returns
+    -------
+    ndarray, shape broadcast of (..., 3, 3)
+        Orthonormal rows, crystal axes.
+    """
+    F = np.asarray(F, dtype=float)
+    axes = np.asarray(axes, dtype=float)
+    x1 = np.einsum("...ij,...j->...i", F, axes[..., 0, :])
+    x2 = np.einsum("...ji,...j->...i", np.linalg.inv(F), axes[..., 1, :])
+    x1 = x1 / np.linalg.norm(x1, axis=-1, keepdims=True)
+    x2 = x2 / np.linalg.norm(x2, axis=-1, keepdims=True)
+    return np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+
+
+def stressed_constants(C2, C3, F) -> np.ndarray:
+    """Constants of the stressed state C*_ijkl = F_ip F_jq F_kr F_ls (C2 + C3 : eta)_pqrs / J.
+
+    Parameters
+    ----------
+    C2 : array_like, shape (..., 6, 6) or (..., 3, 3, 3, 3)
+        Natural-state second-order constants, GPa.
+    C3 : array_like, shape (..., 6, 6, 6) or (..., 3, 3, 3, 3, 3, 3), or None
+        Natural-state Brugger third-order constants, GPa; None means zero.
+    F : array_like, shape (..., 3, 3)
+        Deformation gradient from the natural state.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3, 3, 3)
+        C*, GPa, crystal axes; has the full Voigt symmetry. With A = C* + sigma delta it gives
+        the incremental equations of motion in the stressed state.
+    """
+    F = np.asarray(F, dtype=float)
+    C2 = _as_c2(C2)
+    K = C2 if C3 is None else _tangent(C2, _as_c3(C3), lagrangian_strain(F))
+    out = np.einsum("...ip,...pqrs->...iqrs", F, K)
+    out = np.einsum("...jq,...iqrs->...ijrs", F, out)
+    out = np.einsum("...kr,...ijrs->...ijks", F, out)
+    out = np.einsum("...ls,...ijks->...ijkl", F, out)
+    return out / np.linalg.det(F)[..., None, None, None, None]
+
+
+def wallace_tensor(C, sigma) -> np.ndarray:
+    """Wallace's stability tensor of a stressed crystal, Voigt form, symmetrised.
+
+    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2
+    (Wallace; Wang, Yip, Phillpot and Wolf 1993), with C the constants of the stressed state.
+    The stressed crystal is stable against homogeneous deformation where it is positive definite.
+
+    Parameters
+    ----------
+    C : array_like, shape (..., 3, 3, 3, 3)
+    sigma : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 6, 6)
+    """
+    e = np.eye(3)
+    sigma = np.asarray(sigma, dtype=float)
+    B = np.asarray(C, dtype=float) + 0.5 * (
+        np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
+        + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
+        - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
+    B6 = tensor_to_voigt(B)
+    return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
+
+
+def _stress_and_jacobian(F, C2, C3):
+    """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
+    (..., 6, 3, 3), plus the tangent C2 + C3 : eta (matrix products: einsum chains are slow)."""
+    eta = lagrangian_strain(F)
+    K = _tangent(C2, C3, eta)
+    T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
+    J = np.linalg.det(F)
+    Finv = np.linalg.inv(F)
+    Ft = np.swapaxes(F, -1, -2)
+    sigma = F @ T @ Ft / J[..., None, None]
+    F1, Ft1, T1 = F[..., None, :, :], Ft[..., None, :, :], T[..., None, :, :]
+    dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
+    FtdF = Ft1 @ dF
+    deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
+    K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
+    dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
+    dFTFt = dF @ T1 @ Ft1
+    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
+    trace = np.einsum("...ij,...bji->...b", Finv, dF)
+    dsigma = term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
+    return sigma, dsigma, K
+
+
+def _voigt_vec(s) -> np.ndarray:
+    """The six independent components of symmetric tensors, shape (..., 3, 3) -> (..., 6)."""
+    i = [p[0] for p in VOIGT_PAIRS]
+    j = [p[1] for p in VOIGT_PAIRS]
+    return s[..., i, j]
+
+
+def deformation_for_stress(sigma, C2, C3, *, tol: float = DEFAULT_TOL, max_iterations: int = MAX_ITERATIONS) -> dict:
+    """The symmetric deformation F that carries a given Cauchy stress, by damped Newton.
+
+    Solves sigma(F) = F T(eta) F^T / J = sigma for F = F^T (pure stretch, no rotation: the
+    rotation is arbitrary and this choice keeps the crystal axes as laboratory axes). Starts
+    from linear elasticity, F = I + S2 : sigma; each step halves until the stress residual
+    falls. A point fails (``ok`` False, F NaN, ``reason`` says why) if the iteration does not
+    converge, if J <= 0, or if W stops being convex at the solution (C2 + C3 : eta not positive
+    definite: the third-order model is past its stability limit, a solution would be spurious).
+
+    Parameters
+    ----------
+    sigma : array_like, shape (..., 3, 3)
+        Cauchy stress in the deformed state, crystal axes, GPa (symmetric).
+    C2 : array_like, shape (6, 6) or (3, 3, 3, 3)
+        Natural-state constants, GPa.
+    C3 : array_like, shape (6, 6, 6) or (3, 3, 3, 3, 3, 3), or None
+        Brugger third-order constants, GPa (None: zero, geometric nonlinearity only).
+    tol : float
+        Largest accepted stress residual, GPa.
+    max_iterations : int
+
+    Returns
+    -------
+    dict
+        ``F`` (..., 3, 3), ``eta`` (..., 3, 3), ``ok`` (...,) bool, ``reason`` (...,) str
+        ("" where ok), ``iterations`` (...,) int, ``residual`` (...,) GPa.
+    """
+    sigma = np.asarray(sigma, dtype=float)
+    if sigma.shape[-2:] != (3, 3):
+        raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
+    if not np.allclose(sigma, np.swapaxes(sigma, -1, -2), atol=1e-12, rtol=0):
+        raise InputError("sigma must be symmetric (a Cauchy stress)")
+    if not np.all(np.isfinite(sigma)):
+        raise InputError("sigma must be finite")
+    C2 = _as_c2(C2)
+    C3 = np.zeros((3,) * 6) if C3 is None else _as_c3(C3)
+    shape = sigma.shape[:-2]
+    target = _voigt_vec(sigma).reshape(-1, 6)
+    n = target.shape[0]
+    C2v = tensor_to_voigt(C2)
+    eng = np.linalg.solve(C2v, target[..., None])[..., 0]            # engineering Voigt strain
+    F = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+    F += np.einsum("na,aij->nij", eng * np.array([1, 1, 1, 0.5, 0.5, 0.5]), _BASIS)
+    iterations = np.zeros(n, dtype=int)
+    done = np.zeros(n, dtype=bool)
+    residual = np.full(n, np.inf)
+    with np.errstate(all="ignore"):
+        for it in range(max_iterations + 1):
+            s, ds, _ = _stress_and_jacobian(F, C2, C3)
+            r = _voigt_vec(s) - target
+            residual = np.max(np.abs(r), axis=-1)
+            done |= residual <= tol
+            active = ~done & np.isfinite(residual)
+            if not active.any() or it == max_iterations:
+                break
+            iterations[active] += 1
+            jac = np.swapaxes(_voigt_vec(ds[active]), -1, -2)          # (m, 6 stress, 6 F)
+            try:
+                du = -np.linalg.solve(jac, r[active][..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                du = -np.einsum("mab,mb->ma", np.linalg.pinv(jac), r[active])
+            step = np.einsum("ma,aij->mij", du, _BASIS)
+            # Full Newton step where it lowers the residual; step halving only for the others.
+            F_a, res_a, tgt = F[active], residual[active], target[active]
+            todo = np.ones(len(F_a), dtype=bool)
+            for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
+                trial = F_a[todo] + alpha * step[todo]
+                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - tgt[todo]), axis=-1)
+                better = np.isfinite(rt) & (rt < res_a[todo])
+                idx = np.flatnonzero(todo)[better]
+                F_a[idx] = trial[better]
+                todo[idx] = False
+                if not todo.any():
+                    break
+            F[active] = F_a
+        eta = lagrangian_strain(F)
+        J = np.linalg.det(F)
+        K_min = np.linalg.eigvalsh(tensor_to_voigt(_tangent(C2, C3, eta)))[..., 0]
+    reason = np.full(n, "", dtype=object)
+    ok = done.copy()
+    reason[~done] = [f"no homogeneous state of the third-order model found for this stress (Newton stalled at "
+                     f"a stress residual of {x:.3g} GPa; beyond the model's limit stress)" for x in residual[~done]]
+    bad_J = ok & ~(J > 0)
+    reason[bad_J] = "deformation solve reached det F <= 0"
+    ok &= ~bad_J
+    not_convex = ok & ~(K_min > 0)
+    reason[not_convex] = [
+        f"energy not convex at the solved strain (lowest eigenvalue of C2 + C3:eta = {k:.3g} GPa): "
+        "stress beyond the stability limit of the third-order model" for k in K_min[not_convex]]
+    ok &= ~not_convex
+    F[~ok] = np.nan
+    eta[~ok] = np.nan
+    return {"F": F.reshape(shape + (3, 3)), "eta": eta.reshape(shape + (3, 3)),
+            "ok": ok.reshape(shape), "reason": reason.astype(str).reshape(shape),
+            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}
+
+
+def stressed_state(C2, C3, sigma, rho0, *, tol: float = DEFAULT_TOL) -> dict:
+    """Deformation, constants and density of a crystal carrying the Cauchy stress sigma.
+
+    Parameters
+    ----------
+    C2 : array_like, shape (6, 6) or (3, 3, 3, 3)
+        Natural-state second-order constants, GPa, crystal axes.
+    C3 : array_like, shape (6, 6, 6) or (3, 3, 3, 3, 3, 3), or None
+        Brugger third-order constants, GPa. None gives the fixed-C model of the paper's
+        approach applied to a real crystal: C* = C2, F = I, rho = rho0 (the stress enters
+        only through A = C2 + sigma delta), so "with and without TOEC" is one switch.
+    sigma : array_like, shape (..., 3, 3)
+        Cauchy stress, GPa, crystal axes.
+    rho0 : float
+        Natural-state density, kg/m^3.
+    tol : float
+        Tolerance of the deformation solve, GPa.
+
+    Returns
+    -------
+    dict
+        ``F`` (..., 3, 3), ``C_star`` (..., 3, 3, 3, 3) GPa, ``rho`` (...,) kg/m^3, ``sigma``
+        (..., 3, 3) GPa, ``ok`` (...,) bool, ``reason`` (...,) str. Where the deformation solve
+        fails or the stressed crystal is not Born-stable (Wallace's B = C* + stress terms,
+        :func:`wallace_tensor`, not positive definite), ``ok`` is False, the reason is given
+        and F, C_star, rho are NaN.
+    """
+    sigma = np.asarray(sigma, dtype=float)
+    if sigma.shape[-2:] != (3, 3):
+        raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
+    if not (np.isfinite(rho0) and rho0 > 0):
+        raise InputError(f"density rho0 must be positive, got {rho0!r} kg/m^3")
+    with np.errstate(invalid="ignore"):
+        return _stressed_state(_as_c2(C2), C3, sigma, float(rho0), tol)
+
+
+def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
+    shape = sigma.shape[:-2]
+    if C3 is None:
+        F = np.broadcast_to(np.eye(3), shape + (3, 3)).copy()
+        C_star = np.broadcast_to(C2, shape + (3, 3, 3, 3)).copy()
+        rho = np.full(shape, float(rho0))
+        ok = np.ones(shape, dtype=bool)
+        reason = np.full(shape, "", dtype=object)
+    else:
+        sol = deformation_for_stress(sigma, C2, C3, tol=tol)
+        F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
+        C_star = stressed_constants(C2, C3, F)
+        rho = float(rho0) / np.linalg.det(F)
+    born = np.linalg.eigvalsh(wallace_tensor(np.nan_to_num(C_star), sigma))[..., 0]
+    lost = ok & ~(born > 0)
+    if np.any(lost):
+        why = np.vectorize(lambda b: "stressed crystal not Born-stable (lowest eigenvalue of Wallace's "
+                           f"B = C* + stress terms: {b:.3g} GPa)", otypes=[object])(born)
+        reason = np.where(lost, why, reason)
+        ok = ok & ~lost
+    F = np.where(ok[..., None, None], F, np.nan)
+    C_star = np.where(ok[..., None, None, None, None], C_star, np.nan)
+    rho = np.where(ok, rho, np.nan)
+    return {"F": F, "C_star": C_star, "rho": rho, "sigma": sigma, "ok": ok,
+            "reason": np.asarray(reason).astype(str)}
