@@ -1,0 +1,1 @@
+"""Surface-wave solvers (elastic, piezoelectric, leaky)."""
