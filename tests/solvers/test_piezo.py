@@ -110,10 +110,13 @@ def _random_stable(m, seed):
 def test_zero_e_equals_elastic_solver(electrical):
     """e = 0: phi decouples, so c and v_L must equal surfwave.continuum.stroh.surface_wave (an
     independent implementation: 6 x 6 Stroh, Newton root search) to 1e-12 relative; random
-    triclinic stiffnesses and Cu (001) / (111) off the mirrors."""
+    triclinic stiffnesses, Cu (001) / (111) off the mirrors, Cu (001)[100] (a mirror: the elastic
+    solver takes Eq. 17) and an isotropic medium (degenerate Stroh roots)."""
     A = np.concatenate([_random_stable(12, 3),
                         rotate4(voigt_to_tensor(cubic_voigt(*CU)), lab_axes("(001)", np.array([7.0, 20.0, 33.0]))),
-                        rotate4(voigt_to_tensor(cubic_voigt(*CU)), lab_axes("(111)", np.array([11.0, 47.0])))])
+                        rotate4(voigt_to_tensor(cubic_voigt(*CU)), lab_axes("(111)", np.array([11.0, 47.0]))),
+                        rotate4(voigt_to_tensor(cubic_voigt(*CU)), lab_axes("(001)", np.array([0.0]))),
+                        voigt_to_tensor(cubic_voigt(3e10, 1e10, 1e10))[None]])
     m = len(A)
     eps = np.broadcast_to(np.array([[3.0, 0.5, 0.2], [0.5, 4.0, -0.3], [0.2, -0.3, 5.0]]) * 1e-11, (m, 3, 3))
     r = piezo_surface_wave(A, np.zeros((m, 3, 3, 3)), eps, 8960.0, electrical=electrical)
