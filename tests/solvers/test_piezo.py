@@ -281,3 +281,23 @@ def test_batch_equals_one_by_one():
         one = piezo_surface_wave(A[i:i + 1], e[i:i + 1], eps[i:i + 1], rho, electrical=el[i])
         for key in ("c", "c_limit", "power_flow_angle", "potential_share"):
             np.testing.assert_allclose(r[key][i], one[key][0], rtol=1e-13, atol=1e-13)
+
+
+def test_stiffened_bulk_speeds_and_limiting_speed():
+    """Along crystal Z of LiNbO3 the stiffened longitudinal wave has rho v^2 = C33 + e33^2/eps33 and
+    the shear waves C44 (closed form: gamma = (0, 0, e33), Auld, Acoustic Fields and Waves, ch. 8).
+    c_limit equals the minimum over a fine grid (20001 sagittal normals, then parabolic vertex) of
+    the trace speeds v(n)/cos(phi) from piezo_bulk_speeds (brute force, independent of the search)."""
+    C, e, eps, rho = lab(linbo3(), np.eye(3))
+    v = piezo.piezo_bulk_speeds(C, e, eps, rho, [0.0, 0.0, 1.0])[0]
+    np.testing.assert_allclose(v ** 2 * rho, [60e9, 60e9, 245e9 + 1.3 ** 2 / (29 * EPS0)], rtol=1e-13)
+    A, e, eps, rho = lab(linbo3(), euler_lab_axes(20.0, 50.0, 35.0))
+    phi = np.linspace(-1.5, 1.5, 20001)
+    n = np.stack([np.cos(phi), np.sin(phi), np.zeros_like(phi)], axis=-1)
+    k = phi.size
+    tr = piezo.piezo_bulk_speeds(np.repeat(A, k, 0), np.repeat(e, k, 0), np.repeat(eps, k, 0), rho, n)[:, 0] / np.cos(phi)
+    j = int(np.argmin(tr))
+    y0, y1, y2 = tr[j - 1:j + 2]
+    vmin = y1 - 0.125 * (y2 - y0) ** 2 / (y0 - 2 * y1 + y2)
+    c_lim = piezo_surface_wave(A, e, eps, rho)["c_limit"][0]
+    assert c_lim == pytest.approx(vmin, rel=1e-9) and c_lim <= tr.min() * (1 + 1e-14)

@@ -28,191 +28,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum.impedance import _monic
 from surfwave.errors import InputError
+from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
+    generalised_blocks, generalised_tensor, impedance, limiting_x, piezo_bulk_speeds, stroh_matrix,
+    stroh_polynomial_parts)
 
 #: Vacuum permittivity, F/m (CODATA 2018).
 EPS0 = 8.8541878128e-12
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
 T_MIN = 1e-6
 MAX_ITER = 80
-#: Wave-normal grid and refinement of the limiting-speed search.
-LIMIT_GRID = 48
-LIMIT_CANDIDATES = 3
-LIMIT_STEPS = 16
 
 REASON_PSEUDO = ("no subsonic surface wave: the lowest eigenvalue of the surface impedance stays positive "
                  "up to the stiffened limiting speed (pseudo/leaky regime; see surfwave.solvers.leaky)")
 REASON_UNSTABLE = "no surface wave: the impedance is not positive definite at v = 0 or a stiffened bulk wave has rho v^2 <= 0"
 REASON_T = "no surface wave: the stiffened T block (A_i2k2 + e e / eps22) is not positive definite"
-
-
-def generalised_blocks(A, e, eps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Generalised Stroh blocks Q_JK = E_J1K1, R_JK = E_J1K2, T_JK = E_J2K2 (index 3 electric).
-
-    Parameters
-    ----------
-    A : ndarray, shape (m, 3, 3, 3, 3)
-        Wave-propagation tensor, lab frame (any units, e.g. Pa).
-    e : ndarray, shape (m, 3, 3, 3)
-        Piezoelectric stress tensor e_kij, lab frame (units consistent with A and eps, C/m^2).
-    eps : ndarray, shape (m, 3, 3)
-        Permittivity eps_kl, lab frame (F/m).
-
-    Returns
-    -------
-    Q, R, T : ndarray, shape (m, 4, 4) each, float
-    """
-    E = generalised_tensor(A, e, eps)
-    return E[:, :, 0, :, 0], E[:, :, 0, :, 1], E[:, :, 1, :, 1]
-
-
-def generalised_tensor(A, e, eps) -> np.ndarray:
-    """E_IjKl, shape (m, 4, 3, 4, 3): E_ijkl = A_ijkl, E_ij3l = e_lij, E_3jkl = e_jkl, E_3j3l = -eps_jl."""
-    A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
-    m = A.shape[0]
-    E = np.zeros((m, 4, 3, 4, 3))
-    E[:, :3, :, :3, :] = A
-    E[:, :3, :, 3, :] = np.einsum("mlij->mijl", e)
-    E[:, 3, :, :3, :] = e
-    E[:, 3, :, 3, :] = -eps
-    return E
-
-
-def piezo_bulk_speeds(A, e, eps, rho, n) -> np.ndarray:
-    """Speeds of the three piezoelectrically stiffened bulk waves along unit wave normals n.
-
-    Eigenvalues of Gamma_ik + gamma_i gamma_k / epsilon(n), Gamma_ik = A_ijkl n_j n_l,
-    gamma_i = e_kij n_k n_j, epsilon(n) = eps_kl n_k n_l, divided by rho.
-
-    Parameters
-    ----------
-    A : (m, 3, 3, 3, 3) Pa; e : (m, 3, 3, 3) C/m^2; eps : (m, 3, 3) F/m; rho : (m,) or scalar kg/m^3
-    n : array_like, shape (m, 3) or (3,)
-        Wave normals, lab frame (normalised here).
-
-    Returns
-    -------
-    ndarray, shape (m, 3), m/s, ascending (NaN where rho v^2 < 0).
-    """
-    A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
-    n = np.broadcast_to(np.asarray(n, dtype=float), (A.shape[0], 3))
-    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
-    G = np.einsum("mijkl,mj,ml->mik", A, n, n)
-    g = np.einsum("mkij,mk,mj->mi", e, n, n)
-    en = np.einsum("mkl,mk,ml->m", eps, n, n)
-    w = np.linalg.eigvalsh(G + g[:, :, None] * g[:, None, :] / en[:, None, None])
-    with np.errstate(invalid="ignore"):
-        return np.sqrt(w / np.broadcast_to(np.asarray(rho, dtype=float), (A.shape[0],))[:, None])
-
-
-def _stiffened_trace_x(Q, R, T, phi, exact: bool = True) -> np.ndarray:
-    """Lowest stiffened rho v_trace^2 along x1 for sagittal normals (cos phi, sin phi, 0); (m, k).
-
-    ``exact``: LAPACK eigenvalues; else the trigonometric solution of the characteristic cubic
-    (cheap, ~1e-8 relative near degenerate eigenvalues: used for the coarse grid only).
-    """
-    c, s = np.cos(phi)[..., None, None], np.sin(phi)[..., None, None]
-    G = c * c * Q[:, None] + s * c * (R + np.swapaxes(R, -1, -2))[:, None] + s * s * T[:, None]
-    S = G[..., :3, :3] - G[..., :3, 3:] * G[..., 3:, :3] / G[..., 3:, 3:]
-    lam = np.linalg.eigvalsh(S)[..., 0] if exact else _lowest_sym3(S)
-    return lam / np.cos(phi) ** 2
-
-
-def _lowest_sym3(S) -> np.ndarray:
-    """Lowest eigenvalue of real symmetric 3 x 3 matrices (..., 3, 3) by the trigonometric formula."""
-    q = np.trace(S, axis1=-2, axis2=-1) / 3.0
-    a, b, c = S[..., 0, 0] - q, S[..., 1, 1] - q, S[..., 2, 2] - q
-    d, e, f = S[..., 0, 1], S[..., 0, 2], S[..., 1, 2]
-    p = np.sqrt((a * a + b * b + c * c + 2.0 * (d * d + e * e + f * f)) / 6.0)
-    det = a * (b * c - f * f) - d * (d * c - f * e) + e * (d * f - b * e)
-    with np.errstate(all="ignore"):
-        r = np.nan_to_num(det / (2.0 * p ** 3))
-    return q + 2.0 * p * np.cos(np.arccos(np.clip(r, -1.0, 1.0)) / 3.0 + 2.0 * np.pi / 3.0)
-
-
-def limiting_x(Q, R, T) -> np.ndarray:
-    """Limiting X_L = min over sagittal wave normals of the stiffened trace rho v^2, shape (m,).
-
-    A grid of ``LIMIT_GRID`` angles (closed-form eigenvalues), then the ``LIMIT_CANDIDATES``
-    lowest local minima refined by ``LIMIT_STEPS`` parabolic steps (LAPACK eigenvalues) on a
-    stencil that shrinks with the step (to 1e-5 rad at least: the vertex error is then ~1e-11
-    rad, a relative error ~1e-20 in X_L) or, where the minimum lies outside the stencil, walks
-    one stencil width and doubles it; the lowest value seen is kept.
-    Q, R, T: generalised blocks (m, 4, 4).
-    """
-    m = Q.shape[0]
-    h = np.pi / LIMIT_GRID
-    grid = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
-    g = _stiffened_trace_x(Q, R, T, grid[None], exact=False)
-    pad = np.pad(g, ((0, 0), (1, 1)), mode="wrap")
-    gl = np.where((g <= pad[:, :-2]) & (g <= pad[:, 2:]), g, np.inf)
-    order = np.argsort(gl, axis=1)[:, :LIMIT_CANDIDATES]
-    nc = order.shape[1]
-    rows = np.repeat(np.arange(m), nc)                             # flat candidates
-    phi = grid[order].reshape(-1)
-    best = np.full(phi.shape, np.inf)
-    step = np.full(phi.shape, h)
-    act = np.arange(phi.size)
-    for _ in range(LIMIT_STEPS):
-        if act.size == 0:
-            break
-        r, ph, st = rows[act], phi[act], step[act]
-        f = _stiffened_trace_x(Q[r], R[r], T[r], ph[:, None] + st[:, None] * np.array([-1.0, 0.0, 1.0]))
-        best[act] = np.minimum(best[act], f.min(axis=-1))
-        curv = f[:, 0] - 2 * f[:, 1] + f[:, 2]
-        with np.errstate(all="ignore"):
-            d = 0.5 * st * (f[:, 0] - f[:, 2]) / curv
-        smooth = (curv > 0) & (np.abs(d) <= st)
-        d = np.where(smooth, d, (np.argmin(f, axis=-1) - 1) * st)
-        phi[act] = ph + np.nan_to_num(d)
-        step[act] = np.where(smooth, np.clip(4.0 * np.abs(d), 1e-5, 0.25 * st), 2.0 * st)   # else: walk, widen
-        act = act[~(smooth & (st <= 1e-5))]                        # a smooth step on the finest stencil
-    f = _stiffened_trace_x(Q[rows], R[rows], T[rows], phi[:, None])[:, 0]
-    return np.minimum(best, f).reshape(m, nc).min(axis=1)
-
-
-def stroh_matrix(Q, R, T, X) -> np.ndarray:
-    """Generalised 8 x 8 Stroh matrix N(X) (mass X only in the mechanical block), (m, 8, 8)."""
-    Ti = np.linalg.inv(T)
-    RT = np.swapaxes(R, -1, -2)
-    N1 = -Ti @ RT
-    N3 = R @ Ti @ RT - Q + X[:, None, None] * np.diag([1.0, 1.0, 1.0, 0.0])
-    return np.concatenate([np.concatenate([N1, Ti], -1), np.concatenate([N3, np.swapaxes(N1, -1, -2)], -1)], -2)
-
-
-def impedance(Q, R, T, X) -> dict:
-    """Generalised surface impedance Z = -i B A^-1 (4 x 4 Hermitian) at real X, vectorised.
-
-    The decaying subspace is the column space of W = prod_j (N - conj(p_j)) over the decaying
-    p_j (Cayley-Hamilton; no eigenvectors, so (near-)degenerate p lose no accuracy);
-    M = B A^-1 = W2 W1^H (W1 W1^H)^-1.
-
-    Returns
-    -------
-    dict: ``Z`` (m, 4, 4) complex (NaN where not subsonic), ``M`` (m, 4, 4), ``N`` (m, 8, 8),
-    ``p`` (m, 4) decaying Stroh eigenvalues (ascending Im p), ``subsonic`` (m,) bool.
-    """
-    N = stroh_matrix(Q, R, T, X)
-    ev = np.linalg.eigvals(N)
-    ev = np.take_along_axis(ev, np.argsort(ev.imag, axis=-1), axis=-1)
-    lo, up = ev[:, :4], ev[:, 4:]
-    scale = np.abs(ev).max(axis=-1)
-    subsonic = (lo.imag[:, -1] < -1e-10 * scale) & (up.imag[:, 0] > 1e-10 * scale)
-    c = _monic(np.conj(up))
-    W = c[:, 0, None, None] * np.eye(8) + c[:, 1, None, None] * N
-    Nk = N
-    for k in range(2, 5):
-        Nk = Nk @ N
-        W = W + c[:, k, None, None] * Nk
-    W1, W2 = W[:, :4], W[:, 4:]
-    W1h = np.conj(np.swapaxes(W1, -1, -2))
-    with np.errstate(all="ignore"):
-        M = np.swapaxes(np.linalg.solve(np.swapaxes(W1 @ W1h, -1, -2), np.swapaxes(W2 @ W1h, -1, -2)), -1, -2)
-    Z = -1j * M
-    Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
-    Z[~subsonic] = np.nan
-    return {"Z": Z, "M": M, "N": N, "p": up, "subsonic": subsonic}
 
 
 def _effective(Z, free, eps0) -> np.ndarray:
@@ -226,27 +56,29 @@ def _effective(Z, free, eps0) -> np.ndarray:
     return 0.5 * (Zf + np.conj(np.swapaxes(Zf, -1, -2)))
 
 
-def _lam(Q, R, T, X, free, eps0):
-    r = impedance(Q, R, T, X)
+def _lam(Q, R, T, X, free, eps0, guess=None, parts=None):
+    """Lowest eigenvalue of the effective impedance at X (-1 where not subsonic) and the decaying p."""
+    r = impedance(Q, R, T, X, guess, parts)
     lam = np.full(len(X), -1.0)                                    # beyond X_L by rounding: root lies below
     ok = r["subsonic"]
     if ok.any():
         lam[ok] = np.linalg.eigvalsh(_effective(r["Z"][ok], free[ok], eps0[ok]))[:, 0]
-    return lam
+    return lam, r["p"]
 
 
-def _root_search(Q, R, T, XL, free, eps0, tol) -> tuple[np.ndarray, np.ndarray]:
+def _root_search(Q, R, T, XL, free, eps0, tol, parts) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Root X in (0, XL) of the lowest eigenvalue lam of the effective impedance; NaN where none.
 
     lam(t) with X = XL (1 - t^2) increases with t; bracket [T_MIN, 1], Anderson-Bjorck steps, vectorised
-    over the points not yet converged. Returns X (m,) and status (m,) int: 0 root, 1 no root
-    (lam > 0 at t = T_MIN), 2 lam(X = 0) <= 0.
+    over the points not yet converged. Returns X (m,), status (m,) int: 0 root, 1 no root
+    (lam > 0 at t = T_MIN), 2 lam(X = 0) <= 0, and the decaying p (m, 4) of the last step.
     """
     m = len(XL)
     X = np.full(m, np.nan)
     status = np.zeros(m, dtype=int)
-    f1 = _lam(Q, R, T, np.zeros(m), free, eps0)
-    f0 = _lam(Q, R, T, XL * (1 - T_MIN ** 2), free, eps0)
+    P = np.full((m, 4), np.nan + 0j)
+    f1 = _lam(Q, R, T, np.zeros(m), free, eps0)[0]
+    f0, guess = _lam(Q, R, T, XL * (1 - T_MIN ** 2), free, eps0)
     status[~(f1 > 0)] = 2
     status[(f1 > 0) & (f0 > 0)] = 1
     idx = np.flatnonzero(status == 0)
@@ -255,14 +87,16 @@ def _root_search(Q, R, T, XL, free, eps0, tol) -> tuple[np.ndarray, np.ndarray]:
     side = np.zeros(idx.size, dtype=int)
     x_old = np.full(idx.size, np.nan)
     X[idx[fa == 0]] = XL[idx[fa == 0]] * (1 - T_MIN ** 2)
+    P[idx[fa == 0]] = guess[idx[fa == 0]]
     keep = fa != 0
     idx, a, fa, b, fb, side, x_old = (v[keep] for v in (idx, a, fa, b, fb, side, x_old))
+    guess = guess[idx]
     for _ in range(MAX_ITER):
         if idx.size == 0:
             break
         x = (a * fb - b * fa) / (fb - fa)
         x = np.where((x > a) & (x < b), x, 0.5 * (a + b))
-        f = _lam(Q[idx], R[idx], T[idx], XL[idx] * (1 - x * x), free[idx], eps0[idx])
+        f, p = _lam(Q[idx], R[idx], T[idx], XL[idx] * (1 - x * x), free[idx], eps0[idx], guess, parts[idx])
         neg = f <= 0
         # Anderson-Bjorck: when the same end is replaced twice running, scale the retained end's
         # value by 1 - f / f_replaced (0.5 if that is not positive)
@@ -278,11 +112,12 @@ def _root_search(Q, R, T, XL, free, eps0, tol) -> tuple[np.ndarray, np.ndarray]:
         dX = 2 * x * XL[idx] * np.minimum(np.abs(x - x_old), b - a)
         done = (f == 0) | (dX <= 0.1 * tol * Xn) | (2 * b * (b - a) * XL[idx] <= 0.1 * tol * Xn)
         X[idx[done]] = Xn[done]
-        x_old = x
+        P[idx[done]] = p[done]
+        x_old, guess = x, np.where(np.isfinite(p), p, np.nan)
         keep = ~done
-        idx, a, fa, b, fb, side, x_old = (v[keep] for v in (idx, a, fa, b, fb, side, x_old))
+        idx, a, fa, b, fb, side, x_old, guess = (v[keep] for v in (idx, a, fa, b, fb, side, x_old, guess))
     status[idx] = 1                                                 # not converged (should not happen)
-    return X, status
+    return X, status, P
 
 
 def _null(H) -> np.ndarray:
@@ -413,9 +248,12 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
     stable = Tpd & (XL > 0)
     X = np.full(m, np.nan)
     status = np.full(m, 2)
+    P = np.full((m, 4), np.nan + 0j)
+    parts = np.zeros((m, 4, 9))
     if stable.any():
-        X[stable], status[stable] = _root_search(Q[stable], R[stable], T[stable], XL[stable], free[stable],
-                                                 eps0[stable], tol)
+        parts[stable] = stroh_polynomial_parts(Q[stable], R[stable], T[stable])
+        X[stable], status[stable], P[stable] = _root_search(Q[stable], R[stable], T[stable], XL[stable],
+                                                            free[stable], eps0[stable], tol, parts[stable])
     found = np.isfinite(X)
     reason = np.full(m, "", dtype=object)
     reason[status == 1] = REASON_PSEUDO
@@ -430,7 +268,7 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
     pfa = np.full(m, np.nan)
     if found.any():
         f = found
-        r = impedance(Q[f], R[f], T[f], X[f])
+        r = impedance(Q[f], R[f], T[f], X[f], P[f], parts[f])
         Z = r["Z"]
         u = _null(_effective(Z, free[f], eps0[f]))
         zee = Z[:, 3, 3].real - np.where(free[f], eps0[f], 0.0)
