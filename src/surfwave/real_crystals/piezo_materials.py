@@ -4,7 +4,7 @@ The numbers live in ``piezoelectric.yaml`` next to this module (C in GPa at cons
 e in C/m^2, clamped relative permittivity, rho in kg/m^3; every block names its source and
 each entry says how its numbers were checked). This module reads the file once, builds the
 full tensors from the independent constants by the class's symmetry rules
-(:mod:`surfwave.data.piezo_tensors`), validates them (:func:`check_piezo_record`) and hands
+(:mod:`surfwave.solvers.piezo_tensors`), validates them (:func:`check_piezo_record`) and hands
 out :class:`PiezoMaterial` records and :class:`Cut` records.
 
 Examples
@@ -29,10 +29,10 @@ from importlib import resources
 import numpy as np
 import yaml
 
-from surfwave.continuum.tensors import rotate2, rotate4, voigt_to_tensor
-from surfwave.data.euler import euler_lab_axes
+from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
+from surfwave.solvers.euler import euler_lab_axes
 from surfwave.data.paper import SAFE_LOADER
-from surfwave.data.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, hexagonal_6mm_voigt,
+from surfwave.solvers.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, hexagonal_6mm_voigt,
                                          piezo_voigt_to_tensor, rotate3, trigonal_3m_piezo, trigonal_3m_voigt,
                                          trigonal_32_piezo, uniaxial_eps)
 from surfwave.errors import InputError
@@ -120,7 +120,7 @@ class Cut:
     material : str
         Canonical name of the :class:`PiezoMaterial` whose constants the published values use.
     euler : tuple of float
-        (phi, theta, psi), degrees, SAW ZXZ convention (:mod:`surfwave.data.euler`).
+        (phi, theta, psi), degrees, SAW ZXZ convention (:mod:`surfwave.solvers.euler`).
     description : str
     wave : {"rayleigh", "leaky"}
     published : dict
@@ -200,7 +200,7 @@ def check_piezo_record(voigt, e, eps_r, rho, name: str = "record") -> None:
 
 
 def _read() -> dict:
-    text = resources.files("surfwave.data").joinpath("piezoelectric.yaml").read_text(encoding="utf-8")
+    text = resources.files("surfwave.real_crystals").joinpath("piezoelectric.yaml").read_text(encoding="utf-8")
     return yaml.load(text, Loader=SAFE_LOADER)
 
 
@@ -231,7 +231,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
     e_vals, e_src = _block(entry, "e", e_names, where, refs)
     eps_vals, eps_src = _block(entry, "eps_r", eps_names, where, refs)
     if c_names is None:  # cubic: the elastic set of materials.yaml
-        from surfwave.data.materials import get_material
+        from surfwave.real_crystals.materials import get_material
 
         base = get_material(entry["elastic_from"])
         voigt = np.array(base.voigt, dtype=float)
@@ -364,8 +364,8 @@ def lab_tensors(material: str | PiezoMaterial, R) -> dict[str, np.ndarray]:
     ----------
     material : str or PiezoMaterial
     R : array_like, shape (..., 3, 3)
-        Rows = lab axes in crystal coordinates (:func:`surfwave.data.euler.euler_lab_axes`,
-        :func:`surfwave.continuum.orientation.lab_axes`).
+        Rows = lab axes in crystal coordinates (:func:`surfwave.solvers.euler.euler_lab_axes`,
+        :func:`surfwave.solvers.orientation.lab_axes`).
 
     Returns
     -------

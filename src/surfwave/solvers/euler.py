@@ -72,7 +72,7 @@ def euler_lab_axes(phi, theta=None, psi=None) -> np.ndarray:
     -------
     ndarray, shape (m, 3, 3), or (3, 3) for one triple of scalars (or a (3,) array)
         Rows are x1, x2, x3 in crystal coordinates; use with
-        :func:`surfwave.continuum.tensors.rotate4` (C_lab = R R R R C).
+        :func:`surfwave.solvers.tensors.rotate4` (C_lab = R R R R C).
 
     Raises
     ------

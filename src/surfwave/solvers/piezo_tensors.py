@@ -2,7 +2,7 @@
 
 Conventions (docs/piezoelectric-materials.md)
 ---------------------------------------------
-* Voigt pairs as in :mod:`surfwave.continuum.tensors`: 1 = 11, 2 = 22, 3 = 33, 4 = 23, 5 = 13,
+* Voigt pairs as in :mod:`surfwave.solvers.tensors`: 1 = 11, 2 = 22, 3 = 33, 4 = 23, 5 = 13,
   6 = 12. Stiffness C_IJ = C_ijkl; piezoelectric stress constants e_kI = e_kij with NO factor 2
   (e_k(ij) = e_kI for i != j too), so T_ij = C_ijkl u_k,l + e_kij phi,k and
   D_j = e_jkl u_k,l - eps_jl phi,l.
@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.continuum.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexagonal_voigt
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexagonal_voigt
 from surfwave.errors import InputError
 
 #: Vacuum permittivity, F/m (CODATA 2018).

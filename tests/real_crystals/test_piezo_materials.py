@@ -15,14 +15,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from surfwave.data.euler import euler_lab_axes, saw_euler_matrix
-from surfwave.data.piezo_materials import (available_cuts, available_piezo_materials, check_piezo_record, get_cut,
+from surfwave.solvers.euler import euler_lab_axes, saw_euler_matrix
+from surfwave.real_crystals.piezo_materials import (available_cuts, available_piezo_materials, check_piezo_record, get_cut,
                                            get_piezo_material, lab_tensors)
-from surfwave.data.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, invariance_residual,
+from surfwave.solvers.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, invariance_residual,
                                          is_invariant, piezo_tensor_to_voigt, piezo_voigt_to_tensor,
                                          point_group_generators, stiffened_bulk_speeds, trigonal_32_piezo,
                                          trigonal_3m_piezo, trigonal_3m_voigt)
-from surfwave.continuum.tensors import voigt_to_tensor
+from surfwave.solvers.tensors import voigt_to_tensor
 from surfwave.errors import InputError
 
 ALL = available_piezo_materials()
@@ -105,7 +105,7 @@ def test_database_holds_the_requested_sets_and_aliases():
 
 def test_gaas_uses_the_elastic_set_of_materials_yaml():
     """GaAs: only e14 and eps_r are new; C and rho are the materials.yaml GaAs entry (McSkimin 1967)."""
-    from surfwave.data.materials import get_material
+    from surfwave.real_crystals.materials import get_material
 
     g, base = get_piezo_material("GaAs"), get_material("GaAs")
     assert np.array_equal(g.voigt, base.voigt) and g.rho == base.rho
@@ -321,8 +321,8 @@ def test_st_x_quartz_euler_and_c14_sign_pairing_with_the_elastic_solver():
     within a few m/s of the published ST-X speeds (3158 m/s free, ~3156 m/s metallized; Slobodnik
     1973, Morgan 2007). The mirrored angle (0, 47.25, 0), i.e. the wrong sign of the rotation or
     of c14, gives ~3289 m/s, far off."""
-    from surfwave.continuum import stroh
-    from surfwave.continuum.tensors import rotate4
+    from surfwave.solvers import stroh
+    from surfwave.solvers.tensors import rotate4
 
     m = get_piezo_material("quartz")
     R = euler_lab_axes(np.array([get_cut("ST-X").euler, (0.0, 47.25, 0.0)]))
@@ -349,7 +349,7 @@ def test_y_z_linbo3_free_and_metallized_speeds_warner_set():
     """Y-Z LiNbO3 with the Warner 1967 constants: 3488 m/s free, 3404 m/s metallized,
     K^2 = 2 dv/v = 4.8 % (Slobodnik, Conway and Delmonico 1973, computed with the same set).
     Checks the data, the Euler convention and the open-circuit condition b_4 = +i EPS0 phi
-    (tests/data/piezo_saw_brute.py) at once: the free speed must be ABOVE the metallized one.
+    (tests/piezo_saw_brute.py) at once: the free speed must be ABOVE the metallized one.
     The sign is a small effect (EPS0 << the crystal's effective permittivity): b_4 = -i EPS0 phi
     would give 3491.3 m/s, so the free speed is held to 1 m/s of the published 3488."""
     vf, vm = _saw("Y-Z LiNbO3", "LiNbO3-Warner1967", 3200, 3570)
@@ -375,11 +375,11 @@ def test_128_y_x_linbo3_free_speed():
 
 def test_brute_saw_reduces_to_the_elastic_stroh_solver_without_piezoelectricity():
     """With e = 0 the potential decouples: free = metallized = the elastic Rayleigh speed of
-    surfwave.continuum.stroh (independent implementation), here for ST-X quartz."""
+    surfwave.solvers.stroh (independent implementation), here for ST-X quartz."""
     import sys
     from pathlib import Path
 
-    from surfwave.continuum import stroh
+    from surfwave.solvers import stroh
 
     sys.path.insert(0, str(Path(__file__).parent))
     from piezo_saw_brute import saw_speed
