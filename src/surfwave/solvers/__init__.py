@@ -1,0 +1,1 @@
+"""Surface-wave solvers: leaky (pseudo) waves with attenuation (more to come from the integrator)."""
