@@ -33,9 +33,11 @@ EPS0 = 8.8541878128e-12
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
 #: Points of the real-speed grid (uniform in t = sqrt((X - X_L1) / (X_L2 - X_L1))).
-SCAN = 24
+SCAN = 16
 #: Points of the angle grid for the limiting speeds of the bulk sheets.
-LIMIT_GRID = 96
+LIMIT_GRID = 64
+#: Golden-section steps refining each sheet's minimum (bracket shrinks by 0.618^GOLDEN).
+GOLDEN = 22
 MAX_ITER = 40
 #: Largest secant step in t (the chosen roots are tracked between evaluations).
 STEP_MAX = 0.05
@@ -115,7 +117,7 @@ def _limits(Q, R, T, d) -> np.ndarray:
     for s in range(2):
         j = np.argmin(lam[:, :, s], axis=1)
         lo, hi = phi[j] - h, phi[j] + h
-        for _ in range(30):
+        for _ in range(GOLDEN):
             x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
             f = _sheet_x(Q, R, T, np.tan(np.stack([x1, x2], 1)), d)[:, :, s]
             left = f[:, 0] < f[:, 1]
@@ -127,18 +129,22 @@ def _limits(Q, R, T, d) -> np.ndarray:
 
 
 def _partial_waves(Q, R, T, X, d) -> tuple[np.ndarray, np.ndarray]:
-    """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d) at complex X (m,)."""
+    """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d), complex, at X (m,).
+
+    A real X (float dtype) builds the real N (its eigen-decomposition is ~3x cheaper).
+    """
     Ti = np.linalg.inv(T)
     Rt = np.swapaxes(R, -1, -2)
     mass = np.eye(d)
     if d == 4:
         mass[3, 3] = 0.0
-    N = np.empty((Q.shape[0], 2 * d, 2 * d), dtype=complex)
+    N = np.empty((Q.shape[0], 2 * d, 2 * d), dtype=X.dtype)
     N[:, :d, :d] = -Ti @ Rt
     N[:, :d, d:] = Ti
     N[:, d:, :d] = R @ Ti @ Rt - Q + X[:, None, None] * mass
     N[:, d:, d:] = -R @ Ti
-    return np.linalg.eig(N)
+    p, xi = np.linalg.eig(N)
+    return p.astype(complex), xi.astype(complex)
 
 
 def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
@@ -374,20 +380,32 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
     tg = (np.arange(SCAN) + 0.5) / SCAN
     # 1. real scan: |det| with the outgoing choice at each grid speed
-    Xg = (x0[:, None] + span[:, None] * tg ** 2).reshape(-1).astype(complex)
+    Xg = (x0[:, None] + span[:, None] * tg ** 2).reshape(-1)
     pg, xig = _partial_waves(*(np.repeat(B, SCAN, axis=0) for B in (Q, R, T)), Xg, d)
     idx = _choose_real(pg, xig, d)
     fg, _ = _boundary(xig, idx, d, electrical)
     pc = np.take_along_axis(pg, idx, axis=1)
     nreal = (np.abs(pg.imag) <= REAL_TOL * np.maximum(1, np.abs(pg))).sum(axis=1).reshape(m, SCAN)
     af = np.where(nreal == 2, np.abs(fg).reshape(m, SCAN), np.inf)
-    # 2. interior local minima of |det| (grid points where the slowest sheet has one real pair)
+    # 2. local minima of |det| (grid points where the slowest sheet has one real pair)
     loc = np.zeros((m, SCAN), dtype=bool)
     loc[:, 1:-1] = (af[:, 1:-1] < af[:, :-2]) & (af[:, 1:-1] < af[:, 2:]) & np.isfinite(af[:, 1:-1])
+    # the top grid point too (the root may lie between it and v_L2): fit around its neighbour
+    loc[:, -1] = (af[:, -1] < af[:, -2]) & np.isfinite(af[:, -1]) & np.isfinite(af[:, -3])
     rows, cols = np.nonzero(loc)
+    cols = np.minimum(cols, SCAN - 2)
     k = rows * SCAN + cols
     t1 = tg[cols].astype(complex)
-    t = t1 * (1 + 1e-3) - 1e-3j * tg[0]
+    # start: root of the parabola through the three grid values around the minimum
+    h = tg[1] - tg[0]
+    fm, f0, fp = fg[k - 1], fg[k], fg[k + 1]
+    c1, c2 = (fp - fm) / (2 * h), (fp - 2 * f0 + fm) / (2 * h * h)
+    disc = np.sqrt(c1 * c1 - 4 * c2 * f0)
+    den = np.where(np.abs(c1 + disc) >= np.abs(c1 - disc), c1 + disc, c1 - disc)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dt = -2 * f0 / den
+    fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
+    t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
     tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
         Q[rows], R[rows], T[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], d, electrical, tol)
     Xc = x0[rows] + span[rows] * tc ** 2
@@ -401,7 +419,7 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
     chk = np.nonzero(why == "")[0]
     if chk.size:
-        pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real.astype(complex), d)
+        pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real, d)
         nr = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
         why[chk[nr != 2]] = REASON_MULTI
     # 3. per point: the least-attenuated good candidate, else the reason of the first one
