@@ -15,7 +15,8 @@ M = B A^-1 (b = M u at the surface, independent of the eigenvector normalisation
 elastic det M; piezoelectric, electrically free det(M - i eps0~ e4 e4^T) (vacuum potential
 exp(ik x1 + k x2) gives D2 = -EPS0 dphi/dx2 = -EPS0 k phi, hence b4 = D2 / (ik) = +i EPS0 a4);
 metallized det(M_mech) (phi = 0). Its root in the complex variable t,
-X = X_L1 + (X_L2 - X_L1) t^2 (t removes the square-root branch point at X_L1), is found by the
+X = X_L1 + (X_L2 - X_L1) sin^2 w (w removes the square-root branch points at X_L1 and X_L2: sqrt(X - X_L1)
+and sqrt(X_L2 - X) are sin w and cos w times constants), is found by the
 secant method from the minimum of |det| over a grid of real speeds between v_L1 and v_L2.
 
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
@@ -32,20 +33,20 @@ from surfwave.errors import InputError
 EPS0 = 8.8541878128e-12
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
-#: Points of the real-speed grid (uniform in t = sqrt((X - X_L1) / (X_L2 - X_L1))).
+#: Points of the real-speed grid (uniform in w in (0, pi/2), X = X_L1 + (X_L2 - X_L1) sin^2 w).
 SCAN = 16
 #: Points of the angle grid for the limiting speeds of the bulk sheets.
 LIMIT_GRID = 64
 #: Golden-section steps refining each sheet's minimum (bracket shrinks by 0.618^GOLDEN).
 GOLDEN = 22
-MAX_ITER = 40
-#: Largest secant step in t (the chosen roots are tracked between evaluations).
+MAX_ITER = 80
+#: Largest secant step in w (the chosen roots are tracked between evaluations).
 STEP_MAX = 0.05
 #: delta below -GROW_TOL: a root growing along x1 (rejected with a reason).
 GROW_TOL = 1e-9
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
-#: Roots closer to the branch point than this in t are grazing bulk waves, not leaky waves.
+#: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
 T_EDGE = 1e-3
 #: |Im p| below REAL_TOL max(1, |p|) counts as a real Stroh root on the real-speed grid.
 REAL_TOL = 1e-7
@@ -55,7 +56,7 @@ REASON_ABOVE = ("leaky root above the second bulk sheet's limiting speed v_L2: i
                 "sheets (only the slowest sheet's leaky wave is computed)")
 REASON_BELOW = "root below the slowest sheet's limiting speed v_L1: a true (subsonic) surface wave, not leaky"
 REASON_GROW = "root with growing amplitude along x1 (delta < 0): not a physical leaky wave"
-REASON_EDGE = ("root at the slowest sheet's limiting speed (|t| < T_EDGE): a grazing bulk wave (e.g. the "
+REASON_EDGE = ("root at the slowest sheet's limiting speed (|sin w| < T_EDGE): a grazing bulk wave (e.g. the "
                "exceptional surface-skimming wave of a mirror direction), not a leaky surface wave")
 REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v_L2 where the slowest sheet "
                 "has a single real pair of Stroh roots")
@@ -318,17 +319,30 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     }
 
 
-def _secant(Q, R, T, x0, span, t, t1, f1, p1, d, electrical, tol):
-    """Secant iteration in complex t from (t1, f1) and t, tracking the chosen roots p1 (n, d).
+def _dp_dx(xi, idx, d) -> np.ndarray:
+    """dp/dX = a^T M a / (2 a^T b) of the chosen roots (n, d), M = diag(1, 1, 1[, 0]).
 
-    A trial point where the roots cannot be followed unambiguously from the last accepted
-    point is pulled halfway back (at most ``MAX_HALVING`` times in a row).
+    First-order perturbation of N xi = p xi with the left eigenvector (b, a) (N^T J = J N,
+    J = [[0, I], [I, 0]]) and dN/dX = [[0, 0], [M, 0]].
+    """
+    sel = np.take_along_axis(xi, idx[:, None, :], axis=2)
+    a, b = sel[:, :d], sel[:, d:]
+    am = a[:, :3]
+    return np.einsum("nkj,nkj->nj", am, am) / (2 * np.einsum("nkj,nkj->nj", a, b))
+
+
+def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
+    """Secant iteration in complex w from (t1, f1) and t, tracking the chosen roots p1 (n, d).
+
+    The chosen roots are followed from the last accepted point, predicted to first order with
+    their dp/dX (g1 at the start); a trial point where they cannot be matched unambiguously is
+    pulled halfway back (at most ``MAX_HALVING`` times in a row).
     Returns t (n,) complex of the last accepted evaluation, its chosen roots p (n, d) and
     eigen-data (roots (n, 2d), vectors (n, 2d, 2d), indices (n, d)), converged and
     tracking-ok flags, and the number of evaluations.
     """
     n = Q.shape[0]
-    t_prev, f_prev, p_prev = t1.copy(), f1.copy(), p1.copy()
+    t_prev, f_prev, p_prev, g = t1.copy(), f1.copy(), p1.copy(), g1.copy()
     conv = np.zeros(n, dtype=bool)
     trk = np.ones(n, dtype=bool)
     its = np.zeros(n, dtype=int)
@@ -338,9 +352,10 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, d, electrical, tol):
     idx = np.zeros((n, d), dtype=int)
     act = np.arange(n)
     for _ in range(MAX_ITER):
-        X = x0[act] + span[act] * t[act] ** 2
+        X = x0[act] + span[act] * np.sin(t[act]) ** 2
         p, xi = _partial_waves(Q[act], R[act], T[act], X, d)
-        sel, okt = _track(p_prev[act], p)
+        dw = (span[act] * np.sin(2 * t_prev[act]) * (t[act] - t_prev[act]))[:, None]
+        sel, okt = _track(p_prev[act] + g[act] * dw, p)
         its[act] += 1
         # ambiguous: back off halfway towards the last accepted point
         bad = act[~okt]
@@ -352,6 +367,7 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, d, electrical, tol):
         f, _ = _boundary(xi[okt], sel[okt], d, electrical)
         p_prev[acc] = np.take_along_axis(p[okt], sel[okt], axis=1)
         idx[acc], p_all[acc], xi_all[acc] = sel[okt], p[okt], xi[okt]
+        g[acc] = _dp_dx(xi[okt], sel[okt], d)
         den = f - f_prev[acc]
         safe = np.isfinite(den) & (den != 0)
         step = np.where(safe, f * (t[acc] - t_prev[acc]) / np.where(safe, den, 1), np.nan)
@@ -359,7 +375,8 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, d, electrical, tol):
         step = np.where(big, step * STEP_MAX / np.abs(np.where(big, step, 1)), step)
         t_prev[acc], f_prev[acc] = t[acc], f
         t[acc] = t[acc] - step
-        small = np.abs(2 * t_prev[acc] * step) * span[acc] <= tol * np.abs(x0[acc] + span[acc] * t_prev[acc] ** 2)
+        dX = span[acc] * np.abs(step) * (np.abs(np.sin(2 * t_prev[acc])) + np.abs(step))
+        small = dX <= tol * np.abs(x0[acc] + span[acc] * np.sin(t_prev[acc]) ** 2)
         conv[acc[small]] = True
         stop = np.zeros(n, dtype=bool)
         stop[acc[small | ~np.isfinite(step)]] = True
@@ -371,16 +388,16 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, d, electrical, tol):
 
 
 def _solve(Q, R, T, XL, d, electrical, tol):
-    """Scan, choose, secant in t from every local minimum of |det|; the least-attenuated root wins.
+    """Scan, choose, secant in w from every local minimum of |det|; the least-attenuated root wins.
 
     Returns X (m,) complex, chosen p (m, d) (radiating first), polarisation (m, d),
     evaluations (m,), reasons (m,).
     """
     m = Q.shape[0]
     x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
-    tg = (np.arange(SCAN) + 0.5) / SCAN
+    tg = 0.5 * np.pi * (np.arange(SCAN) + 0.5) / SCAN
     # 1. real scan: |det| with the outgoing choice at each grid speed
-    Xg = (x0[:, None] + span[:, None] * tg ** 2).reshape(-1)
+    Xg = (x0[:, None] + span[:, None] * np.sin(tg) ** 2).reshape(-1)
     pg, xig = _partial_waves(*(np.repeat(B, SCAN, axis=0) for B in (Q, R, T)), Xg, d)
     idx = _choose_real(pg, xig, d)
     fg, _ = _boundary(xig, idx, d, electrical)
@@ -407,13 +424,14 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
     t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
     tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
-        Q[rows], R[rows], T[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], d, electrical, tol)
-    Xc = x0[rows] + span[rows] * tc ** 2
+        Q[rows], R[rows], T[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d,
+        electrical, tol)
+    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
     delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
     why = np.full(rows.size, "", dtype=object)
     why[~conv] = REASON_NOROOT
     why[~trk] = REASON_TRACK
-    why[(why == "") & (np.abs(tc) < T_EDGE)] = REASON_EDGE
+    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
     why[(why == "") & (Xc.real > XL[rows, 1])] = REASON_ABOVE
     why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
     # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
