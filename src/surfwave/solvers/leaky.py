@@ -14,10 +14,10 @@ The boundary function is det of the surface impedance of the chosen partial wave
 M = B A^-1 (b = M u at the surface, independent of the eigenvector normalisation):
 elastic det M; piezoelectric, electrically free det(M - i eps0~ e4 e4^T) (vacuum potential
 exp(ik x1 + k x2) gives D2 = -EPS0 dphi/dx2 = -EPS0 k phi, hence b4 = D2 / (ik) = +i EPS0 a4);
-metallized det(M_mech) (phi = 0). Its root in the complex variable t,
-X = X_L1 + (X_L2 - X_L1) sin^2 w (w removes the square-root branch points at X_L1 and X_L2: sqrt(X - X_L1)
-and sqrt(X_L2 - X) are sin w and cos w times constants), is found by the
-secant method from the minimum of |det| over a grid of real speeds between v_L1 and v_L2.
+metallized det(M_mech) (phi = 0). Its root in the complex variable w,
+X = X_L1 + (X_L2 - X_L1) sin^2 w (sqrt(X - X_L1) and sqrt(X_L2 - X) are analytic in w), is
+found by the secant method from every minimum of |det| over a grid of real speeds between
+v_L1 and v_L2; the least-attenuated root is kept.
 
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
