@@ -64,6 +64,8 @@ def test_cu_branch_runs_into_the_exact_mirror_wave():
     assert np.all(np.diff(att) < 0)
     # quadratic vanishing: att(44.9) / att(44.99) = (0.1 / 0.01)^2
     assert att[1] / att[5] == pytest.approx(100.0, rel=0.02)
+    # at the mirror direction the wave is sagittal: u3 = 0 (decoupled SH motion)
+    assert abs(r["polarisation"][-1, 2]) < 1e-6 and abs(r["polarisation"][0, 2]) > 1e-4
     # radiating partial wave grows with depth (Im p < 0), the others decay
     p = r["decay"][:-1]
     assert np.all(p[:, 0].imag < 0) and np.all(p[:, 1:].imag > 0)

@@ -156,7 +156,8 @@ def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
     """
     sel = np.take_along_axis(xi, idx[:, None, :], axis=2)
     a, b = sel[:, :d], sel[:, d:]
-    da = np.abs(np.linalg.det(a))
+    with np.errstate(invalid="ignore", over="ignore"):
+        da = np.abs(np.linalg.det(a))
     good = np.isfinite(da) & (da > 1e-14 * np.prod(np.linalg.norm(a, axis=1), axis=1))
     M = np.full(b.shape, np.nan + 0j)
     if good.any():
@@ -471,5 +472,6 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     nm = np.linalg.norm(w[:, :3], axis=1)
     w = w / np.where(nm > 0, nm, 1)[:, None]
     big = np.take_along_axis(w, np.argmax(np.abs(w[:, :3]), axis=1)[:, None], axis=1)
-    u[has] = w * (np.abs(big) / big)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u[has] = w * (np.abs(big) / big)
     return X, p_out, u, nit, reason
