@@ -14,7 +14,7 @@ Examples
 ('3m', 4700.0, 9.0, 2.5)
 >>> cut = get_cut("128° Y-X")
 >>> cut.name, cut.material, cut.euler
-('128Y-X LiNbO3', 'LiNbO3-Kovacs1990', (0.0, 38.0, 0.0))
+('128Y-X LiNbO3', 'LiNbO3-Warner1967', (0.0, 38.0, 0.0))
 >>> lab_tensors(ln, cut.lab_axes)["C"].shape
 (3, 3, 3, 3)
 """
