@@ -1,12 +1,9 @@
 """Piezoelectric surface-wave solver (surfwave.solvers.piezo): limits, published cuts, power flow.
 
-Constants typed here (the materials database is a separate module):
-LiNbO3: Warner, Onoe, Coquin, J. Acoust. Soc. Am. 42, 1223 (1967): C11 = 203, C12 = 53, C13 = 75,
-C14 = 9, C33 = 245, C44 = 60 GPa, e15 = 3.7, e22 = 2.5, e31 = 0.2, e33 = 1.3 C/m^2,
-eps11/eps0 = 44, eps33/eps0 = 29, rho = 4700 kg/m^3.
-alpha-quartz: Bechmann, Phys. Rev. 110, 1060 (1958), IEEE-1949 right-handed axes: C11 = 86.74,
-C12 = 6.99, C13 = 11.91, C14 = -17.91, C33 = 107.2, C44 = 57.94 GPa, e11 = 0.171, e14 = -0.0406
-C/m^2, eps11 = 39.21, eps33 = 41.03 pF/m, rho = 2651 kg/m^3.
+Crystal constants come from the materials database (surfwave.real_crystals.piezo_materials,
+piezoelectric.yaml; one copy of each number, sources and provenance there): LiNbO3 is the set of
+the Y-Z cut record (Warner, Onoe, Coquin, J. Acoust. Soc. Am. 42, 1223 (1967)), alpha-quartz the
+set of the ST-X record (Bechmann, Phys. Rev. 110, 1060 (1958), IEEE-1949 right-handed axes).
 Copper C11, C12, C44 = 168.4, 121.4, 75.4 GPa, rho = 8960 (as in tests/test_stroh.py).
 """
 from __future__ import annotations
@@ -17,63 +14,37 @@ import scipy.linalg
 
 from surfwave.solvers import stroh
 from surfwave.solvers.orientation import lab_axes
-from surfwave.solvers.tensors import VOIGT_INDEX, cubic_voigt, rotate2, rotate4, voigt_to_tensor
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
 from surfwave.solvers import piezo
 from surfwave.solvers.piezo import EPS0, euler_lab_axes, piezo_surface_wave
+from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
 
 CU = (168.4e9, 121.4e9, 75.4e9)
+#: Voigt positions of C14 in the trigonal form (C14 at 14, 41, 56, 65; -C14 at 24, 42).
+_C14_POSITIONS = ((0, 3), (3, 0), (1, 3), (3, 1), (4, 5), (5, 4))
 
 
-def _trigonal_C(C11, C12, C13, C14, C33, C44):
-    """Voigt stiffness (Pa) of trigonal classes 32, 3m, -3m (GPa in), the standard (IEEE) form
-
-        [[C11, C12, C13,  C14,    0,   0],
-         [C12, C11, C13, -C14,    0,   0],
-         [C13, C13, C33,    0,    0,   0],
-         [C14,-C14,   0,  C44,    0,   0],
-         [  0,   0,   0,    0,  C44, C14],
-         [  0,   0,   0,    0,  C14, C66]],   C66 = (C11 - C12)/2.
-    """
-    C = np.zeros((6, 6))
-    C[0, 0] = C[1, 1] = C11
-    C[0, 1] = C[1, 0] = C12
-    C[0, 2] = C[2, 0] = C[1, 2] = C[2, 1] = C13
-    C[2, 2] = C33
-    C[3, 3] = C[4, 4] = C44
-    C[5, 5] = 0.5 * (C11 - C12)
-    C[0, 3] = C[3, 0] = C14
-    C[1, 3] = C[3, 1] = -C14
-    C[4, 5] = C[5, 4] = C14
-    return C * 1e9
+def _crystal(name, flip_c14=False):
+    """(C Pa, e_kij C/m^2, eps F/m, rho kg/m^3) in crystal axes from the database; ``flip_c14``
+    changes the sign of C14 (the pre-IEEE-1978 sign confusion, for the trap test)."""
+    m = get_piezo_material(name)
+    if not flip_c14:
+        return m.C_tensor, m.e_tensor, m.eps, m.rho
+    V = np.array(m.voigt, dtype=float) * 1e9
+    for i, j in _C14_POSITIONS:
+        V[i, j] = -V[i, j]
+    return voigt_to_tensor(V), m.e_tensor, m.eps, m.rho
 
 
-def linbo3(c14=9.0):
-    """LiNbO3 (class 3m, mirror normal to crystal X), tensors (C, e_kij, eps, rho), crystal axes.
-
-    Piezoelectric matrix (Voigt, C/m^2; e_21 = e_16 = -e22, e_24 = e_15, e_31 = e_32):
-        [[   0,    0,   0,   0, e15, -e22],
-         [-e22,  e22,   0, e15,   0,    0],
-         [ e31,  e31, e33,   0,   0,    0]];  eps = diag(eps11, eps11, eps33).
-    """
-    e15, e22, e31, e33 = 3.7, 2.5, 0.2, 1.3
-    e6 = np.array([[0, 0, 0, 0, e15, -e22], [-e22, e22, 0, e15, 0, 0], [e31, e31, e33, 0, 0, 0]])
-    return (voigt_to_tensor(_trigonal_C(203, 53, 75, c14, 245, 60)), e6[:, VOIGT_INDEX],
-            np.diag([44.0, 44.0, 29.0]) * EPS0, 4700.0)
+def linbo3():
+    """LiNbO3 (class 3m, mirror normal to crystal X), the set of the database's Y-Z record."""
+    return _crystal(get_cut("Y-Z").material)
 
 
-def quartz(c14=-17.91):
-    """alpha-quartz (class 32, two-fold axis along crystal X), (C, e_kij, eps, rho), crystal axes.
-
-    Piezoelectric matrix (Voigt, C/m^2; e_12 = -e11, e_25 = -e14, e_26 = -e11):
-        [[e11, -e11, 0, e14,    0,    0],
-         [  0,    0, 0,   0, -e14, -e11],
-         [  0,    0, 0,   0,    0,    0]];  eps = diag(eps11, eps11, eps33).
-    """
-    e11, e14 = 0.171, -0.0406
-    e6 = np.array([[e11, -e11, 0, e14, 0, 0], [0, 0, 0, 0, -e14, -e11], [0, 0, 0, 0, 0, 0]])
-    return (voigt_to_tensor(_trigonal_C(86.74, 6.99, 11.91, c14, 107.2, 57.94)), e6[:, VOIGT_INDEX],
-            np.diag([39.21e-12, 39.21e-12, 41.03e-12]), 2651.0)
+def quartz(flip_c14=False):
+    """alpha-quartz (class 32, two-fold axis along crystal X), the set of the ST-X record."""
+    return _crystal(get_cut("ST-X").material, flip_c14)
 
 
 def lab(mat, R):
@@ -91,8 +62,8 @@ def _rot_z(deg):
 @pytest.mark.parametrize("mat, second", [(linbo3(), np.diag([-1.0, 1, 1])),      # 3m: mirror x -> -x
                                          (quartz(), np.diag([1.0, -1, -1]))])     # 32: two-fold about X
 def test_trigonal_forms_are_invariant_under_the_point_group(mat, second):
-    """The typed matrices are the standard trigonal forms: C, e, eps unchanged by the generators
-    of the point group (Nye, Physical Properties of Crystals: 3m = {3z, m_x}, 32 = {3z, 2x})."""
+    """The database tensors used here have the standard trigonal forms: C, e, eps unchanged by the
+    generators of the point group (Nye, Physical Properties of Crystals: 3m = {3z, m_x}, 32 = {3z, 2x})."""
     for g in (_rot_z(120.0), second):
         C, e, eps, _ = lab(mat, g)
         np.testing.assert_allclose(C[0], mat[0], atol=1e-6 * np.abs(mat[0]).max())
@@ -159,7 +130,7 @@ def test_st_x_quartz_and_the_c14_sign_trap():
     assert r["c_free"][0] == pytest.approx(3158.0, rel=3e-3)
     np.testing.assert_allclose(r["c_free"][1], r["c_free"][0], rtol=1e-12)
     assert r["K2"][0] == pytest.approx(0.0011, abs=1e-4)
-    flipped = piezo_surface_wave(*lab(quartz(c14=17.91), euler_lab_axes(0.0, 132.75, 0.0)))
+    flipped = piezo_surface_wave(*lab(quartz(flip_c14=True), euler_lab_axes(0.0, 132.75, 0.0)))
     assert abs(flipped["c"][0] / r["c_free"][0] - 1) > 0.02
 
 
@@ -290,7 +261,9 @@ def test_stiffened_bulk_speeds_and_limiting_speed():
     the trace speeds v(n)/cos(phi) from piezo_bulk_speeds (brute force, independent of the search)."""
     C, e, eps, rho = lab(linbo3(), np.eye(3))
     v = piezo.piezo_bulk_speeds(C, e, eps, rho, [0.0, 0.0, 1.0])[0]
-    np.testing.assert_allclose(v ** 2 * rho, [60e9, 60e9, 245e9 + 1.3 ** 2 / (29 * EPS0)], rtol=1e-13)
+    m = get_piezo_material(get_cut("Y-Z").material)
+    c44, c33, e33, eps33 = m.voigt[3, 3] * 1e9, m.voigt[2, 2] * 1e9, m.e[2, 2], m.eps_r[2, 2] * EPS0
+    np.testing.assert_allclose(v ** 2 * rho, [c44, c44, c33 + e33 ** 2 / eps33], rtol=1e-13)
     A, e, eps, rho = lab(linbo3(), euler_lab_axes(20.0, 50.0, 35.0))
     phi = np.linspace(-1.5, 1.5, 20001)
     n = np.stack([np.cos(phi), np.sin(phi), np.zeros_like(phi)], axis=-1)
