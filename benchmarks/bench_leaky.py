@@ -9,16 +9,19 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "solvers"))
+from surfwave.real_crystals.piezo_materials import lab_tensors
+from surfwave.solvers import orientation, stroh, tensors
+from surfwave.solvers.euler import euler_lab_axes
+from surfwave.solvers.leaky import leaky_wave
 
-from piezo_data import rotated  # noqa: E402
 
-from surfwave.solvers import orientation, stroh, tensors  # noqa: E402
-from surfwave.solvers.leaky import leaky_wave  # noqa: E402
+def rotated(material, phi, theta, psi):
+    """Lab-frame C, e, eps, rho of a database set for SAW Euler angles (degrees, (m,) arrays)."""
+    t = lab_tensors(material, euler_lab_axes(phi, theta, psi).reshape(-1, 3, 3))
+    return t["C"], t["e"], t["eps"], t["rho"]
 
 
 def rate(fn, m: int, repeat: int = 2) -> float:
