@@ -1,7 +1,11 @@
 """Surface waves of real crystals under in-plane stress, and their acoustoelastic coefficients.
 
-The stressed crystal comes from :func:`surfwave.real_crystals.toec.stressed_state` (natural-state
-C2, Brugger C3, Cauchy stress sigma in crystal axes); its surface wave from the general solver
+Surface and direction by name in, the one path out: :func:`surface_wave_speed` is
+:func:`surfwave.real_crystals.stressed_wave.surface_wave` (the function ``surfwave.material``
+and the cube solver call too) and :func:`loading_stress` is
+:func:`surfwave.real_crystals.stressed_wave.stress_tensor`. The stressed crystal comes from
+:func:`surfwave.real_crystals.toec.stressed_state` (natural-state C2, Brugger C3, Cauchy
+stress sigma in crystal axes); its surface wave from the general solver
 (:func:`surfwave.solvers.stroh.surface_wave`, which uses Eq. (17) at mirror directions) with
 the wave-propagation coefficients A_ijkl = C*_ijkl + sigma_jl delta_ik in the laboratory
 frame of the *deformed* crystal: x1 along F m0 (the image of the given crystal direction m0),

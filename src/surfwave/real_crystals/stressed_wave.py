@@ -43,7 +43,7 @@ from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
 from surfwave.solvers.long_wave import long_wave_stable
-from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt, voigt_to_tensor
+from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 
 __all__ = ["Constants", "GPA", "LOADINGS", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
            "stress_tensor", "surface_wave"]
