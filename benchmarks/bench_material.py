@@ -24,7 +24,6 @@ import numpy as np
 
 import surfwave
 from surfwave.real_crystals.materials import get_material
-from surfwave.real_crystals.stressed_wave import GPA, Constants, stress_tensor
 from surfwave.real_crystals.toec import deformed_axes, stressed_state
 from surfwave.solvers import stroh
 from surfwave.solvers.orientation import lab_axes
@@ -32,15 +31,16 @@ from surfwave.solvers.tensors import rotate2, rotate4
 
 
 def _tensors(angles, stress: float, use_toec: bool):
-    """A (Pa) and rho of Cu (001) at these angles: the bare solver's input."""
-    cu = Constants.from_material(get_material("Cu"))
+    """A (Pa) and rho of Cu (001) at these angles: the bare solver's input (built from the
+    solvers and toec modules only, so the script also times the code before the one path)."""
+    cu = get_material("Cu")
     R = lab_axes("(001)", angles).reshape(-1, 3, 3)
-    sigma = stress_tensor("along", stress, R)
-    st = stressed_state(cu.voigt, cu.toec if use_toec else None, sigma, cu.rho)
+    sigma = stress * np.einsum("ai,aj->aij", R[:, 0], R[:, 0])
+    st = stressed_state(cu.voigt, cu.toec_voigt if use_toec else None, sigma, cu.rho)
     lab = deformed_axes(st["F"], R)
     s_lab = rotate2(sigma, lab)
     s_lab[:, 1, :] = s_lab[:, :, 1] = 0.0
-    A = stroh.wave_propagation_tensor(rotate4(st["C_star"], lab) * GPA, s_lab * GPA)
+    A = stroh.wave_propagation_tensor(rotate4(st["C_star"], lab) * 1e9, s_lab * 1e9)
     return A, st["rho"]
 
 
