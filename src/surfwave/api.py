@@ -14,7 +14,7 @@ from surfwave.model_crystals.lattices import build
 from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
 from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.errors import InputError
-from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, surface_wave
+from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
 
 __all__ = ["material", "point"]
 
@@ -163,8 +163,6 @@ def _stress_tensor(stress, R: np.ndarray) -> np.ndarray:
     (:func:`surfwave.real_crystals.stressed_wave.stress_tensor`, loading ``along``); a 3 x 3
     tensor: the Cauchy stress in crystal axes, the same for every direction.
     """
-    from surfwave.real_crystals.stressed_wave import stress_tensor
-
     s = np.asarray(stress, dtype=float)
     if s.shape == ():
         return stress_tensor("along", s, R)
@@ -277,6 +275,11 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         (..., 3) complex (see :func:`surfwave.solvers.stroh.surface_wave`),
         ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
         ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
+        Every number is NaN (``wave_type`` "none", ``stable`` False, ``method`` "") where the
+        crystal has no stressed state: the deformation solve fails, the stressed crystal is
+        not Born-stable, or the stress loads the deformed surface; ``reason`` says which, in
+        the words the cube uses (the computation is
+        :func:`surfwave.real_crystals.stressed_wave.surface_wave`, shared with the cube).
 
     Raises
     ------
