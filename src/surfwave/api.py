@@ -11,9 +11,10 @@ import numpy as np
 from surfwave.model_crystals import elastic
 from surfwave.solvers import long_wave, rayleigh, stroh
 from surfwave.model_crystals.lattices import build
-from surfwave.solvers.orientation import direction_angle, lab_axes
-from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
+from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.errors import InputError
+from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
 
 __all__ = ["material", "point"]
 
@@ -153,63 +154,23 @@ _ANGLE_KEYS = ("stress", "c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_S
 #: Largest |elastic constant| (GPa) accepted: diamond's C11 is about 1080 GPa; larger values are
 #: almost surely given in Pa.
 MAX_GPA = 1e5
-REASON_BORN = "no surface wave: the crystal is Born-unstable (the elastic energy is not positive definite)"
 
 
-def _stressed_constants(C6: np.ndarray, stress, x1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Constants C and prestress sigma of the stressed crystal, crystal axes, GPa.
+def _stress_tensor(stress, R: np.ndarray) -> np.ndarray:
+    """The prestress in crystal axes for each direction, GPa, shape (m, 3, 3).
 
-    The one place where C and sigma are built (third-order constants would enter here).
-
-    Parameters
-    ----------
-    C6 : ndarray, shape (6, 6)
-        Voigt stiffness of the (stressed) crystal, crystal axes, GPa.
-    stress : float or array_like, shape (3, 3)
-        A scalar: uniaxial sigma along each propagation direction x1; a 3 x 3 tensor: the
-        Cauchy prestress in crystal axes. GPa.
-    x1 : ndarray, shape (m, 3)
-        Propagation directions, crystal axes.
-
-    Returns
-    -------
-    C : ndarray, shape (3, 3, 3, 3)
-    sigma : ndarray, shape (m, 3, 3)
+    A scalar: uniaxial along each propagation direction R[:, 0]
+    (:func:`surfwave.real_crystals.stressed_wave.stress_tensor`, loading ``along``); a 3 x 3
+    tensor: the Cauchy stress in crystal axes, the same for every direction.
     """
     s = np.asarray(stress, dtype=float)
     if s.shape == ():
-        sigma = s * x1[:, :, None] * x1[:, None, :]
-    elif s.shape == (3, 3):
+        return stress_tensor("along", s, R)
+    if s.shape == (3, 3):
         if not np.allclose(s, s.T, rtol=1e-12, atol=1e-12 * np.abs(s).max()):
             raise InputError(f"the stress tensor must be symmetric, got {s.tolist()}")
-        sigma = np.broadcast_to(s, (x1.shape[0], 3, 3))
-    else:
-        raise InputError(f"stress must be a scalar or a 3 x 3 tensor (GPa), got shape {s.shape}")
-    return voigt_to_tensor(C6), sigma
-
-
-def _toec_state(C6, C3, sigma_c, R, rho):
-    """Stressed state with third-order constants, for each direction.
-
-    Returns C* (m, 3, 3, 3, 3) crystal axes, the deformed lab axes (m, 3, 3) (x1 along F m0,
-    x2 along F^-T n0), the stressed density (m,), ok (m,) and reason (m,) (see
-    :func:`surfwave.real_crystals.toec.stressed_state`; a stress that loads the deformed surface
-    is not ok either).
-    """
-    from surfwave.real_crystals.acoustoelastic import REASON_TRACTION, TRACTION_TOL
-    from surfwave.real_crystals.toec import deformed_axes, stressed_state
-
-    st = stressed_state(C6, C3, sigma_c, rho)
-    ok, reason = st["ok"].copy(), st["reason"].astype(object)
-    F = np.where(ok[:, None, None], st["F"], np.eye(3))
-    R_def = deformed_axes(F, R)
-    x2 = R_def[:, 1]
-    scale = np.maximum(np.abs(sigma_c).max(axis=(-2, -1)), 1e-300)
-    loaded = ok & (np.abs(np.einsum("mij,mj->mi", sigma_c, x2)).max(-1) > TRACTION_TOL * scale)
-    reason = np.where(loaded, REASON_TRACTION, reason)
-    ok &= ~loaded
-    C_star = np.where(ok[:, None, None, None, None], st["C_star"], voigt_to_tensor(C6))
-    return C_star, R_def, np.where(ok, st["rho"], rho), ok, reason
+        return np.broadcast_to(s, (R.shape[0], 3, 3))
+    raise InputError(f"stress must be a scalar or a 3 x 3 tensor (GPa), got shape {s.shape}")
 
 
 def _resolve_material(C11, C12, C44, rho, voigt, toec):
@@ -265,27 +226,6 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
     return C6, rho, C3
 
 
-def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
-    """Born (Wallace) stability of a prestressed crystal: the stability tensor is positive definite.
-
-    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2 (Wallace;
-    Wang, Yip, Phillpot and Wolf 1993), symmetrised, in Voigt form; d = Kronecker delta.
-
-    Parameters
-    ----------
-    C : ndarray, shape (..., 3, 3, 3, 3)
-    sigma : ndarray, shape (..., 3, 3)
-
-    Returns
-    -------
-    ndarray of bool, shape (...)
-    """
-    from surfwave.real_crystals.toec import wallace_tensor
-
-    B6 = wallace_tensor(C, sigma)
-    return np.linalg.eigvalsh(B6)[..., 0] > 0
-
-
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
              voigt=None, angle=None, toec=None) -> dict:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
@@ -335,6 +275,11 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         (..., 3) complex (see :func:`surfwave.solvers.stroh.surface_wave`),
         ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
         ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
+        Every number is NaN (``wave_type`` "none", ``stable`` False, ``method`` "") where the
+        crystal has no stressed state: the deformation solve fails, the stressed crystal is
+        not Born-stable, or the stress loads the deformed surface; ``reason`` says which, in
+        the words the cube uses (the computation is
+        :func:`surfwave.real_crystals.stressed_wave.surface_wave`, shared with the cube).
 
     Raises
     ------
@@ -373,42 +318,16 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     R = lab_axes(surface, which)
     scalar = R.ndim == 2
     R = R.reshape(-1, 3, 3)
-    C_c, sigma_c = _stressed_constants(C6, stress, R[:, 0])
-    traction = sigma_c @ R[0, 1]
-    if np.abs(traction).max() > 1e-9 * max(np.abs(sigma_c).max(), 1e-300):
+    sigma_c = _stress_tensor(stress, R)
+    traction = sigma_c[0] @ R[0, 1]
+    if np.abs(traction).max() > TRACTION_TOL * max(np.abs(sigma_c).max(), 1e-300):
         raise InputError(f"prestress must lie in the surface plane {surface}: its traction sigma . n = "
-                         f"{np.round(traction[0], 12).tolist()} GPa (crystal axes) is not zero")
-    rho_m = np.full(R.shape[0], float(rho))
-    R_lab = R
-    why = np.full(R.shape[0], REASON_BORN, dtype=object)
-    if C3 is not None:  # third-order constants: the crystal deforms, C and the frame follow
-        C_c, R_lab, rho_m, state_ok, state_reason = _toec_state(C6, C3, sigma_c, R, float(rho))
-        why = np.where(state_ok, why, state_reason)
-    else:
-        C_c = np.broadcast_to(C_c, (R.shape[0],) + C_c.shape)
-        state_ok = np.ones(R.shape[0], dtype=bool)
-    C = rotate4(C_c, R_lab)
-    sigma = rotate2(sigma_c, R_lab)
-    sigma[..., 1, :] = np.where(state_ok[:, None], sigma[..., 1, :], 0.0)   # placeholder where no state
-    sigma[..., :, 1] = sigma[..., 1, :]
-    A = stroh.wave_propagation_tensor(C, sigma) * 1e9                        # Pa
-    sw = stroh.surface_wave(A, rho_m)
-    born = born_stable(C_c, sigma_c) & state_ok
-    acoustic, _, _ = long_wave.long_wave_stability(np.ascontiguousarray(C_c), sigma_c)
-    S = elastic.stress_derivatives(sigma, C) * 1e9
-    out: dict = {}
-    for key, value in elastic.sound_speeds(S, rho_m).items():
-        out["c" + key[2:]] = np.sqrt(np.where((value > 0) & state_ok, value, np.nan))
-    c = np.where(born, sw["c"], np.nan)
-    out.update(c_R=c, c_R_imag=np.where(born, sw["c_imag"], np.nan),
-               c_limit=np.where(state_ok, sw["c_limit"], np.nan),
-               wave_type=np.where(born, sw["wave_type"], "none").astype(object),
-               reason=np.where(born, sw["reason"], why).astype(object),
-               stable=born & acoustic, polarisation=sw["polarisation"], decay=sw["decay"],
-               penetration_depth=sw["penetration_depth"], method=sw["method"],
-               rho=np.where(state_ok, rho_m, np.nan), toec=np.full(R.shape[0], C3 is not None))
-    from surfwave.solvers.orientation import reference_direction, surface_normal
-
+                         f"{np.round(traction, 12).tolist()} GPa (crystal axes) is not zero")
+    r = surface_wave(Constants(C6, rho, C3), R, sigma_c, toec=C3 is not None)
+    out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
+                                   "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
+                                   "penetration_depth", "method", "rho")}
+    out["toec"] = np.full(R.shape[0], C3 is not None)
     ref = reference_direction(surface)
     out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))
     if scalar:

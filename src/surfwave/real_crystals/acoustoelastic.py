@@ -1,7 +1,11 @@
 """Surface waves of real crystals under in-plane stress, and their acoustoelastic coefficients.
 
-The stressed crystal comes from :func:`surfwave.real_crystals.toec.stressed_state` (natural-state
-C2, Brugger C3, Cauchy stress sigma in crystal axes); its surface wave from the general solver
+Surface and direction by name in, the one path out: :func:`surface_wave_speed` is
+:func:`surfwave.real_crystals.stressed_wave.surface_wave` (the function ``surfwave.material``
+and the cube solver call too) and :func:`loading_stress` is
+:func:`surfwave.real_crystals.stressed_wave.stress_tensor`. The stressed crystal comes from
+:func:`surfwave.real_crystals.toec.stressed_state` (natural-state C2, Brugger C3, Cauchy
+stress sigma in crystal axes); its surface wave from the general solver
 (:func:`surfwave.solvers.stroh.surface_wave`, which uses Eq. (17) at mirror directions) with
 the wave-propagation coefficients A_ijkl = C*_ijkl + sigma_jl delta_ik in the laboratory
 frame of the *deformed* crystal: x1 along F m0 (the image of the given crystal direction m0),
@@ -20,22 +24,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.solvers import stroh
 from surfwave.real_crystals import toec
-from surfwave.solvers.orientation import lab_axes, parse_direction, surface_normal
-from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
-from surfwave.real_crystals.toec import DEFAULT_TOL, stressed_state
+from surfwave.real_crystals.stressed_wave import REASON_TRACTION, TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.real_crystals.toec import DEFAULT_TOL
+from surfwave.solvers.orientation import lab_axes
+from surfwave.solvers.tensors import rotate2
 from surfwave.errors import InputError
+
+__all__ = ["DEFAULT_STEP", "LOADINGS", "REASON_TRACTION", "TRACTION_TOL", "acoustoelastic_coefficients",
+           "check_in_plane", "deformed_axes", "loading_stress", "surface_wave_speed"]
 
 #: Loading kinds: uniaxial along / across the propagation direction (in the surface),
 #: equi-biaxial in the surface plane, uniaxial along a given crystal axis in the surface.
 LOADINGS = ("along", "across", "biaxial", "axis")
 #: Central-difference step of the acoustoelastic coefficient, GPa.
 DEFAULT_STEP = 1e-4
-#: Largest traction sigma . n on the deformed surface, relative to max |sigma|, accepted.
-TRACTION_TOL = 1e-9
-REASON_TRACTION = ("the deformed surface is loaded: sigma . n != 0 on the normal F^-T n0 (the stress "
-                   "turns the surface plane), so the free surface is not in equilibrium")
 
 
 def _axes(surface, direction) -> np.ndarray:
@@ -64,37 +67,23 @@ def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axi
     """
     if kind not in LOADINGS:
         raise InputError(f"unknown loading {kind!r}; choose one of {list(LOADINGS)}")
-    x, _, z = _axes(surface, direction)
-    if kind == "along":
-        unit = np.outer(x, x)
-    elif kind == "across":
-        unit = np.outer(z, z)
-    elif kind == "biaxial":
-        unit = np.outer(x, x) + np.outer(z, z)
-    else:
-        if axis is None:
-            raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
-        a = parse_direction(axis) if isinstance(axis, str) else np.asarray(axis, dtype=float)
-        a = a / np.linalg.norm(a)
-        if abs(float(a @ surface_normal(surface))) > 1e-12:
-            raise InputError(f"axis {axis!r} does not lie in the surface {surface!r} (out-of-plane stress)")
-        unit = np.outer(a, a)
-    s = np.asarray(magnitude, dtype=float)
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
-    return s[..., None, None] * unit
+    return stress_tensor(kind, magnitude, _axes(surface, direction), axis=axis)
 
 
-def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float = 1e-12) -> None:
+def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float | None = None) -> None:
     """Raise :class:`InputError` naming the first out-of-plane component of sigma.
 
     The free surface is in equilibrium only if sigma . n = 0; in the natural laboratory
-    frame (x propagation, y normal, z in-plane) that is sigma_yy = sigma_xy = sigma_yz = 0.
+    frame (x propagation, y normal, z in-plane) that is sigma_yy = sigma_xy = sigma_yz = 0,
+    to ``tol`` GPa (default: :data:`TRACTION_TOL` times max |sigma| of each tensor, the one
+    tolerance of :mod:`surfwave.real_crystals.stressed_wave`).
     """
-    lab = rotate2(np.asarray(sigma, dtype=float), _axes(surface, direction))
+    sigma = np.asarray(sigma, dtype=float)
+    lab = rotate2(sigma, _axes(surface, direction))
+    limit = TRACTION_TOL * np.abs(sigma).max(axis=(-2, -1)) if tol is None else tol
     for name, (i, j) in (("sigma_yy", (1, 1)), ("sigma_xy", (0, 1)), ("sigma_yz", (1, 2))):
         v = lab[..., i, j]
-        if np.any(np.abs(v) > tol):
+        if np.any(np.abs(v) > limit):
             bad = float(np.ravel(v)[np.argmax(np.abs(np.ravel(v)))])
             raise InputError(f"out-of-plane stress component {name} = {bad:.6g} GPa (lab frame: x along "
                              f"{direction}, y normal to {surface}); only in-plane stress is allowed")
@@ -146,35 +135,10 @@ def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", 
     if sigma.shape[-2:] != (3, 3):
         raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
     check_in_plane(sigma, surface, direction)
-    shape = sigma.shape[:-2]
-    out = _surface_wave_speed(C2, C3, rho0, sigma.reshape(-1, 3, 3), surface, direction, tol)
-    return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
-
-
-def _surface_wave_speed(C2, C3, rho0, sigma, surface, direction, tol) -> dict:
-    st = stressed_state(C2, C3, sigma, rho0, tol=tol)
-    ok = st["ok"].copy()
-    reason = st["reason"].astype(object)
-    F = np.where(ok[..., None, None], st["F"], np.eye(3))
-    axes = deformed_axes(F, surface, direction)
-    s_lab = rotate2(sigma, axes)
-    scale = np.maximum(np.abs(sigma).max(axis=(-2, -1)), 1e-300)
-    loaded = ok & (np.abs(s_lab[..., 1, :]).max(-1) > TRACTION_TOL * scale)
-    reason = np.where(loaded, REASON_TRACTION, reason)
-    ok &= ~loaded
-    C2t = np.asarray(C2, dtype=float)
-    C2t = voigt_to_tensor(C2t) if C2t.shape == (6, 6) else C2t
-    C_star = np.where(ok[..., None, None, None, None], st["C_star"], C2t)  # placeholder where not ok
-    s_lab = np.where(ok[..., None, None], s_lab, 0.0)
-    s_lab[..., 1, :] = s_lab[..., :, 1] = 0.0  # zero to round-off already; exactly zero for the solver
-    A = stroh.wave_propagation_tensor(rotate4(C_star, axes), s_lab) * 1e9  # Pa
-    rho = np.where(ok, st["rho"], float(rho0))
-    sw = stroh.surface_wave(A, rho)
-    c_R = np.where(ok, sw["c"], np.nan)
-    return {"c_R": c_R, "c_limit": np.where(ok, sw["c_limit"], np.nan),
-            "wave_type": np.where(ok, sw["wave_type"], "none").astype(str),
-            "reason": np.where(ok, sw["reason"], reason).astype(str), "ok": ok,
-            "rho": np.where(ok, rho, np.nan), "F": st["F"], "axes": axes}
+    r = surface_wave(Constants(C2, rho0, C3), _axes(surface, direction), sigma, toec=C3 is not None,
+                     state_tol=tol, bulk=False)
+    return {"c_R": r["c_R"], "c_limit": r["c_limit"], "wave_type": r["wave_type"].astype(str),
+            "reason": r["reason"].astype(str), "ok": r["ok"], "rho": r["rho"], "F": r["F"], "axes": r["axes"]}
 
 
 def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]", *,

@@ -31,27 +31,24 @@ Examples
 from __future__ import annotations
 
 import itertools
-import re
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
+from surfwave.real_crystals.stressed_wave import LOADINGS, Constants, axis_of_loading, stress_tensor, surface_wave
+from surfwave.solvers.tensors import rotate4, voigt_to_tensor
 from surfwave.validate import as_1d
 
 if TYPE_CHECKING:  # xarray only for the Dataset builder: scene checks at workflow parse stay light
     import xarray as xr
 
-#: Stress kinds a scene may ask for; ``axis_<hkl>`` adds any in-plane crystal axis.
-LOADINGS = ("along", "across", "biaxial")
-_AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
+__all__ = ["LOADINGS", "applied_stress", "axis_of_loading", "surface_wave_sweep", "symmetry_reduced_range"]
+
 #: Names of the three displacement components of the polarisation (lab frame).
 COMPONENTS = ("u1", "u2", "u3")
 #: Trailing dimension of the vector variables.
 TRAILING = {"polarisation": "component", "decay": "partial_wave"}
-#: Speeds are given to the solver in SI: GPa -> Pa.
-GPA = 1.0e9
 
 #: The ``method`` attribute of the cube.
 METHOD = ("general anisotropic surface-wave solver (Stroh formalism, surfwave.solvers.stroh) on "
@@ -200,28 +197,9 @@ def symmetry_reduced_range(surface: str, voigts: Sequence) -> float:
 # --------------------------------------------------------------------------- stress
 
 
-def axis_of_loading(loading: str) -> np.ndarray | None:
-    """Unit crystal direction of an ``axis_<hkl>`` loading, or None for the other kinds.
-
-    Raises
-    ------
-    InputError
-        An unknown loading name (the message lists the kinds).
-    """
-    if loading in LOADINGS:
-        return None
-    m = _AXIS.match(loading)
-    if not m:
-        raise InputError(f"unknown loading {loading!r}; choose one of {list(LOADINGS)} or "
-                         "axis_<hkl> (e.g. axis_100, axis_1-10)")
-    d = np.array([float(g) for g in m.groups()])
-    if not np.any(d):
-        raise InputError(f"loading {loading!r}: the axis [000] has no direction")
-    return d / np.linalg.norm(d)
-
-
 def applied_stress(loading: str, axes, stress) -> np.ndarray:
-    """Applied stress tensors in crystal axes.
+    """Applied stress tensors in crystal axes
+    (:func:`surfwave.real_crystals.stressed_wave.stress_tensor`).
 
     Parameters
     ----------
@@ -242,69 +220,10 @@ def applied_stress(loading: str, axes, stress) -> np.ndarray:
     InputError
         An ``axis_<hkl>`` loading whose axis is not in the surface plane.
     """
-    axes = np.asarray(axes, dtype=float)
-    s = np.asarray(stress, dtype=float)
-    x1, n, x3 = axes[:, 0], axes[:, 1], axes[:, 2]
-    d = axis_of_loading(loading)
-    if loading == "along":
-        unit = np.einsum("ai,aj->aij", x1, x1)
-    elif loading == "across":
-        unit = np.einsum("ai,aj->aij", x3, x3)
-    elif loading == "biaxial":
-        unit = np.einsum("ai,aj->aij", x1, x1) + np.einsum("ai,aj->aij", x3, x3)
-    else:
-        if np.any(np.abs(n @ d) > 1e-9):
-            raise InputError(f"loading {loading!r}: the axis is not in the surface plane "
-                             "(a stress with a normal component cannot act on a free surface)")
-        unit = np.broadcast_to(np.outer(d, d), (len(axes), 3, 3))
-    return unit[:, None] * s[None, :, None, None]
+    return stress_tensor(loading, np.asarray(stress, dtype=float), np.asarray(axes, dtype=float))
 
 
-# --------------------------------------------------------------------------- the scene
-
-
-def _stressed_frames(material, sigma: np.ndarray, axes: np.ndarray, use_toec: bool) -> dict:
-    """Lab-frame constants, stress and density of the stressed crystal at every point.
-
-    Parameters
-    ----------
-    material : Material
-    sigma : ndarray, shape (n, 3, 3)
-        Applied Cauchy stress, crystal axes, GPa.
-    axes : ndarray, shape (n, 3, 3)
-        Lab axes of the natural crystal (rows x1, x2 = inward normal, x3), crystal axes.
-    use_toec : bool
-        False: fixed-C model (C* = C2, rho = rho0, no deformation). True: the stressed state
-        of :func:`surfwave.real_crystals.toec.stressed_state`; the material direction x1 and the
-        surface plane move with the (pure-stretch) deformation F, so the lab axes become
-        F x1 and F^-T x2 (normalised), x3 their cross product.
-
-    Returns
-    -------
-    dict
-        ``C`` (n, 3, 3, 3, 3) and ``sigma`` (n, 3, 3) in the lab frame, GPa; ``rho`` (n,)
-        kg/m^3; ``ok`` (n,) bool and ``reason`` (n,) str where the stressed state does not
-        exist (values there are meaningless).
-    """
-    from surfwave.real_crystals import toec
-
-    state = toec.stressed_state(material.voigt, material.toec_voigt if use_toec else None, sigma,
-                                material.rho)
-    ok = np.asarray(state["ok"], dtype=bool)
-    F = np.where(ok[:, None, None], state["F"], np.eye(3))
-    lab = toec.deformed_axes(F, axes)
-    C = np.where(ok[:, None, None, None, None], state["C_star"], voigt_to_tensor(material.voigt))
-    return {"C": rotate4(C, lab), "sigma": rotate2(sigma, lab), "rho": np.where(ok, state["rho"], material.rho),
-            "ok": ok, "reason": np.asarray(state["reason"]).astype(str)}
-
-
-def _solve_points(C_lab, sigma_lab, rho, tol):
-    """The general solver on a flat batch of points (SI units in, m/s out)."""
-    from surfwave.solvers import stroh
-
-    A = stroh.wave_propagation_tensor(C_lab * GPA, sigma_lab * GPA)
-    kwargs = {} if tol is None else {"tol": tol}
-    return stroh.surface_wave(A, rho, **kwargs)
+# --------------------------------------------------------------------------- the cube
 
 
 def surface_wave_sweep(
@@ -376,32 +295,24 @@ def surface_wave_sweep(
                      for sf in surfaces])                                # (nsf, na, 3, 3)
     nsf, na = axes.shape[:2]
     shape = (len(mats), nsf, na, len(loads), len(models), len(s))
-    out = {k: np.full(shape, np.nan) for k in ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho")}
-    for k in ("polarisation", "decay"):
-        out[k] = np.full(shape + (3,), np.nan + 0j)
-    out["wave_type"] = np.full(shape, "none", dtype=object)
-    out["reason"] = np.full(shape, "", dtype=object)
+    keys = ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho", "polarisation", "decay", "wave_type",
+            "reason")
+    out: dict = {}
     # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
     sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
-    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape).reshape(-1, 3, 3)
+    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape)
     sub = (nsf, na, len(loads), len(s))
     for im, mat in enumerate(mats):
+        constants = Constants.from_material(mat)
         for it, use in enumerate(models):
-            st = _stressed_frames(mat, sig.reshape(-1, 3, 3), point_axes, use)
-            ok = st["ok"]
-            res = {k: np.full((ok.size,) + out[k].shape[len(shape):], out[k].flat[0], dtype=out[k].dtype) for k in out}
-            res["reason"][~ok] = np.char.add("no stressed state: ", st["reason"][~ok]).astype(object)
-            res["rho"][ok] = st["rho"][ok]
-            if ok.any():
-                r = _solve_points(st["C"][ok], st["sigma"][ok], st["rho"][ok], tol)
-                for name, key in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
-                                  ("penetration_depth", "penetration_depth"), ("wave_type", "wave_type"),
-                                  ("reason", "reason"), ("polarisation", "polarisation"), ("decay", "decay")):
-                    res[name][ok] = r[key]
-            idx = (im, slice(None), slice(None), slice(None), it, slice(None))
-            for name, arr in res.items():
-                out[name][idx] = arr.reshape(sub + arr.shape[1:])
+            # every value comes from this material and model's own solve (NaN where no state)
+            res = surface_wave(constants, point_axes, sig, toec=use, tol=tol, bulk=False)
+            for name in keys:
+                arr = res[name].reshape(sub + res[name].shape[3:])
+                if name not in out:
+                    out[name] = np.empty(shape + arr.shape[len(sub):], dtype=arr.dtype)
+                out[name][im, :, :, :, it, :] = arr
     ds = _dataset(out, [m.name for m in mats], list(surfaces), angles, loads, models, s, stressed,
                   directions)
     width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]

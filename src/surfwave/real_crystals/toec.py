@@ -238,6 +238,47 @@ def wallace_tensor(C, sigma) -> np.ndarray:
     return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
 
 
+def born_lowest(C, sigma) -> np.ndarray:
+    """Lowest eigenvalue of Wallace's stability tensor (:func:`wallace_tensor`), GPa.
+
+    Parameters
+    ----------
+    C : array_like, shape (..., 3, 3, 3, 3)
+        Constants of the stressed state, GPa.
+    sigma : array_like, shape (..., 3, 3)
+        Cauchy stress, GPa, same axes.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    return np.linalg.eigvalsh(wallace_tensor(C, sigma))[..., 0]
+
+
+def born_stable(C, sigma) -> np.ndarray:
+    """Born (Wallace) stability of a prestressed crystal: the stability tensor is positive definite.
+
+    B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2 (Wallace;
+    Wang, Yip, Phillpot and Wolf 1993), symmetrised, in Voigt form; d = Kronecker delta.
+
+    Parameters
+    ----------
+    C : ndarray, shape (..., 3, 3, 3, 3)
+    sigma : ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+    """
+    return born_lowest(C, sigma) > 0
+
+
+def born_reason(lowest: float) -> str:
+    """The one wording of a Born failure, given the lowest eigenvalue of Wallace's B (GPa)."""
+    return ("stressed crystal not Born-stable (lowest eigenvalue of Wallace's B = C* + stress terms: "
+            f"{lowest:.3g} GPa)")
+
+
 def _stress_and_jacobian(F, C2, C3):
     """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
     (..., 6, 3, 3), plus the tangent C2 + C3 : eta (matrix products: einsum chains are slow)."""
@@ -415,12 +456,11 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
         C_star = stressed_constants(C2, C3, F)
         rho = float(rho0) / np.linalg.det(F)
-    born = np.linalg.eigvalsh(wallace_tensor(np.nan_to_num(C_star), sigma))[..., 0]
+    born = born_lowest(np.nan_to_num(C_star), sigma)
     lost = ok & ~(born > 0)
     if np.any(lost):
-        why = np.vectorize(lambda b: "stressed crystal not Born-stable (lowest eigenvalue of Wallace's "
-                           f"B = C* + stress terms: {b:.3g} GPa)", otypes=[object])(born)
-        reason = np.where(lost, why, reason)
+        reason = np.array(reason, dtype=object)
+        reason[lost] = [born_reason(b) for b in born[lost]]
         ok = ok & ~lost
     F = np.where(ok[..., None, None], F, np.nan)
     C_star = np.where(ok[..., None, None, None, None], C_star, np.nan)

@@ -1,0 +1,336 @@
+"""The one path from "crystal, cut, stress, model" to the surface wave of a real crystal.
+
+:func:`surface_wave` is called by :func:`surfwave.api.material`, by
+:func:`surfwave.real_crystals.acoustoelastic.surface_wave_speed` (and so the acoustoelastic
+coefficients) and by :func:`surfwave.real_crystals.sweep.surface_wave_sweep` (the solver that
+fills a real-crystal cube), so the API, the CLI and the cubes give the same numbers and the
+same reasons. Per point it does, in this order:
+
+1. GPa -> Pa, once (:data:`GPA`), where the wave-propagation tensor is built;
+2. the stressed state: fixed-C (C* = C, rho = rho0, no deformation) or from the third-order
+   constants (:func:`surfwave.real_crystals.toec.stressed_state`: deformation F, C*, rho0/J,
+   Born stability of the stressed crystal), and the lab axes carried by F
+   (:func:`surfwave.real_crystals.toec.deformed_axes`);
+3. one traction check on the (deformed) surface, tolerance :data:`TRACTION_TOL`;
+4. the surface wave (:func:`surfwave.solvers.stroh.surface_wave`) where a state exists;
+5. optionally bulk speeds along x1 and x2 and the stability flag.
+
+A point without a state (deformation solve failed, Born-unstable, loaded surface) is NaN
+(``wave_type`` "none") with its reason; outputs are allocated NaN and filled only where the
+solver ran, so no point can carry another point's value. Nothing raises mid-batch.
+
+:func:`stress_tensor` is the one load-to-stress function (loading kind + magnitude + axes ->
+Cauchy stress in crystal axes).
+
+Examples
+--------
+>>> from surfwave.real_crystals.materials import get_material
+>>> from surfwave.solvers.orientation import lab_axes
+>>> cu = Constants.from_material(get_material("Cu"))
+>>> R = lab_axes("(001)", "[100]")
+>>> r = surface_wave(cu, R, stress_tensor("along", 0.1, R), toec=True)
+>>> round(float(r["c_R"]), 2)   # material("Cu", stress=0.1, toec=True)
+2019.06
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from surfwave.errors import InputError
+from surfwave.real_crystals import toec as toec_model
+from surfwave.solvers import stroh
+from surfwave.solvers.long_wave import long_wave_stable
+from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
+
+__all__ = ["Constants", "GPA", "LOADINGS", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
+           "stress_tensor", "surface_wave"]
+
+#: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
+GPA = 1.0e9
+#: The one tolerance of "the stress lies in the surface plane": |sigma . n| (lab components,
+#: n the normal of the deformed surface) and |axis . n| of an axis loading, relative to
+#: max |sigma| (to 1 for a unit axis).
+TRACTION_TOL = 1e-9
+#: Reason of a point whose deformed surface carries a traction.
+REASON_TRACTION = ("the deformed surface is loaded: sigma . n != 0 on the normal F^-T n0 (the stress "
+                   "turns the surface plane), so the free surface is not in equilibrium")
+#: Prefix of the reason of a point without a stressed state (the reason of
+#: :func:`surfwave.real_crystals.toec.stressed_state` follows, e.g. the Born wording
+#: :func:`surfwave.real_crystals.toec.born_reason`).
+REASON_NO_STATE = "no stressed state: "
+#: Loading kinds: uniaxial along / across the propagation direction (in the surface),
+#: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
+#: along a fixed crystal direction in the surface.
+LOADINGS = ("along", "across", "biaxial")
+_AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
+
+
+@dataclass(frozen=True, eq=False)
+class Constants:
+    """The natural-state material constants of a real crystal, crystal axes.
+
+    Attributes
+    ----------
+    voigt : ndarray, shape (6, 6)
+        Second-order stiffness C, GPa.
+    rho : float
+        Density, kg/m^3.
+    toec : ndarray, shape (6, 6, 6), or None
+        Brugger third-order constants C3 (Voigt), GPa; None where unknown.
+    piezo : ndarray, shape (3, 6), or None
+        Piezoelectric stress constants e, C/m^2. Reserved for the piezoelectric extension:
+        :func:`surface_wave` refuses it today.
+    permittivity : ndarray, shape (3, 3), or None
+        Relative permittivity eps_r (clamped). Reserved, as ``piezo``.
+    """
+
+    voigt: np.ndarray
+    rho: float
+    toec: np.ndarray | None = None
+    piezo: np.ndarray | None = None
+    permittivity: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        C = np.asarray(self.voigt, dtype=float)
+        if C.shape == (3, 3, 3, 3):
+            C = tensor_to_voigt(C)
+        if C.shape != (6, 6):
+            raise InputError(f"the stiffness must be a 6 x 6 Voigt matrix (GPa), got shape {C.shape}")
+        object.__setattr__(self, "voigt", C)
+        object.__setattr__(self, "rho", float(self.rho))
+        if self.toec is not None:
+            object.__setattr__(self, "toec", np.asarray(self.toec, dtype=float))
+
+    @classmethod
+    def from_material(cls, material) -> Constants:
+        """The record of a :class:`surfwave.real_crystals.materials.Material` (or any object
+        with ``voigt``, ``rho`` and ``toec``: None or the six cubic constants)."""
+        return cls(np.asarray(material.voigt, dtype=float), material.rho,
+                   None if material.toec is None else material.toec_voigt)
+
+
+# --------------------------------------------------------------------------- loadings
+
+
+def axis_of_loading(loading: str) -> np.ndarray | None:
+    """Unit crystal direction of an ``axis_<hkl>`` loading, or None for the other kinds.
+
+    Raises
+    ------
+    InputError
+        An unknown loading name (the message lists the kinds).
+    """
+    if loading in LOADINGS:
+        return None
+    m = _AXIS.match(loading)
+    if not m:
+        raise InputError(f"unknown loading {loading!r}; choose one of {list(LOADINGS)} or "
+                         "axis_<hkl> (e.g. axis_100, axis_1-10)")
+    d = np.array([float(g) for g in m.groups()])
+    if not np.any(d):
+        raise InputError(f"loading {loading!r}: the axis [000] has no direction")
+    return d / np.linalg.norm(d)
+
+
+def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
+    """Cauchy stress of a loading in crystal axes, GPa: the one load-to-stress function.
+
+    Parameters
+    ----------
+    loading : str
+        ``along``: sigma = s x1 x1 (uniaxial along the propagation direction);
+        ``across``: sigma = s x3 x3 (uniaxial, in the surface, normal to the propagation);
+        ``biaxial``: sigma = s (x1 x1 + x3 x3); ``axis_<hkl>``, or ``axis`` with ``axis=``:
+        sigma = s a a along a fixed crystal direction a in the surface.
+    magnitude : float or array_like, shape (k,)
+        s, GPa (negative = compression).
+    axes : array_like, shape (3, 3) or (m, 3, 3)
+        Lab axes of the natural crystal, rows (x1, x2 = inward normal, x3), crystal axes.
+    axis : str or array_like, shape (3,), optional
+        The crystal direction of ``loading="axis"`` ("[hkl]" or a vector).
+
+    Returns
+    -------
+    ndarray, shape axes.shape[:-2] + magnitude.shape + (3, 3)
+        sigma . n = 0 for every entry.
+
+    Raises
+    ------
+    InputError
+        Unknown loading, non-finite magnitude, an axis not in the surface plane (|a . n| >
+        :data:`TRACTION_TOL`).
+    """
+    from surfwave.solvers.orientation import parse_direction
+
+    axes = np.asarray(axes, dtype=float)
+    s = np.asarray(magnitude, dtype=float)
+    if not np.all(np.isfinite(s)):
+        raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
+    x1, n, x3 = axes[..., 0, :], axes[..., 1, :], axes[..., 2, :]
+    if loading == "axis":
+        if axis is None:
+            raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
+        d = parse_direction(axis) if isinstance(axis, str) else np.asarray(axis, dtype=float)
+        d = d / np.linalg.norm(d)
+        name = f"axis {axis!r}"
+    else:
+        d = axis_of_loading(loading)
+        name = f"loading {loading!r}: the axis"
+    if loading == "along":
+        unit = np.einsum("...i,...j->...ij", x1, x1)
+    elif loading == "across":
+        unit = np.einsum("...i,...j->...ij", x3, x3)
+    elif loading == "biaxial":
+        unit = np.einsum("...i,...j->...ij", x1, x1) + np.einsum("...i,...j->...ij", x3, x3)
+    else:
+        if np.any(np.abs(n @ d) > TRACTION_TOL):
+            raise InputError(f"{name} is not in the surface plane (a stress with a normal component "
+                             "cannot act on a free surface)")
+        unit = np.broadcast_to(np.outer(d, d), axes.shape)
+    lead = axes.shape[:-2]
+    return unit.reshape(lead + (1,) * s.ndim + (3, 3)) * s[..., None, None]
+
+
+# --------------------------------------------------------------------------- the surface wave
+
+
+def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
+                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True) -> dict:
+    """Surface wave of a stressed real crystal at each point (the one path).
+
+    Parameters
+    ----------
+    constants : Constants
+        Natural-state constants (GPa, kg/m^3).
+    axes : array_like, shape (..., 3, 3)
+        Lab axes of the unstressed crystal, rows (x1 propagation, x2 inward normal, x3),
+        crystal axes (:func:`surfwave.solvers.orientation.lab_axes`).
+    stress : array_like, shape (..., 3, 3)
+        Cauchy prestress in crystal axes, GPa (broadcast against ``axes``).
+    toec : bool
+        False: fixed-C model (C* = C, rho = rho0, the stress enters only through A = C +
+        sigma delta). True: the stressed state of the third-order constants (the wave then
+        runs along F m0 on the surface of normal F^-T n0; true phase speeds).
+    tol : float, optional
+        Relative accuracy of rho c^2 in the solver's root search (its default when None).
+    state_tol : float
+        Tolerance of the deformation solve, GPa.
+    bulk : bool
+        Also return the bulk speeds along x1 and x2 and ``stable`` (costs a stability test).
+
+    Returns
+    -------
+    dict
+        Shapes ``(...)`` = the broadcast leading shape: ``c_R`` (m/s, NaN where none; real part
+        for a pseudo wave), ``c_R_imag`` (m/s), ``c_limit`` (m/s), ``wave_type`` (object str),
+        ``reason`` (object str, "" where a surface wave exists), ``polarisation`` (..., 3) and
+        ``decay`` (..., 3) complex, ``penetration_depth`` (wavelengths), ``method`` (object
+        str, "" where not solved), ``rho`` (kg/m^3, stressed state), ``ok`` (bool: a stressed,
+        Born-stable state with a traction-free surface exists), ``F`` (..., 3, 3) (NaN where
+        no state), ``axes`` (..., 3, 3) the lab axes of the stressed crystal; with ``bulk``
+        also ``c_L_par``, ``c_T_par``, ``c_SH`` (along x1), ``c_L_perp``, ``c_T_perp`` (along
+        x2) in m/s (NaN where imaginary or no state) and ``stable`` (bool: ``ok`` and the
+        acoustic tensor positive definite in every direction). Everything that depends on a
+        state is NaN where ``ok`` is False.
+
+    Raises
+    ------
+    InputError
+        ``toec=True`` without third-order constants, bad shapes, piezoelectric constants
+        (not implemented yet). Never for a point: those get NaN and a reason.
+    """
+    axes = np.asarray(axes, dtype=float)
+    sigma = np.asarray(stress, dtype=float)
+    if axes.shape[-2:] != (3, 3) or sigma.shape[-2:] != (3, 3):
+        raise InputError(f"axes and stress must have shape (..., 3, 3), got {axes.shape} and {sigma.shape}")
+    shape = np.broadcast_shapes(axes.shape[:-2], sigma.shape[:-2])
+    axes = np.broadcast_to(axes, shape + (3, 3)).reshape(-1, 3, 3)
+    sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
+    if toec and constants.toec is None:
+        raise InputError("toec=True needs third-order constants (C111, C112, C123, C144, C155, C456), "
+                         "and this crystal has none")
+    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk)
+    return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
+
+
+def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool) -> dict:
+    n = sigma.shape[0]
+    # the stressed state (Born stability included) and the axes it carries
+    st = toec_model.stressed_state(constants.voigt, constants.toec if toec else None, sigma, constants.rho,
+                                   tol=state_tol)
+    ok = np.asarray(st["ok"], dtype=bool).copy()
+    reason = np.full(n, "", dtype=object)
+    reason[~ok] = [REASON_NO_STATE + r for r in np.asarray(st["reason"])[~ok]]
+    F = np.where(ok[:, None, None], st["F"], np.eye(3))
+    lab = toec_model.deformed_axes(F, axes)
+    s_lab = rotate2(sigma, lab)
+    # the one traction check: sigma . n on the (deformed) surface
+    scale = np.maximum(np.abs(sigma).max(axis=(-2, -1)), 1e-300)
+    loaded = ok & (np.abs(s_lab[:, 1, :]).max(-1) > TRACTION_TOL * scale)
+    reason[loaded] = REASON_TRACTION
+    ok &= ~loaded
+    s_lab[:, 1, :] = 0.0   # zero to TRACTION_TOL already; exactly zero for the solver
+    s_lab[:, :, 1] = 0.0
+    # the surface wave where a state exists; everything else stays NaN
+    idx = np.flatnonzero(ok)
+    C_lab = rotate4(st["C_star"][idx], lab[idx])
+    A = stroh.wave_propagation_tensor(C_lab * GPA, s_lab[idx] * GPA)
+    rho = st["rho"][idx]
+    sw = _solve(A, rho, constants, lab[idx], tol)
+    out: dict = {}
+    for key, name in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
+                      ("penetration_depth", "penetration_depth")):
+        out[key] = np.full(n, np.nan)
+        out[key][idx] = sw[name]
+    for key in ("polarisation", "decay"):
+        out[key] = np.full((n, 3), np.nan + 0j)
+        out[key][idx] = sw[key]
+    out["wave_type"] = np.full(n, "none", dtype=object)
+    out["wave_type"][idx] = sw["wave_type"]
+    reason[idx] = sw["reason"]
+    out["reason"] = reason
+    out["method"] = np.full(n, "", dtype=object)
+    out["method"][idx] = sw["method"]
+    out["rho"] = np.full(n, np.nan)
+    out["rho"][idx] = rho
+    out.update(ok=ok, F=st["F"], axes=lab)
+    if bulk:
+        out.update(_bulk(A, rho, n, idx))
+        out["stable"] = np.zeros(n, dtype=bool)
+        out["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
+    return out
+
+
+def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol) -> dict:
+    """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3).
+
+    The piezoelectric branch slots in here: with ``constants.piezo`` it would rotate e and
+    eps_r into ``lab`` and solve the 8 x 8 (u, phi) Stroh problem, returning the same keys.
+    """
+    if constants.piezo is not None or constants.permittivity is not None:
+        raise InputError("piezoelectric constants were given, but the piezoelectric surface-wave solver is "
+                         "not implemented yet (issue 19)")
+    return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+
+
+def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray) -> dict:
+    """Bulk speeds along x1 and x2 (diagonal of the acoustic tensor A_ijkl n_j n_l / rho), m/s."""
+    out = {}
+    for key, comp in (("c_L_par", (0, 0, 0, 0)), ("c_T_par", (1, 0, 1, 0)), ("c_L_perp", (1, 1, 1, 1)),
+                      ("c_T_perp", (0, 1, 0, 1)), ("c_SH", (2, 0, 2, 0))):
+        x = A[(slice(None),) + comp] / rho
+        out[key] = np.full(n, np.nan)
+        out[key][idx] = np.sqrt(np.where(x > 0, x, np.nan))
+    return out
+
+
+def _long_wave_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """:func:`surfwave.solvers.long_wave.long_wave_stable` in crystal axes, once where every
+    point has the same C and sigma (a fixed-C crystal under one stress tensor)."""
+    if len(C) > 1 and np.array_equal(C, np.broadcast_to(C[:1], C.shape)) \
+            and np.array_equal(sigma, np.broadcast_to(sigma[:1], sigma.shape)):
+        return np.broadcast_to(long_wave_stable(C[:1], sigma[:1]), (len(C),)).copy()
+    return long_wave_stable(np.ascontiguousarray(C), np.ascontiguousarray(sigma))
