@@ -282,8 +282,8 @@ def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarra
                 dP = dP * z + P
                 P = P * z + cc[:, k]
             step = P / dP
-            z = z - step
-            conv = np.abs(step) <= 1e-13 * np.abs(z)
+            z = np.where(conv, z, z - step)                        # converged roots stay put: a row's
+            conv |= np.abs(step) <= 1e-13 * np.abs(z)              # result does not depend on its batch
             if conv.all():
                 break
         scale = np.abs(z).max(axis=-1)
