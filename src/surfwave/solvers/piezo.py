@@ -31,7 +31,7 @@ import numpy as np
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
-    generalised_blocks, generalised_tensor, impedance, limiting_x, piezo_bulk_speeds, stroh_matrix,
+    generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
     stroh_polynomial_parts)
 
 #: Vacuum permittivity, F/m (CODATA 2018).
@@ -70,12 +70,12 @@ def _flux(Q, R, E, r, a0, free, eps0) -> np.ndarray:
     # (L^H Y + Y L)[a, b] = conj(L)[c, a] Y[c, b] + Y[a, c] L[c, b]
     op = np.einsum("mca,bd->mabcd", np.conj(L), I4) + np.einsum("ac,mdb->mabcd", I4, L)
     op = op.reshape(m, 16, 16)
-    out = []
+    rhs = []
     for j in (0, 2):
         S = E[:, :, j, :, 0] + E[:, :, j, :, 1] @ K1
-        S = 0.5 * (S + np.conj(np.swapaxes(S, -1, -2)))
-        Y = np.linalg.solve(op, -S.reshape(m, 16, 1)).reshape(m, 4, 4)
-        out.append(np.einsum("ma,mab,mb->m", np.conj(a0), Y, a0).real)
+        rhs.append(-0.5 * (S + np.conj(np.swapaxes(S, -1, -2))).reshape(m, 16))
+    Y = np.linalg.solve(op, np.stack(rhs, axis=-1))                 # one factorisation, two right-hand sides
+    out = [np.einsum("ma,mab,mb->m", np.conj(a0), Y[..., j].reshape(m, 4, 4), a0).real for j in (0, 1)]
     out[0] = out[0] - np.where(free, 0.5 * eps0 * np.abs(a0[:, 3]) ** 2, 0.0)
     return np.stack(out, axis=-1)
 

@@ -113,6 +113,30 @@ def _stiffened_trace_x(Q, R, T, phi, exact: bool = True, nm=None) -> np.ndarray:
     return lam / np.cos(phi) ** 2
 
 
+def _grid_trace_x(Q, R, T, grid, nm: int) -> np.ndarray:
+    """:func:`_stiffened_trace_x` (closed form) on one grid of angles for all rows, (m, k).
+
+    Built component by component with one BLAS product per component of G (no (m, k, n, n)
+    temporaries); the electric row (if any) eliminated by the Schur complement.
+    """
+    c, s = np.cos(grid), np.sin(grid)
+    trig = np.stack([c * c, s * c, s * s])                          # (3, k)
+    RR = R + np.swapaxes(R, -1, -2)
+
+    def comp(i, j):
+        return np.stack([Q[:, i, j], RR[:, i, j], T[:, i, j]], axis=-1) @ trig
+
+    n = Q.shape[-1]
+    pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+    G = {ij: comp(*ij) for ij in pairs}
+    if n > nm:
+        ge = [comp(i, n - 1) for i in range(3)]
+        gee = comp(n - 1, n - 1)
+        G = {(i, j): G[(i, j)] - ge[i] * ge[j] / gee for (i, j) in pairs}
+    S = np.stack([np.stack([G[(min(i, j), max(i, j))] for j in range(3)], -1) for i in range(3)], -2)
+    return _lowest_sym3(S) / c ** 2
+
+
 def _lowest_sym3(S) -> np.ndarray:
     """Lowest eigenvalue of real symmetric 3 x 3 matrices (..., 3, 3) by the trigonometric formula."""
     q = np.trace(S, axis1=-2, axis2=-1) / 3.0
@@ -139,7 +163,7 @@ def limiting_x(Q, R, T, nm=None) -> np.ndarray:
     m = Q.shape[0]
     h = np.pi / LIMIT_GRID
     grid = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
-    g = _stiffened_trace_x(Q, R, T, grid[None], exact=False, nm=nm)
+    g = _grid_trace_x(Q, R, T, grid, nm) if nm == 3 else _stiffened_trace_x(Q, R, T, grid[None], exact=False, nm=nm)
     pad = np.pad(g, ((0, 0), (1, 1)), mode="wrap")
     gl = np.where((g <= pad[:, :-2]) & (g <= pad[:, 2:]), g, np.inf)
     order = np.argsort(gl, axis=1)[:, :LIMIT_CANDIDATES]
