@@ -208,6 +208,7 @@ def _solve(pr: dict, free, rows, tol) -> dict:
     X = np.full(m, np.nan)
     status = np.full(m, 2)
     P = np.full((m, 4), np.nan + 0j)
+    last = {"Z": np.full((m, 4, 4), np.nan + 0j), "M": np.full((m, 4, 4), np.nan + 0j), "N": np.full((m, 8, 8), np.nan)}
     if stable.any():
         s = np.flatnonzero(stable)
         u, inv = np.unique(rows[s], return_inverse=True)            # one first step per orientation
@@ -215,23 +216,24 @@ def _solve(pr: dict, free, rows, tol) -> dict:
         X0 = q["XL"][u] * (1.0 - search.T_START ** 2)
         first = impedance(q["Q"][u], q["R"][u], q["T"][u], X0, nm=3)
         first = {k: v[inv] for k, v in first.items()}
-        X[s], status[s], P[s] = search.root_search(Q[s], R[s], T[s], XL[s], free[s], eps0[s], tol, parts[s], 3,
-                                                   first)
+        X[s], status[s], P[s], ls = search.root_search(Q[s], R[s], T[s], XL[s], free[s], eps0[s], tol, parts[s], 3,
+                                                       first)
+        for key in last:
+            last[key][s] = ls[key]
     found = np.isfinite(X)
     pol = np.full((m, 4), np.nan + 0j)
     decay = np.full((m, 4), np.nan + 0j)
     pfa = np.full(m, np.nan)
     if found.any():
         f = found
-        r = impedance(Q[f], R[f], T[f], X[f], P[f], parts[f])
-        Z = r["Z"]
-        a0 = search.lowest(Z, free[f], eps0[f], 3)[1]
+        r = {key: v[f] for key, v in last.items()}                 # the search's last step (within tol)
+        a0 = search.lowest(r["Z"], free[f], eps0[f], 3)[1]
         ref = np.where(np.abs(a0[:, 1]) > 1e-8, a0[:, 1], a0[:, 0])
         a0 = a0 * (np.conj(ref) / np.abs(ref))[:, None]
         Pf = _flux(Q[f], R[f], E[f], r, a0, free[f], eps0[f])
         pfa[f] = np.degrees(np.arctan2(Pf[:, 1], Pf[:, 0]))
         pol[f] = a0
-        decay[f] = r["p"]
+        decay[f] = P[f]
     # sagittal mirrors: the decoupled sub-problem above the full limiting speed
     sup = np.zeros(m, dtype=bool)
     todo = stable & (status == 1) & (mir != "")
@@ -296,7 +298,7 @@ def _mirror_waves(Q, R, T, XL, free, eps0, mir, tol):
         if rows.size == 0:
             continue
         parts = stroh_polynomial_parts(q, r, t, nm)
-        Xs, st, p = search.root_search(q, r, t, xl, free[rows], eps0[rows], tol, parts, nm)
+        Xs, st, p, _ = search.root_search(q, r, t, xl, free[rows], eps0[rows], tol, parts, nm)
         better = np.isfinite(Xs) & ~(X[rows] <= Xs)
         if not better.any():
             continue

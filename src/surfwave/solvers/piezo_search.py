@@ -107,20 +107,23 @@ def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
     at t = T_START for all m points (shared between electrical conditions), optional.
 
     Returns X (m,) (NaN where none), status (m,) int (0 root, 1 no root below X_L, 2
-    lam(X = 0) <= 0) and the decaying p (m, n) of the last step.
+    lam(X = 0) <= 0), the decaying p (m, n) of the last step and that step's impedance
+    (dict ``Z``, ``M``, ``N``; within ``tol`` of the root, as the elastic solver's outputs).
     """
     m, n = Q.shape[0], Q.shape[-1]
     X = np.full(m, np.nan)
     status = np.zeros(m, dtype=int)
     P = np.full((m, n), np.nan + 0j)
+    last = {"Z": np.full((m, n, n), np.nan + 0j), "M": np.full((m, n, n), np.nan + 0j),
+            "N": np.full((m, 2 * n, 2 * n), np.nan)}
     if m == 0:
-        return X, status, P
+        return X, status, P, last
 
     def ev(i, t, guess=None, r=None):
         if r is None:
             r = impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), guess, parts[i], nm)
         lam, a = lowest(r["Z"], free[i], eps0[i], nm)
-        return lam, impedance_slope(r, a, nm) * (-2.0 * t * XL[i]), r["p"]
+        return lam, impedance_slope(r, a, nm) * (-2.0 * t * XL[i]), r
 
     idx = np.arange(m)
     lo, hi = np.full(m, T_MIN), np.ones(m)
@@ -131,7 +134,8 @@ def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
-        lam, dlam, p = ev(idx, t, guess, first if (it == 0 and first is not None) else None)
+        lam, dlam, r = ev(idx, t, guess, first if (it == 0 and first is not None) else None)
+        p = r["p"]
         bad = ~np.isfinite(lam) | ~np.isfinite(dlam)
         lam = np.where(bad, -1.0, lam)                             # supersonic by rounding: root lies above
         neg = lam <= 0
@@ -162,8 +166,10 @@ def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
         X[idx[done]] = XL[idx[done]] * (1.0 - new[done] ** 2)
         status[idx[done]] = st[done]
         P[idx[done]] = p[done]
+        for key in last:
+            last[key][idx[done]] = r[key][done]
         keep = ~done
         tp, lp, gp = (np.where(bad, np.nan, v)[keep] for v in (t, lam, dlam))
         idx, lo, hi, t, hi_checked, guess = idx[keep], lo[keep], hi[keep], new[keep], hi_checked[keep], p[keep]
     status[idx] = 1                                                 # not converged (should not happen)
-    return X, status, P
+    return X, status, P, last

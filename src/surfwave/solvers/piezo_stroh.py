@@ -133,15 +133,18 @@ def _grid_trace_x(Q, R, T, grid, nm: int) -> np.ndarray:
         ge = [comp(i, n - 1) for i in range(3)]
         gee = comp(n - 1, n - 1)
         G = {(i, j): G[(i, j)] - ge[i] * ge[j] / gee for (i, j) in pairs}
-    S = np.stack([np.stack([G[(min(i, j), max(i, j))] for j in range(3)], -1) for i in range(3)], -2)
-    return _lowest_sym3(S) / c ** 2
+    return _lowest_sym3_parts(*(G[ij] for ij in pairs)) / c ** 2
 
 
 def _lowest_sym3(S) -> np.ndarray:
     """Lowest eigenvalue of real symmetric 3 x 3 matrices (..., 3, 3) by the trigonometric formula."""
-    q = np.trace(S, axis1=-2, axis2=-1) / 3.0
-    a, b, c = S[..., 0, 0] - q, S[..., 1, 1] - q, S[..., 2, 2] - q
-    d, e, f = S[..., 0, 1], S[..., 0, 2], S[..., 1, 2]
+    return _lowest_sym3_parts(S[..., 0, 0], S[..., 1, 1], S[..., 2, 2], S[..., 0, 1], S[..., 0, 2], S[..., 1, 2])
+
+
+def _lowest_sym3_parts(s00, s11, s22, d, e, f) -> np.ndarray:
+    """:func:`_lowest_sym3` from the six independent components (arrays of one shape)."""
+    q = (s00 + s11 + s22) / 3.0
+    a, b, c = s00 - q, s11 - q, s22 - q
     p = np.sqrt((a * a + b * b + c * c + 2.0 * (d * d + e * e + f * f)) / 6.0)
     det = a * (b * c - f * f) - d * (d * c - f * e) + e * (d * f - b * e)
     with np.errstate(all="ignore"):
@@ -240,23 +243,23 @@ def stroh_matrix(Q, R, T, X, nm=None) -> np.ndarray:
     return np.concatenate([np.concatenate([N1, Ti], -1), np.concatenate([N3, np.swapaxes(N1, -1, -2)], -1)], -2)
 
 
-def _padd(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Sum of stacked ascending polynomials of different lengths (..., k) + (..., l)."""
-    n = max(a.shape[-1], b.shape[-1])
-    return (np.pad(a, [(0, 0)] * (a.ndim - 1) + [(0, n - a.shape[-1])])
-            + np.pad(b, [(0, 0)] * (b.ndim - 1) + [(0, n - b.shape[-1])]))
+def _minor(G: np.ndarray, rows: tuple, cols: tuple, cache: dict) -> np.ndarray:
+    """Minor of a matrix of quadratics in p, G (m, n, n, 3), rows x cols -> (m, 2k + 1) ascending.
 
-
-def _poly_det(G: np.ndarray) -> np.ndarray:
-    """Determinant of a matrix of polynomials, G (m, n, n, k) ascending coefficients -> (m, n (k - 1) + 1)."""
-    n = G.shape[1]
-    if n == 1:
-        return G[:, 0, 0]
-    out = np.zeros((G.shape[0], 1))
-    for j in range(n):
-        minor = np.delete(np.delete(G, 0, axis=1), j, axis=2)
-        out = _padd(out, (-1) ** j * _pmul(G[:, 0, j], _poly_det(minor)))
-    return out
+    Laplace expansion along the first row, the smaller minors memoised in ``cache`` (shared
+    between all the minors of one G, so each 2 x 2 and 3 x 3 minor is expanded once).
+    """
+    key = (rows, cols)
+    if key not in cache:
+        if len(rows) == 1:
+            cache[key] = G[:, rows[0], cols[0]]
+        else:
+            out = 0.0
+            for j, c in enumerate(cols):
+                term = _pmul(G[:, rows[0], c], _minor(G, rows[1:], cols[:j] + cols[j + 1:], cache))
+                out = out + term if j % 2 == 0 else out - term
+            cache[key] = out
+    return cache[key]
 
 
 def stroh_polynomial_parts(Q, R, T, nm=None) -> np.ndarray:
@@ -265,15 +268,16 @@ def stroh_polynomial_parts(Q, R, T, nm=None) -> np.ndarray:
     D = diag(1, .., 1, 0) (mass on the ``nm`` mechanical components, default n - 1); by
     multilinearity P = sum over subsets S of the mechanical indices of (-X)^|S| times the principal
     minor of G(p) = Q + p (R + R^T) + p^2 T without the rows and columns S (expanded exactly as
-    polynomials in p). The roots in p are the eigenvalues of N(X).
+    polynomials in p, :func:`_minor`). The roots in p are the eigenvalues of N(X).
     """
     n, nm = Q.shape[-1], _nm(Q, nm)
     G = np.stack([Q, R + np.swapaxes(R, -1, -2), T], axis=-1)       # (m, n, n, 3)
     parts = np.zeros((Q.shape[0], nm + 1, 2 * n + 1))
+    cache: dict = {}
     for k in range(nm + 1):
         for S in itertools.combinations(range(nm), k):
-            keep = [i for i in range(n) if i not in S]
-            d = _poly_det(G[:, keep][:, :, keep]) if keep else np.ones((Q.shape[0], 1))
+            keep = tuple(i for i in range(n) if i not in S)
+            d = _minor(G, keep, keep, cache) if keep else np.ones((Q.shape[0], 1))
             parts[:, k, :d.shape[-1]] += (-1.0) ** k * d
     return parts
 
