@@ -18,8 +18,11 @@ b = M a, and Z = -i M is Hermitian below the limiting speed. Boundary conditions
   eliminating phi, Z_eff = Z_mm - Z_me (Z_ee - EPS0)^-1 Z_em (3 x 3 Hermitian) u = 0.
 
 The SAW is where the lowest eigenvalue of Z_eff (or Z_mm) crosses zero for X in (0, X_L),
-searched in t = sqrt(1 - X/X_L) by the Anderson-Bjorck (modified regula falsi) method, vectorised
-over the points. The limiting X_L is the lowest trace X along x1 of the piezoelectrically
+searched in t = sqrt(1 - X/X_L) by Newton / inverse-Hermite steps with the closed-form slope
+d lam / dX, vectorised over the points (:mod:`surfwave.solvers.piezo_search`). At a sagittal
+mirror (the blocks split, :func:`piezo_search.mirror_partition`) a sub-problem's wave above the
+full X_L is reported as ``supersonic_decoupled``, as the elastic solver does. The limiting
+X_L is the lowest trace X along x1 of the piezoelectrically
 stiffened bulk waves (Gamma + gamma gamma^T / eps(n)) over sagittal wave normals.
 Computations run in scaled units: A / max|A|, eps / max|eps|, e / sqrt(max|A| max|eps|)
 (phi scaled by sqrt(max|eps| / max|A|)), so the 8 x 8 N is well conditioned.
@@ -45,13 +48,6 @@ REASON_UNSTABLE = "no surface wave: the impedance is not positive definite at v 
 REASON_T = "no surface wave: the stiffened T block (A_i2k2 + e e / eps22) is not positive definite"
 REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sub-problem of the mirror, "
                         "below its own limiting speed")
-
-
-def _null(H) -> np.ndarray:
-    """Unit eigenvector of the smallest |eigenvalue| of Hermitian H (m, d, d)."""
-    w, v = np.linalg.eigh(H)
-    j = np.argmin(np.abs(w), axis=-1)
-    return np.take_along_axis(v, j[:, None, None], axis=-1)[..., 0]
 
 
 def _flux(Q, R, E, r, a0, free, eps0) -> np.ndarray:
@@ -132,7 +128,10 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
     dict of ndarray
         ``c`` (m,) m/s (NaN where no subsonic wave); ``c_limit`` (m,) m/s, the lowest trace
         speed along x1 of the stiffened bulk waves over sagittal normals; ``wave_type`` (m,)
-        object "surface" | "pseudo" | "none"; ``reason`` (m,) object ("" where c is finite);
+        object "surface" | "supersonic_decoupled" | "pseudo" | "none" (supersonic_decoupled: a
+        wave of a mirror's decoupled sub-problem above c_limit); ``reason`` (m,) object ("" where
+        c is finite); ``mirror`` (m,) object: "sagittal+phi" ((u1, u2, phi) | (u3) decouple),
+        "sagittal" ((u1, u2) | (u3, phi)) or "";
         ``polarisation`` (m, 4) complex: surface (u1, u2, u3, phi) with |(u1, u2, u3)| = 1
         (dimensionless) and phi in volts per metre of surface displacement amplitude (phi/|u|,
         independent of wavelength), phase such that u2 is real >= 0 (u1 if u2 ~ 0);
@@ -152,7 +151,8 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
 
     Notes
     -----
-    K^2 = 2 (c_free - c_metallized) / c_free from two calls. With e = 0 the potential
+    K^2 = 2 (c_free - c_metallized) / c_free: :func:`coupling_coefficient` (one call for both
+    conditions, sharing the limiting speed and the first step). With e = 0 the potential
     decouples and both conditions reduce to :func:`surfwave.solvers.stroh.surface_wave`.
     """
     A, e, eps, rho, free = _check(A, e, eps, rho, electrical)

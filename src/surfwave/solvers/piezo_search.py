@@ -55,10 +55,9 @@ def mirror_partition(Q, R, T, tol: float = SYMMETRY_TOL) -> np.ndarray:
     out = np.full(Q.shape[0], "", dtype=object)
     for name in ("sagittal", "sagittal+phi"):                      # the second wins where both hold
         S, S2 = PARTITIONS[name]
-        ix = np.ix_(S, S2)
-        ix2 = np.ix_(S2, S)
-        c = np.maximum.reduce([np.abs(Q[:, ix[0], ix[1]]).max(axis=(1, 2)), np.abs(R[:, ix[0], ix[1]]).max(axis=(1, 2)),
-                               np.abs(R[:, ix2[0], ix2[1]]).max(axis=(1, 2)), np.abs(T[:, ix[0], ix[1]]).max(axis=(1, 2))])
+        a, b = np.ix_(S, S2)
+        blocks = (Q[:, a, b], R[:, a, b], np.swapaxes(R, 1, 2)[:, a, b], T[:, a, b])
+        c = np.maximum.reduce([np.abs(B).max(axis=(1, 2)) for B in blocks])
         out[c <= tol * scale] = name
     return out
 

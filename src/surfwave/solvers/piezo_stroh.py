@@ -356,11 +356,11 @@ def impedance_slope(r: dict, a: np.ndarray, nm=None) -> np.ndarray:
     bad = ~np.isfinite(fK1).all(axis=(1, 2))
     with np.errstate(all="ignore"):
         y = np.linalg.solve(np.where(bad[:, None, None], np.eye(n), fK1), a[..., None])[..., 0]
-    aj, bi = [np.conj(a)], [y]
+    # rows a_j = a^H K2^j (m, 1, n) and columns b_i = K1^i y (m, n, 1), by stacked matmul
+    aj, bi = [np.conj(a)[:, None, :]], [y[:, :, None]]
     for _ in range(1, n):
-        aM = np.einsum("mi,mij->mj", aj[-1], M)
-        aj.append(np.einsum("mi,mij->mj", aj[-1], n4) - np.einsum("mi,mij->mj", aM, n2))
-        bi.append(np.einsum("mij,mj->mi", n1, bi[-1]) + np.einsum("mij,mj->mi", n2, np.einsum("mij,mj->mi", M, bi[-1])))
-    aGy = sum(c[:, k] * sum(np.einsum("mi,mi->m", aj[j] * mask, bi[k - 1 - j]) for j in range(k))
-              for k in range(1, n + 1))
+        aj.append(aj[-1] @ n4 - (aj[-1] @ M) @ n2)
+        bi.append(n1 @ bi[-1] + n2 @ (M @ bi[-1]))
+    dots = {(j, i): ((aj[j] * mask) @ bi[i])[:, 0, 0] for j in range(n) for i in range(n - j)}
+    aGy = sum(c[:, k] * sum(dots[(j, k - 1 - j)] for j in range(k)) for k in range(1, n + 1))
     return np.where(bad, np.nan, (-1j * aGy).real)
