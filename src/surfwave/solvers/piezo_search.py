@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.solvers.impedance import lowest_eigenpair
-from surfwave.solvers.piezo_stroh import impedance, impedance_slope
+from surfwave.solvers.piezo_stroh import impedance, impedance_slope, stroh_matrix
 from surfwave.solvers.stroh import _hermite_correction
 
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
@@ -118,9 +118,11 @@ def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
     if m == 0:
         return X, status, P, last
 
+    N0 = stroh_matrix(Q, R, T, np.zeros(m), nm)
+
     def ev(i, t, guess=None, r=None):
         if r is None:
-            r = impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), guess, parts[i], nm)
+            r = impedance(Q[i], R[i], T[i], XL[i] * (1.0 - t * t), guess, parts[i], nm, N0[i])
         lam, a = lowest(r["Z"], free[i], eps0[i], nm)
         return lam, impedance_slope(r, a, nm) * (-2.0 * t * XL[i]), r
 

@@ -282,7 +282,7 @@ def stroh_polynomial_parts(Q, R, T, nm=None) -> np.ndarray:
     return parts
 
 
-def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None) -> dict:
+def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None, N0=None) -> dict:
     """Generalised surface impedance Z = -i B A^-1 (n x n Hermitian) at real X, vectorised.
 
     The decaying subspace is the column space of W = f(N), f(z) = prod_j (z - conj(p_j)) over the
@@ -291,7 +291,8 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None) -> dict:
     polynomial from ``p_guess`` (m, n) where given (``parts`` from :func:`stroh_polynomial_parts`)
     and accepted only if n distinct roots with Im p > 0 converged (:func:`impedance.track_roots`);
     elsewhere they are the eigenvalues of N. Q, R, T (m, n, n), the first ``nm`` components
-    mechanical (default n - 1), X (m,).
+    mechanical (default n - 1), X (m,); ``N0`` = ``stroh_matrix(Q, R, T, 0, nm)`` (optional, saves
+    its recomputation in a root search: N(X) = N0 + X [[0, 0], [D, 0]]).
 
     Returns
     -------
@@ -300,7 +301,12 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None) -> dict:
     ``p`` (m, n) decaying Stroh eigenvalues (ascending Im p), ``subsonic`` (m,) bool.
     """
     n, nm = Q.shape[-1], _nm(Q, nm)
-    N = stroh_matrix(Q, R, T, X, nm)
+    if N0 is None:
+        N = stroh_matrix(Q, R, T, X, nm)
+    else:
+        N = N0.copy()
+        k = np.arange(nm)
+        N[:, n + k, k] += X[:, None]
     m = len(X)
     up = np.full((m, n), np.nan + 0j)
     ok = np.zeros(m, dtype=bool)
@@ -320,11 +326,20 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None) -> dict:
         up[miss] = upm
     up = np.take_along_axis(up, np.argsort(up.imag, axis=-1), axis=-1)
     c = _monic(np.conj(up))
-    W = c[:, 0, None, None] * np.eye(2 * n) + c[:, 1, None, None] * N
+    # W = sum_k c_k N^k, real and imaginary parts in real arithmetic (mixed complex x real
+    # broadcasting is several times slower in numpy)
+    cr, ci = c.real[:, :, None, None], c.imag[:, :, None, None]
+    Wr, Wi = cr[:, 1] * N, ci[:, 1] * N
     Nk = N
     for k in range(2, n + 1):
         Nk = Nk @ N
-        W = W + c[:, k, None, None] * Nk
+        Wr += cr[:, k] * Nk
+        Wi += ci[:, k] * Nk
+    d = np.arange(2 * n)
+    Wr[:, d, d] += c.real[:, 0, None]
+    Wi[:, d, d] += c.imag[:, 0, None]
+    W = np.empty(Wr.shape, dtype=complex)
+    W.real, W.imag = Wr, Wi
     W1, W2 = W[:, :n], W[:, n:]
     W1h = np.conj(np.swapaxes(W1, -1, -2))
     with np.errstate(all="ignore"):
