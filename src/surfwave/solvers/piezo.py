@@ -33,6 +33,7 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
+from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
     generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
     stroh_polynomial_parts)
@@ -50,28 +51,41 @@ REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupl
                         "below its own limiting speed")
 
 
-def _flux(Q, R, E, r, a0, free, eps0) -> np.ndarray:
+def _flux(Q, R, E, r, a0, free, eps0, p) -> np.ndarray:
     """Depth-integrated time-averaged energy flux (P1, P3) per unit surface width, scaled units.
 
     <P_j> = (omega k / 2) Re(U^H S_j U) with S_j = E_.j.1 + E_.j.2 K1 (generalised stress
     sigma_.j = ik S_j U); along the depth U(x2) = exp(ik K1 x2) a0, K1 = N1 + N2 M, so the
-    integral is a0^H Y a0 with the Lyapunov equation (i K1)^H Y + Y (i K1) = -Herm(S_j) (k = 1).
+    integral is a0^H Y a0 with the Lyapunov equation A Y + Y B = C, A = (i K1)^H, B = i K1,
+    C = -Herm(S_j) (k = 1). Solved without eigenvectors or a 16 x 16 system: with
+    g(z) = prod_j (z - i conj(p_j)) (the characteristic polynomial of -A; p the decaying
+    roots, the eigenvalues of K1), g(-A) = 0 and Y B^k - (-A)^k Y = sum_{i<k} (-A)^i C B^(k-1-i),
+    so Y = H g(B)^-1 with H = sum_k g_k sum_{i<k} (-A)^i C B^(k-1-i); only a0^H H g(B)^-1 a0 is
+    needed (vector-matrix products, as in :func:`piezo_stroh.impedance_slope`).
     Free surface: plus the vacuum's -eps0 |phi0|^2 / 2 in P1 (phi D_1 of exp(k x2) fields).
     """
-    m = a0.shape[0]
     N, M = r["N"], r["M"]
     K1 = N[:, :4, :4] + N[:, :4, 4:] @ M
-    L = 1j * K1
-    I4 = np.eye(4)
-    # (L^H Y + Y L)[a, b] = conj(L)[c, a] Y[c, b] + Y[a, c] L[c, b]
-    op = np.einsum("mca,bd->mabcd", np.conj(L), I4) + np.einsum("ac,mdb->mabcd", I4, L)
-    op = op.reshape(m, 16, 16)
-    rhs = []
+    B = 1j * K1
+    mA = 1j * np.conj(np.swapaxes(K1, -1, -2))                     # -A = -(i K1)^H
+    g = _monic(1j * np.conj(p))                                     # ascending, g_4 = 1
+    gB = g[:, 0, None, None] * np.eye(4) + g[:, 1, None, None] * B
+    Bk = B
+    for k in range(2, 5):
+        Bk = Bk @ B
+        gB = gB + g[:, k, None, None] * Bk
+    y = np.linalg.solve(gB, a0[..., None])                         # (m, 4, 1)
+    rows, cols = [np.conj(a0)[:, None, :]], [y]
+    for _ in range(3):
+        rows.append(rows[-1] @ mA)
+        cols.append(B @ cols[-1])
+    out = []
     for j in (0, 2):
         S = E[:, :, j, :, 0] + E[:, :, j, :, 1] @ K1
-        rhs.append(-0.5 * (S + np.conj(np.swapaxes(S, -1, -2))).reshape(m, 16))
-    Y = np.linalg.solve(op, np.stack(rhs, axis=-1))                 # one factorisation, two right-hand sides
-    out = [np.einsum("ma,mab,mb->m", np.conj(a0), Y[..., j].reshape(m, 4, 4), a0).real for j in (0, 1)]
+        C = -0.5 * (S + np.conj(np.swapaxes(S, -1, -2)))
+        Cc = [C @ c for c in cols]
+        val = sum(g[:, k] * sum((rows[i] @ Cc[k - 1 - i])[:, 0, 0] for i in range(k)) for k in range(1, 5))
+        out.append(val.real)
     out[0] = out[0] - np.where(free, 0.5 * eps0 * np.abs(a0[:, 3]) ** 2, 0.0)
     return np.stack(out, axis=-1)
 
@@ -230,7 +244,7 @@ def _solve(pr: dict, free, rows, tol) -> dict:
         a0 = search.lowest(r["Z"], free[f], eps0[f], 3)[1]
         ref = np.where(np.abs(a0[:, 1]) > 1e-8, a0[:, 1], a0[:, 0])
         a0 = a0 * (np.conj(ref) / np.abs(ref))[:, None]
-        Pf = _flux(Q[f], R[f], E[f], r, a0, free[f], eps0[f])
+        Pf = _flux(Q[f], R[f], E[f], r, a0, free[f], eps0[f], P[f])
         pfa[f] = np.degrees(np.arctan2(Pf[:, 1], Pf[:, 0]))
         pol[f] = a0
         decay[f] = P[f]
