@@ -257,7 +257,7 @@ def _solve(pr: dict, free, rows, tol) -> dict:
         ok = np.isfinite(Xs)
         X[k[ok]], pol[k[ok]], decay[k[ok]] = Xs[ok], pols[ok], decs[ok]
         pfa[k[ok]] = 0.0                                            # the mirror x3 -> -x3: no flux along x3
-        sup[k[ok]] = True
+        sup[k[ok]] = Xs[ok] >= XL[k[ok]] * (1 - 1e-12)               # as the elastic solver labels them
         status[k[~ok]] = 3
     found = np.isfinite(X)
     reason = np.full(m, "", dtype=object)
