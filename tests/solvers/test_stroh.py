@@ -471,3 +471,22 @@ def test_no_wave_no_polarisation():
     assert np.isfinite(r["polarisation"][1]).all()
     bad = stroh.surface_wave(_cubic_A(3.0, 1.0, -1.0), 1.0)
     assert bad["wave_type"] != "surface" and np.isnan(bad["polarisation"]).all()
+
+
+@pytest.mark.parametrize("consts", [(49.66, 42.31, 14.98), (49.5, 42.3, 14.9)])
+def test_limiting_speed_at_a_flat_double_well_minimum(consts):
+    """Pb (110) at 60.42 deg: the lowest trace branch has a shallow double well around the sagittal
+    normal (local maximum at 0, minima at +-2.8 deg), so the grid's best points sit on the
+    concave part and Newton needs ~6 steps; with 4 it stopped 3e-9 (database constants) or 5.5e-8
+    (this file's PB) high. Reference:
+    brute force, 400001 sagittal normals (LAPACK eigenvalues) and the parabolic vertex."""
+    A = _cubic_A(*consts, surface="(110)", direction=60.42)[None]   # the database's Pb, this file's PB
+    A = A / np.abs(A).max()
+    Q, R, T = impedance.stroh_blocks(A)
+    XL = impedance.limiting_x(Q, R, T)[0][0]
+    phi = np.linspace(-0.3, 0.3, 400001)
+    lam = impedance._trace_x(Q, R, T, phi[None])[0]
+    j = int(np.argmin(lam))
+    y0, y1, y2 = lam[j - 1:j + 2]
+    ref = y1 - 0.125 * (y2 - y0) ** 2 / (y0 - 2 * y1 + y2)
+    assert XL == pytest.approx(ref, rel=1e-13) and XL <= lam.min() * (1 + 1e-15)

@@ -18,8 +18,11 @@ b = M a, and Z = -i M is Hermitian below the limiting speed. Boundary conditions
   eliminating phi, Z_eff = Z_mm - Z_me (Z_ee - EPS0)^-1 Z_em (3 x 3 Hermitian) u = 0.
 
 The SAW is where the lowest eigenvalue of Z_eff (or Z_mm) crosses zero for X in (0, X_L),
-searched in t = sqrt(1 - X/X_L) by the Anderson-Bjorck (modified regula falsi) method, vectorised
-over the points. The limiting X_L is the lowest trace X along x1 of the piezoelectrically
+searched in t = sqrt(1 - X/X_L) by Newton / inverse-Hermite steps with the closed-form slope
+d lam / dX, vectorised over the points (:mod:`surfwave.solvers.piezo_search`). At a sagittal
+mirror (the blocks split, :func:`piezo_search.mirror_partition`) a sub-problem's wave above the
+full X_L is reported as ``supersonic_decoupled``, as the elastic solver does. The limiting
+X_L is the lowest trace X along x1 of the piezoelectrically
 stiffened bulk waves (Gamma + gamma gamma^T / eps(n)) over sagittal wave normals.
 Computations run in scaled units: A / max|A|, eps / max|eps|, e / sqrt(max|A| max|eps|)
 (phi scaled by sqrt(max|eps| / max|A|)), so the 8 x 8 N is well conditioned.
@@ -29,126 +32,60 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.solvers import piezo_search as search
+from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
-    generalised_blocks, generalised_tensor, impedance, limiting_x, piezo_bulk_speeds, stroh_matrix,
+    generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
     stroh_polynomial_parts)
 
 #: Vacuum permittivity, F/m (CODATA 2018).
 EPS0 = 8.8541878128e-12
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
-T_MIN = 1e-6
-MAX_ITER = 80
+T_MIN = search.T_MIN
 
 REASON_PSEUDO = ("no subsonic surface wave: the lowest eigenvalue of the surface impedance stays positive "
                  "up to the stiffened limiting speed (pseudo/leaky regime; see surfwave.solvers.leaky)")
 REASON_UNSTABLE = "no surface wave: the impedance is not positive definite at v = 0 or a stiffened bulk wave has rho v^2 <= 0"
 REASON_T = "no surface wave: the stiffened T block (A_i2k2 + e e / eps22) is not positive definite"
+REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sub-problem of the mirror, "
+                        "below its own limiting speed")
 
 
-def _effective(Z, free, eps0) -> np.ndarray:
-    """Mechanical 3 x 3 impedance with the electrical condition applied (Hermitian), (m, 3, 3).
-
-    free: Z_mm - Z_me (Z_ee - eps0)^-1 Z_em (open circuit, b_4 = i eps0 a_4); else Z_mm (phi = 0).
-    """
-    zee = Z[:, 3, 3].real - eps0
-    schur = Z[:, :3, :3] - Z[:, :3, 3:] * Z[:, 3:, :3] / zee[:, None, None]
-    Zf = np.where(free[:, None, None], schur, Z[:, :3, :3])
-    return 0.5 * (Zf + np.conj(np.swapaxes(Zf, -1, -2)))
-
-
-def _lam(Q, R, T, X, free, eps0, guess=None, parts=None):
-    """Lowest eigenvalue of the effective impedance at X (-1 where not subsonic) and the decaying p."""
-    r = impedance(Q, R, T, X, guess, parts)
-    lam = np.full(len(X), -1.0)                                    # beyond X_L by rounding: root lies below
-    ok = r["subsonic"]
-    if ok.any():
-        lam[ok] = np.linalg.eigvalsh(_effective(r["Z"][ok], free[ok], eps0[ok]))[:, 0]
-    return lam, r["p"]
-
-
-def _root_search(Q, R, T, XL, free, eps0, tol, parts) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Root X in (0, XL) of the lowest eigenvalue lam of the effective impedance; NaN where none.
-
-    lam(t) with X = XL (1 - t^2) increases with t; bracket [T_MIN, 1], Anderson-Bjorck steps, vectorised
-    over the points not yet converged. Returns X (m,), status (m,) int: 0 root, 1 no root
-    (lam > 0 at t = T_MIN), 2 lam(X = 0) <= 0, and the decaying p (m, 4) of the last step.
-    """
-    m = len(XL)
-    X = np.full(m, np.nan)
-    status = np.zeros(m, dtype=int)
-    P = np.full((m, 4), np.nan + 0j)
-    f1 = _lam(Q, R, T, np.zeros(m), free, eps0)[0]
-    f0, guess = _lam(Q, R, T, XL * (1 - T_MIN ** 2), free, eps0)
-    status[~(f1 > 0)] = 2
-    status[(f1 > 0) & (f0 > 0)] = 1
-    idx = np.flatnonzero(status == 0)
-    a, fa = np.full(idx.size, T_MIN), f0[idx]                       # fa <= 0
-    b, fb = np.ones(idx.size), f1[idx]                              # fb > 0
-    side = np.zeros(idx.size, dtype=int)
-    x_old = np.full(idx.size, np.nan)
-    X[idx[fa == 0]] = XL[idx[fa == 0]] * (1 - T_MIN ** 2)
-    P[idx[fa == 0]] = guess[idx[fa == 0]]
-    keep = fa != 0
-    idx, a, fa, b, fb, side, x_old = (v[keep] for v in (idx, a, fa, b, fb, side, x_old))
-    guess = guess[idx]
-    for _ in range(MAX_ITER):
-        if idx.size == 0:
-            break
-        x = (a * fb - b * fa) / (fb - fa)
-        x = np.where((x > a) & (x < b), x, 0.5 * (a + b))
-        f, p = _lam(Q[idx], R[idx], T[idx], XL[idx] * (1 - x * x), free[idx], eps0[idx], guess, parts[idx])
-        neg = f <= 0
-        # Anderson-Bjorck: when the same end is replaced twice running, scale the retained end's
-        # value by 1 - f / f_replaced (0.5 if that is not positive)
-        with np.errstate(all="ignore"):
-            ga, gb = 1.0 - f / fa, 1.0 - f / fb
-        ga, gb = np.where(ga > 0, ga, 0.5), np.where(gb > 0, gb, 0.5)
-        fb = np.where(neg & (side == -1), ga * fb, fb)
-        fa = np.where(~neg & (side == 1), gb * fa, fa)
-        a, fa = np.where(neg, x, a), np.where(neg, f, fa)
-        b, fb = np.where(neg, b, x), np.where(neg, fb, f)
-        side = np.where(neg, -1, 1)
-        Xn = XL[idx] * (1 - x * x)
-        dX = 2 * x * XL[idx] * np.minimum(np.abs(x - x_old), b - a)
-        done = (f == 0) | (dX <= 0.1 * tol * Xn) | (2 * b * (b - a) * XL[idx] <= 0.1 * tol * Xn)
-        X[idx[done]] = Xn[done]
-        P[idx[done]] = p[done]
-        x_old, guess = x, np.where(np.isfinite(p), p, np.nan)
-        keep = ~done
-        idx, a, fa, b, fb, side, x_old, guess = (v[keep] for v in (idx, a, fa, b, fb, side, x_old, guess))
-    status[idx] = 1                                                 # not converged (should not happen)
-    return X, status, P
-
-
-def _null(H) -> np.ndarray:
-    """Unit eigenvector of the smallest |eigenvalue| of Hermitian H (m, d, d)."""
-    w, v = np.linalg.eigh(H)
-    j = np.argmin(np.abs(w), axis=-1)
-    return np.take_along_axis(v, j[:, None, None], axis=-1)[..., 0]
-
-
-def _flux(Q, R, E, r, a0, free, eps0) -> np.ndarray:
+def _flux(Q, R, E, r, a0, free, eps0, p) -> np.ndarray:
     """Depth-integrated time-averaged energy flux (P1, P3) per unit surface width, scaled units.
 
     <P_j> = (omega k / 2) Re(U^H S_j U) with S_j = E_.j.1 + E_.j.2 K1 (generalised stress
     sigma_.j = ik S_j U); along the depth U(x2) = exp(ik K1 x2) a0, K1 = N1 + N2 M, so the
-    integral is a0^H Y a0 with the Lyapunov equation (i K1)^H Y + Y (i K1) = -Herm(S_j) (k = 1).
+    integral is a0^H Y a0 with the Lyapunov equation A Y + Y B = C, A = (i K1)^H, B = i K1,
+    C = -Herm(S_j) (k = 1). Solved without eigenvectors or a 16 x 16 system: with
+    g(z) = prod_j (z - i conj(p_j)) (the characteristic polynomial of -A; p the decaying
+    roots, the eigenvalues of K1), g(-A) = 0 and Y B^k - (-A)^k Y = sum_{i<k} (-A)^i C B^(k-1-i),
+    so Y = H g(B)^-1 with H = sum_k g_k sum_{i<k} (-A)^i C B^(k-1-i); only a0^H H g(B)^-1 a0 is
+    needed (vector-matrix products, as in :func:`piezo_stroh.impedance_slope`).
     Free surface: plus the vacuum's -eps0 |phi0|^2 / 2 in P1 (phi D_1 of exp(k x2) fields).
     """
-    m = a0.shape[0]
     N, M = r["N"], r["M"]
     K1 = N[:, :4, :4] + N[:, :4, 4:] @ M
-    L = 1j * K1
-    I4 = np.eye(4)
-    # (L^H Y + Y L)[a, b] = conj(L)[c, a] Y[c, b] + Y[a, c] L[c, b]
-    op = np.einsum("mca,bd->mabcd", np.conj(L), I4) + np.einsum("ac,mdb->mabcd", I4, L)
-    op = op.reshape(m, 16, 16)
+    B = 1j * K1
+    mA = 1j * np.conj(np.swapaxes(K1, -1, -2))                     # -A = -(i K1)^H
+    g = _monic(1j * np.conj(p))                                     # ascending, g_4 = 1
+    gB = g[:, 0, None, None] * np.eye(4) + g[:, 1, None, None] * B
+    Bk = B
+    for k in range(2, 5):
+        Bk = Bk @ B
+        gB = gB + g[:, k, None, None] * Bk
+    y = np.linalg.solve(gB, a0[..., None])                         # (m, 4, 1)
+    rows, cols = [np.conj(a0)[:, None, :]], [y]
+    for _ in range(3):
+        rows.append(rows[-1] @ mA)
+        cols.append(B @ cols[-1])
     out = []
     for j in (0, 2):
         S = E[:, :, j, :, 0] + E[:, :, j, :, 1] @ K1
-        S = 0.5 * (S + np.conj(np.swapaxes(S, -1, -2)))
-        Y = np.linalg.solve(op, -S.reshape(m, 16, 1)).reshape(m, 4, 4)
-        out.append(np.einsum("ma,mab,mb->m", np.conj(a0), Y, a0).real)
+        C = -0.5 * (S + np.conj(np.swapaxes(S, -1, -2)))
+        Cc = [C @ c for c in cols]
+        val = sum(g[:, k] * sum((rows[i] @ Cc[k - 1 - i])[:, 0, 0] for i in range(k)) for k in range(1, 5))
+        out.append(val.real)
     out[0] = out[0] - np.where(free, 0.5 * eps0 * np.abs(a0[:, 3]) ** 2, 0.0)
     return np.stack(out, axis=-1)
 
@@ -205,7 +142,10 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
     dict of ndarray
         ``c`` (m,) m/s (NaN where no subsonic wave); ``c_limit`` (m,) m/s, the lowest trace
         speed along x1 of the stiffened bulk waves over sagittal normals; ``wave_type`` (m,)
-        object "surface" | "pseudo" | "none"; ``reason`` (m,) object ("" where c is finite);
+        object "surface" | "supersonic_decoupled" | "pseudo" | "none" (supersonic_decoupled: a
+        wave of a mirror's decoupled sub-problem above c_limit); ``reason`` (m,) object ("" where
+        c is finite); ``mirror`` (m,) object: "sagittal+phi" ((u1, u2, phi) | (u3) decouple),
+        "sagittal" ((u1, u2) | (u3, phi)) or "";
         ``polarisation`` (m, 4) complex: surface (u1, u2, u3, phi) with |(u1, u2, u3)| = 1
         (dimensionless) and phi in volts per metre of surface displacement amplitude (phi/|u|,
         independent of wavelength), phase such that u2 is real >= 0 (u1 if u2 ~ 0);
@@ -225,65 +165,114 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
 
     Notes
     -----
-    K^2 = 2 (c_free - c_metallized) / c_free from two calls. With e = 0 the potential
+    K^2 = 2 (c_free - c_metallized) / c_free: :func:`coupling_coefficient` (one call for both
+    conditions, sharing the limiting speed and the first step). With e = 0 the potential
     decouples and both conditions reduce to :func:`surfwave.solvers.stroh.surface_wave`.
     """
     A, e, eps, rho, free = _check(A, e, eps, rho, electrical)
     m = A.shape[0]
+    return _solve(_prepare(A, e, eps, rho), free, np.arange(m), tol)
+
+
+def coupling_coefficient(A, e, eps, rho, *, tol: float = 1e-12) -> dict:
+    """K^2 = 2 (c_free - c_metallized) / c_free with both speeds; dict of (m,) arrays.
+
+    One call solving both conditions: the blocks, the limiting speed, the Stroh polynomial and
+    the first impedance evaluation (eigenvalues of N) are shared. Also returns the full
+    outputs of :func:`piezo_surface_wave` as ``free`` and ``metallized`` (dicts).
+    """
+    A, e, eps, rho, _ = _check(A, e, eps, rho, "free")
+    m = A.shape[0]
+    both = _solve(_prepare(A, e, eps, rho), np.repeat([True, False], m), np.tile(np.arange(m), 2), tol)
+    rf = {k: v[:m] for k, v in both.items()}
+    rm = {k: v[m:] for k, v in both.items()}
+    return {"c_free": rf["c"], "c_metallized": rm["c"], "K2": 2 * (rf["c"] - rm["c"]) / rf["c"],
+            "free": rf, "metallized": rm}
+
+
+def _prepare(A, e, eps, rho) -> dict:
+    """Scaled blocks, limiting speed, Stroh polynomial and mirror partition per orientation."""
+    m = A.shape[0]
     sA = np.abs(A).max(axis=(1, 2, 3, 4))
     sE = np.abs(eps).max(axis=(1, 2))
-    alpha = np.sqrt(sA / sE)                                        # phi = alpha * phi_hat
-    Ah = A / sA[:, None, None, None, None]
-    eh = e / np.sqrt(sA * sE)[:, None, None, None]
-    epsh = eps / sE[:, None, None]
-    eps0 = EPS0 / sE
-    E = generalised_tensor(Ah, eh, epsh)
+    E = generalised_tensor(A / sA[:, None, None, None, None], e / np.sqrt(sA * sE)[:, None, None, None],
+                           eps / sE[:, None, None])
     Q, R, T = E[:, :, 0, :, 0], E[:, :, 0, :, 1], E[:, :, 1, :, 1]
-
     Tst = T[:, :3, :3] - T[:, :3, 3:] * T[:, 3:, :3] / T[:, 3:, 3:]
     Tpd = np.linalg.eigvalsh(Tst)[:, 0] > 0
     XL = np.full(m, np.nan)
     if Tpd.any():
         XL[Tpd] = limiting_x(Q[Tpd], R[Tpd], T[Tpd])
     stable = Tpd & (XL > 0)
-    X = np.full(m, np.nan)
-    status = np.full(m, 2)
-    P = np.full((m, 4), np.nan + 0j)
     parts = np.zeros((m, 4, 9))
     if stable.any():
         parts[stable] = stroh_polynomial_parts(Q[stable], R[stable], T[stable])
-        X[stable], status[stable], P[stable] = _root_search(Q[stable], R[stable], T[stable], XL[stable],
-                                                            free[stable], eps0[stable], tol, parts[stable])
+    return {"sA": sA, "sE": sE, "rho": rho, "E": E, "Q": Q, "R": R, "T": T, "XL": XL, "Tpd": Tpd,
+            "stable": stable, "parts": parts, "eps": eps, "mirror": search.mirror_partition(Q, R, T)}
+
+
+def _solve(pr: dict, free, rows, tol) -> dict:
+    """Solve the points ``rows`` (k,) of the prepared orientations under conditions ``free`` (k,)."""
+    m = len(rows)
+    Q, R, T, E, XL, parts = (pr[k][rows] for k in ("Q", "R", "T", "E", "XL", "parts"))
+    sA, sE, rho, eps, mir = pr["sA"][rows], pr["sE"][rows], pr["rho"][rows], pr["eps"][rows], pr["mirror"][rows]
+    Tpd, stable = pr["Tpd"][rows], pr["stable"][rows]
+    alpha = np.sqrt(sA / sE)                                        # phi = alpha * phi_hat
+    eps0 = EPS0 / sE
+    X = np.full(m, np.nan)
+    status = np.full(m, 2)
+    P = np.full((m, 4), np.nan + 0j)
+    last = {"Z": np.full((m, 4, 4), np.nan + 0j), "M": np.full((m, 4, 4), np.nan + 0j), "N": np.full((m, 8, 8), np.nan)}
+    if stable.any():
+        s = np.flatnonzero(stable)
+        u, inv = np.unique(rows[s], return_inverse=True)            # one first step per orientation
+        q = pr
+        X0 = q["XL"][u] * (1.0 - search.T_START ** 2)
+        first = impedance(q["Q"][u], q["R"][u], q["T"][u], X0, nm=3)
+        first = {k: v[inv] for k, v in first.items()}
+        X[s], status[s], P[s], ls = search.root_search(Q[s], R[s], T[s], XL[s], free[s], eps0[s], tol, parts[s], 3,
+                                                       first)
+        for key in last:
+            last[key][s] = ls[key]
+    found = np.isfinite(X)
+    pol = np.full((m, 4), np.nan + 0j)
+    decay = np.full((m, 4), np.nan + 0j)
+    pfa = np.full(m, np.nan)
+    if found.any():
+        f = found
+        r = {key: v[f] for key, v in last.items()}                 # the search's last step (within tol)
+        a0 = search.lowest(r["Z"], free[f], eps0[f], 3)[1]
+        ref = np.where(np.abs(a0[:, 1]) > 1e-8, a0[:, 1], a0[:, 0])
+        a0 = a0 * (np.conj(ref) / np.abs(ref))[:, None]
+        Pf = _flux(Q[f], R[f], E[f], r, a0, free[f], eps0[f], P[f])
+        pfa[f] = np.degrees(np.arctan2(Pf[:, 1], Pf[:, 0]))
+        pol[f] = a0
+        decay[f] = P[f]
+    # sagittal mirrors: the decoupled sub-problem above the full limiting speed
+    sup = np.zeros(m, dtype=bool)
+    todo = stable & (status == 1) & (mir != "")
+    if todo.any():
+        Xs, pols, decs = _mirror_waves(Q[todo], R[todo], T[todo], XL[todo], free[todo], eps0[todo], mir[todo], tol)
+        k = np.flatnonzero(todo)
+        ok = np.isfinite(Xs)
+        X[k[ok]], pol[k[ok]], decay[k[ok]] = Xs[ok], pols[ok], decs[ok]
+        pfa[k[ok]] = 0.0                                            # the mirror x3 -> -x3: no flux along x3
+        sup[k[ok]] = Xs[ok] >= XL[k[ok]] * (1 - 1e-12)               # as the elastic solver labels them
+        status[k[~ok]] = 3
     found = np.isfinite(X)
     reason = np.full(m, "", dtype=object)
     reason[status == 1] = REASON_PSEUDO
     reason[status == 2] = REASON_UNSTABLE
+    reason[status == 3] = REASON_NOROOT_MIRROR
     reason[~Tpd] = REASON_T
     reason[found] = ""
-    wave_type = np.where(found, "surface", np.where(status == 1, "pseudo", "none")).astype(object)
-
-    pol = np.full((m, 4), np.nan + 0j)
-    decay = np.full((m, 4), np.nan + 0j)
-    share = np.full(m, np.nan)
-    pfa = np.full(m, np.nan)
-    if found.any():
-        f = found
-        r = impedance(Q[f], R[f], T[f], X[f], P[f], parts[f])
-        Z = r["Z"]
-        u = _null(_effective(Z, free[f], eps0[f]))
-        zee = Z[:, 3, 3].real - np.where(free[f], eps0[f], 0.0)
-        ph = np.where(free[f], -np.einsum("mj,mj->m", Z[:, 3, :3], u) / zee, 0.0)
-        a0 = np.concatenate([u, ph[:, None]], axis=-1)
-        ref = np.where(np.abs(u[:, 1]) > 1e-8, u[:, 1], u[:, 0])
-        a0 = a0 * (np.conj(ref) / np.abs(ref))[:, None]
-        P = _flux(Q[f], R[f], E[f], r, a0, free[f], eps0[f])
-        pfa[f] = np.degrees(np.arctan2(P[:, 1], P[:, 0]))
-        pol[f, :3] = a0[:, :3]
-        pol[f, 3] = a0[:, 3] * alpha[f]
-        decay[f] = r["p"]
-        ebar = np.trace(eps[f], axis1=1, axis2=2) / 3.0
-        el = ebar * np.abs(pol[f, 3]) ** 2
-        share[f] = el / (X[f] * sA[f] + el)
+    wave_type = np.where(found, np.where(sup, "supersonic_decoupled", "surface"),
+                         np.where(status == 1, "pseudo", "none")).astype(object)
+    pol[:, 3] = pol[:, 3] * alpha
+    ebar = np.trace(eps, axis1=1, axis2=2) / 3.0
+    el = ebar * np.abs(pol[:, 3]) ** 2
+    with np.errstate(all="ignore"):
+        share = el / (X * sA + el)
     return {
         "c": np.sqrt(X * sA / rho),
         "c_limit": np.sqrt(XL * sA / rho),
@@ -293,15 +282,54 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
         "potential_share": share,
         "decay": decay,
         "power_flow_angle": pfa,
+        "mirror": mir,
         "method": np.full(m, "piezo-stroh", dtype=object),
     }
 
 
-def coupling_coefficient(A, e, eps, rho, **kw) -> dict:
-    """K^2 = 2 (c_free - c_metallized) / c_free with both speeds; dict of (m,) arrays."""
-    rf = piezo_surface_wave(A, e, eps, rho, electrical="free", **kw)
-    rm = piezo_surface_wave(A, e, eps, rho, electrical="metallized", **kw)
-    return {"c_free": rf["c"], "c_metallized": rm["c"], "K2": 2 * (rf["c"] - rm["c"]) / rf["c"]}
+def _mirror_waves(Q, R, T, XL, free, eps0, mir, tol):
+    """Surface waves of the decoupled sub-problems of mirror points, X (k,) NaN where none.
+
+    "sagittal+phi": (u1, u2, phi), nm = 2; "sagittal": the elastic (u1, u2) problem and the
+    (u3, phi) one (nm = 1, a Bleustein-Gulyaev wave); each with its own limiting speed, the
+    slowest root kept. Returns X, the polarisation (k, 4) (scaled phi) and decay (k, 4) (the
+    sub-problem's p, NaN-padded).
+    """
+    k = Q.shape[0]
+    X = np.full(k, np.nan)
+    pol = np.full((k, 4), np.nan + 0j)
+    dec = np.full((k, 4), np.nan + 0j)
+    subs = [("sagittal+phi", [0, 1, 3], 2), ("sagittal", [0, 1], 2), ("sagittal", [2, 3], 1)]
+    for name, S, nm in subs:
+        rows = np.flatnonzero(mir == name)
+        if rows.size == 0:
+            continue
+        ix = np.ix_(rows, S, S)
+        q, r, t = Q[ix], R[ix], T[ix]
+        xl = limiting_x(q, r, t, nm)
+        okl = np.isfinite(xl) & (xl > 0)
+        rows, q, r, t, xl = rows[okl], q[okl], r[okl], t[okl], xl[okl]
+        if rows.size == 0:
+            continue
+        parts = stroh_polynomial_parts(q, r, t, nm)
+        Xs, st, p, _ = search.root_search(q, r, t, xl, free[rows], eps0[rows], tol, parts, nm)
+        better = np.isfinite(Xs) & ~(X[rows] <= Xs)
+        if not better.any():
+            continue
+        b = rows[better]
+        imp = impedance(q[better], r[better], t[better], Xs[better], p[better], parts[better], nm)
+        a = search.lowest(imp["Z"], free[b], eps0[b], nm)[1]
+        ref = a[:, 1] if 1 in S else a[:, 0]
+        ref = np.where(np.abs(ref) > 1e-8, ref, a[:, 0])
+        a = a * (np.conj(ref) / np.abs(ref))[:, None]
+        if len(S) < 4 and 3 not in S:
+            a = np.concatenate([a, np.zeros((b.size, 1))], axis=-1)
+        full = np.zeros((b.size, 4), dtype=complex)
+        full[:, S if 3 in S else S + [3]] = a
+        X[b], pol[b] = Xs[better], full
+        dec[b] = np.nan
+        dec[b, :len(S)] = p[better]
+    return X, pol, dec
 
 
 def euler_lab_axes(phi, theta, psi) -> np.ndarray:
