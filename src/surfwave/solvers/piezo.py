@@ -37,9 +37,9 @@ from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
     generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
     stroh_polynomial_parts)
+from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
+from surfwave.solvers.piezo_tensors import EPS0  # noqa: F401  (vacuum permittivity, F/m; re-exported)
 
-#: Vacuum permittivity, F/m (CODATA 2018).
-EPS0 = 8.8541878128e-12
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
 T_MIN = search.T_MIN
 
@@ -331,25 +331,3 @@ def _mirror_waves(Q, R, T, XL, free, eps0, mir, tol):
         dec[b, :len(S)] = p[better]
     return X, pol, dec
 
-
-def euler_lab_axes(phi, theta, psi) -> np.ndarray:
-    """Our lab axes (rows x1, x2 inward, x3) in crystal axes from SAW Euler angles (degrees, ZXZ).
-
-    SAW convention (IEEE Std 176): the SAW axes are the rows of Rz(psi) Rx(theta) Rz(phi)
-    (passive rotations, first phi about Z, then theta about the new X, then psi about the new
-    Z); SAW x1 = propagation, SAW x3 = outward normal. Ours: x1 = x1_SAW, x2 = -x3_SAW,
-    x3 = x2_SAW. Scalars or arrays (broadcast) -> (..., 3, 3).
-    """
-    def rz(a):
-        c, s = np.cos(a), np.sin(a)
-        o, z = np.ones_like(a), np.zeros_like(a)
-        return np.stack([np.stack([c, s, z], -1), np.stack([-s, c, z], -1), np.stack([z, z, o], -1)], -2)
-
-    def rx(a):
-        c, s = np.cos(a), np.sin(a)
-        o, z = np.ones_like(a), np.zeros_like(a)
-        return np.stack([np.stack([o, z, z], -1), np.stack([z, c, s], -1), np.stack([z, -s, c], -1)], -2)
-
-    p, t, s = np.broadcast_arrays(*(np.radians(np.asarray(v, dtype=float)) for v in (phi, theta, psi)))
-    Rs = rz(s) @ rx(t) @ rz(p)
-    return np.stack([Rs[..., 0, :], -Rs[..., 2, :], Rs[..., 1, :]], axis=-2)
