@@ -1,0 +1,477 @@
+"""Leaky (pseudo) surface waves with attenuation, elastic and piezoelectric, vectorised.
+
+Physics (docs/physics/leaky-waves.md). Above the limiting speed v_L1 of the SLOWEST bulk sheet
+(the lowest trace speed along x1 of the bulk waves, where one pair of Stroh roots p turns
+real), a surface wave can only exist as a leaky wave: one partial wave is a bulk wave of that
+sheet carrying energy into the crystal (+x2). It is chosen at real speed by the sign of its
+x2 energy flux Re(a^H b) (> 0 into the crystal), and followed by continuity (nearest-root
+tracking along the root search) to complex X = rho v^2. With real omega and a wave decaying
+along +x1, k = k_r (1 + i delta), delta > 0, so v = omega / k has Im v < 0 and Im X < 0; the
+outgoing bulk root then has Im p < 0 (dp/dX = 1 / (2 rho v V_g2) > 0): it grows with depth,
+the signature of a leaky wave. The other d - 1 partial waves decay (Im p > 0).
+
+The boundary function is det of the surface impedance of the chosen partial waves,
+M = B A^-1 (b = M u at the surface, independent of the eigenvector normalisation):
+elastic det M; piezoelectric, electrically free det(M - i eps0~ e4 e4^T) (vacuum potential
+exp(ik x1 + k x2) gives D2 = -EPS0 dphi/dx2 = -EPS0 k phi, hence b4 = D2 / (ik) = +i EPS0 a4);
+metallized det(M_mech) (phi = 0). Its root in the complex variable w,
+X = X_L1 + (X_L2 - X_L1) sin^2 w (sqrt(X - X_L1) and sqrt(X_L2 - X) are analytic in w), is
+found by the secant method from every minimum of |det| over a grid of real speeds between
+v_L1 and v_L2; the least-attenuated root is kept.
+
+Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
+real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
+is NaN with a reason, as is a root with growing amplitude along x1 (delta < 0).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave.errors import InputError
+
+#: Vacuum permittivity, F/m.
+EPS0 = 8.8541878128e-12
+#: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
+DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
+#: Points of the real-speed grid (uniform in w in (0, pi/2), X = X_L1 + (X_L2 - X_L1) sin^2 w).
+SCAN = 16
+#: Points of the angle grid for the limiting speeds of the bulk sheets.
+LIMIT_GRID = 64
+#: Golden-section steps refining each sheet's minimum (bracket shrinks by 0.618^GOLDEN).
+GOLDEN = 22
+MAX_ITER = 80
+#: Largest secant step in w (the chosen roots are tracked between evaluations).
+STEP_MAX = 0.05
+#: delta below -GROW_TOL: a root growing along x1 (rejected with a reason).
+GROW_TOL = 1e-9
+#: Halvings of a secant step allowed in a row when the roots cannot be followed.
+MAX_HALVING = 12
+#: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
+T_EDGE = 1e-3
+#: |Im p| below REAL_TOL max(1, |p|) counts as a real Stroh root on the real-speed grid.
+REAL_TOL = 1e-7
+
+REASON_NOROOT = "no leaky root on the slowest sheet's leaky branch (secant search did not converge)"
+REASON_ABOVE = ("leaky root above the second bulk sheet's limiting speed v_L2: it would radiate into two "
+                "sheets (only the slowest sheet's leaky wave is computed)")
+REASON_BELOW = "root below the slowest sheet's limiting speed v_L1: a true (subsonic) surface wave, not leaky"
+REASON_GROW = "root with growing amplitude along x1 (delta < 0): not a physical leaky wave"
+REASON_EDGE = ("root at the slowest sheet's limiting speed (|sin w| < T_EDGE): a grazing bulk wave (e.g. the "
+               "exceptional surface-skimming wave of a mirror direction), not a leaky surface wave")
+REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v_L2 where the slowest sheet "
+                "has a single real pair of Stroh roots")
+REASON_MULTI = ("leaky root where the slowest sheet has more than one real pair of Stroh roots (cuspidal "
+                "slowness or a second radiating sheet): not computed")
+REASON_TRACK = "partial-wave tracking failed (two chosen roots merged)"
+REASON_UNSTABLE = "no leaky wave: T = A_i2k2 (mechanical block) not positive definite or v_L1^2 <= 0"
+
+
+def _generalised_blocks(A, e, eps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Generalised Stroh blocks Q_JK = E_J1K1, R_JK = E_J1K2, T_JK = E_J2K2, shape (m, 4, 4).
+
+    Parameters
+    ----------
+    A : ndarray, shape (m, 3, 3, 3, 3)
+        Wave-propagation tensor, lab frame (any consistent units).
+    e : ndarray, shape (m, 3, 3, 3)
+        Piezoelectric stress constants e_kij, lab frame.
+    eps : ndarray, shape (m, 3, 3)
+        Permittivity eps_kl, lab frame.
+
+    Returns
+    -------
+    Q, R, T : ndarray, shape (m, 4, 4), float
+        E_ijkl = A_ijkl, E_ij3l = e_lij, E_3jkl = e_jkl, E_3j3l = -eps_jl (index 3 electric).
+    """
+    A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
+    m = A.shape[0]
+    E = np.zeros((m, 4, 3, 4, 3))
+    E[:, :3, :, :3, :] = A
+    E[:, :3, :, 3, :] = np.einsum("mlij->mijl", e)
+    E[:, 3, :, :3, :] = e
+    E[:, 3, :, 3, :] = -eps
+    return E[:, :, 0, :, 0], E[:, :, 0, :, 1], E[:, :, 1, :, 1]
+
+
+def _sheet_x(Q, R, T, p, d) -> np.ndarray:
+    """rho v_trace^2 of the bulk sheets for real slopes p (m, k): ascending eigenvalues (m, k, 3)."""
+    G = Q[:, None] + p[..., None, None] * (R + np.swapaxes(R, -1, -2))[:, None] + \
+        (p * p)[..., None, None] * T[:, None]
+    S = G[..., :3, :3]
+    if d == 4:  # quasi-static electric field: stiffened Christoffel matrix (Schur complement)
+        S = S - G[..., :3, 3:] * G[..., 3:, :3] / G[..., 3:, 3:]
+    return np.linalg.eigvalsh(S)
+
+
+def _limits(Q, R, T, d) -> np.ndarray:
+    """Limiting X = rho v_L^2 of the slowest and second sheet, min over real p, shape (m, 2).
+
+    Grid in the bulk-wave angle phi (p = tan phi), then golden-section refinement of each
+    branch's best grid minimum (a bracket of two grid steps).
+    """
+    m = Q.shape[0]
+    h = np.pi / LIMIT_GRID
+    phi = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
+    lam = _sheet_x(Q, R, T, np.broadcast_to(np.tan(phi), (m, LIMIT_GRID)), d)   # (m, k, 3)
+    out = np.empty((m, 2))
+    g = 0.5 * (np.sqrt(5) - 1)
+    for s in range(2):
+        j = np.argmin(lam[:, :, s], axis=1)
+        lo, hi = phi[j] - h, phi[j] + h
+        for _ in range(GOLDEN):
+            x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+            f = _sheet_x(Q, R, T, np.tan(np.stack([x1, x2], 1)), d)[:, :, s]
+            left = f[:, 0] < f[:, 1]
+            hi = np.where(left, x2, hi)
+            lo = np.where(left, lo, x1)
+        c = 0.5 * (lo + hi)
+        out[:, s] = np.minimum(_sheet_x(Q, R, T, np.tan(c)[:, None], d)[:, 0, s], lam[:, :, s].min(1))
+    return out
+
+
+def _partial_waves(Q, R, T, X, d) -> tuple[np.ndarray, np.ndarray]:
+    """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d), complex, at X (m,).
+
+    A real X (float dtype) builds the real N (its eigen-decomposition is ~3x cheaper).
+    """
+    Ti = np.linalg.inv(T)
+    Rt = np.swapaxes(R, -1, -2)
+    mass = np.eye(d)
+    if d == 4:
+        mass[3, 3] = 0.0
+    N = np.empty((Q.shape[0], 2 * d, 2 * d), dtype=X.dtype)
+    N[:, :d, :d] = -Ti @ Rt
+    N[:, :d, d:] = Ti
+    N[:, d:, :d] = R @ Ti @ Rt - Q + X[:, None, None] * mass
+    N[:, d:, d:] = -R @ Ti
+    p, xi = np.linalg.eig(N)
+    return p.astype(complex), xi.astype(complex)
+
+
+def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
+    """Boundary function f (m,) and the effective impedance matrix (m, d', d') of the chosen waves.
+
+    M = B A^-1 of the partial waves ``idx`` (m, d); free: M - i e4 e4^T (vacuum), metallized:
+    its mechanical 3 x 3 block (phi = 0); elastic: M.
+    """
+    sel = np.take_along_axis(xi, idx[:, None, :], axis=2)
+    a, b = sel[:, :d], sel[:, d:]
+    with np.errstate(invalid="ignore", over="ignore"):
+        da = np.abs(np.linalg.det(a))
+    good = np.isfinite(da) & (da > 1e-14 * np.prod(np.linalg.norm(a, axis=1), axis=1))
+    M = np.full(b.shape, np.nan + 0j)
+    if good.any():
+        M[good] = np.swapaxes(np.linalg.solve(np.swapaxes(a[good], 1, 2), np.swapaxes(b[good], 1, 2)), 1, 2)
+    if d == 4:
+        if electrical == "free":
+            M = M.copy()
+            M[:, 3, 3] -= 1j
+        else:
+            M = M[:, :3, :3]
+    return np.linalg.det(M), M
+
+
+def _choose_real(p, xi, d) -> np.ndarray:
+    """Chosen partial waves (m, d) at real X between v_L1 and v_L2.
+
+    The d - 1 roots with Im p > 0 farthest from the real axis plus, of the two (nearly) real
+    roots of the slowest sheet, the one whose x2 energy flux Re(a^H b) is positive.
+    """
+    order = np.argsort(np.abs(p.imag), axis=1)
+    real2 = order[:, :2]
+    flux = np.einsum("mjk,mjk->mk", xi[:, :d].conj(), xi[:, d:]).real
+    f2 = np.take_along_axis(flux, real2, axis=1)
+    out_ = np.where(f2[:, 0] > f2[:, 1], real2[:, 0], real2[:, 1])
+    rest = order[:, 2:]
+    up = np.take_along_axis(p, rest, axis=1).imag > 0
+    rank = np.argsort(~up, axis=1, kind="stable")[:, :d - 1]
+    return np.concatenate([out_[:, None], np.take_along_axis(rest, rank, axis=1)], axis=1)
+
+
+def _track(p_prev, p) -> tuple[np.ndarray, np.ndarray]:
+    """Indices (m, d) of the roots p (m, 2d) nearest to the previous chosen ones (m, d); ok flag.
+
+    Not ok where the match is ambiguous: a chosen root's nearest new root is not at least
+    twice as close as the second nearest (the step was too large to follow it).
+    """
+    dist = np.abs(p[:, None, :] - p_prev[:, :, None])
+    order = np.argsort(dist, axis=2)
+    idx = order[:, :, 0]
+    d1 = np.take_along_axis(dist, order[:, :, :1], axis=2)[..., 0]
+    d2 = np.take_along_axis(dist, order[:, :, 1:2], axis=2)[..., 0]
+    s = np.sort(idx, axis=1)
+    ok = np.all(s[:, 1:] != s[:, :-1], axis=1) & np.all(2 * d1 <= d2, axis=1)
+    return idx, ok
+
+
+def _check(A, rho, e, eps):
+    A = np.asarray(A, dtype=float)
+    if A.ndim != 5 or A.shape[1:] != (3, 3, 3, 3):
+        raise InputError(f"A must have shape (m, 3, 3, 3, 3), got {A.shape}")
+    m = A.shape[0]
+    rho = np.broadcast_to(np.asarray(rho, dtype=float), (m,))
+    if np.any(~np.isfinite(rho) | (rho <= 0)):
+        raise InputError(f"rho must be positive and finite (kg/m^3), got {rho[~(rho > 0)][:3]}")
+    if not np.all(np.isfinite(A)):
+        raise InputError("A contains non-finite values")
+    if (e is None) != (eps is None):
+        raise InputError(f"give both e and eps or neither (e is {type(e).__name__}, eps is {type(eps).__name__})")
+    if e is not None:
+        e = np.broadcast_to(np.asarray(e, dtype=float), (m, 3, 3, 3))
+        eps = np.broadcast_to(np.asarray(eps, dtype=float), (m, 3, 3))
+        if not (np.all(np.isfinite(e)) and np.all(np.isfinite(eps))):
+            raise InputError("e or eps contains non-finite values")
+        big = np.abs(eps).max()
+        if big > 1e-6 or big < 1e-14:
+            raise InputError(f"eps must be absolute permittivity in F/m (eps_r * EPS0), got max |eps| = {big:g}")
+    return A, rho, e, eps
+
+
+def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dict:
+    """Leaky surface wave radiating into the slowest bulk sheet: complex speed and attenuation.
+
+    Only the leaky wave whose radiated partial wave belongs to the SLOWEST bulk sheet (real
+    speed between the limiting speeds v_L1 and v_L2 of the two slowest sheets) is reported;
+    leaky waves radiating into two or more sheets are NaN with a reason.
+
+    Parameters
+    ----------
+    A : array_like, shape (m, 3, 3, 3, 3), Pa
+        Wave-propagation tensor A_ijkl = C_ijkl + sigma0_jl delta_ik, lab frame (x1 propagation,
+        x2 inward normal).
+    rho : float or array_like, shape (m,), kg/m^3
+    e : None or array_like, shape (m, 3, 3, 3), C/m^2
+        Piezoelectric stress constants e_kij, lab frame; None: non-piezoelectric (6 x 6 problem).
+    eps : None or array_like, shape (m, 3, 3), F/m
+        Absolute clamped permittivity, lab frame (with ``e``).
+    electrical : {"free", "metallized"}
+        Electrically free surface (vacuum above) or shorted (phi = 0). Ignored without ``e``.
+    tol : float
+        Relative accuracy of the complex X = rho v^2.
+
+    Returns
+    -------
+    dict of ndarray, leading shape (m,)
+        ``c_leaky`` omega / k_r (m/s) with k = k_r (1 + i delta); ``leaky_attenuation``
+        40 pi log10(e) delta, dB per wavelength (>= 0); ``c_leaky_complex`` v = omega / k
+        (complex, m/s, Im v <= 0); ``delta`` (1, signed, also where the root was rejected, e.g.
+        delta < 0 beyond a cut angle where the attenuation passes through zero); ``reason`` (object str, "" when found);
+        ``radiating_sheet`` (int: 0 = slowest bulk sheet, -1 where none); ``decay`` (m, d)
+        complex Stroh roots p of the partial waves, the radiating one (Im p <= 0) first, the
+        decaying ones after in ascending Im p (d = 3 elastic, 4 piezoelectric); ``polarisation``
+        (m, d) complex surface (u1, u2, u3[, phi]) with unit mechanical norm (phi in V per m of
+        displacement); ``c_limits`` (m, 2) v_L1, v_L2 (m/s); ``iterations`` (m,) int.
+
+    Raises
+    ------
+    InputError
+        Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
+    """
+    if electrical not in ("free", "metallized"):
+        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    A, rho, e, eps = _check(A, rho, e, eps)
+    m = A.shape[0]
+    s = np.abs(A).max(axis=(1, 2, 3, 4))
+    if e is None:
+        d = 3
+        An = A / s[:, None, None, None, None]
+        Q, R, T = An[:, :, 0, :, 0], An[:, :, 0, :, 1], An[:, :, 1, :, 1]
+    else:
+        d = 4
+        Q, R, T = _generalised_blocks(A / s[:, None, None, None, None], e / np.sqrt(s * EPS0)[:, None, None, None],
+                                      eps / EPS0)
+    reason = np.full(m, "", dtype=object)
+    XL = np.full((m, 2), np.nan)
+    ok = np.linalg.eigvalsh(T[:, :3, :3])[:, 0] > 0
+    if ok.any():
+        XL[ok] = _limits(Q[ok], R[ok], T[ok], d)
+    ok &= XL[:, 0] > 0
+    reason[~ok] = REASON_UNSTABLE
+    X = np.full(m, np.nan + 0j)
+    pch = np.full((m, d), np.nan + 0j)
+    pol = np.full((m, d), np.nan + 0j)
+    its = np.zeros(m, dtype=int)
+    ii = np.nonzero(ok)[0]
+    if ii.size:
+        res = _solve(Q[ii], R[ii], T[ii], XL[ii], d, electrical, tol)
+        X[ii], pch[ii], pol[ii], its[ii], reason[ii] = res
+    if d == 4:
+        pol[:, 3] *= np.sqrt(s / EPS0)              # back from the scaled potential to volts
+    # physical speeds: v = omega / k, k = k_r (1 + i delta)  =>  1 / v = (1 + i delta) / c_leaky
+    v = np.sqrt(X * (s / rho))                      # principal branch: Re v > 0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv = 1.0 / v
+        delta = inv.imag / inv.real
+        c_l = 1.0 / inv.real
+    found = reason == ""
+    pch[~found] = np.nan
+    pol[~found] = np.nan
+    return {
+        "c_leaky": np.where(found, c_l, np.nan),
+        "leaky_attenuation": np.where(found, DB_PER_DELTA * np.maximum(delta, 0.0), np.nan),
+        "c_leaky_complex": np.where(found, v, np.nan),
+        "delta": delta,
+        "reason": reason,
+        "radiating_sheet": np.where(found, 0, -1),
+        "decay": pch,
+        "polarisation": pol,
+        "c_limits": np.sqrt(XL * (s / rho)[:, None]),
+        "iterations": its,
+    }
+
+
+def _dp_dx(xi, idx, d) -> np.ndarray:
+    """dp/dX = a^T M a / (2 a^T b) of the chosen roots (n, d), M = diag(1, 1, 1[, 0]).
+
+    First-order perturbation of N xi = p xi with the left eigenvector (b, a) (N^T J = J N,
+    J = [[0, I], [I, 0]]) and dN/dX = [[0, 0], [M, 0]].
+    """
+    sel = np.take_along_axis(xi, idx[:, None, :], axis=2)
+    a, b = sel[:, :d], sel[:, d:]
+    am = a[:, :3]
+    return np.einsum("nkj,nkj->nj", am, am) / (2 * np.einsum("nkj,nkj->nj", a, b))
+
+
+def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
+    """Secant iteration in complex w from (t1, f1) and t, tracking the chosen roots p1 (n, d).
+
+    The chosen roots are followed from the last accepted point, predicted to first order with
+    their dp/dX (g1 at the start); a trial point where they cannot be matched unambiguously is
+    pulled halfway back (at most ``MAX_HALVING`` times in a row).
+    Returns t (n,) complex of the last accepted evaluation, its chosen roots p (n, d) and
+    eigen-data (roots (n, 2d), vectors (n, 2d, 2d), indices (n, d)), converged and
+    tracking-ok flags, and the number of evaluations.
+    """
+    n = Q.shape[0]
+    t_prev, f_prev, p_prev, g = t1.copy(), f1.copy(), p1.copy(), g1.copy()
+    conv = np.zeros(n, dtype=bool)
+    trk = np.ones(n, dtype=bool)
+    its = np.zeros(n, dtype=int)
+    halv = np.zeros(n, dtype=int)
+    p_all = np.zeros((n, 2 * d), dtype=complex)
+    xi_all = np.zeros((n, 2 * d, 2 * d), dtype=complex)
+    idx = np.zeros((n, d), dtype=int)
+    act = np.arange(n)
+    for _ in range(MAX_ITER):
+        X = x0[act] + span[act] * np.sin(t[act]) ** 2
+        p, xi = _partial_waves(Q[act], R[act], T[act], X, d)
+        dw = (span[act] * np.sin(2 * t_prev[act]) * (t[act] - t_prev[act]))[:, None]
+        sel, okt = _track(p_prev[act] + g[act] * dw, p)
+        its[act] += 1
+        # ambiguous: back off halfway towards the last accepted point
+        bad = act[~okt]
+        halv[bad] += 1
+        t[bad] = 0.5 * (t[bad] + t_prev[bad])
+        trk[bad[halv[bad] > MAX_HALVING]] = False
+        acc = act[okt]
+        halv[acc] = 0
+        f, _ = _boundary(xi[okt], sel[okt], d, electrical)
+        p_prev[acc] = np.take_along_axis(p[okt], sel[okt], axis=1)
+        idx[acc], p_all[acc], xi_all[acc] = sel[okt], p[okt], xi[okt]
+        g[acc] = _dp_dx(xi[okt], sel[okt], d)
+        den = f - f_prev[acc]
+        safe = np.isfinite(den) & (den != 0)
+        step = np.where(safe, f * (t[acc] - t_prev[acc]) / np.where(safe, den, 1), np.nan)
+        big = np.abs(step) > STEP_MAX
+        step = np.where(big, step * STEP_MAX / np.abs(np.where(big, step, 1)), step)
+        t_prev[acc], f_prev[acc] = t[acc], f
+        t[acc] = t[acc] - step
+        dX = span[acc] * np.abs(step) * (np.abs(np.sin(2 * t_prev[acc])) + np.abs(step))
+        small = dX <= tol * np.abs(x0[acc] + span[acc] * np.sin(t_prev[acc]) ** 2)
+        conv[acc[small]] = True
+        stop = np.zeros(n, dtype=bool)
+        stop[acc[small | ~np.isfinite(step)]] = True
+        stop[~trk] = True
+        act = act[~stop[act]]
+        if act.size == 0:
+            break
+    return t_prev, p_prev, (p_all, xi_all, idx), conv, trk, its
+
+
+def _solve(Q, R, T, XL, d, electrical, tol):
+    """Scan, choose, secant in w from every local minimum of |det|; the least-attenuated root wins.
+
+    Returns X (m,) complex, chosen p (m, d) (radiating first), polarisation (m, d),
+    evaluations (m,), reasons (m,).
+    """
+    m = Q.shape[0]
+    x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
+    tg = 0.5 * np.pi * (np.arange(SCAN) + 0.5) / SCAN
+    # 1. real scan: |det| with the outgoing choice at each grid speed
+    Xg = (x0[:, None] + span[:, None] * np.sin(tg) ** 2).reshape(-1)
+    pg, xig = _partial_waves(*(np.repeat(B, SCAN, axis=0) for B in (Q, R, T)), Xg, d)
+    idx = _choose_real(pg, xig, d)
+    fg, _ = _boundary(xig, idx, d, electrical)
+    pc = np.take_along_axis(pg, idx, axis=1)
+    nreal = (np.abs(pg.imag) <= REAL_TOL * np.maximum(1, np.abs(pg))).sum(axis=1).reshape(m, SCAN)
+    af = np.where(nreal == 2, np.abs(fg).reshape(m, SCAN), np.inf)
+    # 2. local minima of |det| (grid points where the slowest sheet has one real pair)
+    loc = np.zeros((m, SCAN), dtype=bool)
+    loc[:, 1:-1] = (af[:, 1:-1] < af[:, :-2]) & (af[:, 1:-1] < af[:, 2:]) & np.isfinite(af[:, 1:-1])
+    # the top grid point too (the root may lie between it and v_L2): fit around its neighbour
+    loc[:, -1] = (af[:, -1] < af[:, -2]) & np.isfinite(af[:, -1]) & np.isfinite(af[:, -3])
+    rows, cols = np.nonzero(loc)
+    cols = np.minimum(cols, SCAN - 2)
+    k = rows * SCAN + cols
+    t1 = tg[cols].astype(complex)
+    # start: root of the parabola through the three grid values around the minimum
+    h = tg[1] - tg[0]
+    fm, f0, fp = fg[k - 1], fg[k], fg[k + 1]
+    c1, c2 = (fp - fm) / (2 * h), (fp - 2 * f0 + fm) / (2 * h * h)
+    disc = np.sqrt(c1 * c1 - 4 * c2 * f0)
+    den = np.where(np.abs(c1 + disc) >= np.abs(c1 - disc), c1 + disc, c1 - disc)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dt = -2 * f0 / den
+    fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
+    t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
+    tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
+        Q[rows], R[rows], T[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d,
+        electrical, tol)
+    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
+    delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
+    why = np.full(rows.size, "", dtype=object)
+    why[~conv] = REASON_NOROOT
+    why[~trk] = REASON_TRACK
+    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
+    why[(why == "") & (Xc.real > XL[rows, 1])] = REASON_ABOVE
+    why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
+    # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
+    chk = np.nonzero(why == "")[0]
+    if chk.size:
+        pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real, d)
+        nr = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
+        why[chk[nr != 2]] = REASON_MULTI
+    # 3. per point: the least-attenuated good candidate, else the reason of the first one
+    score = np.where(why == "", delta_c, np.inf)
+    best = np.full(m, -1)
+    bscore = np.full(m, np.inf)
+    for c in range(rows.size):
+        r = rows[c]
+        if best[r] < 0 or score[c] < bscore[r]:
+            best[r], bscore[r] = c, score[c]
+    reason = np.full(m, REASON_NOMIN, dtype=object)
+    X = np.full(m, np.nan + 0j)
+    p_out = np.full((m, d), np.nan + 0j)
+    u = np.full((m, d), np.nan + 0j)
+    nit = np.full(m, SCAN)
+    has = best >= 0
+    b = best[has]
+    reason[has] = why[b]
+    X[has] = Xc[b]
+    nit[has] += np.bincount(rows, weights=its, minlength=m)[has].astype(int)
+    rest = np.take_along_axis(pch[b, 1:], np.argsort(pch[b, 1:].imag, axis=1), axis=1)
+    p_out[has] = np.concatenate([pch[b, :1], rest], axis=1)
+    # polarisation: null vector of the boundary condition at the root
+    _, M = _boundary(xiall[b], ich[b], d, electrical)
+    fin = np.all(np.isfinite(M), axis=(1, 2))
+    w = np.full(M.shape[:2], np.nan + 0j)
+    if fin.any():
+        w[fin] = np.linalg.svd(M[fin])[2][:, -1].conj()
+    if d == 4 and electrical == "metallized":
+        w = np.concatenate([w, np.zeros((w.shape[0], 1))], axis=1)
+    nm = np.linalg.norm(w[:, :3], axis=1)
+    w = w / np.where(nm > 0, nm, 1)[:, None]
+    big = np.take_along_axis(w, np.argmax(np.abs(w[:, :3]), axis=1)[:, None], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u[has] = w * (np.abs(big) / big)
+    return X, p_out, u, nit, reason
