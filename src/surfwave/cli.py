@@ -376,6 +376,10 @@ def _cmd_scenes(args) -> int:
     paper = set(paper_scenes())
     rows = []
     for name, sc in scenes.items():
+        if sc.get("kind") == "piezo":  # piezoelectric: materials x cuts/Euler angles x electrical [x stress]
+            rows.append(cli_piezo.scene_row(name, sc, name in run, name in paper,
+                                            list(scene_outputs(scenes, name).values())))
+            continue
         if sc.get("kind") == "crystal":  # real crystals: materials x surfaces x angles [x stress]
             a, st = sc["angles"], sc["stress"] or [0.0]
             rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
@@ -399,6 +403,9 @@ def _cmd_scenes(args) -> int:
     print(f"# scenes of {', '.join(str(f) for f in files)} ('*' = built by 'snakemake', "
           "P = read by the paper's report.md)")
     for r in rows:
+        if r.get("kind") == "piezo":
+            print(cli_piezo.scene_text(r))
+            continue
         if "materials" in r:
             (alo, ahi, na), (slo, shi, ns) = r["angles"], r["stress"]
             print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "

@@ -142,3 +142,28 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
                  _f(row["power_flow_angle"], "10.4f"), f"{row['wave_type']:>10}"]
         print("  ".join(cells))
     return 0
+
+
+def scene_row(name: str, sc: dict, built: bool, paper: bool, outputs: list[str]) -> dict:
+    """JSON row of ``surfwave scenes`` for a piezoelectric scene."""
+    def span(v):
+        return [min(v), max(v), len(v)]
+
+    st = sc["stress"] or [0.0]
+    where = ({"cuts": sc["cuts"]} if sc["cuts"] is not None
+             else {"euler": {k: span(v) for k, v in sc["euler"].items()}})
+    return {"scene": name, "kind": "piezo", "built_by_all": built, "paper": paper, "materials": sc["materials"],
+            **where, "electrical": sc["electrical"], "stress": span(st), "quantities": sc["quantities"],
+            "accuracy": sc["accuracy"], "outputs": outputs}
+
+
+def scene_text(r: dict) -> str:
+    """Two lines of ``surfwave scenes`` for a piezoelectric scene row."""
+    if "cuts" in r:
+        where = "cuts " + ", ".join(r["cuts"])
+    else:
+        where = "Euler " + " ".join(f"{k} {lo:g}..{hi:g} ({n})" for k, (lo, hi, n) in r["euler"].items())
+    slo, shi, ns = r["stress"]
+    return (f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
+            f"{'/'.join(r['materials'])}, {where}, {'/'.join(r['electrical'])}, stress {slo:g}..{shi:g} GPa "
+            f"({ns}) -> {', '.join(r['quantities'])}\n{'':18}figures and tables: {', '.join(r['outputs']) or 'none'}")

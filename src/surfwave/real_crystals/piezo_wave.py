@@ -79,7 +79,12 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
 
 
 def _prestress(stress, x1: np.ndarray) -> np.ndarray:
-    """Cauchy prestress in crystal axes (m, 3, 3), GPa, from a scalar (uniaxial along x1) or 3 x 3."""
+    """Cauchy prestress in crystal axes (m, 3, 3), GPa.
+
+    From a scalar (uniaxial along each x1), a 3 x 3 tensor (crystal axes, the same at every
+    point), an (m,) array (uniaxial along x1, one value per point) or an (m, 3, 3) array.
+    """
+    m = x1.shape[0]
     try:
         s = np.asarray(stress, dtype=float)
     except (TypeError, ValueError):
@@ -89,14 +94,14 @@ def _prestress(stress, x1: np.ndarray) -> np.ndarray:
     if s.size and np.abs(s).max() > MAX_STRESS_GPA:
         raise InputError(f"stress must be in GPa; got max |stress| = {np.abs(s).max():.4g}, which looks like Pa "
                          "(divide by 1e9)")
-    if s.shape == ():
-        return s * x1[:, :, None] * x1[:, None, :]
-    if s.shape == (3, 3):
-        if not np.allclose(s, s.T, rtol=0, atol=1e-12 * max(np.abs(s).max(), 1e-300)):
+    if s.shape == () or s.shape == (m,):
+        return s[..., None, None] * x1[:, :, None] * x1[:, None, :]
+    if s.shape in ((3, 3), (m, 3, 3)):
+        if not np.allclose(s, np.swapaxes(s, -1, -2), rtol=0, atol=1e-12 * max(np.abs(s).max(), 1e-300)):
             raise InputError(f"the stress tensor must be symmetric, got {s.tolist()}")
-        return np.broadcast_to(s, (x1.shape[0], 3, 3)).copy()
-    raise InputError(f"stress must be a scalar (uniaxial along the propagation) or a 3 x 3 tensor in crystal "
-                     f"axes (GPa), got shape {s.shape}")
+        return np.broadcast_to(s, (m, 3, 3)).copy()
+    raise InputError(f"stress must be a scalar (uniaxial along the propagation), a 3 x 3 tensor in crystal "
+                     f"axes (GPa), or one of them per orientation ((m,) or (m, 3, 3), m = {m}); got shape {s.shape}")
 
 
 def _axes(axes) -> np.ndarray:
@@ -148,9 +153,10 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
         Lab axes (rows x1 = propagation, x2 = INWARD normal, x3 = x1 x x2) in crystal
         coordinates: :func:`surfwave.solvers.euler.euler_lab_axes`, a named cut's
         ``lab_axes``, or :func:`surfwave.solvers.orientation.lab_axes`.
-    stress : float or array_like, shape (3, 3)
+    stress : float or array_like, shape (3, 3), (m,) or (m, 3, 3)
         Prestress, GPa (negative = compression): a scalar is uniaxial along each propagation
-        direction x1; a 3 x 3 Cauchy tensor is in crystal axes. Fixed-constants model (:data:`MODEL`).
+        direction x1; a 3 x 3 Cauchy tensor is in crystal axes; (m,) and (m, 3, 3): one per
+        orientation. Fixed-constants model (:data:`MODEL`).
     electrical : {"free", "metallized"}
         Condition of ``c_R``, the power flow, the polarisation and the leaky wave.
     leaky : bool
