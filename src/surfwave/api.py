@@ -376,6 +376,9 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     1613.5
     >>> round(material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"], 2)  # 2012.12 unstressed
     2019.06
+    >>> r = material("LiNbO3", cut="128Y-X")                # Kovacs set; published 3979-3997 m/s
+    >>> round(r["c_free"], 1), round(r["c_metallized"], 1), round(100 * r["K2"], 2)
+    (3989.6, 3878.0, 5.59)
     """
     from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
 

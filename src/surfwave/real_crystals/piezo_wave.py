@@ -35,6 +35,8 @@ MAX_STRESS_GPA = 1e3
 TRACTION_RTOL = 1e-9
 REASON_TRACTION = "prestress loads the surface (sigma0 . n != 0): the fixed-C model needs an in-plane stress"
 ELECTRICAL = ("free", "metallized")
+#: |delta| (Im k / Re k) of a leaky root at or below which it is an exact (non-radiating) supersonic wave.
+DELTA_EXACT = 1e-10
 
 
 def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho=None) -> PiezoMaterial:
@@ -141,6 +143,30 @@ def _elastic(A, rho, eps, sw_piezo) -> tuple[dict, np.ndarray, np.ndarray, np.nd
     return sw, el["c"], el["c"], K2, el["c_imag"]
 
 
+def _supersonic(sw, c_free, c_met, lws, electrical):
+    """Where no subsonic SAW exists but the leaky root has zero attenuation (|delta| <= DELTA_EXACT,
+    e.g. GaAs (001)[110], whose mirror plane decouples the sagittal wave and the potential from
+    the slower SH bulk wave), that root is an exact supersonic surface wave: it becomes c_free /
+    c_metallized (and c_R, wave_type ``supersonic_decoupled``, its polarisation and decay; the
+    power flow and potential share are not computed there, NaN)."""
+    cs = {"free": c_free.copy(), "metallized": c_met.copy()}
+    for el, lw in lws.items():
+        exact = ~np.isfinite(cs[el]) & np.isfinite(lw["c_leaky"]) & (np.abs(lw["delta"]) <= DELTA_EXACT)
+        cs[el] = np.where(exact, lw["c_leaky"], cs[el])
+        if el == electrical and exact.any():
+            sw = dict(sw)
+            sw["c"] = cs[el]
+            for key in ("wave_type", "reason"):
+                sw[key] = sw[key].copy()
+            sw["wave_type"][exact] = "supersonic_decoupled"
+            sw["reason"][exact] = ""
+            sw["polarisation"] = np.where(exact[:, None], lw["polarisation"], sw["polarisation"])
+            sw["decay"] = np.where(exact[:, None], lw["decay"], sw["decay"])
+    with np.errstate(invalid="ignore"):
+        K2 = 2 * (cs["free"] - cs["metallized"]) / cs["free"]
+    return sw, cs["free"], cs["metallized"], K2
+
+
 def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free", leaky: bool = True,
                tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None) -> dict:
     """SAW of a piezoelectric crystal on m cuts: free and metallized speeds, K^2, leaky wave, power flow.
@@ -160,7 +186,9 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     electrical : {"free", "metallized"}
         Condition of ``c_R``, the power flow, the polarisation and the leaky wave.
     leaky : bool
-        Also solve for the leaky wave (``c_leaky``, ``leaky_attenuation``; NaN otherwise).
+        Also solve for the leaky wave (``c_leaky``, ``leaky_attenuation``; NaN otherwise). Where
+        no subsonic SAW exists and the leaky root does not attenuate (a mirror direction), that
+        root is reported as the SAW (``wave_type`` "supersonic_decoupled", as the elastic solver).
     tol : float
         Relative accuracy of rho c^2 of the subsonic wave.
     voigt, e, eps_r, rho
@@ -233,8 +261,12 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     if leaky:
         from surfwave.solvers.leaky import leaky_wave
 
-        lw = leaky_wave(A, rho_m, ee, eps, electrical=electrical)
+        piezo = bool(np.any(mat.e))
+        lws = {el: leaky_wave(A, rho_m, ee, eps, electrical=el) for el in (ELECTRICAL if piezo else (electrical,))}
+        lw = lws[electrical]
         c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
+        if piezo:                       # exact supersonic waves (mirror directions): the leaky root, delta = 0
+            sw, c_free, c_met, K2 = _supersonic(sw, c_free, c_met, lws, electrical)
     out = {"c_R": sw["c"], "c_free": c_free, "c_metallized": c_met, "K2": K2, "c_limit": sw["c_limit"],
            "c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": leaky_reason,
            "power_flow_angle": sw["power_flow_angle"], "polarisation": sw["polarisation"],
