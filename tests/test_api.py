@@ -66,3 +66,33 @@ def test_toec_errors_and_extremes():
     r = surfwave.material("Cu", direction="[100]", stress=-30.0, toec=True)
     assert np.isnan(r["c_R"]) and r["wave_type"] == "none" and "third-order model" in r["reason"]
     assert not r["stable"]
+
+
+def test_non_piezoelectric_calls_keep_the_elastic_route():
+    """Without piezo=, permittivity=, euler=, cut= or electrical=, a crystal of the elastic
+    database (Cu, and GaAs, which is also in the piezoelectric database) keeps today's route and
+    keys exactly (no K2, 3-component polarisation; Eq. 17 at the mirror direction); a name found
+    only in the piezoelectric database (LiNbO3) takes the piezoelectric route. Reference: the
+    elastic route's own outputs (README copper value 2012.12 m/s)."""
+    for name in ("Cu", "GaAs"):
+        r = surfwave.material(name, direction="[100]")
+        assert "K2" not in r and np.shape(r["polarisation"]) == (3,) and r["method"] == "eq17"
+    assert surfwave.material("Cu")["c_R"] == pytest.approx(2012.12, abs=0.01)
+    g = surfwave.material("GaAs", direction="[110]", electrical="free")   # GaAs e14 switched on
+    assert "K2" in g and np.shape(g["polarisation"]) == (4,)
+    assert "K2" in surfwave.material("LiNbO3", cut="Y-Z")
+
+
+def test_gaas_001_110_supersonic_piezoelectric_wave():
+    """GaAs (001)[110]: the (1-10) mirror decouples the sagittal wave and the potential from the
+    slower SH bulk wave, so the SAW lies above the limiting speed (elastic solver:
+    supersonic_decoupled, 2859 m/s). With e14 it is found as the non-attenuating leaky root: free
+    speed ~2864 m/s and K^2 ~0.06-0.07 % as commonly tabulated for GaAs (001)<110> (e.g. Datta,
+    Surface Acoustic Wave Devices, 1986; our constants: McSkimin C, Auld e14), checked to 0.5 % and
+    within 0.04-0.09 %; zero attenuation; and [100], where e14 does not couple, has K^2 = 0."""
+    f = surfwave.material("GaAs", direction="[110]", electrical="free")
+    el = surfwave.material("GaAs", direction="[110]")
+    assert f["wave_type"] == el["wave_type"] == "supersonic_decoupled"
+    assert f["c_free"] == pytest.approx(2864, rel=5e-3) and f["c_free"] > el["c_R"] > f["c_limit"]
+    assert 0.04 < 100 * f["K2"] < 0.09 and f["leaky_attenuation"] == 0
+    assert surfwave.material("GaAs", direction="[100]", electrical="free")["K2"] == pytest.approx(0, abs=1e-12)

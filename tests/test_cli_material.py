@@ -96,3 +96,43 @@ def test_material_cli_refuses_ambiguous_or_missing_input(capsys, args, words):
     assert main(["material", *args]) == 2
     err = capsys.readouterr().err
     assert words in err and len(err.strip().splitlines()) == 1
+
+
+def test_piezo_cut_json_equals_library(capsys):
+    """`--material LiNbO3 --cut 128Y-X --json` = surfwave.material("LiNbO3", cut="128Y-X") (free and
+    metallized speeds, K2, power flow, the 4-component polarisation)."""
+    assert main(["material", "--material", "LiNbO3", "--cut", "128Y-X", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = surfwave.material("LiNbO3", cut="128Y-X")
+    for key in ("c_R", "c_free", "c_metallized", "K2", "power_flow_angle"):
+        assert out[key] == pytest.approx(ref[key], rel=1e-15, abs=1e-15), key
+    assert out["euler"] == [0.0, 38.0, 0.0] and len(out["polarisation"]["re"]) == 4
+
+
+def test_euler_sweep_table_with_a_negative_start(capsys):
+    """`--euler 0 -90:90:45 0` (a sweep starting negative is a value, not an option) prints one row per
+    angle whose v_free, v_met and K2 (%) equal the library's to the printed digits."""
+    assert main(["material", "--material", "LiNbO3", "--euler", "0", "-90:90:45", "0"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    assert lines[1].split()[:4] == ["theta", "v_free", "v_met", "K2"]
+    rows = [line.split() for line in lines[2:]]
+    theta = np.array([-90.0, -45.0, 0.0, 45.0, 90.0])
+    ref = surfwave.material("LiNbO3", euler=np.column_stack([0 * theta, theta, 0 * theta]))
+    assert [float(r[0]) for r in rows] == list(theta)
+    np.testing.assert_allclose([float(r[1]) for r in rows], ref["c_free"], atol=0.006)
+    np.testing.assert_allclose([float(r[2]) for r in rows], ref["c_metallized"], atol=0.006)
+    np.testing.assert_allclose([float(r[3]) for r in rows], 100 * ref["K2"], atol=6e-5)
+
+
+def test_list_cuts_and_bad_euler(capsys):
+    """--list-cuts names every cut of the database; two swept Euler angles and --cut with --euler are
+    refused with exit status 2 and a message naming the problem."""
+    from surfwave.real_crystals.piezo_materials import available_cuts
+
+    assert main(["material", "--list-cuts"]) == 0
+    out = capsys.readouterr().out
+    assert all(name in out for name in available_cuts())
+    assert main(["material", "--material", "quartz", "--euler", "0:10:5", "0:10:5", "0"]) == 2
+    assert "only one Euler angle" in capsys.readouterr().err
+    assert main(["material", "--material", "quartz", "--cut", "ST-X", "--euler", "0", "0", "0"]) == 2
+    assert "either --cut or --euler" in capsys.readouterr().err

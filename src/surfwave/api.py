@@ -227,7 +227,8 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
 
 
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
-             voigt=None, angle=None, toec=None) -> dict:
+             voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
+             electrical=None) -> dict:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
@@ -263,6 +264,28 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         the unstressed crystal) on the surface of normal F^-T n0, and speeds are true phase
         speeds in the stressed state (docs/physics/third-order-constants.md). A stress beyond the
         model's range gives NaN with the reason.
+    piezo : array_like, shape (3, 6), keyword only
+        Piezoelectric stress constants e_kI, C/m^2, crystal axes (with ``voigt`` and ``permittivity``).
+    permittivity : array_like, shape (3, 3), keyword only
+        Clamped relative permittivity eps_r (eps / EPS0), crystal axes, symmetric positive definite.
+    euler : array_like, shape (3,) or (m, 3), keyword only
+        SAW Euler angles (phi, theta, psi) in degrees, ZXZ, lab x1 = propagation, x3 = outward
+        normal (:mod:`surfwave.solvers.euler`); replaces ``surface``/``direction``. Works for any
+        crystal (a non-piezoelectric one is solved with e = 0).
+    cut : str, keyword only
+        A named cut (``"128Y-X LiNbO3"``, ``"ST-X quartz"``, ``"128Y-X"`` with the material given;
+        :func:`surfwave.real_crystals.piezo_materials.available_cuts`).
+    electrical : {"free", "metallized"}, keyword only
+        Electrical condition of ``c_R`` (default "free"); ``c_free``, ``c_metallized`` and ``K2``
+        are returned either way.
+
+    With any of ``piezo``, ``permittivity``, ``euler``, ``cut``, ``electrical``, or a name found
+    only in the piezoelectric database (``"LiNbO3"``, ``"quartz"``, ``"LiTaO3"``, ...), the call is
+    answered by :func:`surfwave.real_crystals.piezo_route.material_piezo` (fixed-constants model;
+    extra outputs ``c_free``, ``c_metallized``, ``K2``, ``c_leaky``, ``leaky_attenuation`` (dB per
+    wavelength), ``power_flow_angle`` (degrees), ``potential_share``, ``euler``; ``polarisation``
+    (..., 4) with the potential). Crystals of the elastic database ("Cu", "GaAs") keep the elastic
+    route unless a piezoelectric argument is given.
 
     Returns
     -------
@@ -298,7 +321,15 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     1613.5
     >>> round(material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"], 2)  # 2012.12 unstressed
     2019.06
+    >>> r = material("LiNbO3", cut="128Y-X")                # Kovacs set; published 3979-3997 m/s
+    >>> round(r["c_free"], 1), round(r["c_metallized"], 1), round(100 * r["K2"], 2)
+    (3989.6, 3878.0, 5.59)
     """
+    from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
+
+    if is_piezo_call(C11, piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical):
+        return material_piezo(C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec,
+                              piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical)
     C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
         raise InputError("the density rho (kg/m^3) is missing")

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from surfwave import __version__
+from surfwave import __version__, cli_piezo
 from surfwave.errors import SurfwaveError
 
 SPEED_KEYS = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH", "c2_R")
@@ -131,7 +131,7 @@ def _parser() -> argparse.ArgumentParser:
         "material", help="surface-wave and bulk speeds (m/s) of a real crystal, any surface and direction",
         description="Surface (Rayleigh) wave, limiting speed and bulk sound speeds of a real crystal "
         "on any surface, in any direction, under prestress.",
-        epilog=EPILOG_MATERIAL, formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=EPILOG_MATERIAL + "\n" + cli_piezo.EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     mt.add_argument("--material", help="a crystal of the materials database by name (Cu, Si, GaAs, ...)")
     mt.add_argument("--list", action="store_true", help="list the materials database and exit")
@@ -153,6 +153,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="third-order model: no value = the database's constants of --material; or "
                     "six values C111 C112 C123 C144 C155 C456, GPa (Brugger)")
     mt.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    cli_piezo.add_options(mt)
 
     sub.add_parser(
         "potentials", help="list the registered pair potentials (names usable in scenes and 'point')",
@@ -240,7 +241,9 @@ def _material_rows(r: dict) -> list[dict]:
         for key, value in r.items():
             v = np.asarray(value)
             v = np.asarray(v[i]) if v.ndim and v.shape[0] == n and np.ndim(r["c_R"]) else v
-            if key in ("polarisation", "decay"):
+            if key == "euler":
+                row[key] = None if np.all(np.isnan(v)) else [float(x) for x in np.ravel(v)]
+            elif key in ("polarisation", "decay"):
                 row[key] = {"re": [None if np.isnan(x) else float(x) for x in v.real],
                             "im": [None if np.isnan(x) else float(x) for x in v.imag]}
             elif v.dtype.kind == "f":
@@ -264,6 +267,9 @@ def _cmd_material(args) -> int:
             m = get_material(name)
             print(f"{name:>8}  {m.symmetry:<10} rho {m.rho:7.0f} kg/m^3   TOEC: {'yes' if m.toec else 'no'}")
         return 0
+    if args.list_cuts:
+        return cli_piezo.list_cuts()
+    piezo_kw, swept = cli_piezo.material_kwargs(args)
     given = [n for n in ("C11", "C12", "C44", "voigt") if getattr(args, n) is not None]
     if args.material is not None:
         if given:
@@ -273,13 +279,15 @@ def _cmd_material(args) -> int:
         if any(v is not None for v in (args.C11, args.C12, args.C44)):
             raise InputError("give either --voigt or --C11 --C12 --C44, not both")
         constants = {"voigt": np.reshape(args.voigt, (6, 6))}
+    elif args.cut is not None and not given:        # the cut names its crystal
+        constants = {}
     else:
         missing = [n for n in ("C11", "C12", "C44") if getattr(args, n) is None]
         if missing:
             raise InputError(f"missing {', '.join('--' + m for m in missing)} (GPa), or give --voigt "
                              "or --material")
         constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
-    if args.rho is None and args.material is None:
+    if args.rho is None and args.material is None and not (args.cut is not None and not given):
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
     if args.toec is None:
         toec = None
@@ -303,11 +311,13 @@ def _cmd_material(args) -> int:
     else:
         direction = 0.0
     r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
-                 **constants)
+                 **constants, **piezo_kw)
     rows = _material_rows(r)
     if args.json:
-        print(json.dumps(rows if np.ndim(direction) else rows[0], indent=2))
+        print(json.dumps(rows if np.ndim(r["c_R"]) else rows[0], indent=2))
         return 0
+    if "K2" in r:
+        return cli_piezo.print_result(args, r, rows, swept)
     what = f"propagation {direction}" if isinstance(direction, str) else "angle from the reference"
     model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
     name = f"{args.material}, " if args.material else ""
@@ -366,6 +376,10 @@ def _cmd_scenes(args) -> int:
     paper = set(paper_scenes())
     rows = []
     for name, sc in scenes.items():
+        if sc.get("kind") == "piezo":  # piezoelectric: materials x cuts/Euler angles x electrical [x stress]
+            rows.append(cli_piezo.scene_row(name, sc, name in run, name in paper,
+                                            list(scene_outputs(scenes, name).values())))
+            continue
         if sc.get("kind") == "crystal":  # real crystals: materials x surfaces x angles [x stress]
             a, st = sc["angles"], sc["stress"] or [0.0]
             rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
@@ -389,6 +403,9 @@ def _cmd_scenes(args) -> int:
     print(f"# scenes of {', '.join(str(f) for f in files)} ('*' = built by 'snakemake', "
           "P = read by the paper's report.md)")
     for r in rows:
+        if r.get("kind") == "piezo":
+            print(cli_piezo.scene_text(r))
+            continue
         if "materials" in r:
             (alo, ahi, na), (slo, shi, ns) = r["angles"], r["stress"]
             print(f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "

@@ -30,6 +30,7 @@ from surfwave.errors import SurfwaveError, InputError
 from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.model_crystals.potentials import get_potential
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
+from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid, theta_grid  # noqa: F401 (public)
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).
@@ -222,6 +223,8 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
             continue
         # a real-crystal scene names materials (surfwave.pipeline.crystal_scenes)
         check = check_crystal_scene if "materials" in raw else _check_scene
+        if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
+            check = check_piezo_scene
         scene, found = check(name, raw)
         problems += found
         if scene is not None:
@@ -246,7 +249,7 @@ def targets(scenes: dict[str, dict], names, results: str = "results") -> list[st
     """The cube paths the named scenes ask for (crystal.nc always; one cube per quantity)."""
     out = []
     for name in names:
-        if scenes[name].get("kind") != "crystal":  # real crystals have no model-lattice cell
+        if scenes[name].get("kind") not in ("crystal", "piezo"):  # real crystals: no model-lattice cell
             out.append(f"{results}/{name}/crystal.nc")
         out += [f"{results}/{name}/{CUBES[q]}" for q in scenes[name]["quantities"]]
     return out

@@ -30,6 +30,8 @@ OUTPUT_NEEDS = {
     "entropy": (("entropy",), ("plots.entropy",)),
     "surface_wave": (("surface_wave",), ("plots.surface_wave",)),
     "acoustoelastic": (("surface_wave",), ("report.acoustoelastic",)),
+    "piezo_angles": (("surface_wave",), ("plots.piezo",)),
+    "piezo_stress": (("surface_wave",), ("plots.piezo",)),
     "summary": ((), ("report.summary",)),  # reads every cube of the scene but crystal.nc
 }
 
@@ -46,6 +48,8 @@ REPORT_ENTRIES = {
     "surface_wave_angles": ("surface_wave_angles.rst", "Real crystals"),
     "surface_wave_vs_stress": ("surface_wave_vs_stress.rst", "Real crystals"),
     "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
+    "piezo_angles": ("piezo_vs_angle.rst", "Piezoelectric crystals"),
+    "piezo_stress": ("piezo_vs_stress.rst", "Piezoelectric crystals"),
 }
 #: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
 #: the figures ride in the job of the first cube stage listed here that they read. Each of
@@ -126,8 +130,21 @@ def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
         if len(s.get("stress") or []) >= 2:
             out.update(surface_wave_vs_stress="surface_wave_vs_stress.png",
                        acoustoelastic_md="acoustoelastic.md", acoustoelastic_csv="acoustoelastic.csv")
+    if s.get("kind") == "piezo" and "surface_wave" in q:
+        out.update(piezo_outputs(s))
     if name not in paper_scenes():
         out["summary"] = "summary.md"
+    return out
+
+
+def piezo_outputs(s: dict) -> dict[str, str]:
+    """Figures of a piezoelectric scene: ``piezo_vs_angle.png`` when an Euler angle is swept over three or
+    more values, ``piezo_vs_stress.png`` with two or more stresses."""
+    out = {}
+    if s.get("euler") and max(len(v) for v in s["euler"].values()) >= 3:
+        out["piezo_angles"] = "piezo_vs_angle.png"
+    if len(s.get("stress") or []) >= 2:
+        out["piezo_stress"] = "piezo_vs_stress.png"
     return out
 
 

@@ -116,6 +116,13 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         speeds_vs_stress(cube("surface_wave"), outputs["surface_wave_vs_stress"], title=f"scene {scene}")
         write_table(cube("surface_wave"), outputs["acoustoelastic_md"], outputs["acoustoelastic_csv"])
         done.update({"surface_wave_vs_stress", "acoustoelastic_md", "acoustoelastic_csv"})
+    if "piezo_angles" in outputs or "piezo_stress" in outputs:
+        from surfwave.plots import piezo
+
+        for key, draw in (("piezo_angles", piezo.speeds_vs_euler), ("piezo_stress", piezo.speeds_vs_stress)):
+            if key in outputs:
+                draw(cube("surface_wave"), outputs[key], title=f"scene {scene}")
+                done.add(key)
     if "summary" in outputs:
         from surfwave.report.summary import write_summary
 

@@ -1,0 +1,199 @@
+"""Surface waves of piezoelectric crystals over a whole scene, one labelled cube (``surface_wave.nc``).
+
+Grid: materials x (named cuts | Euler angles phi x theta x psi) x electrical condition
+[x stress]. The cube keeps the public layout of ``surface_wave.nc`` (dims ``material``,
+``surface``, ``angle``): a surface is a plate (a named cut, or one Euler pair (phi, theta)),
+the angle the propagation direction psi in it from the plate's reference psi0; coordinates
+``cut``, ``euler_phi``, ``euler_theta`` (per surface) and ``euler_psi`` (surface, angle) say
+which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point is :func:`surfwave.real_crystals.piezo_wave.piezo_wave` (fixed-constants
+prestress model, e and eps at natural values; uniaxial stress along the propagation x1).
+
+Examples
+--------
+>>> ds = piezo_wave_sweep(["LiNbO3-Warner1967"], cuts=["Y-Z LiNbO3"])   # doctest: +SKIP
+>>> round(float(ds.c_R.sel(electrical="free").squeeze()))               # doctest: +SKIP
+3488
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from surfwave.errors import InputError
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+#: The ``method`` attribute of the cube.
+METHOD = ("piezoelectric Stroh solver (8 x 8, surfwave.solvers.piezo) for the subsonic SAW with a free "
+          "(open-circuit) and a metallized surface, leaky SAW radiating into the slowest bulk sheet "
+          "(surfwave.solvers.leaky); A_ijkl = C_ijkl + sigma_jl delta_ik with the natural-state C^E, "
+          "piezoelectric constants e and clamped permittivity eps at their natural values; SAW Euler "
+          "angles (ZXZ) -> lab frame x1 propagation, x2 inward normal (surfwave.solvers.euler)")
+UNITS_NOTE = ("SI units: speeds in m/s, stresses in GPa, angles in degrees, attenuation in dB per "
+              "wavelength, potential in V per m of surface displacement")
+#: Components of the generalised polarisation.
+COMPONENTS = ("u1", "u2", "u3", "phi")
+ELECTRICAL = ("free", "metallized")
+
+VARIABLES: dict[str, dict[str, str]] = {
+    "c_R": {"long_name": "subsonic surface acoustic wave speed for the electrical condition (NaN where none)",
+            "units": "m s-1"},
+    "c_limit": {"long_name": "limiting speed: lowest trace speed along x1 of the piezoelectrically "
+                "stiffened bulk waves", "units": "m s-1"},
+    "K2": {"long_name": "electromechanical coupling K^2 = 2 (v_free - v_metallized) / v_free", "units": "1"},
+    "c_leaky": {"long_name": "leaky SAW phase speed omega / Re k (radiating into the slowest bulk sheet "
+                "only; NaN where none)", "units": "m s-1"},
+    "leaky_attenuation": {"long_name": "leaky SAW attenuation per wavelength", "units": "dB"},
+    "power_flow_angle": {"long_name": "power-flow (beam-steering) angle of the SAW from x1 toward +x2 "
+                         "of the SAW frame (our +x3)", "units": "degree"},
+    "potential_share": {"long_name": "electric share of the surface energy density, eps |phi|^2 / "
+                        "(rho c^2 |u|^2 + eps |phi|^2)", "units": "1"},
+    "polarisation": {"long_name": "surface (u1, u2, u3, phi), lab frame, complex: |u| = 1, phase with u2 "
+                     "real >= 0; phi in V per m of displacement", "units": "1"},
+    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the four partial waves of the SAW, complex",
+              "units": "1"},
+    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, in wavelengths",
+                          "units": "1"},
+    "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
+    "reason": {"long_name": "why no subsonic SAW exists at the point (empty when one does)"},
+    "leaky_reason": {"long_name": "why no leaky SAW is reported at the point (empty when one is)"},
+    "rho": {"long_name": "density", "units": "kg m-3"},
+}
+COORDS: dict[str, dict[str, str]] = {
+    "material": {"long_name": "piezoelectric constant set (surfwave.real_crystals.piezo_materials name)"},
+    "surface": {"long_name": "the plate: a named cut, or SAW Euler angles (phi, theta) in degrees"},
+    "angle": {"long_name": "propagation angle in the plate, psi - psi0 (psi0: the named cut's psi, else 0)",
+              "units": "degree"},
+    "cut": {"long_name": "named SAW cut (surfwave.real_crystals.piezo_materials.get_cut)"},
+    "euler_phi": {"long_name": "SAW Euler angle phi (ZXZ, first rotation about crystal Z)", "units": "degree"},
+    "euler_theta": {"long_name": "SAW Euler angle theta (about the new X; rotated Y cut by theta + 90)",
+                    "units": "degree"},
+    "euler_psi": {"long_name": "SAW Euler angle psi (about the new Z: propagation in the plate), psi0 + angle",
+                  "units": "degree"},
+    "electrical": {"long_name": "surface condition: free (open circuit, vacuum above) or metallized (phi = 0)"},
+    "stress": {"long_name": "uniaxial prestress along the propagation direction (negative = compression)",
+               "units": "GPa"},
+}
+#: Per-point variables (material, orientation, [stress]) that do not depend on the electrical condition.
+NO_ELECTRICAL = ("K2", "c_limit", "rho")
+
+
+def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
+    """Euler angles (n_surface * n_angle, 3), surface/angle coords, (n_surface, n_angle).
+
+    The public cube layout has dims ``surface`` and ``angle`` (docs/cubes.md): a surface is a
+    plate, Euler (phi, theta), and the angle is the propagation direction psi in it, measured
+    from the surface's reference psi0 (a named cut's own psi, else 0): psi = psi0 + angle.
+    """
+    from surfwave.real_crystals.piezo_materials import get_cut
+
+    if (cuts is None) == (euler is None):
+        raise InputError("give either cuts or euler angles")
+    if cuts is not None:
+        found = [get_cut(c) for c in cuts]
+        e = np.array([c.euler for c in found], dtype=float)
+        angle = np.array([0.0])
+        coords = {"surface": [c.name for c in found], "cut": [c.name for c in found]}
+    else:
+        phi, theta, angle = (np.atleast_1d(np.asarray(euler[k], dtype=float)) for k in ("phi", "theta", "psi"))
+        pt = np.stack(np.meshgrid(phi, theta, indexing="ij"), axis=-1).reshape(-1, 2)
+        e = np.column_stack([pt, np.zeros(len(pt))])
+        coords = {"surface": [f"Euler ({p:g}, {t:g})" for p, t in pt]}
+    coords.update(euler_phi=e[:, 0], euler_theta=e[:, 1], psi0=e[:, 2], angle=angle)
+    full = np.repeat(e, angle.size, axis=0)
+    full[:, 2] += np.tile(angle, len(e))
+    return full, coords, (len(e), angle.size)
+
+
+def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = None, euler: dict | None = None,
+                     electrical: Sequence[str] = ELECTRICAL, stress: Sequence[float] | None = None,
+                     tol: float = 1e-12) -> xr.Dataset:
+    """SAW, K^2, leaky wave and power flow of piezoelectric crystals over a scene's grid.
+
+    Parameters
+    ----------
+    materials : sequence of str
+        Piezoelectric database names.
+    cuts : sequence of str, optional
+        Named cuts (their Euler angles are applied to every material).
+    euler : dict, optional
+        ``{"phi": ..., "theta": ..., "psi": ...}``, each a number or a 1-D sequence, degrees
+        (the grid is their product). Exactly one of ``cuts`` and ``euler``.
+    electrical : sequence of {"free", "metallized"}
+    stress : sequence of float, optional
+        Uniaxial stress along the propagation, GPa; None: unstressed, no ``stress`` dim.
+    tol : float
+        Relative accuracy of rho c^2.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``material``, ``surface``, ``angle``, ``electrical``, [``stress``] (coordinates
+        ``cut``, ``euler_phi``, ``euler_theta``, ``euler_psi``; module docstring), with ``component`` (u1, u2, u3, phi) for
+        ``polarisation`` and ``partial_wave`` (1..4) for ``decay``; variables of
+        :data:`VARIABLES` (``K2``, ``c_limit`` and ``rho`` without ``electrical``).
+    """
+    import xarray as xr
+
+    from surfwave.real_crystals.piezo_materials import get_piezo_material
+    from surfwave.real_crystals.piezo_wave import piezo_wave
+    from surfwave.solvers.euler import euler_lab_axes
+
+    angles, oc, oshape = _orientations(cuts, euler)
+    R0 = euler_lab_axes(angles).reshape(-1, 3, 3)
+    s = np.array([0.0]) if stress is None else np.asarray(stress, dtype=float).reshape(-1)
+    n_o, n_s = R0.shape[0], s.size
+    R = np.repeat(R0, n_s, axis=0)                                   # orientation-major, stress inner
+    S = np.tile(s, n_o)
+    mats = [get_piezo_material(m) for m in materials]
+    el = list(electrical)
+    out: dict[str, np.ndarray] = {}
+    for i, m in enumerate(mats):
+        for j, cond in enumerate(el):
+            r = piezo_wave(m, R, S, electrical=cond, tol=tol)
+            for key in VARIABLES:
+                v = np.asarray(r[key])
+                if key not in out:
+                    out[key] = np.empty((len(mats), len(el)) + v.shape, dtype=v.dtype)
+                out[key][i, j] = v
+    grid = (len(mats), len(el)) + oshape + (n_s,)
+    dims = ("material", "electrical", "surface", "angle", "stress")
+    data_vars = {}
+    for key, arr in out.items():
+        trailing = arr.shape[3:]
+        arr = arr.reshape(grid + trailing)
+        vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay" else ())
+        if key in NO_ELECTRICAL:
+            arr, vdims = arr[:, 0], tuple(d for d in vdims if d != "electrical")
+        if arr.dtype == object:
+            arr = arr.astype(str)
+        data_vars[key] = (vdims, arr, dict(VARIABLES[key]))
+    coords = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
+              "electrical": ("electrical", np.array(el, dtype=str), COORDS["electrical"]),
+              "stress": ("stress", s, COORDS["stress"]),
+              "component": ("component", np.array(COMPONENTS), {"long_name": "u1 along the propagation, u2 "
+                            "along the inward normal, u3 in plane; phi the electric potential"}),
+              "partial_wave": ("partial_wave", np.arange(1, 5), {"long_name": "partial wave of the Stroh "
+                               "solution (1 = fastest decaying)", "units": "1"})}
+    coords.update(surface=("surface", np.asarray(oc["surface"], dtype=str), COORDS["surface"]),
+                  angle=("angle", oc["angle"], COORDS["angle"]),
+                  euler_phi=("surface", oc["euler_phi"], COORDS["euler_phi"]),
+                  euler_theta=("surface", oc["euler_theta"], COORDS["euler_theta"]),
+                  euler_psi=(("surface", "angle"), oc["psi0"][:, None] + oc["angle"][None, :], COORDS["euler_psi"]))
+    if "cut" in oc:
+        coords["cut"] = ("surface", np.asarray(oc["cut"], dtype=str), COORDS["cut"])
+    ds = xr.Dataset(data_vars, coords=coords).transpose("material", "surface", "angle", "electrical", "stress", ...)
+    if stress is None:
+        ds = ds.isel(stress=0, drop=True)
+    return ds
+
+
+def scene_points(n_materials: int, cuts, euler, electrical, stress) -> int:
+    """Number of solver points of a scene (for the grid cap), without building anything."""
+    n_o = len(cuts) if cuts is not None else int(np.prod([np.size(euler[k]) for k in ("phi", "theta", "psi")]))
+    return n_materials * n_o * len(electrical) * (len(stress) if stress else 1)
+
+
+__all__ = ["COMPONENTS", "METHOD", "UNITS_NOTE", "VARIABLES", "piezo_wave_sweep", "scene_points"]
