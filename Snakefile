@@ -50,7 +50,11 @@ try:
     SCENES = validate_config(
         config,
         Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml"),
-        sources=config_sources(["config/config.yaml", *workflow.configfiles]),
+        sources=config_sources(
+            f
+            for f in ["config/config.yaml", *workflow.configfiles]
+            if os.path.exists(f)
+        ),
     )
 except SceneError as exc:
     raise WorkflowError(str(exc)) from None

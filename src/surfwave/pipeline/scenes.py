@@ -66,7 +66,7 @@ def _strict_loader():
     """A SafeLoader that reads YAML 1.2 floats ("1.0e8") as floats and refuses duplicate keys."""
     import yaml
 
-    class StrictLoader(yaml.SafeLoader):
+    class StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml parser where built
         """SafeLoader + YAML 1.2 floats + :class:`DuplicateKeyError` on a repeated mapping key."""
 
         def construct_mapping(self, node, deep=False):
