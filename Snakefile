@@ -17,7 +17,12 @@ sys.path.insert(0, str(Path(workflow.basedir, "src")))
 from surfwave.data import cache
 from surfwave.data.integrity import set_aside_damaged
 from surfwave.pipeline.knobs import expected_cost
-from surfwave.pipeline.scenes import SceneError, selected, validate_config
+from surfwave.pipeline.scenes import (
+    SceneError,
+    config_sources,
+    selected,
+    validate_config,
+)
 
 min_version("9.13.1")
 
@@ -39,9 +44,17 @@ report: "workflow/report/workflow.rst"
 
 
 # Schema (with defaults) and physical ranges, before any job runs; errors name scene, key, value.
+# The config files are read once more to refuse duplicate keys (file, key, lines) and to
+# know which scenes were defined in more than one file (merged by Snakemake).
 try:
     SCENES = validate_config(
-        config, Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml")
+        config,
+        Path(workflow.basedir, "workflow", "schemas", "config.schema.yaml"),
+        sources=config_sources(
+            f
+            for f in ["config/config.yaml", *workflow.configfiles]
+            if os.path.exists(f)
+        ),
     )
 except SceneError as exc:
     raise WorkflowError(str(exc)) from None

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave import validate
 from surfwave.model_crystals import elastic
 from surfwave.solvers import long_wave, rayleigh, stroh
 from surfwave.model_crystals.lattices import build
@@ -109,7 +110,7 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
         raise InputError(f"directions other than the mirror ones need lattice 'fcc', got {lattice!r} "
                          f"with direction {direction!r}")
     angle = direction_angle("(001)", direction) if isinstance(direction, str) else direction
-    angle = np.asarray(angle, dtype=float)
+    angle = np.asarray(validate.angle_values(angle, "direction"), dtype=float)
     if angle.ndim > 1:
         raise InputError(f"angles must be a scalar or a 1-D array, got shape {angle.shape}")
     if loading == "in_plane_hydrostatic":
@@ -196,15 +197,13 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
     elif voigt is not None:
         if any(v is not None for v in (C11, C12, C44)):
             raise InputError("give either voigt= or C11, C12, C44, not both")
-        C6 = np.asarray(voigt, dtype=float)
-        if C6.shape != (6, 6):
-            raise InputError(f"voigt must be a 6 x 6 stiffness (GPa), got shape {C6.shape}")
-        if not np.allclose(C6, C6.T, rtol=1e-10, atol=0):
-            raise InputError("the Voigt stiffness must be symmetric")
+        C6 = validate.stiffness(voigt)
     else:
         for key, value in (("C11", C11), ("C12", C12), ("C44", C44)):
             if value is None:
                 raise InputError(f"{key} is missing: give C11, C12, C44 (GPa), voigt= or a material name")
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+                raise InputError(f"{key} must be one number (GPa), got {value!r}")
         C6 = cubic_voigt(C11, C12, C44)
     if toec is True and name is None:
         raise InputError("toec=True takes the third-order constants from the materials database: "
@@ -321,9 +320,9 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     1613.5
     >>> round(material("Cu", direction="[100]", stress=0.1, toec=True)["c_R"], 2)  # 2012.12 unstressed
     2019.06
-    >>> r = material("LiNbO3", cut="128Y-X")                # Kovacs set; published 3979-3997 m/s
+    >>> r = material("LiNbO3", cut="128Y-X")      # Warner 1967 set; published 3979 m/s, K^2 5.3 %
     >>> round(r["c_free"], 1), round(r["c_metallized"], 1), round(100 * r["K2"], 2)
-    (3989.6, 3878.0, 5.59)
+    (3994.2, 3887.6, 5.34)
     """
     from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
 
@@ -339,13 +338,15 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     if big > MAX_GPA:
         raise InputError(f"elastic constants must be in GPa; the largest is {big:.4g}, which looks like Pa "
                          "(divide by 1e9)")
-    if not np.isfinite(rho) or rho <= 0:
-        raise InputError(f"density rho must be positive, got {rho!r} kg/m^3")
+    rho = validate.density(rho)
+    stress = validate.real_array(stress, "stress").reshape(np.shape(stress))   # numbers only
     if not np.all(np.isfinite(np.asarray(stress, dtype=float))):
         raise InputError(f"stress must be finite, got {stress!r}")
     if np.abs(np.asarray(stress, dtype=float)).max() > MAX_GPA:
         raise InputError(f"stress must be in GPa; got {stress!r}, which looks like Pa (divide by 1e9)")
     which = direction if angle is None else angle
+    if not isinstance(which, str):
+        which = validate.angle_values(which, "direction" if angle is None else "angle")
     R = lab_axes(surface, which)
     scalar = R.ndim == 2
     R = R.reshape(-1, 3, 3)

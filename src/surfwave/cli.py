@@ -224,12 +224,26 @@ def _angles(text: str) -> np.ndarray | float:
         values = [float(v) for v in parts]
     except ValueError:
         raise InputError(f"--angle must be a number or START:STOP:STEP in degrees, got {text!r}") from None
+    from surfwave.pipeline.grids import MAX_POINTS
+    from surfwave.validate import MAX_ANGLE
+
+    bad = [v for v in values if not np.isfinite(v)]
+    if bad:
+        raise InputError(f"--angle must be finite numbers of degrees, got {bad[0]!r} in {text!r}")
+    big = [v for v in values[:2] if abs(v) > MAX_ANGLE]
+    if big:
+        raise InputError(f"--angle {big[0]!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose precision in "
+                         f"float64; reduce it modulo 360 (got {text!r})")
     if len(values) == 1:
         return values[0]
     if len(values) != 3 or values[2] <= 0 or values[1] < values[0]:
         raise InputError(f"--angle sweep must be START:STOP:STEP with STEP > 0 and STOP >= START, got {text!r}")
     start, stop, step = values
-    return start + step * np.arange(int(np.floor((stop - start) / step + 1e-9)) + 1)
+    n = np.floor((stop - start) / step + 1e-9) + 1
+    if n > MAX_POINTS:  # before any array is made: 0:1e9:1 would fill the memory
+        raise InputError(f"--angle sweep {text!r} has {n:.4g} angles, more than the limit of {MAX_POINTS}; "
+                         "use a larger STEP or a shorter range")
+    return start + step * np.arange(int(n))
 
 
 def _material_rows(r: dict) -> list[dict]:
@@ -363,7 +377,7 @@ def _default_configs() -> list[Path]:
 
 
 def _cmd_scenes(args) -> int:
-    from surfwave.pipeline.scenes import load_config, selected, validate_config
+    from surfwave.pipeline.scenes import config_sources, load_config, selected, validate_config
     from surfwave.pipeline.targets import paper_scenes, scene_outputs
 
     files = _default_configs() + list(args.configfile)
@@ -371,7 +385,7 @@ def _cmd_scenes(args) -> int:
     if missing:
         raise SurfwaveError(f"config file(s) not found: {missing}")
     config = load_config(files)
-    scenes = validate_config(config)
+    scenes = validate_config(config, sources=config_sources(files))
     run = set(selected(config, scenes))
     paper = set(paper_scenes())
     rows = []

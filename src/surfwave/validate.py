@@ -1,4 +1,5 @@
-"""The one validator for array arguments of the library (strains, angles, theta, stresses).
+"""The validators of the library's arguments: arrays (strains, angles, theta, stresses),
+propagation angles, densities and Voigt stiffnesses. Each error names the argument and value.
 
 Examples
 --------
@@ -35,12 +36,121 @@ def as_1d(values, name: str = "d_over_d0", *, finite: bool = True) -> np.ndarray
         Naming ``name``: for more than one dimension, for values that are not numbers, and
         (``finite``) for NaN or infinite entries.
     """
-    try:
-        a = np.atleast_1d(np.asarray(values, dtype=float))
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be numbers, got {values!r} ({exc})") from None
+    a = real_array(values, name)
     if a.ndim != 1:
         raise InputError(f"{name} must be a scalar or a 1-D array, got shape {a.shape}")
     if finite and not np.all(np.isfinite(a)):
-        raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:5]}")
+        raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:5].tolist()}")
     return a
+
+
+#: Largest |angle| (degrees) accepted: beyond 1e6 degrees the spacing of float64 values
+#: (1.2e-10 degrees at 1e6, 16384 degrees at 1e20) starts to eat the decimals a grid is
+#: rounded to, and the angle computed is no longer the angle labelled. Angles are not
+#: reduced modulo 360 because the label must be the value the user gave.
+MAX_ANGLE = 1.0e6
+#: Densities accepted (kg/m^3): below 1 no solid exists (silica aerogel, the lightest, is
+#: about 1 kg/m^3) and speeds can overflow (rho = 1e-300 gives c = inf); the upper end,
+#: far above osmium (22,590), admits the scaled-units habit rho = 1e9 with constants in
+#: GPa (speeds^2 then in units of C/rho) used in the docs and tests.
+MIN_RHO, MAX_RHO = 1.0, 1.0e12
+
+
+def brief(value, limit: int = 80) -> str:
+    """``repr(value)`` on one line, cut to ``limit`` characters (for error messages)."""
+    text = " ".join(repr(value.tolist() if isinstance(value, np.ndarray) else value).split())
+    return text if len(text) <= limit else text[:limit - 5] + " ...]"
+
+
+def real_array(values, name: str) -> np.ndarray:
+    """``values`` as a float array (at least 1-D); text, complex or ragged input refused."""
+    try:
+        raw = np.asarray(values)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be numbers, got {brief(values)} ({exc})") from None
+    if raw.dtype.kind in "USV":
+        raise InputError(f"{name} must be numbers, got text: {brief(values)}")
+    if raw.dtype.kind == "c":
+        raise InputError(f"{name} must be real numbers, got complex values: {brief(values)}")
+    try:
+        return np.atleast_1d(np.asarray(raw, dtype=float))
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"{name} must be numbers, got {brief(values)} ({exc})") from None
+
+
+def angle_values(values, name: str = "angle"):
+    """Propagation angle(s) in degrees: a float for a scalar, else a float array of shape (m,).
+
+    Raises
+    ------
+    InputError
+        Naming ``name`` and the value: not numbers, more than one dimension, empty, not
+        finite, or larger in magnitude than :data:`MAX_ANGLE`.
+
+    Examples
+    --------
+    >>> angle_values(30), angle_values([0, 45]).tolist()
+    (30.0, [0.0, 45.0])
+    >>> angle_values([])
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: angle must hold at least one angle (degrees), got []
+    """
+    a = as_1d(values, name)
+    if a.size == 0:
+        raise InputError(f"{name} must hold at least one angle (degrees), got {values!r}")
+    big = np.abs(a) > MAX_ANGLE
+    if big.any():
+        raise InputError(f"{name} = {float(a[big][0])!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose "
+                         "precision in float64 (the angle computed would not be the angle labelled); "
+                         "reduce it modulo 360")
+    return float(a[0]) if np.ndim(values) == 0 else a
+
+
+def density(rho, name: str = "rho") -> float:
+    """A density in kg/m^3 as a float in [:data:`MIN_RHO`, :data:`MAX_RHO`].
+
+    Examples
+    --------
+    >>> density(8960)
+    8960.0
+    >>> density(1e-300)
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: rho = 1e-300 kg/m^3 lies outside [1, 1e+12] kg/m^3 (no solid is lighter than 1 kg/m^3; is it in g/cm^3 or another unit?)
+    """
+    if isinstance(rho, np.ndarray) and rho.ndim == 0:
+        rho = rho.item()
+    if isinstance(rho, (bool, np.bool_)) or not isinstance(rho, (int, float, np.integer, np.floating)):
+        raise InputError(f"{name} must be one number (kg/m^3), got {rho!r}")
+    value = float(rho)
+    if not np.isfinite(value) or value <= 0:
+        raise InputError(f"density {name} must be positive and finite, got {rho!r} kg/m^3")
+    if not MIN_RHO <= value <= MAX_RHO:
+        raise InputError(f"{name} = {rho!r} kg/m^3 lies outside [{MIN_RHO:g}, {MAX_RHO:g}] kg/m^3 (no solid "
+                         "is lighter than 1 kg/m^3; is it in g/cm^3 or another unit?)")
+    return value
+
+
+def stiffness(voigt, name: str = "voigt") -> np.ndarray:
+    """A Voigt stiffness (6, 6) of real, finite numbers, symmetric (GPa, not checked here).
+
+    Raises
+    ------
+    InputError
+        Naming ``name``: text or complex entries, a shape other than (6, 6), NaN or
+        infinite entries (before the symmetry test, which NaN would fail misleadingly),
+        an asymmetric matrix (the largest asymmetry named).
+    """
+    C6 = real_array(voigt, name)
+    if C6.shape != (6, 6):
+        raise InputError(f"{name} must be a 6 x 6 stiffness (GPa), got shape {np.shape(voigt)}")
+    bad = ~np.isfinite(C6)
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        raise InputError(f"{name} must be finite, got {float(C6[i, j])!r} at row {i + 1}, column {j + 1}")
+    if not np.allclose(C6, C6.T, rtol=1e-10, atol=0):
+        i, j = np.unravel_index(np.argmax(np.abs(C6 - C6.T)), C6.shape)
+        raise InputError(f"the Voigt stiffness {name} must be symmetric: C{i + 1}{j + 1} = {float(C6[i, j])!r} but "
+                         f"C{j + 1}{i + 1} = {float(C6[j, i])!r}")
+    return C6

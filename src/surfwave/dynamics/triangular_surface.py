@@ -42,11 +42,14 @@ VARIABLES: dict[str, dict] = {
     "sine_law_deviation": {"long_name": "omega_lattice / omega_sine_law - 1", "units": "1",
                            "dims": ("strain", "theta")},
     "c2_R_long_wave": {"long_name": "squared Rayleigh speed from Eq. 20 with the long-wave sound speeds "
-                                    "of the bond sums (Eqs. A7, A11, A12)",
+                                    "of the bond sums (Eqs. A7, A11, A12); NaN where Eq. 20 has no root "
+                                    "in (0, c2_T_par) (no long-wave Rayleigh wave)",
                        "units": "K d0^2 / m", "dims": ("strain",)},
-    "depth": {"long_name": "rows of crystal the decimation coupled to the surface (2^steps)",
+    "depth": {"long_name": "rows of crystal the decimation coupled to the surface (2^steps); NaN where "
+                           "omega_lattice is NaN (see reason_lattice)",
               "units": "1", "dims": ("strain", "theta")},
-    "n_surface_modes": {"long_name": "number of bound surface modes below the bulk continuum",
+    "n_surface_modes": {"long_name": "number of bound surface modes below the bulk continuum; -1 where "
+                                     "no scan ran (bulk unstable, theta outside (0, pi) or at rounding)",
                         "units": "1", "dims": ("strain", "theta")},
     "polarisation": {"long_name": "|v_0|^2 / (|u_0|^2 + |v_0|^2) of the surface row (1 = normal)",
                      "units": "1", "dims": ("strain", "theta")},
@@ -174,7 +177,9 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     dict
         ``omega_lattice``, ``omega_lattice_error``, ``omega_bulk_min``, ``omega_sine_law``,
         ``sine_law_deviation``, ``polarisation`` (n, m) float; ``depth``,
-        ``n_surface_modes`` (n, m) int; ``c2_R_long_wave`` (n,); ``reason_lattice`` (n, m)
+        ``n_surface_modes`` (n, m) int (-1 where no scan ran); ``depth`` NaN where
+        ``omega_lattice`` is; ``c2_R_long_wave`` (n,) (NaN where Eq. 20 has no root in
+        (0, c2_T_par)); ``reason_lattice`` (n, m)
         str (named so that it does not clash with the ``reason`` of dispersion.solve).
         If several bound modes exist, the one selected is the one continuous with the long-wave
         Rayleigh wave: the root closest to omega_sine_law (reported in ``n_surface_modes``).
@@ -218,11 +223,15 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
     with np.errstate(all="ignore"):
         fs = np.stack([f(np.full((n, m), r))[0] for r in r_grid], axis=-1)
     change = np.signbit(fs[..., :-1]) != np.signbit(fs[..., 1:])
-    n_modes = change.sum(axis=-1)
+    n_modes = np.where(ok, change.sum(axis=-1), -1)  # -1: no scan ran (see reason)
     reason[ok & (n_modes == 0)] = "no bound surface mode below the bulk continuum"
     ok &= n_modes > 0
     # Pick the bracket closest to the long-wave sine law (continuity with the Rayleigh wave).
-    c2 = long_wave(pot, d_over_d0)["c2_R_cauchy"]
+    lw = long_wave(pot, d_over_d0)
+    c2 = lw["c2_R_cauchy"]
+    # Eq. (20)'s root is a Rayleigh speed only in (0, c2_T_par); outside (d/d0 0.5 and 0.7 of
+    # the harmonic lattice: negative) the long-wave crystal has no Rayleigh wave: NaN.
+    c2_rayleigh = np.where((c2 > 0) & (c2 < lw["c2_T_par"]), c2, np.nan)
     dx = 0.5 * as_1d(d_over_d0)
     with np.errstate(all="ignore"):
         w_sine = np.sqrt(c2)[:, None] / dx[:, None] * np.sin(th)[None, :]
@@ -281,9 +290,9 @@ def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 
         "omega_bulk_min": np.where(e_min > 0, np.sqrt(np.abs(e_min)), nan),
         "omega_sine_law": np.where(ok, w_sine, nan),
         "sine_law_deviation": np.where(ok, omega / w_sine - 1, nan),
-        "c2_R_long_wave": c2,
-        "depth": np.where(ok, 2.0**steps, 0.0),
-        "n_surface_modes": np.where(ok, n_modes, 0),
+        "c2_R_long_wave": c2_rayleigh,
+        "depth": np.where(ok, 2.0**steps, nan),
+        "n_surface_modes": n_modes,
         "polarisation": np.where(ok, pol, nan),
         "reason_lattice": reason,
     }

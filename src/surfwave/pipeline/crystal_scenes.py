@@ -19,7 +19,8 @@ import copy
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid
+from surfwave.pipeline.grids import (DECIMALS, MAX_POINTS, MAX_STRESS_GPA, SceneError, check_points,
+                                     expand_grid)
 
 
 #: Quantities an FCC scene with propagation angles can compute.
@@ -42,9 +43,21 @@ def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
                             f"as directions (choose from {list(ANGLE_QUANTITIES)})")
     try:
         angles = [float(a) for a in expand_grid(raw["directions"], f"{where}, key 'directions'")]
+        _check_angle_range(angles, f"{where}, key 'directions'")
     except SceneError as exc:
         return None, problems + [str(exc)]
     return (None if problems else angles), problems
+
+
+def _check_angle_range(angles, where: str) -> None:
+    """SceneError if an angle exceeds :data:`surfwave.validate.MAX_ANGLE` in magnitude."""
+    from surfwave.validate import MAX_ANGLE
+
+    big = [a for a in angles if abs(a) > MAX_ANGLE]
+    if big:
+        raise SceneError(f"{where}: value {big[0]!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose "
+                         "precision in float64 (the angle computed would not be the angle labelled); "
+                         "reduce it modulo 360")
 
 
 def crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
@@ -76,12 +89,19 @@ def crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> 
     if spec == "symmetric" or (isinstance(spec, dict) and "symmetric" in spec):
         # Each surface's range [0, w] by the step, w itself included (a mirror line), merged.
         step = float(spec.get("step", 1.0)) if isinstance(spec, dict) else 1.0
+        if not (np.isfinite(step) and step > 0):
+            raise SceneError(f"{where}, key 'angles': step {step!r} must be a positive number of degrees")
         grid = set()
         for sf in surfaces:
             w = symmetry_reduced_range(sf, voigts)
+            if w / step + 1 > MAX_POINTS:
+                raise SceneError(f"{where}, key 'angles': step {step!r} gives {w / step + 1:.4g} angles over "
+                                 f"the {w:g} degrees of surface {sf}, more than the limit of {MAX_POINTS}")
             grid.update(np.round(np.arange(0.0, w - 1e-9, step), DECIMALS).tolist() + [w])
         return sorted(float(a) for a in grid), None
-    return [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")], None
+    angles = [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")]
+    _check_angle_range(angles, f"{where}, key 'angles'")
+    return angles, None
 
 
 def check_crystal_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
@@ -99,12 +119,17 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
     from surfwave.real_crystals.materials import get_material
 
     where = f"scene {name!r}"
-    mats = []
+    mats, given = [], {}
     for m in raw["materials"]:
         try:
-            mats.append(get_material(m))
+            mat = get_material(m)
         except InputError as exc:
             raise SceneError(f"{where}, key 'materials': value {m!r}: {exc}") from None
+        if mat.name in given:  # "Cu" and "copper" (or "CU"): two labels Cu in one cube
+            raise SceneError(f"{where}, key 'materials': values {given[mat.name]!r} and {m!r} name the same "
+                             f"material {mat.name!r}; give it once")
+        given[mat.name] = m
+        mats.append(mat)
     surfaces = []
     for sf in raw["surfaces"]:
         try:
@@ -116,6 +141,11 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
     stress = None
     if "stress" in raw:
         stress = [float(x) for x in expand_grid(raw["stress"], f"{where}, key 'stress'")]
+        big = [x for x in stress if abs(x) > MAX_STRESS_GPA]
+        if big:
+            raise SceneError(f"{where}, key 'stress': value {big[0]!r} is in GPa and beyond "
+                             f"{MAX_STRESS_GPA:g} GPa: it looks like Pa (divide by 1e9: "
+                             f"{big[0] / 1e9:g} GPa)")
         for loading in raw["loading"]:
             for sf in surfaces:
                 try:  # an axis_<hkl> must lie in every surface: no stress on the free face
@@ -133,10 +163,10 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
                     f"material(s) {lacking}; remove them or use toec: [false]")
     elif raw.get("toec", [False]) != [False] or raw.get("loading", ["along"]) != ["along"]:
         raise SceneError(f"{where}, key 'stress': 'loading' and 'toec' need a stress grid")
-    n = len(mats) * len(surfaces) * len(angles) * (len(stress) * len(raw["loading"]) * len(raw["toec"])
-                                                   if stress else 1)
-    if n > MAX_POINTS:
-        raise SceneError(f"{where}: {n} points exceed the limit of {MAX_POINTS}")
+    sizes = {"materials": len(mats), "surfaces": len(surfaces), "angles": len(angles)}
+    if stress:
+        sizes.update({"stresses": len(stress), "loadings": len(raw["loading"]), "toec": len(raw["toec"])})
+    check_points(where, sizes)
     return {
         "name": name,
         "kind": "crystal",

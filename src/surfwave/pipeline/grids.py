@@ -11,7 +11,46 @@ from surfwave.errors import SceneError
 
 #: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
 DECIMALS = 12
+#: Most points one grid, and one scene's product of grids, may hold: checked before any job
+#: (a scene beyond it would run for hours or exhaust memory; split it into scenes).
 MAX_POINTS = 100_000
+#: Largest |stress| in GPa a scene may give (as surfwave.api.MAX_GPA): larger values are
+#: almost surely in Pa (1.0e+8 Pa = 0.1 GPa).
+MAX_STRESS_GPA = 1.0e5
+
+
+def check_points(where: str, sizes: dict[str, int]) -> int:
+    """The number of points of a scene (the product of its grid sizes), or SceneError.
+
+    Parameters
+    ----------
+    where : str
+        "scene 'name'", the start of the message.
+    sizes : dict
+        Grid name -> number of values, e.g. {"potentials": 2, "angles": 90001, "d/d0": 50001}.
+
+    Raises
+    ------
+    SceneError
+        The product exceeds :data:`MAX_POINTS`; the message names every factor.
+
+    Examples
+    --------
+    >>> check_points("scene 's'", {"angles": 3, "d/d0": 4})
+    12
+    >>> check_points("scene 's'", {"angles": 90001, "d/d0": 50001})
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.SceneError: scene 's': 90001 angles x 50001 d/d0 = 4500140001 points exceed the limit of 100000 points per scene; split it into several scenes or use coarser grids
+    """
+    n = 1
+    for size in sizes.values():
+        n *= int(size)
+    if n > MAX_POINTS:
+        factors = " x ".join(f"{size} {name}" for name, size in sizes.items())
+        raise SceneError(f"{where}: {factors} = {n} points exceed the limit of {MAX_POINTS} points per "
+                         "scene; split it into several scenes or use coarser grids")
+    return n
 
 
 

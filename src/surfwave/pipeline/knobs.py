@@ -82,7 +82,20 @@ def _table() -> dict[str, dict[str, Knob]]:
                         "absolute quadrature error in k_B: rounding limits the error "
                         "estimate to a few 1e-12, so a tolerance below 1e-10 cannot be met"),
         },
+        # real-crystal scenes ($defs/crystal_scene)
+        "surface_wave": {
+            "tol": Knob(None, 1.0e-14, 1.0e-6,
+                        "relative accuracy of rho c^2 asked of the Stroh root search "
+                        "(surfwave.solvers.stroh.surface_wave, default 1e-12): the range "
+                        "benchmarks/bench_stroh.py measures; below 1e-14 rounding stops the "
+                        "search (genuine surface waves come out as 'pseudo' NaN at 1e-30), "
+                        "above 1e-6 c_R moves by more than the figures show (1 % at 0.5)"),
+        },
     }
+
+
+#: Accuracy blocks of real-crystal scenes ($defs/crystal_scene); the others are model scenes'.
+CRYSTAL_BLOCKS = ("surface_wave",)
 
 
 _CACHE: dict = {}
@@ -105,7 +118,9 @@ def inject(schema: dict) -> dict:
         here (the two lists must match).
     """
     out = copy.deepcopy(schema)
-    blocks = out["$defs"]["scene"]["properties"]["accuracy"]["properties"]
+    blocks = dict(out["$defs"]["scene"]["properties"]["accuracy"]["properties"])
+    crystal = out["$defs"].get("crystal_scene", {}).get("properties", {}).get("accuracy", {})
+    blocks.update(crystal.get("properties", {}))
     table = knobs()
     if set(blocks) != set(table):
         raise KeyError(f"schema accuracy blocks {sorted(blocks)} differ from the library's {sorted(table)}")

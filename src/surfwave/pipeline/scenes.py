@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 import copy
+import re
 from pathlib import Path
 from typing import Any
 
@@ -30,8 +31,9 @@ from surfwave.errors import SurfwaveError, InputError
 from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.model_crystals.potentials import get_potential
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
+from surfwave.pipeline.grids import (DECIMALS, MAX_POINTS, SceneError, check_points,  # noqa: F401 (public)
+                                     expand_grid, theta_grid)
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
-from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, expand_grid, theta_grid  # noqa: F401 (public)
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).
 SCHEMA_PATH = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "config.schema.yaml"
@@ -54,6 +56,99 @@ def _where(path) -> str:
         key = "/".join(str(p) for p in parts[2:]) or "(scene)"
         return f"scene {parts[1]!r}, key {key!r}"
     return f"key {'/'.join(str(p) for p in parts) or '(top level)'!r}"
+
+
+#: A number with an exponent that PyYAML (YAML 1.1) reads as text: "1.0e8", "1e8", "1e-3"
+#: without a dot or a sign after e. YAML 1.2 (and every user) reads them as floats.
+_YAML12_FLOAT = re.compile(r"^[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)[eE][-+]?[0-9]+$")
+
+
+def _strict_loader():
+    """A SafeLoader that reads YAML 1.2 floats ("1.0e8") as floats and refuses duplicate keys."""
+    import yaml
+
+    class StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml parser where built
+        """SafeLoader + YAML 1.2 floats + :class:`DuplicateKeyError` on a repeated mapping key."""
+
+        def construct_mapping(self, node, deep=False):
+            seen: dict = {}
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge" or not isinstance(key_node, yaml.ScalarNode):
+                    continue
+                key = (key_node.tag, key_node.value)
+                line = key_node.start_mark.line + 1
+                if key in seen:
+                    raise DuplicateKeyError(key_node.value, line, seen[key])
+                seen[key] = line
+            return super().construct_mapping(node, deep)
+
+    StrictLoader.add_implicit_resolver("tag:yaml.org,2002:float", _YAML12_FLOAT, list("-+0123456789."))
+    return StrictLoader
+
+
+class DuplicateKeyError(ValueError):
+    """A key repeated in one YAML mapping (YAML itself would silently keep the last one)."""
+
+    def __init__(self, key: str, line: int, first: int):
+        super().__init__(f"duplicate key {key!r} at line {line} (first defined at line {first}): YAML "
+                         "keeps only the last definition; rename or remove one")
+        self.key, self.line, self.first = key, line, first
+
+
+def load_yaml(path: str | Path):
+    """A config file read with YAML 1.2 floats ("1.0e8" is the float 1e8), duplicate keys refused.
+
+    Raises
+    ------
+    SceneError
+        Naming the file, the duplicated key and both lines; or the file's YAML syntax error.
+    """
+    import yaml
+
+    with open(path) as fh:
+        try:
+            return yaml.load(fh, Loader=_strict_loader())
+        except DuplicateKeyError as exc:
+            raise SceneError(f"config file {str(path)!r}: {exc}") from None
+        except yaml.YAMLError as exc:
+            raise SceneError(f"config file {str(path)!r} is not valid YAML: {' '.join(str(exc).split())}") from None
+
+
+def config_sources(paths) -> dict[str, list[str]]:
+    """Scene name -> the config files (each once, in the given order) that define it.
+
+    Reads every file with :func:`load_yaml`, so a duplicate key in any of them is refused
+    here (SceneError naming file, key and lines). Snakemake merges a scene defined in two
+    files key by key (later files win); :func:`validate_config` uses this map to say so
+    when such a merged scene has problems.
+    """
+    sources: dict[str, list[str]] = {}
+    seen = set()
+    for path in paths:
+        real = Path(path).resolve()
+        if real in seen:
+            continue
+        seen.add(real)
+        data = load_yaml(path) or {}
+        scenes = data.get("scenes") if isinstance(data, dict) else None
+        for name in scenes if isinstance(scenes, dict) else ():
+            sources.setdefault(str(name), []).append(str(path))
+    return sources
+
+
+def _resolve_floats(node):
+    """Strings that are YAML 1.2 floats ("1.0e8") as floats, in place, in dicts and lists.
+
+    Snakemake reads config files with PyYAML (YAML 1.1), which leaves 1.0e8 as text; the
+    schema would then refuse it with a message about types. No key of the config takes text
+    that looks like a number (scene names start with a letter), so this is safe.
+    """
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in list(items):
+        if isinstance(value, str) and _YAML12_FLOAT.match(value.strip()):
+            node[key] = float(value)
+        elif isinstance(value, (dict, list)):
+            _resolve_floats(value)
 
 
 def load_schema(path: str | Path | None = None) -> dict:
@@ -102,12 +197,34 @@ def _join(messages: list[str]) -> str:
     return f"{len(messages)} problems in the config:\n" + "\n".join(f"  - {m}" for m in messages)
 
 
+def _branch_error(err):
+    """The error to report for a failed ``oneOf``: from the branch the value was meant for.
+
+    A branch whose errors all lie inside the value (a key of the right kind of object, an
+    item of a list) matched the value's shape: report its deepest error (``{symmetric: true,
+    step: 0}`` -> the step, not "'symmetric' was expected"). Otherwise the shallowest error
+    that is not a type mismatch.
+    """
+    depth = len(err.absolute_path)
+    branches: dict = {}
+    for e in err.context:
+        branches.setdefault(e.relative_schema_path[0] if e.relative_schema_path else 0, []).append(e)
+    inside = [errs for errs in branches.values()
+              if all(len(e.absolute_path) > depth for e in errs)]
+    if inside:
+        errs = min(inside, key=len)
+        return max(errs, key=lambda e: len(e.absolute_path))
+    deeper = [e for e in err.context if e.validator not in ("type", "const", "enum")]
+    if deeper:
+        return min(deeper, key=lambda e: len(e.absolute_path))
+    deeper = [e for e in err.context if e.validator != "type"]
+    return min(deeper, key=lambda e: len(e.absolute_path)) if deeper else err
+
+
 def _schema_message(err) -> str:
     """One line naming the scene, the key and the offending value of a schema error."""
-    if err.validator == "oneOf":  # a list or a grid: report the branch of the value's type
-        deeper = [e for e in err.context if e.validator != "type"]
-        if deeper:
-            err = min(deeper, key=lambda e: len(e.absolute_path))
+    while err.validator == "oneOf" and err.context:  # report the branch of the value's shape
+        err = _branch_error(err)
     path = list(err.absolute_path)
     hint = err.schema.get("description", "") if isinstance(err.schema, dict) else ""
     props = err.schema.get("properties", {}) if isinstance(err.schema, dict) else {}
@@ -180,6 +297,11 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
         theta = theta_grid(raw["theta"], f"{where}, key 'theta'")
     except SceneError as exc:
         problems.append(str(exc))
+    if angles is not None and d is not None and not problems:
+        try:  # every (potential, angle, d/d0) is a point of the elastic and rayleigh cubes
+            check_points(where, {"potentials": len(pots), "angles": len(angles), "d/d0": len(d)})
+        except SceneError as exc:
+            problems.append(str(exc))
     if problems:
         return None, problems
     return {
@@ -196,8 +318,22 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     }, []
 
 
-def validate_config(config: dict, schema: dict | str | Path | None = None) -> dict[str, dict]:
+def _redefined(name: str, files: list[str]) -> str:
+    return (f"scene {name!r} is defined in {files[0]} and again in {', '.join(files[1:])}: scene {name!r} "
+            f"redefines the scene of {files[0]} and Snakemake merges the two key by key (the later file "
+            "wins), so the problems above may name keys you never wrote; to define a new scene, give it "
+            "a name of its own")
+
+
+def validate_config(config: dict, schema: dict | str | Path | None = None,
+                    sources: dict[str, list[str]] | None = None) -> dict[str, dict]:
     """Validate the whole config (defaults filled in place) and expand every scene.
+
+    Strings that are YAML 1.2 floats ("1.0e8", which PyYAML and so Snakemake read as text)
+    are turned into floats first, in place. A scene defined in several config files
+    (``sources``, from :func:`config_sources`) is the key-by-key merge Snakemake makes of
+    them: redefining a default scene's name extends that scene; if the merge has problems,
+    one more line says where they may come from.
 
     Returns
     -------
@@ -212,11 +348,15 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
         combinations, impossible d/d0, malformed grids, unknown scene names in ``run``:
         every problem of the config at once, one line each.
     """
+    _resolve_floats(config)
     errors = _schema_errors(config, schema)
     problems = list(dict.fromkeys(_schema_message(e) for e in errors))
     raw_scenes = config.get("scenes") if isinstance(config.get("scenes"), dict) else {}
     broken = {str(e.absolute_path[1]) for e in errors
               if len(e.absolute_path) >= 2 and e.absolute_path[0] == "scenes"}
+    for name in sorted(broken):
+        if len((sources or {}).get(name, [])) > 1:
+            problems.append(_redefined(name, sources[name]))
     scenes: dict[str, dict] = {}
     for name, raw in raw_scenes.items():
         if name in broken or not isinstance(raw, dict):
@@ -227,6 +367,8 @@ def validate_config(config: dict, schema: dict | str | Path | None = None) -> di
             check = check_piezo_scene
         scene, found = check(name, raw)
         problems += found
+        if found and len((sources or {}).get(name, [])) > 1:
+            problems.append(_redefined(name, sources[name]))
         if scene is not None:
             scenes[name] = scene
     run = config.get("run", [])
@@ -288,11 +430,10 @@ def job_params(scene: dict, stage: str) -> dict[str, Any]:
 
 
 def load_config(paths=("config/config.yaml",)) -> dict:
-    """Read and merge YAML config files the way Snakemake does (later files win, dicts merge)."""
-    import yaml
+    """Read and merge YAML config files the way Snakemake does (later files win, dicts merge).
 
-    from surfwave.data.paper import SAFE_LOADER
-
+    Each file is read by :func:`load_yaml` (YAML 1.2 floats, duplicate keys refused).
+    """
     def merge(a, b):
         for k, v in b.items():
             if isinstance(v, dict) and isinstance(a.get(k), dict):
@@ -303,6 +444,5 @@ def load_config(paths=("config/config.yaml",)) -> dict:
 
     config: dict = {}
     for p in paths:
-        with open(p) as fh:
-            merge(config, yaml.load(fh, Loader=SAFE_LOADER) or {})
+        merge(config, load_yaml(p) or {})
     return config

@@ -34,6 +34,10 @@ import numpy as np
 
 from surfwave.errors import InputError
 
+#: Largest |Miller index| accepted (larger ones overflow int64 or resolve angles below
+#: float64 precision; real surfaces and directions have small indices).
+MAX_INDEX = 10**6
+
 _MILLER = re.compile(r"^\s*([\[(<{])\s*(.*?)\s*([\])>}])\s*$")
 
 
@@ -52,11 +56,17 @@ def _parse_indices(text: str, brackets: str, kind: str) -> np.ndarray:
         if "".join(parts) != body:
             parts = []
     try:
-        idx = np.array([int(p) for p in parts], dtype=int)
+        values = [int(p) for p in parts]
     except ValueError:
-        idx = np.zeros(0, dtype=int)
-    if idx.size != 3:
+        values = []
+    if len(values) != 3:
         raise InputError(f"the {kind} {text!r} must have three integer indices")
+    big = [v for v in values if abs(v) > MAX_INDEX]
+    if big:
+        raise InputError(f"the {kind} {text!r} has the index {big[0]}: Miller indices must not exceed "
+                         f"{MAX_INDEX} in magnitude (angles between such directions are below float64 "
+                         "resolution)")
+    idx = np.array(values, dtype=int)
     if not idx.any():
         raise InputError(f"the {kind} {text!r} is the zero vector")
     return idx

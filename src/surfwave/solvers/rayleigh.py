@@ -391,10 +391,7 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
     K1, K2 = decay_constants(Xr, a, b, c, d, f)
     c2_R = np.where(has, Xr / rho, np.nan)
     nan_c = complex(np.nan, np.nan)
-    reason = np.full(a.shape, "", dtype=object)
-    reason = np.where(~has, REASON_NOROOT, reason)
-    reason = np.where(~has & ((b <= 0) | (d <= 0)), REASON_PERP, reason)
-    reason = np.where(~has & (c <= 0), REASON_SHEAR, reason)
+    reason = _reasons(has, b, c, d)
     wave_type = np.where(has, np.where(np.isfinite(c2_SH) & (c2_R >= c2_SH), "supersonic_decoupled", "surface"), "none")
     return {
         "c2_R": c2_R,
@@ -405,7 +402,29 @@ def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, n
     }
 
 
-def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
+def _reasons(has: np.ndarray, b, c, d) -> np.ndarray:
+    """Why c2_R is NaN where ``has`` is False ("" where it is not), object array like ``has``."""
+    reason = np.full(np.shape(has), "", dtype=object)
+    reason = np.where(~has, REASON_NOROOT, reason)
+    reason = np.where(~has & ((b <= 0) | (d <= 0)), REASON_PERP, reason)
+    return np.where(~has & (c <= 0), REASON_SHEAR, reason).astype(object)
+
+
+def _check_rho(rho) -> np.ndarray:
+    """rho as a float array; InputError naming rho unless every value is positive and finite."""
+    from surfwave.errors import InputError
+
+    try:
+        r = np.asarray(rho, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"rho must be a positive number or array of them, got {rho!r}") from None
+    if not (np.all(r > 0) and np.all(np.isfinite(r))):
+        bad = np.atleast_1d(r)[~((np.atleast_1d(r) > 0) & np.isfinite(np.atleast_1d(r)))]
+        raise InputError(f"rho must be positive and finite (a density), got {bad[:3].tolist()}")
+    return r
+
+
+def rayleigh_c2(S: np.ndarray, rho=1.0, *, reasons: bool = False):
     """Squared Rayleigh speed from the stress derivatives; NaN where no surface wave exists.
 
     Parameters
@@ -413,12 +432,27 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     S : ndarray, shape (..., d, d, d, d)
         Lab-frame stress derivatives (Eq. A11); times V with ``rho = 1`` in reduced units.
     rho : float or ndarray broadcastable to S.shape[:-4]
+        Positive and finite (else InputError naming rho).
+    reasons : bool, keyword only
+        Also return why each NaN is NaN (the reasons of :func:`solve`). Off by default: the
+        reasons cost a second pass over S (about as much as the solve itself), the default
+        path does not pay for them.
 
     Returns
     -------
-    ndarray, shape S.shape[:-4]
+    c2 : ndarray, shape S.shape[:-4]
         c_R^2 in the units of S / rho. Supersonic decoupled sagittal waves are included
         (see :func:`solve` for the wave type).
+    reason : ndarray of str (object), shape S.shape[:-4]
+        Only with ``reasons=True``: "" where c2 is a number, else :data:`REASON_SHEAR`,
+        :data:`REASON_PERP` or :data:`REASON_NOROOT`.
+
+    Raises
+    ------
+    InputError
+        rho not positive and finite.
+    SymmetryError
+        S not orthotropic in the lab frame (Eq. 17 does not apply).
 
     Examples
     --------
@@ -428,10 +462,19 @@ def rayleigh_c2(S: np.ndarray, rho=1.0) -> np.ndarray:
     >>> S[0,1,0,1] = S[0,1,1,0] = S[1,1,0,0] = 1.0
     >>> round(float(rayleigh_c2(S)), 6)  # 2 - 2/sqrt(3)
     0.845299
+    >>> S[0, 1, 0, 1] = S[0, 1, 1, 0] = -1.0  # shear-unstable along the surface
+    >>> c2, why = rayleigh_c2(S, reasons=True)
+    >>> bool(np.isnan(c2)), str(why) == REASON_SHEAR
+    (True, True)
     """
+    r = _check_rho(rho)
     S = np.asarray(S, dtype=float)
     X, has = (v.reshape(S.shape[:-4]) for v in _solve_flat(S))
-    return np.where(has, X / np.asarray(rho, dtype=float), np.nan)
+    c2 = np.where(has, X / r, np.nan)
+    if not reasons:
+        return c2
+    _, b, c, d, _ = _sagittal_components(S)
+    return c2, _reasons(np.broadcast_to(has, c2.shape), b, c, d)
 
 
 def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
