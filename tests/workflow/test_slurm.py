@@ -17,6 +17,7 @@ into failures, SURFWAVE_SLURM_BUDGET (seconds, default 600) bounds the whole tes
 """
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import shutil
@@ -375,6 +376,10 @@ def test_slurm_profile_on_local_cluster(tmp_path):
     reason = why_not_runnable()
     if reason:
         cannot(reason)
+    if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+        # checked before any install: the plugin is only in .venv-cluster (environment-cluster.lock)
+        cannot(f"snakemake-executor-plugin-slurm is not installed in {sys.prefix}: run "
+               "`make test-slurm`, which uses .venv-cluster (`make cluster-env`)")
     previous = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         stop_stale_daemons()
