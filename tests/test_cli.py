@@ -72,3 +72,30 @@ def test_cache_info_and_clear(tmp_path, capsys):
     assert "removed 2" in capsys.readouterr().out
     assert main(["cache", "info", "--root", str(tmp_path)]) == 0
     assert "entries: 0" in capsys.readouterr().out
+
+
+def test_cache_clear_refuses_results_and_user_data(tmp_path, capsys):
+    """`surfwave cache clear --root results` once deleted every cube and figure and said
+    "removed 0 cache entries"; now: exit 2, a message naming foreign files, nothing deleted.
+    `cache info` on such a directory says it is not a surfwave cache."""
+    from surfwave.data import cache
+
+    results = tmp_path / "results"
+    cache.cached_points("demo", {"what": "cli-test"}, np.array([1.0]), lambda d: {"x": d},
+                        results / "cache")
+    cube = results / "table1" / "bulk.nc"
+    cube.parent.mkdir()
+    cube.write_bytes(b"CDF")
+    tex = tmp_path / "mydata" / "paper" / "main.tex"
+    tex.parent.mkdir(parents=True)
+    tex.write_text("x")
+    for root in (results, tmp_path / "mydata"):
+        assert main(["cache", "clear", "--root", str(root)]) == 2
+        err = capsys.readouterr().err
+        assert "not a surfwave cache" in err and "removed" not in err
+        assert main(["cache", "info", "--root", str(root)]) == 2
+        assert "not a surfwave cache" in capsys.readouterr().err
+    assert cube.exists() and tex.exists()
+    assert main(["cache", "clear", "--results", str(results)]) == 0
+    assert "removed 1 cache entries" in capsys.readouterr().out
+    assert cube.exists()

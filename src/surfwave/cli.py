@@ -173,7 +173,8 @@ def _parser() -> argparse.ArgumentParser:
                         description="The parameter cache of expensive points (RESULTS/cache).")
     csub = cc.add_subparsers(dest="action", metavar="ACTION", required=True, parser_class=_Parser)
     for name, text in (("info", "entries, size, hits and misses of the last run, and which cache was read"),
-                       ("clear", "delete every cache entry (results are kept)")):
+                       ("clear", "delete every cache entry (results are kept); refuses a directory that is not a "
+                                 "surfwave cache (no SURFWAVE_CACHE marker, or files that are not cache entries)")):
         a = csub.add_parser(name, help=text, description=text[0].upper() + text[1:] + ".")
         where = a.add_mutually_exclusive_group()
         where.add_argument("--results", type=Path, default=Path("results"), metavar="DIR",
@@ -441,14 +442,23 @@ def _cmd_cache(args) -> int:
     from surfwave.data import cache
 
     root = (args.root if args.root is not None else args.results / "cache").resolve()
+    ours, why = cache.check_store(root)
     if args.action == "info":
+        if not ours:
+            if args.json:
+                print(json.dumps({"root": str(root), "surfwave_cache": False, "reason": why}, indent=2))
+            else:
+                print(f"surfwave cache info: {why}", file=sys.stderr)
+            return 2
         info = cache.info(root)
         info["exists"] = root.is_dir()
         if args.json:
-            print(json.dumps(info, indent=2))
+            print(json.dumps({**info, "surfwave_cache": True, "reason": why}, indent=2))
             return 0
         print(f"cache: {root}" + ("" if info["exists"] else
                                   "  (no such directory: run from the workflow's directory or pass --results DIR)"))
+        if "older surfwave" in why:
+            print(f"note: {why}")
         for key, value in info.items():
             if key in ("root", "exists"):
                 continue
@@ -456,7 +466,9 @@ def _cmd_cache(args) -> int:
                 value = f"{value} bytes ({value / 1e6:.2f} MB)"
             print(f"{key}: {value}")
     else:
-        n = cache.clear(root)
+        n = cache.clear(root)  # refuses (InputError -> exit 2) anything not provably ours
+        if "older surfwave" in why:
+            print(f"note: {why}")
         print(f"removed {n} cache entries from {root}")
     return 0
 

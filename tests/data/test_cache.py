@@ -1,12 +1,14 @@
 """Parameter cache: only missing points computed, atomic entries, concurrency, info/clear."""
 from __future__ import annotations
 
+import json
 import multiprocessing as mp
 
 import numpy as np
 import pytest
 
 from surfwave.data import cache
+from surfwave.errors import InputError
 
 KEY = {"lattice": "fcc", "loading": "uniaxial", "potential": "lj", "direction": "[100]",
        "method": "test", "supercell": 2}
@@ -278,3 +280,83 @@ def test_potential_parameters_enter_the_key():
     a = cache.point_key("bulk", dict(KEY, potential=morse(3.0)), 1.0)[0]
     b = cache.point_key("bulk", dict(KEY, potential=morse(4.0)), 1.0)[0]
     assert a != b
+
+
+# --- clear deletes only what is provably ours (issue 20, item 10) -----------------------
+
+def _real_cache(root):
+    cache.start_run(root)
+    cache.cached_points("bulk", KEY, [0.9, 1.0], Counter(), root)
+    cache.cached_points("entropy", KEY, [1.0], Counter(), root)
+    return root
+
+
+def test_new_store_has_marker_and_clear_removes_only_entries(tmp_path):
+    """A store made by cached_points carries the marker; clear removes the 3 entries, the
+    statistics and stray temporary files, keeps the marker (the store exists, empty)."""
+    root = _real_cache(tmp_path / "cache")
+    assert json.loads((root / cache.MARKER).read_text())["format"] == cache.FORMAT
+    (root / "bulk" / ".tmp-killed12.npz").write_bytes(b"partial")
+    assert cache.clear(root) == 3
+    assert sorted(p.name for p in root.iterdir()) == [cache.MARKER]
+
+
+def test_clear_refuses_a_results_directory(tmp_path):
+    """`--root results` (cubes and figures of two scenes beside the cache): nothing deleted."""
+    results = tmp_path / "results"
+    _real_cache(results / "cache")
+    files = [results / s / f for s in ("table1", "fig2") for f in ("bulk.nc", "figure.pdf")]
+    for f in files:
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_bytes(b"CDF\x01 precious")
+    before = sorted(p for p in results.rglob("*"))
+    with pytest.raises(InputError, match=r"not a surfwave cache.*fig2/bulk.nc"):
+        cache.clear(results)
+    assert sorted(p for p in results.rglob("*")) == before
+
+
+def test_clear_refuses_user_files_even_in_a_marked_store(tmp_path):
+    """A user's .tex one level below a marked store (or at its root): refused, kept."""
+    root = _real_cache(tmp_path / "cache")
+    tex = root / "bulk" / "notes.tex"
+    tex.write_text("\\section{mine}")
+    with pytest.raises(InputError, match="bulk/notes.tex"):
+        cache.clear(root)
+    assert tex.exists() and len(list((root / "bulk").glob("*.npz"))) == 2
+    mydata = tmp_path / "mydata"
+    (mydata / "paper").mkdir(parents=True)
+    (mydata / "paper" / "main.tex").write_text("x")
+    with pytest.raises(InputError, match=r"no SURFWAVE_CACHE marker.*paper/main.tex"):
+        cache.clear(mydata)
+    assert (mydata / "paper" / "main.tex").read_text() == "x"
+
+
+def test_unmarked_store_of_older_code(tmp_path):
+    """A cache written before the marker existed (every name ours): accepted and cleared;
+    one foreign file in it: refused. A marker of another format: refused."""
+    root = _real_cache(tmp_path / "cache")
+    (root / cache.MARKER).unlink()
+    ok, why = cache.check_store(root)
+    assert ok and "older surfwave" in why
+    assert cache.clear(root) == 3
+    root2 = _real_cache(tmp_path / "cache2")
+    (root2 / cache.MARKER).unlink()
+    (root2 / "README").write_text("mine")
+    assert not cache.check_store(root2)[0]
+    with pytest.raises(InputError):
+        cache.clear(root2)
+    (root2 / "README").unlink()
+    (root2 / cache.MARKER).write_text('{"format": "something-else"}')
+    with pytest.raises(InputError, match="format"):
+        cache.clear(root2)
+    assert len(list((root2 / "bulk").glob("*.npz"))) == 2
+
+
+def test_existing_foreign_directory_is_not_marked(tmp_path):
+    """Pointing the cache at a folder with user files works, but does not make it ours."""
+    (tmp_path / "thesis.tex").write_text("x")
+    cache.cached_points("bulk", KEY, [1.0], Counter(), tmp_path)
+    assert not (tmp_path / cache.MARKER).exists()
+    with pytest.raises(InputError):
+        cache.clear(tmp_path)
+    assert (tmp_path / "thesis.tex").exists()

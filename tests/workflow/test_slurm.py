@@ -17,6 +17,7 @@ into failures, SURFWAVE_SLURM_BUDGET (seconds, default 600) bounds the whole tes
 """
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import shutil
@@ -29,7 +30,7 @@ import time
 from pathlib import Path
 
 import pytest
-from test_workflow import make_workdir  # the workflow copy with a tiny config
+from test_workflow import make_workdir, scheduled, smk  # the workflow copy with a tiny config
 
 REPO = Path(__file__).resolve().parents[2]
 SNAKEMAKE = Path(sys.executable).with_name("snakemake")
@@ -361,6 +362,23 @@ def test_profiles_keep_cluster_runs_free_of_laptop_settings():
     assert 3 * slurm["slurm-init-seconds-before-status-checks"] <= 300
 
 
+@pytest.mark.workflow
+def test_slurm_profile_dry_run(tmp_path):
+    """The profile as shipped plans the tiny scenes (no cluster needed). It needs the plugin,
+    which only .venv-cluster has (environment-cluster.lock): `make test-slurm` runs it there;
+    in the default environment it skips (a failure where the SLURM test is required)."""
+    if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+        reason = (f"snakemake-executor-plugin-slurm is not installed in {sys.prefix} (it is in "
+                  ".venv-cluster: `make test-slurm`)")
+        if os.environ.get("SURFWAVE_SLURM_REQUIRED"):
+            pytest.fail(reason)
+        pytest.skip(reason)
+    wd = make_workdir(tmp_path)
+    proc = smk(wd, "-n", "--profile", "profiles/slurm")
+    jobs = scheduled(proc)
+    assert ("rayleigh", "tiny_fcc") in jobs and ("entropy", "tiny_tri") in jobs
+
+
 def test_slurm_profile_on_local_cluster(tmp_path):
     if not os.environ.get("SURFWAVE_SLURM_TEST"):
         pytest.skip("opt-in: `make test-slurm` (needs root and the Debian archive; runs in CI)")
@@ -375,6 +393,10 @@ def test_slurm_profile_on_local_cluster(tmp_path):
     reason = why_not_runnable()
     if reason:
         cannot(reason)
+    if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+        # checked before any install: the plugin is only in .venv-cluster (environment-cluster.lock)
+        cannot(f"snakemake-executor-plugin-slurm is not installed in {sys.prefix}: run "
+               "`make test-slurm`, which uses .venv-cluster (`make cluster-env`)")
     previous = signal.signal(signal.SIGTERM, _on_sigterm)
     try:
         stop_stale_daemons()

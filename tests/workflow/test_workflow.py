@@ -223,13 +223,6 @@ def test_bad_config_fails_before_any_job(tmp_path, scene, words):
     assert not (wd / "results").exists()  # no job ran
 
 
-def test_slurm_profile_dry_run(tmp_path):
-    wd = make_workdir(tmp_path)
-    proc = smk(wd, "-n", "--profile", "profiles/slurm")
-    jobs = scheduled(proc)
-    assert ("rayleigh", "tiny_fcc") in jobs and ("entropy", "tiny_tri") in jobs
-
-
 def test_figures_and_report_exist_without_unexpected_fail(built):
     """Rule `all` also builds the figures the scenes allow and each user scene's summary.md;
     the reproduction report is the paper scenes' alone, so none is written here. Rendered from

@@ -26,7 +26,7 @@ meta = {**dispersion.VARIABLES, **lattice_dynamics.VARIABLES,
 
 
 d_all = np.asarray(job["d_over_d0"], dtype=float)
-sample = lattice_dynamics.check_sample(d_all.size, job["accuracy"]["check_points"])
+sample = lattice_dynamics.check_sample(d_all, job["accuracy"]["check_points"])
 meta["n_surface_modes"] = {**meta["n_surface_modes"],
                            "long_name": meta["n_surface_modes"]["long_name"] + " (-1: strain not checked)"}
 
@@ -48,8 +48,9 @@ def compute(pot):
 ds = stage.block_cube(job, compute, meta, by=("potential",), coords={"theta": theta})
 dev = np.abs(ds["omega_lattice_deviation"].values)
 ds.attrs.update(
-    lattice_check_points=f"{sample.size} of {d_all.size} strains (evenly spaced sample and the strains "
-                         "the dispersion figure draws); the others are NaN in omega_lattice, "
+    lattice_check_points=f"{sample.size} of {d_all.size} strains (those nearest to the lattice d/d0 = "
+                         f"1 + j {lattice_dynamics.CHECK_SPAN:g}/{job['accuracy']['check_points']}: "
+                         "stable when the grid is extended); the others are NaN in omega_lattice, "
                          f"reason_lattice '{lattice_dynamics.REASON_NOT_CHECKED}'",
     lattice_check_d_over_d0=d_all[sample],
     lattice_check_max_abs_deviation=float(np.nanmax(dev)) if np.isfinite(dev).any() else np.nan,

@@ -9,6 +9,12 @@ both leave a valid one, and a killed job leaves at most a stray temporary file (
 removed by :func:`clear`). An entry that cannot be read or does not match its key is
 treated as missing and recomputed.
 
+A store is marked as ours when it is created: the file ``SURFWAVE_CACHE`` at its root holds
+the format tag (:data:`FORMAT`). :func:`clear` deletes only what it can prove is an entry of
+ours (``<kind>/<64 hex>.npz``, ``.tmp-*`` files of our writer, the run statistics) and refuses
+a directory without the marker or with any other file in it, naming a few; a store made by
+older code (no marker) is accepted when every file in it matches those patterns.
+
 Examples
 --------
 >>> import numpy as np, tempfile
@@ -24,6 +30,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import time
 import zipfile
 from pathlib import Path
@@ -45,6 +52,16 @@ DEFAULT_ROOT = Path("results") / "cache"
 CHUNK = 32
 _STATS = "stats"
 _RUN_MARKER = "RUN"
+#: The file at the root of every store, written when the store is created.
+MARKER = "SURFWAVE_CACHE"
+#: Format tag in the marker (JSON ``{"format": FORMAT, ...}``).
+FORMAT = "surfwave-cache/1"
+#: Names our writer gives: entries, temporary files of :func:`_atomic_write` and
+#: :func:`_atomic_write_text` (``mkstemp`` with prefix ``.tmp-``), run statistics.
+_ENTRY_RE = re.compile(r"[0-9a-f]{64}\.npz")
+_TMP_RE = re.compile(r"\.tmp-[A-Za-z0-9_]+(\.npz)?")
+_STATS_RE = re.compile(r"[0-9]+-[0-9]+-[A-Za-z0-9_.-]+\.json|" + _RUN_MARKER)
+_KIND_RE = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]*")
 
 
 def _canonical(obj):
@@ -163,6 +180,7 @@ def cached_points(
         raise InputError(f"cache kind must be a plain directory name, got {kind!r}")
     root = Path(root)
     d = as_1d(d_over_d0)
+    _ensure_store(root)
     ids = [point_key(kind, key, x) for x in d]
     found: dict[str, dict] = {}
     for digest, text in ids:
@@ -226,6 +244,7 @@ def job_key(job: Mapping, module: str, method: str, **point) -> dict:
 def start_run(root: str | Path = DEFAULT_ROOT) -> None:
     """Mark the start of a workflow run: :func:`info` counts hits and misses from here."""
     root = Path(root)
+    _ensure_store(root)
     stats = root / _STATS
     stats.mkdir(parents=True, exist_ok=True)
     for old in stats.glob("*.json"):  # records of earlier runs: info() no longer counts them
@@ -307,20 +326,113 @@ def run_summary(root: str | Path = DEFAULT_ROOT) -> list[str]:
     return [summary_line(label, h + m, h, m, s) for label, (h, m, s) in totals.items()]
 
 
-def clear(root: str | Path = DEFAULT_ROOT) -> int:
-    """Delete every entry (and statistics and stray temporary files); return the entries removed."""
+def _ensure_store(root: Path) -> None:
+    """Create the store (with its marker) if it does not exist yet.
+
+    An existing directory gets the marker only if it is empty or an unmarked store of older
+    code (every file matches our names); otherwise it is left unmarked, so :func:`clear`
+    refuses it (the cache itself still works there).
+    """
+    if (root / MARKER).is_file():
+        return
+    root.mkdir(parents=True, exist_ok=True)
+    if not _foreign_files(root):
+        _atomic_write_text(root / MARKER, json.dumps({"format": FORMAT, "created": time.time(),
+                                                      "surfwave": __version__}))
+
+
+def _marker_ok(root: Path) -> bool:
+    try:
+        return json.loads((root / MARKER).read_text()).get("format") == FORMAT
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
+def _foreign_files(root: Path) -> list[Path]:
+    """Every path below ``root`` that our writer would not have made (sorted)."""
+    foreign = []
+    for p in sorted(root.iterdir()):
+        if p.name == MARKER and p.is_file():
+            continue
+        if p.is_file() and _TMP_RE.fullmatch(p.name):  # the marker's temporary file
+            continue
+        if not p.is_dir() or p.is_symlink() or not _KIND_RE.fullmatch(p.name):
+            foreign.append(p)
+            continue
+        pattern = _STATS_RE if p.name == _STATS else _ENTRY_RE
+        for f in sorted(p.iterdir()):
+            if f.is_symlink() or not f.is_file() or not (pattern.fullmatch(f.name)
+                                                         or _TMP_RE.fullmatch(f.name)):
+                foreign.append(f)
+    return foreign
+
+
+def check_store(root: str | Path) -> tuple[bool, str]:
+    """Whether ``root`` is a surfwave cache, and why (one line).
+
+    Returns
+    -------
+    (bool, str)
+        True for a marked store whose every file is ours, or an unmarked one of older code
+        whose every file matches our names (the reason says which); False, naming the
+        problem and a few foreign files, for anything else (a missing directory is a store
+        with nothing in it: True).
+    """
     root = Path(root)
+    if not root.exists():
+        return True, f"{root} does not exist (an empty cache)"
+    if not root.is_dir():
+        return False, f"{root} is not a directory"
+    foreign = _foreign_files(root)
+    if foreign:
+        shown = ", ".join(str(f.relative_to(root)) for f in foreign[:5])
+        more = f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+        why = "has files that are not cache entries" if _marker_ok(root) else \
+            f"has no {MARKER} marker and holds files that are not cache entries"
+        return False, f"{root} is not a surfwave cache: it {why}: {shown}{more}"
+    if _marker_ok(root):
+        return True, f"{root} is a surfwave cache ({FORMAT})"
+    if (root / MARKER).exists():
+        return False, f"{root} is not a surfwave cache: its {MARKER} file has no format {FORMAT!r}"
+    if not any(root.iterdir()):
+        return True, f"{root} is empty (no cache entries)"
+    return True, (f"{root} has no {MARKER} marker (a cache of older surfwave): accepted, "
+                  "every file in it has the name of a cache entry")
+
+
+def clear(root: str | Path = DEFAULT_ROOT) -> int:
+    """Delete every entry, the run statistics and stray temporary files of a store.
+
+    Only files :func:`check_store` proves to be ours are touched, and a folder is removed
+    only once it is empty; the marker stays (the store exists, empty).
+
+    Returns
+    -------
+    int
+        The entries removed.
+
+    Raises
+    ------
+    InputError
+        If ``root`` is not a surfwave cache (no marker, a foreign marker, or any file that is
+        not ours: nothing is deleted then).
+    """
+    root = Path(root)
+    ok, why = check_store(root)
+    if not ok:
+        raise InputError(f"refusing to clear: {why}")
     if not root.is_dir():
         return 0
     removed = 0
-    for kind_dir in [p for p in root.iterdir() if p.is_dir()]:
+    for kind_dir in sorted(p for p in root.iterdir() if p.is_dir()):
+        pattern = _STATS_RE if kind_dir.name == _STATS else _ENTRY_RE
         for f in kind_dir.iterdir():
-            if f.is_file():
-                if f.suffix == ".npz" and not f.name.startswith(".tmp-") and kind_dir.name != _STATS:
+            if pattern.fullmatch(f.name) or _TMP_RE.fullmatch(f.name):
+                if kind_dir.name != _STATS and _ENTRY_RE.fullmatch(f.name):
                     removed += 1
                 f.unlink(missing_ok=True)
         try:
-            kind_dir.rmdir()
+            kind_dir.rmdir()  # only if empty: rmdir never removes a folder with anything in it
         except OSError:
             pass
     return removed

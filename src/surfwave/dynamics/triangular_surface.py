@@ -308,24 +308,60 @@ DEFAULT_CHECK_POINTS = 5
 REASON_NOT_CHECKED = "not checked (sample): the lattice-dynamics check ran on a sample of the strains"
 
 
-def check_sample(n: int, check_points: int = DEFAULT_CHECK_POINTS, always: int = 5) -> np.ndarray:
+#: Span of d/d0 over which ``check_points`` strains are checked (that of the default grids,
+#: 0.90 .. 1.10): the sample lattice has spacing ``CHECK_SPAN / check_points``.
+CHECK_SPAN = 0.2
+
+
+def check_sample(d_over_d0, check_points: int = DEFAULT_CHECK_POINTS) -> np.ndarray:
     """Indices of the strains the lattice-dynamics check runs on, shape (k,), sorted.
 
-    ``check_points`` evenly spaced indices (both ends included) united with the ``always``
-    evenly spaced ones that :func:`surfwave.plots.dispersion.plot_dispersion` draws (its
-    ``max_curves``), so the figure's markers are always checked. All strains when n is small.
+    The rule looks at the strain values, not at their number or position in the grid, so a
+    sample is stable when the grid is extended (a grid that grows keeps every strain it
+    checked, and the parameter cache serves them): the points of the global lattice
+    ``d/d0 = 1 + j h``, ``h = CHECK_SPAN / check_points`` (``check_points`` strains per 0.2
+    of d/d0), that lie within the grid's range, each represented by the grid strain nearest
+    to it (ties: the smaller strain; values compared to 1e-12, as the cache keys them).
+    Points outside the old range cannot displace an old choice, since a strain added
+    beyond the range is farther from every lattice point inside it than the old end was.
+    A grid narrower than h, with no lattice point inside, checks the one strain nearest to
+    the lattice (the only case an extension may change).
 
     Parameters
     ----------
-    n : int
-        Number of strains of the grid.
-    check_points, always : int
-        At least 1.
+    d_over_d0 : array_like, shape (n,)
+        The strain grid (any order).
+    check_points : int
+        At least 1: strains checked per 0.2 of d/d0.
+
+    Examples
+    --------
+    >>> check_sample([0.90, 0.95, 1.0, 1.05, 1.10]).tolist()   # the paper's triangular scene
+    [0, 1, 2, 3, 4]
+    >>> check_sample(np.linspace(0.90, 1.10, 41), 2).tolist()    # h = 0.1: 0.9, 1.0, 1.1
+    [0, 20, 40]
     """
-    if check_points < 1 or always < 1:
-        raise InputError(f"check_points and always must be >= 1, got {check_points} and {always}")
-    picks = [np.linspace(0, n - 1, min(k, n)).round().astype(int) for k in (check_points, always)]
-    return np.unique(np.concatenate(picks)) if n else np.zeros(0, int)
+    if isinstance(check_points, (bool, np.bool_)) or int(check_points) != check_points or check_points < 1:
+        raise InputError(f"check_points must be an integer >= 1, got {check_points!r}")
+    d = np.round(np.asarray(d_over_d0, dtype=float).ravel(), 12)
+    if d.size == 0:
+        return np.zeros(0, int)
+    if not np.isfinite(d).all():
+        raise InputError("check_sample: d_over_d0 must be finite")
+    h = CHECK_SPAN / int(check_points)
+    j = np.arange(np.ceil(np.round((d.min() - 1.0) / h, 9)), np.floor(np.round((d.max() - 1.0) / h, 9)) + 1)
+    lattice = 1.0 + j * h
+    if lattice.size == 0:  # narrower than h: the strain nearest to the lattice
+        near = 1.0 + np.round((d - 1.0) / h) * h
+        lattice = near[[int(np.argmin(np.round(np.abs(d - near), 12)))]]
+    order = np.lexsort((np.arange(d.size), d))  # by value, then position (duplicates: the first)
+    ds = d[order]
+    hi = np.clip(np.searchsorted(ds, lattice), 0, d.size - 1)  # first strain >= L (or the last)
+    lo = np.searchsorted(ds, ds[np.maximum(hi - 1, 0)])  # the first of the largest strain < L
+    below = np.round(np.abs(lattice - ds[lo]), 12)
+    above = np.round(np.abs(ds[hi] - lattice), 12)
+    picks = order[np.where(below <= above, lo, hi)]  # ties: the smaller strain
+    return np.unique(picks)
 
 
 def scatter_sample(checked: dict, index: np.ndarray, n: int) -> dict:

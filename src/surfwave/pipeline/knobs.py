@@ -69,8 +69,9 @@ def _table() -> dict[str, dict[str, Knob]]:
                         "improving (about 5e-9) below tol = 1e-8 (benchmarks/bench_dispersion.py); "
                         "below 1e-14 only the time grows"),
             "check_points": Knob(triangular_surface.DEFAULT_CHECK_POINTS, 1, None,
-                                 "strains (evenly spaced, plus those the dispersion figure draws) "
-                                 "checked by the numerical lattice-dynamics solve, about 1 s each at "
+                                 "strains per 0.2 of d/d0 checked by the numerical lattice-dynamics "
+                                 "solve (those nearest to the lattice d/d0 = 1 + j 0.2/check_points, "
+                                 "so extending a grid keeps its checks), about 1 s each at "
                                  "512 theta; the others are NaN in omega_lattice ('not checked "
                                  "(sample)'); the analytic omega is computed at every strain"),
         },
@@ -191,7 +192,7 @@ def expected_cost(scenes: dict, names, announce: float = ANNOUNCE_SECONDS) -> li
                 from surfwave.dynamics.triangular_surface import check_sample
 
                 checks = sc["accuracy"].get(stage, {}).get("check_points", _table()[stage]["check_points"].default)
-                points = n_pot * check_sample(n_d, checks).size
+                points = n_pot * check_sample(sc["d_over_d0"], checks).size
             else:
                 points = n_pot * n_d * (len(sc["directions"]) if stage == "bulk" else 1)
             per = SECONDS_PER_POINT[stage] * (len(sc["theta"]) if stage == "dispersion" else 1)

@@ -70,7 +70,8 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
         Output of :func:`surfwave.dynamics.triangular_surface.surface_mode` on the same grid (its
         ``omega_lattice`` is drawn as markers and ``omega_bulk_min`` shades the continuum).
     max_curves : int
-        At most this many strains are drawn (evenly picked).
+        At most this many strains are drawn (evenly picked; among the strains the lattice
+        dynamics checked, where ``omega_lattice`` is given, so every panel has its markers).
     """
     d, th = _coords(data, d_over_d0, theta)
     omega, wl, wt = _get(data, "omega"), _get(data, "omega_L"), _get(data, "omega_T")
@@ -80,7 +81,10 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
         bottom = _get(src, "omega_bulk_min")
     if isinstance(src, dict) and "omega_lattice" in src or (not isinstance(src, dict) and "omega_lattice" in src.variables):
         lattice = _get(src, "omega_lattice")
-    pick = np.unique(np.linspace(0, d.size - 1, min(max_curves, d.size)).round().astype(int))
+    rows = np.arange(d.size)
+    if lattice is not None and np.isfinite(lattice).any():  # draw checked strains (markers)
+        rows = rows[np.isfinite(np.asarray(lattice, dtype=float)).reshape(d.size, -1).any(axis=1)]
+    pick = rows[np.unique(np.linspace(0, rows.size - 1, min(max_curves, rows.size)).round().astype(int))]
     fig, axes = plt.subplots(1, len(pick), figsize=(3.2 * len(pick), 3.4), sharey=True, squeeze=False,
                              layout="constrained")
     for ax, i in zip(axes[0], pick):
