@@ -43,10 +43,11 @@ from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
 from surfwave.solvers.long_wave import long_wave_stable
+from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 
-__all__ = ["Constants", "GPA", "LOADINGS", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
-           "stress_tensor", "surface_wave"]
+__all__ = ["Constants", "ELECTRICAL", "GPA", "LOADINGS", "PIEZO_KEYS", "REASON_NO_STATE", "REASON_TRACTION",
+           "TRACTION_TOL", "stress_tensor", "surface_wave"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -65,6 +66,15 @@ REASON_NO_STATE = "no stressed state: "
 #: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
 #: along a fixed crystal direction in the surface.
 LOADINGS = ("along", "across", "biaxial")
+#: Electrical surface conditions of a piezoelectric crystal (open circuit, shorted).
+ELECTRICAL = ("free", "metallized")
+#: Extra per-point float outputs of a piezoelectric crystal.
+PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle",
+              "potential_share")
+#: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
+PIEZO_TOL = 1e-12
+#: |delta| (Im k / Re k) of a leaky root at or below which it is an exact (non-radiating) supersonic wave.
+DELTA_EXACT = 1e-10
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
 
 
@@ -81,10 +91,11 @@ class Constants:
     toec : ndarray, shape (6, 6, 6), or None
         Brugger third-order constants C3 (Voigt), GPa; None where unknown.
     piezo : ndarray, shape (3, 6), or None
-        Piezoelectric stress constants e, C/m^2. Reserved for the piezoelectric extension:
-        :func:`surface_wave` refuses it today.
+        Piezoelectric stress constants e_kI, C/m^2 (crystal axes). With it, :func:`surface_wave`
+        solves the coupled (u, phi) problem (all zeros: the elastic solver, the potential
+        decoupled, and the piezoelectric keys filled: K2 = 0).
     permittivity : ndarray, shape (3, 3), or None
-        Relative permittivity eps_r (clamped). Reserved, as ``piezo``.
+        Relative clamped permittivity eps_r (eps / EPS0), crystal axes; given with ``piezo``.
     """
 
     voigt: np.ndarray
@@ -103,6 +114,16 @@ class Constants:
         object.__setattr__(self, "rho", float(self.rho))
         if self.toec is not None:
             object.__setattr__(self, "toec", np.asarray(self.toec, dtype=float))
+        if (self.piezo is None) != (self.permittivity is None):
+            raise InputError("a piezoelectric crystal needs both piezo (e, 3 x 6, C/m^2) and permittivity "
+                             "(eps_r, 3 x 3, relative)")
+        if self.piezo is not None:
+            e6, er = np.asarray(self.piezo, dtype=float), np.asarray(self.permittivity, dtype=float)
+            if e6.shape != (3, 6) or er.shape != (3, 3):
+                raise InputError(f"piezo must be 3 x 6 (C/m^2) and permittivity 3 x 3, got shapes {e6.shape} "
+                                 f"and {er.shape}")
+            object.__setattr__(self, "piezo", e6)
+            object.__setattr__(self, "permittivity", er)
 
     @classmethod
     def from_material(cls, material) -> Constants:
@@ -110,6 +131,18 @@ class Constants:
         with ``voigt``, ``rho`` and ``toec``: None or the six cubic constants)."""
         return cls(np.asarray(material.voigt, dtype=float), material.rho,
                    None if material.toec is None else material.toec_voigt)
+
+    @classmethod
+    def from_piezo_material(cls, material) -> Constants:
+        """The record of a :class:`surfwave.real_crystals.piezo_materials.PiezoMaterial` (C, rho,
+        e, eps_r; ``toec_voigt`` when the record carries third-order constants)."""
+        C3 = getattr(material, "toec_voigt", None)
+        return cls(np.asarray(material.voigt, dtype=float), material.rho, C3, material.e, material.eps_r)
+
+    @property
+    def is_piezo(self) -> bool:
+        """True when piezoelectric constants (possibly all zero) are given."""
+        return self.piezo is not None
 
 
 # --------------------------------------------------------------------------- loadings
@@ -198,7 +231,8 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
 
 
 def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
-                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True) -> dict:
+                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True, electrical: str | None = None,
+                 leaky: bool = True) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
     Parameters
@@ -220,6 +254,13 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         Tolerance of the deformation solve, GPa.
     bulk : bool
         Also return the bulk speeds along x1 and x2 and ``stable`` (costs a stability test).
+        For a piezoelectric crystal these are the mechanical (unstiffened) bulk speeds.
+    electrical : {"free", "metallized"}, optional
+        Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
+        polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
+        come either way.
+    leaky : bool
+        Piezoelectric crystals only: also solve for the leaky wave (NaN otherwise).
 
     Returns
     -------
@@ -234,13 +275,27 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         also ``c_L_par``, ``c_T_par``, ``c_SH`` (along x1), ``c_L_perp``, ``c_T_perp`` (along
         x2) in m/s (NaN where imaginary or no state) and ``stable`` (bool: ``ok`` and the
         acoustic tensor positive definite in every direction). Everything that depends on a
-        state is NaN where ``ok`` is False.
+        state is NaN where ``ok`` is False. With piezoelectric constants (:data:`PIEZO_KEYS`):
+        ``polarisation`` and ``decay`` have 4 components (u1, u2, u3, phi; phi in V per m of
+        displacement), ``c_limit`` is the stiffened limiting speed, plus ``c_free``,
+        ``c_metallized`` (m/s), ``K2`` (2 (c_free - c_metallized) / c_free), ``c_leaky`` (m/s),
+        ``leaky_attenuation`` (dB per wavelength), ``leaky_reason``, ``power_flow_angle``
+        (degrees, from x1 toward our +x3 = +x2 of the SAW frame), ``potential_share`` and
+        ``electrical``.
+
+    Notes
+    -----
+    Piezoelectric crystals: e and the clamped eps are held at their natural values (no stress
+    derivatives in the database), rotated into the lab frame of the (deformed, with ``toec``)
+    crystal; C* and rho are those of the stressed state as for any crystal. e = 0 is solved
+    by the elastic Stroh solver, exactly as without piezoelectric constants.
 
     Raises
     ------
     InputError
-        ``toec=True`` without third-order constants, bad shapes, piezoelectric constants
-        (not implemented yet). Never for a point: those get NaN and a reason.
+        ``toec=True`` without third-order constants, bad shapes, an unknown ``electrical``,
+        ``electrical`` without piezoelectric constants. Never for a point: those get NaN and a
+        reason.
     """
     axes = np.asarray(axes, dtype=float)
     sigma = np.asarray(stress, dtype=float)
@@ -250,13 +305,22 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
     axes = np.broadcast_to(axes, shape + (3, 3)).reshape(-1, 3, 3)
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
     if toec and constants.toec is None:
-        raise InputError("toec=True needs third-order constants (C111, C112, C123, C144, C155, C456), "
-                         "and this crystal has none")
-    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk)
+        what = ("no piezoelectric crystal of the database carries them yet; alpha-quartz would need the 14 "
+                "of class 32: C111, C112, C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, "
+                "C444" if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
+        raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
+    if constants.is_piezo:
+        electrical = "free" if electrical is None else electrical
+        if electrical not in ELECTRICAL:
+            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    elif electrical is not None:
+        raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
+    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, electrical, leaky)
     return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
 
 
-def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool) -> dict:
+def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool, electrical,
+                  leaky: bool) -> dict:
     n = sigma.shape[0]
     # the stressed state (Born stability included) and the axes it carries
     st = toec_model.stressed_state(constants.voigt, constants.toec if toec else None, sigma, constants.rho,
@@ -279,15 +343,20 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     C_lab = rotate4(st["C_star"][idx], lab[idx])
     A = stroh.wave_propagation_tensor(C_lab * GPA, s_lab[idx] * GPA)
     rho = st["rho"][idx]
-    sw = _solve(A, rho, constants, lab[idx], tol)
+    sw = _solve(A, rho, constants, lab[idx], tol, electrical, leaky)
     out: dict = {}
     for key, name in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
-                      ("penetration_depth", "penetration_depth")):
+                      ("penetration_depth", "penetration_depth")) + tuple((k, k) for k in PIEZO_KEYS if k in sw):
         out[key] = np.full(n, np.nan)
         out[key][idx] = sw[name]
+    width = 4 if constants.is_piezo else 3
     for key in ("polarisation", "decay"):
-        out[key] = np.full((n, 3), np.nan + 0j)
+        out[key] = np.full((n, width), np.nan + 0j)
         out[key][idx] = sw[key]
+    if constants.is_piezo:
+        out["leaky_reason"] = reason.copy()
+        out["leaky_reason"][idx] = sw["leaky_reason"]
+        out["electrical"] = np.full(n, electrical, dtype=object)
     out["wave_type"] = np.full(n, "none", dtype=object)
     out["wave_type"][idx] = sw["wave_type"]
     reason[idx] = sw["reason"]
@@ -304,16 +373,113 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     return out
 
 
-def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol) -> dict:
+def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol, electrical=None,
+           leaky: bool = True) -> dict:
     """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3).
 
-    The piezoelectric branch slots in here: with ``constants.piezo`` it would rotate e and
-    eps_r into ``lab`` and solve the 8 x 8 (u, phi) Stroh problem, returning the same keys.
+    Without piezoelectric constants: :func:`surfwave.solvers.stroh.surface_wave`. With them: e
+    and eps_r rotated into ``lab`` (natural values), :func:`_solve_piezo`.
     """
-    if constants.piezo is not None or constants.permittivity is not None:
-        raise InputError("piezoelectric constants were given, but the piezoelectric surface-wave solver is "
-                         "not implemented yet (issue 19)")
-    return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+    if not constants.is_piezo:
+        return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+    e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
+    eps = rotate2(constants.permittivity * EPS0, lab)
+    return _solve_piezo(A, rho, e, eps, electrical, PIEZO_TOL if tol is None else tol, leaky)
+
+
+def _solve_piezo(A, rho, e, eps, electrical: str, tol: float, leaky: bool) -> dict:
+    """Free and metallized SAW, K^2, leaky wave and power flow of m piezoelectric points (lab, SI).
+
+    :func:`surfwave.solvers.piezo.piezo_surface_wave` for both conditions in one call; e = 0
+    (every point): the elastic Stroh solver (:func:`_elastic_piezo_keys`); leaky:
+    :func:`surfwave.solvers.leaky.leaky_wave`, and where no subsonic SAW exists but the leaky root
+    does not attenuate (a mirror direction) that root is the SAW (:func:`_supersonic`).
+    """
+    from surfwave.solvers.leaky import leaky_wave
+    from surfwave.solvers.piezo import piezo_surface_wave
+
+    m = A.shape[0]
+    if m == 0:                           # no point with a state
+        f, c = np.empty(0), np.empty((0, 4), dtype=complex)
+        return {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
+                **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
+                "polarisation": c, "decay": c}
+    both = piezo_surface_wave(np.concatenate([A, A]), np.concatenate([e, e]), np.concatenate([eps, eps]),
+                              np.concatenate([rho, rho]),
+                              electrical=np.repeat(np.array(ELECTRICAL, dtype=object), m), tol=tol)
+    k = ELECTRICAL.index(electrical)
+    sw = {key: v[k * m:(k + 1) * m] for key, v in both.items()}
+    c_free, c_met = both["c"][:m], both["c"][m:]
+    with np.errstate(invalid="ignore"):
+        K2 = 2 * (c_free - c_met) / c_free
+    c_imag = np.where(np.isfinite(sw["c"]), 0.0, np.nan)
+    piezo = bool(np.any(e))
+    if not piezo:                        # e = 0: the elastic solver, exactly (supersonic waves too)
+        sw, c_free, c_met, K2, c_imag = _elastic_piezo_keys(A, rho, eps, sw, tol)
+    im = np.where(np.isfinite(sw["decay"].imag), sw["decay"].imag, np.inf).min(axis=-1)
+    with np.errstate(divide="ignore"):
+        depth = np.where(np.isfinite(sw["c"]) & np.isfinite(im), 1.0 / (2 * np.pi * im), np.nan)
+    depth = sw.get("penetration_depth", depth)
+    c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
+    leaky_reason = np.full(m, "not computed (leaky=False)", dtype=object)
+    if leaky and m:
+        lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else (electrical,))}
+        lw = lws[electrical]
+        c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
+        if piezo:
+            sw, c_free, c_met, K2 = _supersonic(sw, c_free, c_met, lws, electrical)
+    return {"c": sw["c"], "c_imag": c_imag, "c_limit": sw["c_limit"], "wave_type": sw["wave_type"],
+            "reason": sw["reason"], "method": sw["method"], "polarisation": sw["polarisation"],
+            "decay": sw["decay"], "penetration_depth": depth, "c_free": c_free, "c_metallized": c_met,
+            "K2": K2, "c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": leaky_reason,
+            "power_flow_angle": sw["power_flow_angle"], "potential_share": sw["potential_share"]}
+
+
+def _elastic_piezo_keys(A, rho, eps, sw_piezo, tol) -> tuple:
+    """e = 0: the elastic Stroh solver's wave with a decoupled potential (phi = 0 at the surface).
+
+    The potential's own Stroh root is that of eps_11 + 2 eps_12 p + eps_22 p^2 = 0 with Im p > 0.
+    Returns the solver dict (polarisation and decay with a 4th component; the power flow of the
+    piezoelectric solver where it found the same wave, potential share 0), c_free, c_metallized
+    (both = c), K2 (0 where c is finite) and c_imag.
+    """
+    el = stroh.surface_wave(A, rho)
+    e11, e12, e22 = eps[:, 0, 0], eps[:, 0, 1], eps[:, 1, 1]
+    p_phi = (-e12 + 1j * np.sqrt(np.maximum(e11 * e22 - e12 ** 2, 0.0))) / e22
+    found = np.isfinite(el["c"])
+    sw = {"c": el["c"], "c_limit": el["c_limit"], "wave_type": el["wave_type"].astype(object),
+          "reason": el["reason"].astype(object), "method": el["method"].astype(object),
+          "polarisation": np.concatenate([el["polarisation"], np.where(found, 0.0, np.nan)[:, None]], axis=-1),
+          "decay": np.concatenate([el["decay"], np.where(found, p_phi, np.nan)[:, None]], axis=-1),
+          "power_flow_angle": np.where(np.isclose(sw_piezo["c"], el["c"], rtol=1e-9, atol=0),
+                                       sw_piezo["power_flow_angle"], np.nan),
+          "potential_share": np.where(found, 0.0, np.nan), "penetration_depth": el["penetration_depth"]}
+    K2 = np.where(found, 0.0, np.nan)
+    return sw, el["c"], el["c"], K2, el["c_imag"]
+
+
+def _supersonic(sw, c_free, c_met, lws, electrical):
+    """Where no subsonic SAW exists but the leaky root has zero attenuation (|delta| <=
+    :data:`DELTA_EXACT`, e.g. GaAs (001)[110], whose mirror plane decouples the sagittal wave and
+    the potential from the slower SH bulk wave), that root is an exact supersonic surface wave:
+    it becomes c_free / c_metallized (and c_R, wave_type ``supersonic_decoupled``, its
+    polarisation and decay; the power flow and potential share are not computed there, NaN)."""
+    cs = {"free": c_free.copy(), "metallized": c_met.copy()}
+    for el, lw in lws.items():
+        exact = ~np.isfinite(cs[el]) & np.isfinite(lw["c_leaky"]) & (np.abs(lw["delta"]) <= DELTA_EXACT)
+        cs[el] = np.where(exact, lw["c_leaky"], cs[el])
+        if el == electrical and exact.any():
+            sw = dict(sw)
+            sw["c"] = cs[el]
+            for key in ("wave_type", "reason"):
+                sw[key] = sw[key].copy()
+            sw["wave_type"][exact] = "supersonic_decoupled"
+            sw["reason"][exact] = ""
+            sw["polarisation"] = np.where(exact[:, None], lw["polarisation"], sw["polarisation"])
+            sw["decay"] = np.where(exact[:, None], lw["decay"], sw["decay"])
+    with np.errstate(invalid="ignore"):
+        K2 = 2 * (cs["free"] - cs["metallized"]) / cs["free"]
+    return sw, cs["free"], cs["metallized"], K2
 
 
 def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray) -> dict:
