@@ -340,8 +340,11 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     s_lab[:, :, 1] = 0.0
     # the surface wave where a state exists; everything else stays NaN
     idx = np.flatnonzero(ok)
-    C_lab = rotate4(st["C_star"][idx], lab[idx])
-    A = stroh.wave_propagation_tensor(C_lab * GPA, s_lab[idx] * GPA)
+    if constants.is_piezo:   # rotated in Pa, as the piezoelectric front always did (same bits as before)
+        C_lab = rotate4(st["C_star"][idx] * GPA, lab[idx])
+    else:
+        C_lab = rotate4(st["C_star"][idx], lab[idx]) * GPA
+    A = stroh.wave_propagation_tensor(C_lab, s_lab[idx] * GPA)
     rho = st["rho"][idx]
     sw = _solve(A, rho, constants, lab[idx], tol, electrical, leaky)
     out: dict = {}
