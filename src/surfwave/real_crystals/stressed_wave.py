@@ -407,9 +407,10 @@ def _solve_piezo(A, rho, e, eps, electrical: str, tol: float, leaky: bool) -> di
         return {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
                 **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
                 "polarisation": c, "decay": c}
-    both = piezo_surface_wave(np.concatenate([A, A]), np.concatenate([e, e]), np.concatenate([eps, eps]),
-                              np.concatenate([rho, rho]),
-                              electrical=np.repeat(np.array(ELECTRICAL, dtype=object), m), tol=tol)
+    with np.errstate(invalid="ignore"):    # a point without a wave is NaN + reason, not a warning
+        both = piezo_surface_wave(np.concatenate([A, A]), np.concatenate([e, e]), np.concatenate([eps, eps]),
+                                  np.concatenate([rho, rho]),
+                                  electrical=np.repeat(np.array(ELECTRICAL, dtype=object), m), tol=tol)
     k = ELECTRICAL.index(electrical)
     sw = {key: v[k * m:(k + 1) * m] for key, v in both.items()}
     c_free, c_met = both["c"][:m], both["c"][m:]
@@ -426,7 +427,8 @@ def _solve_piezo(A, rho, e, eps, electrical: str, tol: float, leaky: bool) -> di
     c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
     leaky_reason = np.full(m, "not computed (leaky=False)", dtype=object)
     if leaky and m:
-        lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else (electrical,))}
+        with np.errstate(invalid="ignore"):
+            lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else (electrical,))}
         lw = lws[electrical]
         c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
         if piezo:
