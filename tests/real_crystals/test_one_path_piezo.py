@@ -87,3 +87,29 @@ def test_real_crystals_never_import_model_crystals():
                      else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
             bad += [f"{path.name}: {n}" for n in names if n.startswith("surfwave.model_crystals")]
     assert not bad, bad
+
+
+def test_toec_state_with_piezo_constants():
+    """The third-order model runs for a record with piezoelectric constants once it has C3 (none
+    of the database has): Cu with its TOEC and e = 0 gives the elastic TOEC value 2019.06 m/s at
+    +0.1 GPa along [100] (docs example of stressed_wave, values from before this change) exactly;
+    with a non-zero e (LiNbO3's, on Cu: a synthetic crystal) and zero stress, toec=True equals the
+    fixed-C result (F = I), and at 0.1 GPa it differs from it (C* and the deformed axes enter)."""
+    from surfwave.real_crystals.materials import get_material
+    from surfwave.real_crystals.stressed_wave import stress_tensor
+    from surfwave.solvers.orientation import lab_axes
+
+    cu = Constants.from_material(get_material("Cu"))
+    R = lab_axes("(001)", "[100]")
+    s = stress_tensor("along", [0.0, 0.1], R)
+    zero = Constants(cu.voigt, cu.rho, cu.toec, np.zeros((3, 6)), np.eye(3))
+    el = surface_wave(cu, R, s, toec=True)
+    z = surface_wave(zero, R, s, toec=True)
+    np.testing.assert_array_equal(z["c_R"], el["c_R"])
+    assert np.round(z["c_R"][1], 2) == 2019.06
+    ln = get_piezo_material("LiNbO3")
+    mixed = Constants(cu.voigt, cu.rho, cu.toec, ln.e, ln.eps_r)
+    t = surface_wave(mixed, R, s, toec=True)
+    f = surface_wave(mixed, R, s, toec=False)
+    np.testing.assert_allclose(t["c_free"][0], f["c_free"][0], rtol=1e-12)
+    assert t["K2"][0] > 0 and abs(t["c_free"][1] / f["c_free"][1] - 1) > 1e-5
