@@ -83,7 +83,12 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     :func:`surfwave.real_crystals.piezo_wave.piezo_wave`: ``c_free``, ``c_metallized``, ``K2``,
     ``c_leaky``, ``leaky_attenuation``, ``leaky_reason``, ``power_flow_angle``,
     ``potential_share``, ``electrical``, ``model``, and ``euler`` ((m, 3) degrees, or NaN for a
-    surface/direction orientation). Third-order constants are not supported on this route.
+    surface/direction orientation). Everything is computed by
+    :func:`surfwave.real_crystals.stressed_wave.surface_wave` (through
+    :func:`surfwave.real_crystals.piezo_wave.piezo_wave`): bulk speeds, ``stable`` and the
+    reasons are those of the one path. ``toec=True`` needs third-order constants in the record
+    (no piezoelectric crystal of the database has them: InputError naming them); explicit
+    third-order arrays are refused here.
     """
     from surfwave.real_crystals.piezo_materials import get_piezo_material
 
