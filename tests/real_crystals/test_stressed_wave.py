@@ -157,7 +157,8 @@ def test_stress_tensor_is_the_one_load_to_stress_function():
 def test_constants_record_and_values():
     """Cu (001)[100]: 2012.12 m/s unstressed, 2019.06 m/s at +0.1 GPa along [100] with TOEC (values
     before this refactor); the record takes a tensor stiffness too; piezoelectric constants are
-    refused until the piezoelectric solver exists; toec=True without C3 is refused."""
+    solved (e = 0: the elastic wave, K2 = 0); electrical= without them and toec=True without C3 are
+    refused."""
     cu = Constants.from_material(get_material("Cu"))
     R = lab_axes("(001)", "[100]")
     r = surface_wave(cu, R, stress_tensor("along", [0.0, 0.1], R), toec=True)
@@ -166,7 +167,12 @@ def test_constants_record_and_values():
     same = Constants(voigt_to_tensor(cu.voigt), cu.rho, cu.toec)
     assert np.array_equal(same.voigt, cu.voigt)
     piezo = Constants(cu.voigt, cu.rho, piezo=np.zeros((3, 6)), permittivity=np.eye(3))
+    z = surface_wave(piezo, R, stress_tensor("along", [0.0, 0.1], R))      # e = 0: the elastic wave
+    el = surface_wave(Constants(cu.voigt, cu.rho), R, stress_tensor("along", [0.0, 0.1], R))
+    np.testing.assert_allclose(z["c_R"], el["c_R"], rtol=1e-13)
+    assert np.round(z["c_R"][0], 2) == 2012.12
+    assert z["K2"].tolist() == [0.0, 0.0] and z["polarisation"].shape == (2, 4)
     with pytest.raises(InputError, match="piezoelectric"):
-        surface_wave(piezo, R, np.zeros((3, 3)))
+        surface_wave(Constants(cu.voigt, cu.rho), R, np.zeros((3, 3)), electrical="free")
     with pytest.raises(InputError, match="third-order"):
         surface_wave(Constants(cu.voigt, cu.rho), R, np.zeros((3, 3)), toec=True)

@@ -83,16 +83,18 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     :func:`surfwave.real_crystals.piezo_wave.piezo_wave`: ``c_free``, ``c_metallized``, ``K2``,
     ``c_leaky``, ``leaky_attenuation``, ``leaky_reason``, ``power_flow_angle``,
     ``potential_share``, ``electrical``, ``model``, and ``euler`` ((m, 3) degrees, or NaN for a
-    surface/direction orientation). Third-order constants are not supported on this route.
+    surface/direction orientation). Everything is computed by
+    :func:`surfwave.real_crystals.stressed_wave.surface_wave` (through
+    :func:`surfwave.real_crystals.piezo_wave.piezo_wave`): bulk speeds, ``stable`` and the
+    reasons are those of the one path. ``toec=True`` needs third-order constants in the record
+    (no piezoelectric crystal of the database has them: InputError naming them); explicit
+    third-order arrays are refused here.
     """
-    from surfwave.model_crystals import elastic
     from surfwave.real_crystals.piezo_materials import get_piezo_material
-    from surfwave.solvers import long_wave
-    from surfwave.solvers.tensors import rotate2, rotate4
 
-    if toec is not None and toec is not False:
-        raise InputError("third-order constants (toec=) are not supported with piezoelectric constants, cut= "
-                         "or euler= (fixed-constants model only); give a surface and direction instead")
+    if toec is not None and toec is not False and toec is not True:
+        raise InputError("explicit third-order constants (toec=) are not supported with piezoelectric constants, "
+                         "cut= or euler=; toec=True takes them from the database")
     electrical = "free" if electrical is None else electrical
     piezo_name = _piezo_only_name(C11) or (isinstance(C11, str) and piezo is None and _in_piezo_db(C11))
     R, scalar, eul, ang, cut_material = _orientation(cut, euler, surface, direction, angle, C11)
@@ -119,21 +121,11 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError("a piezoelectric crystal needs both piezo= (e, 3 x 6, C/m^2) and permittivity= "
                              "(eps_r, 3 x 3, relative)")
         mat = resolve_piezo_material(None, voigt=C6, e=piezo, eps_r=permittivity, rho=rho)
-    r = piezo_wave(mat, R, stress, electrical=electrical)
-    C, sigma = r["C"] / 1e9, r["sigma"]
-    S = elastic.stress_derivatives(sigma, C) * 1e9
-    out: dict = {}
-    for key, value in elastic.sound_speeds(S, r["rho"]).items():
-        out["c" + key[2:]] = np.sqrt(np.where(value > 0, value, np.nan))
-    from surfwave.real_crystals.toec import born_stable
-
-    Rt = np.swapaxes(R, -1, -2)
-    C_c, sigma_c = rotate4(C, Rt), rotate2(sigma, Rt)
-    acoustic, _, _ = long_wave.long_wave_stability(np.ascontiguousarray(C_c), sigma_c)
-    out.update(c_R=r["c_R"], c_R_imag=r["c_imag"], c_limit=r["c_limit"],
-               wave_type=r["wave_type"], reason=r["reason"], stable=born_stable(C_c, sigma_c) & acoustic,
-               polarisation=r["polarisation"], decay=r["decay"], penetration_depth=r["penetration_depth"],
-               angle=ang, method=r["method"], rho=r["rho"], toec=np.zeros(R.shape[0], dtype=bool))
+    r = piezo_wave(mat, R, stress, electrical=electrical, toec=bool(toec), bulk=True)
+    out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
+                                   "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
+                                   "penetration_depth", "method", "rho")}
+    out.update(angle=ang, toec=np.full(R.shape[0], bool(toec)))
     for key in ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "leaky_reason",
                 "power_flow_angle", "potential_share", "electrical"):
         out[key] = r[key]

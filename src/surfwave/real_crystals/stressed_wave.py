@@ -12,7 +12,10 @@ same reasons. Per point it does, in this order:
    Born stability of the stressed crystal), and the lab axes carried by F
    (:func:`surfwave.real_crystals.toec.deformed_axes`);
 3. one traction check on the (deformed) surface, tolerance :data:`TRACTION_TOL`;
-4. the surface wave (:func:`surfwave.solvers.stroh.surface_wave`) where a state exists;
+4. the surface wave where a state exists: :func:`surfwave.solvers.stroh.surface_wave`, or for
+   a crystal with piezoelectric constants :func:`surfwave.solvers.piezo_saw.piezo_saw` (e and
+   the clamped eps at their natural values rotated into the lab frame of the (deformed)
+   crystal; free and metallized SAW, K^2, leaky wave, power flow; e = 0: the elastic solver);
 5. optionally bulk speeds along x1 and x2 and the stability flag.
 
 A point without a state (deformation solve failed, Born-unstable, loaded surface) is NaN
@@ -43,10 +46,12 @@ from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
 from surfwave.solvers.long_wave import long_wave_stable
+from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw
+from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 
-__all__ = ["Constants", "GPA", "LOADINGS", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
-           "stress_tensor", "surface_wave"]
+__all__ = ["Constants", "ELECTRICAL", "GPA", "LOADINGS", "PIEZO_KEYS", "REASON_NO_STATE", "REASON_TRACTION",
+           "TRACTION_TOL", "stress_tensor", "surface_wave"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -65,6 +70,8 @@ REASON_NO_STATE = "no stressed state: "
 #: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
 #: along a fixed crystal direction in the surface.
 LOADINGS = ("along", "across", "biaxial")
+#: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
+PIEZO_TOL = 1e-12
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
 
 
@@ -81,10 +88,11 @@ class Constants:
     toec : ndarray, shape (6, 6, 6), or None
         Brugger third-order constants C3 (Voigt), GPa; None where unknown.
     piezo : ndarray, shape (3, 6), or None
-        Piezoelectric stress constants e, C/m^2. Reserved for the piezoelectric extension:
-        :func:`surface_wave` refuses it today.
+        Piezoelectric stress constants e_kI, C/m^2 (crystal axes). With it, :func:`surface_wave`
+        solves the coupled (u, phi) problem (all zeros: the elastic solver, the potential
+        decoupled, and the piezoelectric keys filled: K2 = 0).
     permittivity : ndarray, shape (3, 3), or None
-        Relative permittivity eps_r (clamped). Reserved, as ``piezo``.
+        Relative clamped permittivity eps_r (eps / EPS0), crystal axes; given with ``piezo``.
     """
 
     voigt: np.ndarray
@@ -103,6 +111,16 @@ class Constants:
         object.__setattr__(self, "rho", float(self.rho))
         if self.toec is not None:
             object.__setattr__(self, "toec", np.asarray(self.toec, dtype=float))
+        if (self.piezo is None) != (self.permittivity is None):
+            raise InputError("a piezoelectric crystal needs both piezo (e, 3 x 6, C/m^2) and permittivity "
+                             "(eps_r, 3 x 3, relative)")
+        if self.piezo is not None:
+            e6, er = np.asarray(self.piezo, dtype=float), np.asarray(self.permittivity, dtype=float)
+            if e6.shape != (3, 6) or er.shape != (3, 3):
+                raise InputError(f"piezo must be 3 x 6 (C/m^2) and permittivity 3 x 3, got shapes {e6.shape} "
+                                 f"and {er.shape}")
+            object.__setattr__(self, "piezo", e6)
+            object.__setattr__(self, "permittivity", er)
 
     @classmethod
     def from_material(cls, material) -> Constants:
@@ -110,6 +128,18 @@ class Constants:
         with ``voigt``, ``rho`` and ``toec``: None or the six cubic constants)."""
         return cls(np.asarray(material.voigt, dtype=float), material.rho,
                    None if material.toec is None else material.toec_voigt)
+
+    @classmethod
+    def from_piezo_material(cls, material) -> Constants:
+        """The record of a :class:`surfwave.real_crystals.piezo_materials.PiezoMaterial` (C, rho,
+        e, eps_r; ``toec_voigt`` when the record carries third-order constants)."""
+        C3 = getattr(material, "toec_voigt", None)
+        return cls(np.asarray(material.voigt, dtype=float), material.rho, C3, material.e, material.eps_r)
+
+    @property
+    def is_piezo(self) -> bool:
+        """True when piezoelectric constants (possibly all zero) are given."""
+        return self.piezo is not None
 
 
 # --------------------------------------------------------------------------- loadings
@@ -198,7 +228,8 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
 
 
 def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
-                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True) -> dict:
+                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True, electrical: str | None = None,
+                 leaky: bool = True) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
     Parameters
@@ -220,6 +251,13 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         Tolerance of the deformation solve, GPa.
     bulk : bool
         Also return the bulk speeds along x1 and x2 and ``stable`` (costs a stability test).
+        For a piezoelectric crystal these are the mechanical (unstiffened) bulk speeds.
+    electrical : {"free", "metallized"}, optional
+        Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
+        polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
+        come either way.
+    leaky : bool
+        Piezoelectric crystals only: also solve for the leaky wave (NaN otherwise).
 
     Returns
     -------
@@ -234,13 +272,27 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         also ``c_L_par``, ``c_T_par``, ``c_SH`` (along x1), ``c_L_perp``, ``c_T_perp`` (along
         x2) in m/s (NaN where imaginary or no state) and ``stable`` (bool: ``ok`` and the
         acoustic tensor positive definite in every direction). Everything that depends on a
-        state is NaN where ``ok`` is False.
+        state is NaN where ``ok`` is False. With piezoelectric constants (:data:`PIEZO_KEYS`):
+        ``polarisation`` and ``decay`` have 4 components (u1, u2, u3, phi; phi in V per m of
+        displacement), ``c_limit`` is the stiffened limiting speed, plus ``c_free``,
+        ``c_metallized`` (m/s), ``K2`` (2 (c_free - c_metallized) / c_free), ``c_leaky`` (m/s),
+        ``leaky_attenuation`` (dB per wavelength), ``leaky_reason``, ``power_flow_angle``
+        (degrees, from x1 toward our +x3 = +x2 of the SAW frame), ``potential_share`` and
+        ``electrical``.
+
+    Notes
+    -----
+    Piezoelectric crystals: e and the clamped eps are held at their natural values (no stress
+    derivatives in the database), rotated into the lab frame of the (deformed, with ``toec``)
+    crystal; C* and rho are those of the stressed state as for any crystal. e = 0 is solved
+    by the elastic Stroh solver, exactly as without piezoelectric constants.
 
     Raises
     ------
     InputError
-        ``toec=True`` without third-order constants, bad shapes, piezoelectric constants
-        (not implemented yet). Never for a point: those get NaN and a reason.
+        ``toec=True`` without third-order constants, bad shapes, an unknown ``electrical``,
+        ``electrical`` without piezoelectric constants. Never for a point: those get NaN and a
+        reason.
     """
     axes = np.asarray(axes, dtype=float)
     sigma = np.asarray(stress, dtype=float)
@@ -250,13 +302,22 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
     axes = np.broadcast_to(axes, shape + (3, 3)).reshape(-1, 3, 3)
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
     if toec and constants.toec is None:
-        raise InputError("toec=True needs third-order constants (C111, C112, C123, C144, C155, C456), "
-                         "and this crystal has none")
-    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk)
+        what = ("no piezoelectric crystal of the database carries them yet; alpha-quartz would need the 14 "
+                "of class 32: C111, C112, C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, "
+                "C444" if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
+        raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
+    if constants.is_piezo:
+        electrical = "free" if electrical is None else electrical
+        if electrical not in ELECTRICAL:
+            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    elif electrical is not None:
+        raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
+    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, electrical, leaky)
     return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
 
 
-def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool) -> dict:
+def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool, electrical,
+                  leaky: bool) -> dict:
     n = sigma.shape[0]
     # the stressed state (Born stability included) and the axes it carries
     st = toec_model.stressed_state(constants.voigt, constants.toec if toec else None, sigma, constants.rho,
@@ -276,18 +337,26 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     s_lab[:, :, 1] = 0.0
     # the surface wave where a state exists; everything else stays NaN
     idx = np.flatnonzero(ok)
-    C_lab = rotate4(st["C_star"][idx], lab[idx])
-    A = stroh.wave_propagation_tensor(C_lab * GPA, s_lab[idx] * GPA)
+    if constants.is_piezo:   # rotated in Pa, as the piezoelectric front always did (same bits as before)
+        C_lab = rotate4(st["C_star"][idx] * GPA, lab[idx])
+    else:
+        C_lab = rotate4(st["C_star"][idx], lab[idx]) * GPA
+    A = stroh.wave_propagation_tensor(C_lab, s_lab[idx] * GPA)
     rho = st["rho"][idx]
-    sw = _solve(A, rho, constants, lab[idx], tol)
+    sw = _solve(A, rho, constants, lab[idx], tol, electrical, leaky)
     out: dict = {}
     for key, name in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
-                      ("penetration_depth", "penetration_depth")):
+                      ("penetration_depth", "penetration_depth")) + tuple((k, k) for k in PIEZO_KEYS if k in sw):
         out[key] = np.full(n, np.nan)
         out[key][idx] = sw[name]
+    width = 4 if constants.is_piezo else 3
     for key in ("polarisation", "decay"):
-        out[key] = np.full((n, 3), np.nan + 0j)
+        out[key] = np.full((n, width), np.nan + 0j)
         out[key][idx] = sw[key]
+    if constants.is_piezo:
+        out["leaky_reason"] = reason.copy()
+        out["leaky_reason"][idx] = sw["leaky_reason"]
+        out["electrical"] = np.full(n, electrical, dtype=object)
     out["wave_type"] = np.full(n, "none", dtype=object)
     out["wave_type"][idx] = sw["wave_type"]
     reason[idx] = sw["reason"]
@@ -304,16 +373,18 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     return out
 
 
-def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol) -> dict:
+def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol, electrical=None,
+           leaky: bool = True) -> dict:
     """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3).
 
-    The piezoelectric branch slots in here: with ``constants.piezo`` it would rotate e and
-    eps_r into ``lab`` and solve the 8 x 8 (u, phi) Stroh problem, returning the same keys.
+    Without piezoelectric constants: :func:`surfwave.solvers.stroh.surface_wave`. With them: e
+    and eps_r rotated into ``lab`` (natural values), :func:`surfwave.solvers.piezo_saw.piezo_saw`.
     """
-    if constants.piezo is not None or constants.permittivity is not None:
-        raise InputError("piezoelectric constants were given, but the piezoelectric surface-wave solver is "
-                         "not implemented yet (issue 19)")
-    return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+    if not constants.is_piezo:
+        return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+    e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
+    eps = rotate2(constants.permittivity * EPS0, lab)
+    return piezo_saw(A, rho, e, eps, electrical=electrical, tol=PIEZO_TOL if tol is None else tol, leaky=leaky)
 
 
 def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray) -> dict:
