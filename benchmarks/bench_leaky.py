@@ -136,7 +136,8 @@ def main(outdir: str) -> Path:
         per100 = (ev[TOLS.index(min(TOLS))] - ev[lo]) / (np.log10(max(TOLS) / min(TOLS)) / 2)
         verdict = "met" if r[1] >= TARGET else "NOT met"
         rows.append([
-            f"leaky SAW `leaky_wave` (boundary-determinant scan + complex secant), {name} ({N_ANGLES} orientations, one call)",
+            f"leaky SAW `leaky_wave` (boundary-determinant scan + complex secant), {name} "
+            f"({N_ANGLES} orientations, one call)",
             f"tol in [{min(TOLS):g}, {max(TOLS):g}] (relative accuracy of complex rho v^2)", f"{DEFAULT_TOL:g}",
             f"{kn['error'][c, i]:.2g} relative in c_leaky, {kn['error_attenuation'][c, i]:.2g} dB/wavelength "
             f"vs tol {REF_TOL:g} ({int(kn['found_mismatch'][c, i])} of {int(kn['found'][c, -1])} found at one "
