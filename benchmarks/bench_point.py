@@ -116,7 +116,8 @@ def main(outdir: str) -> Path:
               f"{rate_flags[i]:.3g}/s vs full scan {rate_scan[i]:.3g}/s (x{rate_flags[i] / rate_scan[i]:.1f}); "
               f"same flags {same[i]}")
     labels = [" ".join(c) for c in CASES]
-    rows = [[f"`surfwave.point`, {lab}", "-", "same stability flags as the plain scan" if ok else "FLAGS DIFFER",
+    rows = [[f"`surfwave.point`, {lab}", "none", "-",
+             "same stability flags as the plain scan" if ok else "FLAGS DIFFER",
              f"{r:.3g} points/s ({r / r0:.0f}x the plain scan alone, same run); elastic stage {re:.3g}/s",
              f"target {TARGET:.0e}/s"]
             for lab, r, r0, re, ok in zip(labels, rate, rate_old, rate_elastic, same)]

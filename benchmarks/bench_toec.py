@@ -99,10 +99,11 @@ def main(outdir: str) -> Path:
     ratio = tp[0, :, 1] / tp[1, :, 1]
     rows = [
         ["acoustoelastic coefficient (1/v) dv/dsigma, central difference", "step h in [1e-7, 0.3] GPa",
+         f"{DEFAULT_STEP:g} GPa",
          f"{e_def:.1e} relative at h = {DEFAULT_STEP:g} GPa (range {err.min():.1e} .. {err.max():.1e})",
          f"{t_call[i_def] * 1e3:.3g} ms per material and direction (12 coefficients)",
          f"h = {DEFAULT_STEP:g} GPa: {reason}"],
-        *[[f"surface wave under stress ({model.replace('_', ' ')})", f"batch = {n} point(s) per call", "",
+        *[[f"surface wave under stress ({model.replace('_', ' ')})", "points per call (batch)", f"{n}", "-",
            f"{tp[a, b, 1] * 1e6:.3g} us per point (min {tp[a, b, 0] * 1e6:.3g}, max {tp[a, b, 2] * 1e6:.3g})",
            f"TOEC / fixed-C time ratio {ratio[b]:.2f} (same run)" if model == "toec" else "yardstick"]
           for a, model in enumerate(MODELS) for b, n in enumerate(BATCHES)],

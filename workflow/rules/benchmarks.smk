@@ -9,6 +9,13 @@ from pathlib import Path
 BENCH_MODULES = {
     "rayleigh": ("api", "solvers.rayleigh", "report.benchmarks"),
     "stroh": ("solvers.stroh", "solvers.impedance", "solvers.rayleigh"),
+    "piezo": (
+        "solvers.piezo",
+        "solvers.piezo_search",
+        "solvers.stroh",
+        "real_crystals.piezo_materials",
+    ),
+    "leaky": ("solvers.leaky", "solvers.stroh", "real_crystals.piezo_materials"),
     "point": (
         "api",
         "model_crystals.elastic",
@@ -22,6 +29,13 @@ BENCH_MODULES = {
         "real_crystals.acoustoelastic",
         "real_crystals.toec",
         "real_crystals.materials",
+    ),
+    "material": (
+        "api",
+        "real_crystals.stressed_wave",
+        "real_crystals.toec",
+        "real_crystals.materials",
+        "solvers.stroh",
     ),
 }
 BENCH_METHODS = [

@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from surfwave.data.cube import open_cube
+from surfwave.errors import InputError
 
 HEAD = ["Method", "Knob", "Default", "Error at the default", "Time at the default", "Why this default"]
 
@@ -159,11 +160,23 @@ def _generic(ds: xr.Dataset, name: str) -> list[list[str]]:
 
 
 def benchmark_rows(path: str | Path) -> list[list[str]]:
-    """Table rows [method, knob, default, error, time, why] of one benchmark cube."""
+    """Table rows [method, knob, default, error, time, why] of one benchmark cube.
+
+    Raises
+    ------
+    InputError
+        A row of the cube's ``readme_rows`` without exactly one cell per column of :data:`HEAD`.
+    """
     path = Path(path)
     ds = open_cube(path)
     if "readme_rows" in ds.attrs:
-        return [[str(c) for c in row] for row in json.loads(ds.attrs["readme_rows"])]
+        rows = [[str(c) for c in row] for row in json.loads(ds.attrs["readme_rows"])]
+        for i, row in enumerate(rows):
+            if len(row) != len(HEAD):  # a cell short would shift every later one into the wrong column
+                first = (row or [""])[0][:60]
+                raise InputError(f"{path}: readme_rows[{i}] ({first!r}) has {len(row)} cells, the table has "
+                                 f"{len(HEAD)}: {', '.join(HEAD)}")
+        return rows
     reader = READERS.get(path.name)
     if reader is not None:
         try:
