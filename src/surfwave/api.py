@@ -227,7 +227,7 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
 
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
              voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
-             electrical=None) -> dict:
+             electrical=None, leaky=None) -> dict:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
@@ -277,6 +277,14 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     electrical : {"free", "metallized"}, keyword only
         Electrical condition of ``c_R`` (default "free"); ``c_free``, ``c_metallized`` and ``K2``
         are returned either way.
+    leaky : None, True or False, keyword only
+        The leaky wave radiating into the slowest bulk sheet (``c_leaky``, ``leaky_attenuation``,
+        ``leaky_reason``; :func:`surfwave.real_crystals.stressed_wave.surface_wave`). None
+        (default): where needed, i.e. every point of a piezoelectric crystal and, for an elastic
+        one, where no subsonic wave exists (``pseudo``; an exact ``supersonic_decoupled`` wave
+        is the branch's limit, attenuation 0); True: at every point (the leaky wave can coexist
+        with the subsonic one, e.g. Cu (001) from ~26 to 45 deg; ~8x the cost of the subsonic
+        solve); False: not solved.
 
     With any of ``piezo``, ``permittivity``, ``euler``, ``cut``, ``electrical``, or a name found
     only in the piezoelectric database (``"LiNbO3"``, ``"quartz"``, ``"LiTaO3"``, ...), the call is
@@ -296,7 +304,9 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         positive acoustic tensor in every direction), ``polarisation`` (..., 3) and ``decay``
         (..., 3) complex (see :func:`surfwave.solvers.stroh.surface_wave`),
         ``penetration_depth`` (wavelengths), ``angle`` (degrees from the reference), ``method``,
-        ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used).
+        ``rho`` (density of the stressed state, kg/m^3), ``toec`` (bool, third-order model used),
+        ``c_leaky`` (m/s, NaN where no leaky wave), ``leaky_attenuation`` (dB per wavelength,
+        NaN where no leaky wave) and ``leaky_reason`` ("" where one is reported, else why not).
         Every number is NaN (``wave_type`` "none", ``stable`` False, ``method`` "") where the
         crystal has no stressed state: the deformation solve fails, the stressed crystal is
         not Born-stable, or the stress loads the deformed surface; ``reason`` says which, in
@@ -326,9 +336,12 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     """
     from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
 
+    if leaky is not None and not isinstance(leaky, (bool, np.bool_)):
+        raise InputError(f"leaky must be None, True or False, got {leaky!r}")
     if is_piezo_call(C11, piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical):
         return material_piezo(C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec,
-                              piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical)
+                              piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical,
+                              leaky=leaky)
     C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
         raise InputError("the density rho (kg/m^3) is missing")
@@ -355,16 +368,18 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     if np.abs(traction).max() > TRACTION_TOL * max(np.abs(sigma_c).max(), 1e-300):
         raise InputError(f"prestress must lie in the surface plane {surface}: its traction sigma . n = "
                          f"{np.round(traction, 12).tolist()} GPa (crystal axes) is not zero")
-    r = surface_wave(Constants(C6, rho, C3), R, sigma_c, toec=C3 is not None)
+    r = surface_wave(Constants(C6, rho, C3), R, sigma_c, toec=C3 is not None,
+                     leaky=None if leaky is None else bool(leaky))
     out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
                                    "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
-                                   "penetration_depth", "method", "rho")}
+                                   "penetration_depth", "method", "rho", "c_leaky", "leaky_attenuation",
+                                   "leaky_reason")}
     out["toec"] = np.full(R.shape[0], C3 is not None)
     ref = reference_direction(surface)
     out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))
     if scalar:
         out = {k: (v[0] if np.ndim(v[0]) else np.asarray(v[0]).item()) for k, v in out.items()}
-        for key in ("wave_type", "reason", "method"):
+        for key in ("wave_type", "reason", "method", "leaky_reason"):
             out[key] = str(out[key])
         out["stable"] = bool(out["stable"])
         out["toec"] = bool(out["toec"])

@@ -42,13 +42,16 @@ def _unstressed(ds: xr.Dataset) -> tuple[xr.Dataset, str]:
 
 
 def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
-    """c_R(angle) and the limiting speed v_L(angle), one panel per surface.
+    """c_R(angle), the leaky wave and the limiting speed v_L(angle), one column per surface.
 
-    Each material has one colour: its surface wave is a solid line, a leaky pseudo surface
-    wave a dashed line (and the leakage is not drawn), the limiting speed v_L a thin dotted
-    line; open circles mark sagittal waves above v_L that exist only on mirror directions
-    (``supersonic_decoupled``). Each panel covers the symmetry-reduced angle range of its
-    surface (``symmetric_range`` in the cube) when the cube's angles span it.
+    Each material has one colour: its surface wave is a solid line, the limiting speed v_L a
+    thin dotted line; open circles mark sagittal waves above v_L that exist only on mirror
+    directions (``supersonic_decoupled``). A cube with ``c_leaky`` (the leaky SAW radiating
+    into the slowest bulk sheet) draws it as a thin dashed line with dots in the top row and
+    its attenuation (dB per wavelength) in a second row below; without it, a pseudo surface
+    wave with a speed is dashed and one without is an x on v_L. Each panel covers the
+    symmetry-reduced angle range of its surface (``symmetric_range`` in the cube) when the
+    cube's angles span it.
 
     Parameters
     ----------
@@ -66,11 +69,18 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """
     ds, note = _unstressed(ds)
     surfaces = [str(s) for s in ds.surface.values]
-    fig, axes = plt.subplots(1, len(surfaces), figsize=(4.2 * len(surfaces), 4.2), squeeze=False,
-                             sharey=True, layout="constrained")
+    leaky = "c_leaky" in ds
+    if leaky:
+        fig, grid = plt.subplots(2, len(surfaces), figsize=(4.2 * len(surfaces), 6.6), squeeze=False,
+                                 sharey="row", sharex="col", layout="constrained",
+                                 gridspec_kw={"height_ratios": [2.2, 1.0]})
+        axes, att_axes = grid[:1], grid[1]
+    else:
+        fig, axes = plt.subplots(1, len(surfaces), figsize=(4.2 * len(surfaces), 4.2), squeeze=False,
+                                 sharey=True, layout="constrained")
     colours = plt.get_cmap("tab10")
     angle = ds.angle.values
-    for ax, sf in zip(axes[0], surfaces):
+    for k, (ax, sf) in enumerate(zip(axes[0], surfaces)):
         width = float(ds.symmetric_range.sel(surface=sf).max()) if "symmetric_range" in ds else angle.max()
         inside = angle <= width + 1e-9 if angle.min() < width < angle.max() else np.ones(angle.size, bool)
         for i, mat in enumerate(ds.material.values):
@@ -87,16 +97,29 @@ def speeds_vs_angle(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
             # a pseudo wave whose complex speed the solver does not give: x on v_L, where it leaks
             leak = (wt == "pseudo") & ~np.isfinite(c) & inside
             ax.plot(angle[leak], point.c_limit.values[leak], "x", color=col, ms=4)
+            if leaky:   # the leaky branch (dots: isolated points show too) and its attenuation
+                ax.plot(x, point.c_leaky.values[inside], "--", marker=".", ms=3, color=col, lw=0.9)
+                att_axes[k].plot(x, point.leaky_attenuation.values[inside], "--", marker=".", ms=3,
+                                 color=col, lw=0.9)
         ax.set_title(f"{sf} surface")
-        ax.set_xlabel("propagation angle (degree)")
         ax.set_xlim(x.min(), x.max())
         ax.grid(alpha=0.3)
+        bottom = att_axes[k] if leaky else ax
+        bottom.set_xlabel("propagation angle (degree)")
+        if leaky:
+            att_axes[k].grid(alpha=0.3)
     axes[0, 0].set_ylabel("speed (m/s)")
     axes[0, 0].set_ylim(bottom=0)
+    if leaky:
+        att_axes[0].set_ylabel("leaky-wave attenuation\n(dB per wavelength)")
+        att_axes[0].set_ylim(bottom=0)
     handles = [Line2D([], [], color=colours(i % 10), lw=2, label=str(m)) for i, m in enumerate(ds.material.values)]
     pseudo = ds.wave_type == "pseudo"
     with_speed = bool((pseudo & np.isfinite(ds.c_R)).any())
     handles += [Line2D([], [], color="k", ls="-", lw=1.8, label=r"$c_R$ surface wave")]
+    if leaky:
+        handles.append(Line2D([], [], color="k", ls="--", marker=".", ms=3, lw=0.9,
+                              label="leaky SAW (into the slowest\nbulk sheet), speed and\nattenuation"))
     if with_speed:
         handles.append(Line2D([], [], color="k", ls="--", lw=1.4, label="pseudo-SAW (leaky, real part)"))
     if bool((pseudo & ~np.isfinite(ds.c_R)).any()):

@@ -136,7 +136,7 @@ def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", 
         raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
     check_in_plane(sigma, surface, direction)
     r = surface_wave(Constants(C2, rho0, C3), _axes(surface, direction), sigma, toec=C3 is not None,
-                     state_tol=tol, bulk=False)
+                     state_tol=tol, bulk=False, leaky=False)
     return {"c_R": r["c_R"], "c_limit": r["c_limit"], "wave_type": r["wave_type"].astype(str),
             "reason": r["reason"].astype(str), "ok": r["ok"], "rho": r["rho"], "F": r["F"], "axes": r["axes"]}
 

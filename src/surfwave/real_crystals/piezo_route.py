@@ -74,7 +74,7 @@ def _orientation(cut, euler, surface, direction, angle, material):
 
 def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
                    voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
-                   electrical=None) -> dict:
+                   electrical=None, leaky=None) -> dict:
     """:func:`surfwave.material` for piezoelectric crystals and Euler-angle cuts (same arguments).
 
     Returns the keys of :func:`surfwave.material` (``polarisation`` and ``decay`` with a fourth
@@ -121,7 +121,8 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError("a piezoelectric crystal needs both piezo= (e, 3 x 6, C/m^2) and permittivity= "
                              "(eps_r, 3 x 3, relative)")
         mat = resolve_piezo_material(None, voigt=C6, e=piezo, eps_r=permittivity, rho=rho)
-    r = piezo_wave(mat, R, stress, electrical=electrical, toec=bool(toec), bulk=True)
+    r = piezo_wave(mat, R, stress, electrical=electrical, toec=bool(toec), bulk=True,
+                   leaky=True if leaky is None else bool(leaky))
     out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
                                    "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
                                    "penetration_depth", "method", "rho")}

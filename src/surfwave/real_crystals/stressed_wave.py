@@ -45,13 +45,15 @@ import numpy as np
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
+from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 
-__all__ = ["Constants", "ELECTRICAL", "GPA", "LOADINGS", "PIEZO_KEYS", "REASON_NO_STATE", "REASON_TRACTION",
-           "TRACTION_TOL", "stress_tensor", "surface_wave"]
+__all__ = ["Constants", "ELECTRICAL", "GPA", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS", "REASON_LEAKY_OFF",
+           "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
+           "surface_wave"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -59,6 +61,14 @@ GPA = 1.0e9
 #: n the normal of the deformed surface) and |axis . n| of an axis loading, relative to
 #: max |sigma| (to 1 for a unit axis).
 TRACTION_TOL = 1e-9
+#: Leaky-wave outputs of every crystal (elastic ones too): m/s, dB per wavelength, and ``leaky_reason``.
+LEAKY_KEYS = ("c_leaky", "leaky_attenuation")
+#: ``leaky_reason`` of an elastic point with a subsonic surface wave (the leaky wave is solved
+#: only where none exists: "model only what a scene requires").
+REASON_LEAKY_SUBSONIC = ("no leaky wave computed: a subsonic surface wave exists (c_R); the leaky wave is "
+                         "solved only where it does not (wave_type pseudo)")
+#: ``leaky_reason`` with ``leaky=False``.
+REASON_LEAKY_OFF = "not computed (leaky=False)"
 #: Reason of a point whose deformed surface carries a traction.
 REASON_TRACTION = ("the deformed surface is loaded: sigma . n != 0 on the normal F^-T n0 (the stress "
                    "turns the surface plane), so the free surface is not in equilibrium")
@@ -229,7 +239,7 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
 
 def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
                  state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True, electrical: str | None = None,
-                 leaky: bool = True) -> dict:
+                 leaky: bool | None = None) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
     Parameters
@@ -256,8 +266,16 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
         polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
         come either way.
-    leaky : bool
-        Piezoelectric crystals only: also solve for the leaky wave (NaN otherwise).
+    leaky : bool or None
+        The leaky wave (``c_leaky``, ``leaky_attenuation``, ``leaky_reason``) radiating into
+        the slowest bulk sheet (:func:`surfwave.solvers.leaky.leaky_wave`). True: solved at
+        every point; False: nowhere (NaN, :data:`REASON_LEAKY_OFF`); None (default): only where
+        needed, i.e. every point of a piezoelectric crystal (as True) and, for an elastic
+        crystal, the points without a subsonic wave (``wave_type`` "pseudo"), while a
+        ``surface`` point keeps NaN with :data:`REASON_LEAKY_SUBSONIC` (a leaky wave may coexist
+        there, e.g. Cu (001) between ~26 and 45 deg: ask ``leaky=True``; it costs ~8x the
+        subsonic solve per point). Elastic ``supersonic_decoupled`` points (with True or None):
+        the exact mirror wave is the leaky branch's limit, c_leaky = c_R, attenuation 0.
 
     Returns
     -------
@@ -272,7 +290,10 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         also ``c_L_par``, ``c_T_par``, ``c_SH`` (along x1), ``c_L_perp``, ``c_T_perp`` (along
         x2) in m/s (NaN where imaginary or no state) and ``stable`` (bool: ``ok`` and the
         acoustic tensor positive definite in every direction). Everything that depends on a
-        state is NaN where ``ok`` is False. With piezoelectric constants (:data:`PIEZO_KEYS`):
+        state is NaN where ``ok`` is False. Every crystal: ``c_leaky`` (m/s, omega / Re k of
+        the leaky wave radiating into the slowest bulk sheet, NaN where none),
+        ``leaky_attenuation`` (dB per wavelength, NaN where none) and ``leaky_reason`` (object
+        str, "" where a leaky wave is reported). With piezoelectric constants (:data:`PIEZO_KEYS`):
         ``polarisation`` and ``decay`` have 4 components (u1, u2, u3, phi; phi in V per m of
         displacement), ``c_limit`` is the stiffened limiting speed, plus ``c_free``,
         ``c_metallized`` (m/s), ``K2`` (2 (c_free - c_metallized) / c_free), ``c_leaky`` (m/s),
@@ -317,7 +338,7 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
 
 
 def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool, electrical,
-                  leaky: bool) -> dict:
+                  leaky: bool | None) -> dict:
     n = sigma.shape[0]
     # the stressed state (Born stability included) and the axes it carries
     st = toec_model.stressed_state(constants.voigt, constants.toec if toec else None, sigma, constants.rho,
@@ -345,17 +366,18 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     rho = st["rho"][idx]
     sw = _solve(A, rho, constants, lab[idx], tol, electrical, leaky)
     out: dict = {}
+    floats = PIEZO_KEYS if constants.is_piezo else LEAKY_KEYS
     for key, name in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
-                      ("penetration_depth", "penetration_depth")) + tuple((k, k) for k in PIEZO_KEYS if k in sw):
+                      ("penetration_depth", "penetration_depth")) + tuple((k, k) for k in floats):
         out[key] = np.full(n, np.nan)
         out[key][idx] = sw[name]
     width = 4 if constants.is_piezo else 3
     for key in ("polarisation", "decay"):
         out[key] = np.full((n, width), np.nan + 0j)
         out[key][idx] = sw[key]
+    out["leaky_reason"] = reason.copy()
+    out["leaky_reason"][idx] = sw["leaky_reason"]
     if constants.is_piezo:
-        out["leaky_reason"] = reason.copy()
-        out["leaky_reason"][idx] = sw["leaky_reason"]
         out["electrical"] = np.full(n, electrical, dtype=object)
     out["wave_type"] = np.full(n, "none", dtype=object)
     out["wave_type"][idx] = sw["wave_type"]
@@ -374,17 +396,65 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
 
 
 def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol, electrical=None,
-           leaky: bool = True) -> dict:
+           leaky: bool | None = None) -> dict:
     """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3).
 
     Without piezoelectric constants: :func:`surfwave.solvers.stroh.surface_wave`. With them: e
     and eps_r rotated into ``lab`` (natural values), :func:`surfwave.solvers.piezo_saw.piezo_saw`.
     """
     if not constants.is_piezo:
-        return stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+        sw = stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
+        return {**sw, **_elastic_leaky(A, rho, sw, leaky)}
+    leaky = True if leaky is None else leaky
     e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
     eps = rotate2(constants.permittivity * EPS0, lab)
     return piezo_saw(A, rho, e, eps, electrical=electrical, tol=PIEZO_TOL if tol is None else tol, leaky=leaky)
+
+
+def _elastic_leaky(A: np.ndarray, rho: np.ndarray, sw: dict, leaky: bool | None) -> dict:
+    """The leaky wave of elastic points (:func:`surfwave.solvers.leaky.leaky_wave`).
+
+    Parameters
+    ----------
+    A : ndarray, shape (m, 3, 3, 3, 3)
+        Wave-propagation tensor, Pa, lab frame.
+    rho : ndarray, shape (m,)
+        Density, kg/m^3.
+    sw : dict
+        :func:`surfwave.solvers.stroh.surface_wave` of the same points (``c``, ``wave_type``,
+        ``reason``).
+    leaky : bool or None
+        True: solved at every point; None: only where ``wave_type`` is "pseudo" (``surface``
+        points: NaN, :data:`REASON_LEAKY_SUBSONIC`); False: nowhere (NaN,
+        :data:`REASON_LEAKY_OFF`).
+
+    Returns
+    -------
+    dict of ndarray, shape (m,)
+        ``c_leaky`` (m/s), ``leaky_attenuation`` (dB per wavelength), ``leaky_reason`` (object,
+        "" where a leaky wave is reported): the solver's values and reasons where it is asked;
+        at ``supersonic_decoupled`` points (True or None) the exact mirror wave, c_leaky = c_R
+        and attenuation 0 (the limit of the leaky branch: delta is even in the angle from the
+        mirror); ``none`` points keep the subsonic solver's reason where not solved.
+    """
+    m = len(rho)
+    c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
+    if leaky is False:
+        return {"c_leaky": c_leaky, "leaky_attenuation": att,
+                "leaky_reason": np.full(m, REASON_LEAKY_OFF, dtype=object)}
+    wt = np.asarray(sw["wave_type"])
+    reason = np.asarray(sw["reason"], dtype=object).copy()
+    reason[wt == "surface"] = REASON_LEAKY_SUBSONIC
+    ask = np.flatnonzero((wt == "pseudo") if leaky is None else np.ones(m, dtype=bool))
+    if ask.size:
+        with np.errstate(invalid="ignore"):
+            lw = leaky_wave(A[ask], np.broadcast_to(rho, (m,))[ask])
+        c_leaky[ask], att[ask], reason[ask] = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"]
+    exact = wt == "supersonic_decoupled"
+    c_leaky[exact] = sw["c"][exact]
+    att[exact] = 0.0
+    reason[exact] = ""
+    return {"c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": reason}
 
 
 def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray) -> dict:

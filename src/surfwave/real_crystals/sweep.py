@@ -54,7 +54,8 @@ TRAILING = {"polarisation": "component", "decay": "partial_wave"}
 METHOD = ("general anisotropic surface-wave solver (Stroh formalism, surfwave.solvers.stroh) on "
           "A_ijkl = C_ijkl + sigma_jl delta_ik in the lab frame of each surface and angle; "
           "stressed-state constants and density from third-order constants where toec is true "
-          "(surfwave.real_crystals.toec), natural-state constants otherwise")
+          "(surfwave.real_crystals.toec), natural-state constants otherwise; leaky SAW radiating into the "
+          "slowest bulk sheet (surfwave.solvers.leaky) at every point")
 
 #: The ``units_note`` attribute of the cube (SI, unlike the model-lattice cubes).
 UNITS_NOTE = "SI units: speeds in m/s, stresses in GPa, densities in kg/m^3, angles in degrees"
@@ -76,6 +77,10 @@ VARIABLES: dict[str, dict[str, str]] = {
               "surface wave, ascending Im p (decoupled mirror wave: the two sagittal ones, then the SH "
               "one or NaN), complex", "units": "1"},
     "rho": {"long_name": "density of the (stressed) crystal", "units": "kg m-3"},
+    "c_leaky": {"long_name": "leaky SAW phase speed omega / Re k (radiating into the slowest bulk sheet "
+                "only; NaN where none; the exact wave at a supersonic_decoupled point)", "units": "m s-1"},
+    "leaky_attenuation": {"long_name": "leaky SAW attenuation per wavelength", "units": "dB"},
+    "leaky_reason": {"long_name": "why no leaky SAW is reported at the point (empty when one is)"},
     "symmetric_range": {"long_name": "width of the symmetry-reduced angle range [0, w]: the "
                         "unstressed speeds repeat mirror-symmetrically about multiples of w",
                         "units": "degree"},
@@ -235,6 +240,7 @@ def surface_wave_sweep(
     toec: Sequence[bool] = (False,),
     directions: Sequence[str] | None = None,
     tol: float | None = None,
+    leaky: bool | None = True,
 ) -> xr.Dataset:
     """Surface waves of real crystals over a scene's whole grid, as one labelled cube.
 
@@ -260,6 +266,11 @@ def surface_wave_sweep(
         Miller labels of the angles (same length), stored as a ``direction`` coordinate.
     tol : float, optional
         Relative speed tolerance passed to the solver (its default when None).
+    leaky : bool or None
+        Where the leaky wave is solved (:func:`surfwave.real_crystals.stressed_wave.surface_wave`):
+        True (default) at every point, so that the cube holds the whole leaky branch (also
+        where it coexists with the subsonic wave); None only where no subsonic wave exists;
+        False nowhere.
 
     Returns
     -------
@@ -268,7 +279,9 @@ def surface_wave_sweep(
         for ``c_R``, ``c_R_imag``, ``c_limit`` (m/s), ``wave_type``, ``reason``,
         ``penetration_depth`` (wavelengths), ``rho`` (kg/m^3), and the same plus a trailing
         ``component`` (u1, u2, u3) for the complex ``polarisation`` (written to netCDF as real
-        and imaginary parts by :func:`surfwave.data.cube.write`), plus ``symmetric_range``
+        and imaginary parts by :func:`surfwave.data.cube.write`), ``c_leaky`` (m/s),
+        ``leaky_attenuation`` (dB per wavelength) and ``leaky_reason`` (the leaky wave radiating
+        into the slowest bulk sheet, NaN + reason where none), plus ``symmetric_range``
         (material, surface) in degrees.
         Every variable and coordinate has ``long_name`` (and ``units`` when numeric). No
         global attributes: the workflow adds provenance.
@@ -296,7 +309,7 @@ def surface_wave_sweep(
     nsf, na = axes.shape[:2]
     shape = (len(mats), nsf, na, len(loads), len(models), len(s))
     keys = ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho", "polarisation", "decay", "wave_type",
-            "reason")
+            "reason", "c_leaky", "leaky_attenuation", "leaky_reason")
     out: dict = {}
     # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
@@ -307,7 +320,7 @@ def surface_wave_sweep(
         constants = Constants.from_material(mat)
         for it, use in enumerate(models):
             # every value comes from this material and model's own solve (NaN where no state)
-            res = surface_wave(constants, point_axes, sig, toec=use, tol=tol, bulk=False)
+            res = surface_wave(constants, point_axes, sig, toec=use, tol=tol, bulk=False, leaky=leaky)
             for name in keys:
                 arr = res[name].reshape(sub + res[name].shape[3:])
                 if name not in out:

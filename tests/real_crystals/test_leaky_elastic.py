@@ -1,0 +1,149 @@
+"""The leaky (pseudo) SAW of non-piezoelectric crystals on the one path, the API and the cube.
+
+References:
+- the exact supersonic (mirror-decoupled) wave of Cu (001)[110]: the sagittal root of the
+  subsonic solver, ``surfwave.material("Cu", direction="[110]")["c_R"]`` (the closed form Eq. 17,
+  an independent solver from the leaky wave's complex root search); mirror symmetry about
+  [110] makes delta even in (theta - 45), so the leaky branch meets it with zero attenuation
+  (issue 19; tests/solvers/test_leaky.py checks the bare solver the same way);
+- the bare leaky solver :func:`surfwave.solvers.leaky.leaky_wave` on the same
+  wave-propagation tensors (the one path only routes; it must not change the numbers);
+- the cube of main before this change: every existing variable identical (here: the cube
+  with the leaky solve switched off, the path main had).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import surfwave
+from surfwave.errors import InputError
+from surfwave.real_crystals.materials import get_material
+from surfwave.real_crystals.stressed_wave import REASON_LEAKY_OFF, REASON_LEAKY_SUBSONIC
+from surfwave.real_crystals.sweep import VARIABLES, surface_wave_sweep
+from surfwave.solvers import stroh
+from surfwave.solvers.leaky import leaky_wave
+from surfwave.solvers.orientation import lab_axes
+from surfwave.solvers.tensors import rotate4, voigt_to_tensor
+
+CU = get_material("Cu")
+
+
+def _cu_A(angles):
+    C = rotate4(voigt_to_tensor(CU.voigt)[None], lab_axes("(001)", np.asarray(angles, float))) * 1e9
+    return stroh.wave_propagation_tensor(C, np.zeros((len(angles), 3, 3)))
+
+
+def test_cu_001_leaky_branch_through_the_api_meets_the_mirror_wave():
+    """Cu (001), 30 -> 45 deg with leaky=True: one continuous branch (steps shrink with the angle
+    step, speed monotone toward [110]), equal at 45 deg to the exact supersonic_decoupled c_R
+    (reference: the sagittal root of material('Cu', direction='[110]')) to 1e-8, attenuation
+    -> 0 as (45 - theta)^2 (mirror symmetry), and equal to the bare leaky solver."""
+    ang = np.array([30.0, 34.0, 38.0, 42.0, 44.0, 44.9, 44.99, 44.995, 45.0])
+    r = surfwave.material("Cu", angle=ang, leaky=True)
+    assert np.all(r["leaky_reason"] == ""), r["leaky_reason"]
+    c45 = surfwave.material("Cu", direction="[110]")
+    assert c45["wave_type"] == "supersonic_decoupled"
+    assert abs(r["c_leaky"][-1] - c45["c_R"]) <= 1e-8 * c45["c_R"]
+    assert r["leaky_attenuation"][-1] == 0.0
+    # the branch's own limit (the point before 45) reaches the exact wave too
+    assert abs(r["c_leaky"][-2] - c45["c_R"]) < 1e-6 * c45["c_R"]
+    assert np.all(np.diff(r["c_leaky"]) > 0)
+    att = r["leaky_attenuation"]
+    assert np.all(np.diff(att[3:]) < 0) and att[-2] < 1e-6
+    assert att[5] / att[6] == pytest.approx(100.0, rel=0.02)     # (0.1 / 0.01)^2
+    bare = leaky_wave(_cu_A(ang[:-1]), CU.rho)
+    np.testing.assert_allclose(r["c_leaky"][:-1], bare["c_leaky"], rtol=1e-10)
+    np.testing.assert_allclose(r["leaky_attenuation"][:-1], bare["leaky_attenuation"], rtol=1e-6, atol=1e-12)
+
+
+def test_default_solves_only_where_no_subsonic_wave():
+    """Default leaky=None: the pseudo points of Cu (001) next to [110] (NaN c_R today) get the
+    leaky wave (the bare solver's numbers), the mirror point the exact wave with attenuation 0,
+    and points with a subsonic wave keep c_leaky NaN with REASON_LEAKY_SUBSONIC."""
+    ang = np.array([10.0, 44.0, 44.97, 44.99, 45.0])
+    r = surfwave.material("Cu", angle=ang)
+    assert list(r["wave_type"]) == ["surface", "surface", "pseudo", "pseudo", "supersonic_decoupled"]
+    assert np.all(np.isnan(r["c_leaky"][:2])) and np.all(np.isnan(r["leaky_attenuation"][:2]))
+    assert list(r["leaky_reason"][:2]) == [REASON_LEAKY_SUBSONIC] * 2
+    bare = leaky_wave(_cu_A(ang[2:4]), CU.rho)
+    np.testing.assert_allclose(r["c_leaky"][2:4], bare["c_leaky"], rtol=1e-10)
+    assert np.all(r["leaky_attenuation"][2:4] > 0)
+    assert r["c_leaky"][4] == r["c_R"][4] and r["leaky_attenuation"][4] == 0.0
+    assert list(r["leaky_reason"][2:]) == [""] * 3
+    # existing outputs untouched by the leaky solve
+    off = surfwave.material("Cu", angle=ang, leaky=False)
+    for key in ("c_R", "c_limit", "polarisation", "decay"):
+        np.testing.assert_array_equal(r[key], off[key])
+    assert list(off["leaky_reason"]) == [REASON_LEAKY_OFF] * 5 and np.all(np.isnan(off["c_leaky"]))
+
+
+def test_scalar_call_and_subsonic_point_with_leaky_true():
+    """One direction: floats and a str reason. Cu (001) at 10 deg with leaky=True: no leaky
+    root on the slowest sheet (the bare solver's reason), NaN, never a number."""
+    r = surfwave.material("Cu", angle=10.0, leaky=True)
+    assert isinstance(r["leaky_reason"], str) and r["leaky_reason"] != ""
+    assert np.isnan(r["c_leaky"]) and np.isnan(r["leaky_attenuation"])
+    assert r["leaky_reason"] == leaky_wave(_cu_A([10.0]), CU.rho)["reason"][0]
+
+
+def test_bad_leaky_argument():
+    with pytest.raises(InputError, match="leaky"):
+        surfwave.material("Cu", leaky="yes")
+
+
+def test_cube_equals_api_on_leaky_points_and_keeps_existing_variables():
+    """The crystals cube carries c_leaky / leaky_attenuation / leaky_reason (CF attributes as in
+    the piezoelectric cube); on its leaky points it equals material(..., leaky=True) (the one
+    path), and every variable it had before is identical to the cube without the leaky solve."""
+    ang = np.array([0.0, 20.0, 30.0, 40.0, 44.99, 45.0])
+    ds = surface_wave_sweep([CU], ["(001)"], ang)
+    assert ds.c_leaky.attrs["units"] == "m s-1" and ds.leaky_attenuation.attrs["units"] == "dB"
+    assert ds.c_leaky.attrs == VARIABLES["c_leaky"]
+    cube = ds.sel(material="Cu", surface="(001)")
+    api = surfwave.material("Cu", angle=ang, leaky=True)
+    found = np.isfinite(cube.c_leaky.values)
+    assert found.sum() >= 4
+    np.testing.assert_array_equal(found, np.isfinite(api["c_leaky"]))
+    np.testing.assert_allclose(cube.c_leaky.values[found], api["c_leaky"][found], rtol=1e-12)
+    np.testing.assert_allclose(cube.leaky_attenuation.values[found], api["leaky_attenuation"][found],
+                               rtol=1e-9, atol=1e-15)
+    assert list(cube.leaky_reason.values) == list(api["leaky_reason"])
+    old = surface_wave_sweep([CU], ["(001)"], ang, leaky=False)
+    for name in old.data_vars:
+        if not name.startswith(("c_leaky", "leaky_")):
+            assert ds[name].equals(old[name]), name
+
+
+def test_angle_figure_draws_the_leaky_branch(tmp_path):
+    """surface_wave_angles.png: with c_leaky in the cube a second row of panels shows the
+    attenuation and the top row carries the dashed leaky branch (its data are the cube's);
+    a cube without c_leaky (written before) still draws one row."""
+    import matplotlib.pyplot as plt
+
+    from surfwave.plots import surface_wave as sw_plots
+
+    ds = surface_wave_sweep([CU], ["(001)", "(111)"], np.arange(0.0, 46.0, 5.0))
+    shown = {}
+    real_savefig = sw_plots.savefig
+
+    def keep(fig, path):
+        shown["axes"] = fig.axes
+        return real_savefig(fig, path)
+
+    sw_plots.savefig = keep
+    try:
+        assert sw_plots.speeds_vs_angle(ds, tmp_path / "a.png").stat().st_size > 0
+        axes = shown["axes"]
+        assert len(axes) == 4                      # 2 surfaces x (speed, attenuation)
+        att = axes[2].lines[0].get_ydata()         # (001) attenuation row, Cu
+        x = np.arange(0.0, 46.0, 5.0)
+        np.testing.assert_array_equal(att, ds.leaky_attenuation.sel(material="Cu", surface="(001)",
+                                                                    angle=x).values)
+        assert any(line.get_linestyle() == "--" for line in axes[0].lines)
+        sw_plots.speeds_vs_angle(ds.drop_vars(["c_leaky", "leaky_attenuation", "leaky_reason"]),
+                                 tmp_path / "b.png")
+        assert len(shown["axes"]) == 2
+    finally:
+        sw_plots.savefig = real_savefig
+        plt.close("all")
