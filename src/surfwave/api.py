@@ -6,6 +6,8 @@ measured elastic constants (or a material name), optionally with third-order con
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from surfwave import validate
@@ -16,8 +18,9 @@ from surfwave.solvers.orientation import direction_angle, lab_axes, reference_di
 from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.errors import InputError
 from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.records import MaterialResult, PointResult
 
-__all__ = ["material", "point"]
+__all__ = ["MaterialResult", "PointResult", "material", "point"]
 
 
 def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
@@ -28,7 +31,7 @@ def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
 
 
 def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, load_direction=None,
-          min_eig: bool = False, details: bool = False) -> dict:
+          min_eig: bool = False, details: bool = False) -> PointResult:
     """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
 
     Parameters
@@ -63,7 +66,7 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
 
     Returns
     -------
-    dict
+    PointResult (a dict; keys in :class:`surfwave.records.PointResult`)
         Shapes: (n,) per strain, or (n, m) for an array of m angles (scalar angle or string:
         (n,)). ``stress`` (sigma_xx V / K d0^2, x = propagation), ``c2_L_par``, ``c2_T_par``,
         ``c2_L_perp``, ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (K d0^2 / m; the real
@@ -100,11 +103,11 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
             out.update(extra)
         if lattice == "fcc":
             out["angle"] = np.full(out["c2_R"].shape, direction_angle("(001)", direction))
-        return out
+        return cast(PointResult, out)
     return _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig)
 
 
-def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig) -> dict:
+def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig) -> PointResult:
     """:func:`point` at any direction of the FCC (001) surface (the general solver)."""
     if lattice != "fcc":
         raise InputError(f"directions other than the mirror ones need lattice 'fcc', got {lattice!r} "
@@ -144,7 +147,7 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     if angle.ndim == 0:  # a scalar angle: no angle axis
         for key in _ANGLE_KEYS:
             out[key] = out[key][:, 0]
-    return out
+    return cast(PointResult, out)
 
 
 #: Outputs of :func:`point` that carry the angle axis (the rest depend on the strain only).
@@ -227,7 +230,7 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
 
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
              voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
-             electrical=None) -> dict:
+             electrical=None) -> MaterialResult:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
@@ -288,7 +291,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
 
     Returns
     -------
-    dict
+    MaterialResult (a dict; keys in :class:`surfwave.records.MaterialResult`)
         Floats for one direction, arrays of shape (m,) for m angles: ``c_R`` (m/s, NaN where
         none; real part for a pseudo wave), ``c_R_imag``, ``c_limit`` (v_L), ``c_L_par``,
         ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (bulk speeds along x1 and x2, m/s,
@@ -368,4 +371,4 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
             out[key] = str(out[key])
         out["stable"] = bool(out["stable"])
         out["toec"] = bool(out["toec"])
-    return out
+    return cast(MaterialResult, out)

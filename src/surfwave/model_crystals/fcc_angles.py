@@ -28,14 +28,13 @@ from surfwave.solvers import rayleigh
 from surfwave.solvers.tensors import rotate4
 from surfwave.errors import InputError
 from surfwave.validate import as_1d
+from surfwave.vocab import WAVE_TYPES  # noqa: F401 (the wave types the rayleigh cube may hold)
 
 #: The only loading whose stressed crystal is the same for every in-plane angle.
 LOADING = "in_plane_hydrostatic"
 #: Attributes of the ``angle`` coordinate of the elastic and rayleigh cubes.
 ANGLE_ATTRS = {"long_name": "propagation angle in the (001) surface, from [100] toward [010]",
                "units": "degree"}
-#: Wave types the rayleigh cube may hold at any angle.
-WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 
 def lab_rotation(angles) -> np.ndarray:

@@ -26,7 +26,6 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 
@@ -34,10 +33,8 @@ from surfwave.errors import GeometryError, InputError
 from surfwave.solvers.orientation import lab_axes
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Lattice, Loading
 
-Lattice = Literal["fcc", "triangular"]
-Loading = Literal["uniaxial", "in_plane_hydrostatic"]
-Direction = Literal["[100]", "[110]", "[10]"]
 
 LATTICES: dict[str, dict] = {
     "fcc": {"dim": 3, "loadings": ("in_plane_hydrostatic", "uniaxial"),

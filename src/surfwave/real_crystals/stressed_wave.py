@@ -49,6 +49,7 @@ from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
+from surfwave.vocab import STRESS_LOADINGS
 
 __all__ = ["Constants", "ELECTRICAL", "GPA", "LOADINGS", "PIEZO_KEYS", "REASON_NO_STATE", "REASON_TRACTION",
            "TRACTION_TOL", "stress_tensor", "surface_wave"]
@@ -69,7 +70,7 @@ REASON_NO_STATE = "no stressed state: "
 #: Loading kinds: uniaxial along / across the propagation direction (in the surface),
 #: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
 #: along a fixed crystal direction in the surface.
-LOADINGS = ("along", "across", "biaxial")
+LOADINGS = tuple(k for k in STRESS_LOADINGS if k != "axis")
 #: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
 PIEZO_TOL = 1e-12
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")

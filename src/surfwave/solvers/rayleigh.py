@@ -39,6 +39,7 @@ from surfwave.solvers.cubic import newton_polish as _polish
 from surfwave.solvers.cubic import real_cubic_roots as _real_cubic_roots  # noqa: F401 (tests)
 from surfwave.solvers.cubic import real_roots_closed_form as _cubic_rows
 from surfwave.errors import SymmetryError
+from surfwave.vocab import SAGITTAL_WAVE_TYPES
 
 #: Metadata of the arrays this module produces.
 VARIABLES: dict[str, dict] = {
@@ -54,7 +55,8 @@ VARIABLES: dict[str, dict] = {
                "units": "1", "dims": ()},
 }
 
-WAVE_TYPES = ("surface", "supersonic_decoupled", "none")
+#: Wave types this solver reports (it never reports ``pseudo``).
+WAVE_TYPES = SAGITTAL_WAVE_TYPES
 
 REASON_SHEAR = "no surface wave: c_T,par^2 <= 0 (shear instability along the surface)"
 REASON_PERP = "no surface wave: S_yyyy <= 0 or S_xyxy <= 0 (unstable normal to the surface)"

@@ -31,6 +31,7 @@ import numpy as np
 from surfwave.solvers import impedance as imp
 from surfwave.solvers import rayleigh
 from surfwave.errors import InputError
+from surfwave.vocab import WAVE_TYPES  # noqa: F401 (re-exported: the wave types solve() reports)
 
 #: Smallest t = sqrt(1 - X/X_L) searched: roots closer to X_L than T_MIN^2 relative are "none".
 T_MIN = 1e-6
@@ -40,7 +41,6 @@ MAX_ITER = 100
 #: Starting point of the Newton iteration, t = sqrt(1 - X/X_L) (X = 0.91 X_L).
 T_START = 0.3
 
-WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 REASON_UNSTABLE = "no surface wave: a bulk wave in the sagittal plane has rho v^2 <= 0 (unstable crystal)"
 REASON_T = "no surface wave: T_ik = A_i2k2 is not positive definite (unstable normal to the surface)"
