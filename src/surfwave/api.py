@@ -19,6 +19,7 @@ from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.errors import InputError
 from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.records import MaterialResult, PointResult
+from surfwave.vocab import Direction
 
 __all__ = ["MaterialResult", "PointResult", "material", "point"]
 
@@ -72,8 +73,9 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
         ``c2_L_perp``, ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (K d0^2 / m; the real
         part for a pseudo wave), ``c2_limit`` (v_L^2), ``wave_type``, ``reason``,
         ``polarisation`` (..., d) and ``decay`` (..., d) complex, ``penetration_depth``
-        (wavelengths) (at mirror directions only with ``details``), ``stable`` (n,) (long-wave stability in every direction),
-        ``min_acoustic_eig`` (n,) (only with ``min_eig``), ``C`` and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
+        (wavelengths) (at mirror directions only with ``details``), ``stable`` (n,) (long-wave
+        stability in every direction), ``min_acoustic_eig`` (n,) (only with ``min_eig``), ``C``
+        and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
         ``volume``, ``d_over_d0`` (n,), and ``angle`` (degrees from [100], FCC only).
 
     Raises
@@ -117,7 +119,7 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     if angle.ndim > 1:
         raise InputError(f"angles must be a scalar or a 1-D array, got shape {angle.shape}")
     if loading == "in_plane_hydrostatic":
-        load = "[100]"  # tetragonal: the loading has no in-plane direction
+        load: Direction = "[100]"  # tetragonal: the loading has no in-plane direction
     elif load_direction in ("[100]", "[110]"):
         load = load_direction
     else:

@@ -29,7 +29,7 @@ y = surface normal (into the crystal), z = in-plane normal to x.
 examples:
   surfwave point --lattice fcc --loading in_plane_hydrostatic --potential lj --direction "[110]" --d-over-d0 1.02
   surfwave point --lattice triangular --loading uniaxial --potential harmonic --direction "[10]" --d-over-d0 0.9 1.0 1.1 --json
-"""
+"""  # noqa: E501 (commands to copy, printed by --help)
 
 EPILOG_MATERIAL = """\
 The crystal: a name from the materials database (--material Cu; 'surfwave material --list'),

@@ -11,6 +11,7 @@ import warnings
 import numpy as np
 import pytest
 
+from surfwave.data.variables import CUBES
 from surfwave.dynamics import dispersion as D
 from surfwave.model_crystals import elastic
 from surfwave.solvers import rayleigh
@@ -287,7 +288,7 @@ def test_variables_metadata_covers_outputs():
     r = D.solve("harmonic", [1.0], [0.5])
     disp = D.displacements("harmonic", [1.0], [0.5])
     for key in list(r) + ["u", "v", "row"]:
-        meta = D.VARIABLES[key]
+        meta = CUBES["dispersion"][key]
         assert {"long_name", "units", "dims"} <= set(meta)
         assert set(meta["dims"]) <= {"strain", "theta", "row"}
     assert disp["row"].tolist() == list(range(disp["u"].shape[-1])) and disp["u"].shape[-1] >= 10

@@ -18,8 +18,8 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
-ds = surface_wave_sweep([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"], stress=job["stress"],
-                        loadings=job["loading"], toec=job["toec"], directions=job["directions"],
+ds = surface_wave_sweep([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"],
+                        stress=job["stress"], loadings=job["loading"], toec=job["toec"], directions=job["directions"],
                         tol=job["accuracy"].get("tol"))
 for wave_type in WAVE_TYPES:
     print(f"{wave_type}: {int((ds.wave_type == wave_type).sum())} points", file=sys.stderr)

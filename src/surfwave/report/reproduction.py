@@ -57,10 +57,12 @@ class Cubes:
 
     @classmethod
     def from_dir(cls, results: str | Path) -> "Cubes":
+        """The cubes of the paper's scenes found under ``results`` (results/<scene>/<cube>.nc)."""
         root = Path(results)
         return cls(p for p in sorted(root.glob("*/*.nc")) if p.stem in CUBE_NAMES)
 
     def get(self, scene: str, cube: str) -> xr.Dataset | None:
+        """The cube ``scene/cube``, opened once and kept; None if the run did not make it."""
         key = f"{scene}/{cube}"
         if key not in self._cache:
             path = self.paths.get(key)
@@ -68,6 +70,7 @@ class Cubes:
         return self._cache[key]
 
     def listing(self) -> list[tuple[str, str]]:
+        """(scene/cube, path) of every cube, ``(missing)`` appended where the file is absent."""
         return [(k, str(p) if p.is_file() else f"{p} (missing)") for k, p in self.paths.items()]
 
 
