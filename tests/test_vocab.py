@@ -96,6 +96,9 @@ def test_modules_use_the_vocabularies():
         assert set(spec["loadings"]) <= set(vocab.LOADINGS) and set(spec["directions"]) <= set(vocab.DIRECTIONS)
     assert acoustoelastic.LOADINGS == vocab.STRESS_LOADINGS
     assert set(sweep.LOADINGS) | {"axis"} == set(vocab.STRESS_LOADINGS)
+    from surfwave.solvers import leaky, piezo
+
+    assert leaky.ELECTRICAL is vocab.ELECTRICAL and piezo.ELECTRICAL is vocab.ELECTRICAL
 
 
 def test_cli_choices_are_the_vocabularies():
