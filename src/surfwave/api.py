@@ -11,14 +11,14 @@ from typing import cast
 import numpy as np
 
 from surfwave import validate
-from surfwave.model_crystals import elastic
-from surfwave.solvers import long_wave, rayleigh, stroh
-from surfwave.model_crystals.lattices import build
-from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
-from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.errors import InputError
+from surfwave.model_crystals import elastic
+from surfwave.model_crystals.lattices import build
 from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.records import MaterialResult, PointResult
+from surfwave.solvers import long_wave, rayleigh, stroh
+from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
 from surfwave.vocab import Direction
 
 __all__ = ["MaterialResult", "PointResult", "material", "point"]
@@ -181,8 +181,8 @@ def _stress_tensor(stress, R: np.ndarray) -> np.ndarray:
 
 def _resolve_material(C11, C12, C44, rho, voigt, toec):
     """(Voigt C (6, 6), rho, C3 Voigt (6, 6, 6) or None, label) from the material arguments."""
-    from surfwave.real_crystals.toec import cubic_toec
     from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
+    from surfwave.real_crystals.toec import cubic_toec
 
     name = None
     C3 = None

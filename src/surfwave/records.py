@@ -16,7 +16,6 @@ knows every key. Also importable as ``surfwave.api.PointResult`` and
 # only from evaluated annotations (with strings every key would count as required).
 from typing import Any, NotRequired, TypedDict
 
-
 __all__ = ["MaterialResult", "PointResult"]
 
 #: Values are NumPy arrays (shapes below); ``Any`` keeps the record free of a NumPy typing

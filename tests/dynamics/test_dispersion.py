@@ -13,10 +13,10 @@ import pytest
 
 from surfwave.data.variables import CUBES
 from surfwave.dynamics import dispersion as D
+from surfwave.dynamics.triangular import row_matrices
+from surfwave.errors import GeometryError
 from surfwave.model_crystals import elastic
 from surfwave.solvers import rayleigh
-from surfwave.errors import GeometryError
-from surfwave.dynamics.triangular import row_matrices
 
 TH = np.array([1e-3, np.pi / 20, np.pi / 8, np.pi / 4, 1.3, np.pi / 2, 2.2, np.pi - 1e-3])
 # 4 cos(80 deg) = 2 x with x^3 - 3x + 1 = 0: c_T,par^2 = 0 of the harmonic lattice (Eq. A14).

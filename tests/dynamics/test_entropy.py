@@ -9,15 +9,24 @@ from scipy import integrate
 
 from surfwave.data.variables import CUBES
 from surfwave.dynamics.entropy import (
-    OUTPUTS, band_edge_coefficients, estimate_terms, rayleigh_c2, surface_entropy,
-    theta_integrals, theta_rule,
+    OUTPUTS,
+    band_edge_coefficients,
+    estimate_terms,
+    rayleigh_c2,
+    surface_entropy,
+    theta_integrals,
+    theta_rule,
 )
-from surfwave.errors import GeometryError, InputError
 from surfwave.dynamics.surface_green import (
-    bulk_schur, hermitian, positive_definite2, slab_log_det, slab_s_theta,
+    bulk_schur,
+    hermitian,
+    positive_definite2,
+    slab_log_det,
+    slab_s_theta,
     theta_log_dets,
 )
 from surfwave.dynamics.triangular import row_matrices
+from surfwave.errors import GeometryError, InputError
 
 #: Huckaby's mean of ln(omega/omega0) over the bulk modes of the unstressed harmonic
 #: triangular lattice, quoted in the paper before Eq. (26) and in docs/physics/paper.md.

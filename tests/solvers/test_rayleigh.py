@@ -14,10 +14,10 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 import surfwave
-from surfwave.solvers import cubic, rayleigh, stroh
-from surfwave.model_crystals import elastic
-from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor
 from surfwave.errors import SymmetryError
+from surfwave.model_crystals import elastic
+from surfwave.solvers import cubic, rayleigh, stroh
+from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor
 
 SQ3 = np.sqrt(3.0)
 

@@ -7,8 +7,8 @@ import sys
 
 from surfwave.data import cache, cube
 from surfwave.data.variables import CUBES
-from surfwave.pipeline import stage
 from surfwave.model_crystals import phonons, sanity
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone

@@ -6,8 +6,8 @@ import sys
 
 from surfwave.data import cube
 from surfwave.data.variables import CUBES
-from surfwave.pipeline import stage
 from surfwave.model_crystals import symmetry
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone

@@ -9,8 +9,9 @@ import numpy as np
 
 from surfwave.data import cache, cube
 from surfwave.data.variables import CUBES
+from surfwave.dynamics import dispersion
+from surfwave.dynamics import triangular_surface as lattice_dynamics
 from surfwave.pipeline import stage
-from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone

@@ -4,9 +4,9 @@ By hand (from the repository root): python workflow/scripts/elastic.py SCENE [CO
 """
 import sys
 
-from surfwave.model_crystals import elastic
 from surfwave.data import cube
 from surfwave.data.variables import CUBES
+from surfwave.model_crystals import elastic
 from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging

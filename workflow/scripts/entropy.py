@@ -6,8 +6,8 @@ By hand (from the repository root): python workflow/scripts/entropy.py SCENE [CO
 
 from surfwave.data import cache, cube
 from surfwave.data.variables import CUBES
-from surfwave.pipeline import stage
 from surfwave.dynamics import entropy
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone

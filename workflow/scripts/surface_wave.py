@@ -5,10 +5,10 @@ By hand (from the repository root): python workflow/scripts/surface_wave.py SCEN
 """
 import sys
 
-from surfwave.real_crystals.sweep import METHOD, UNITS_NOTE, surface_wave_sweep
 from surfwave.data import cube
-from surfwave.real_crystals.materials import get_material
 from surfwave.pipeline import stage
+from surfwave.real_crystals.materials import get_material
+from surfwave.real_crystals.sweep import METHOD, UNITS_NOTE, surface_wave_sweep
 from surfwave.vocab import WAVE_TYPES
 
 if "snakemake" not in globals():  # standalone run for debugging

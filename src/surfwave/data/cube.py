@@ -35,9 +35,9 @@ import xarray as xr
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
-from surfwave.errors import DamagedCubeError, InputError
 from surfwave.data.integrity import check_readable, rebuild_hint
 from surfwave.data.variables import MODEL_COORDS
+from surfwave.errors import DamagedCubeError, InputError
 
 #: netCDF engine used on write and read: the netCDF-C library (netCDF4-python); on this
 #: machine it writes a cube 4-5x and opens one 7x faster than h5netcdf.

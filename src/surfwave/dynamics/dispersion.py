@@ -27,11 +27,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.errors import InputError
-from surfwave.validate import as_1d
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import inv2, null_vector2
 from surfwave.dynamics.triangular import bond_force_constants, row_matrices
+from surfwave.errors import InputError
+from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.validate import as_1d
 
 REASON_THETA = "theta outside (0, pi)"
 REASON_SURFACE = "surface unstable: c_R^2 <= 0 (the free surface buckles before or with the bulk)"

@@ -47,10 +47,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from surfwave.model_crystals.lattices import build
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import positive_definite2, theta_log_dets
 from surfwave.dynamics.triangular import bond_force_constants, long_wave, row_matrices
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 
 #: Names of the arrays :func:`surface_entropy` returns (metadata: surfwave.data.variables.CUBES["entropy"]).
 OUTPUTS = ("S_surface_estimate", "S_surface_estimate_error", "bulk_mean_log_omega", "bulk_mean_log_omega_error",

@@ -27,9 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.model_crystals import elastic
-from surfwave.solvers import rayleigh
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers import rayleigh
 from surfwave.validate import as_1d
 
 

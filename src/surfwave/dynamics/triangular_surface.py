@@ -20,10 +20,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.errors import InputError
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import det2, inv2, null_vector2
 from surfwave.dynamics.triangular import long_wave, row_matrices
+from surfwave.errors import InputError
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.validate import as_1d
 
 REASON_ROUNDING = ("theta too close to 0 or pi: the bulk band bottom omega^2 (~theta^2) is within "

@@ -18,11 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.model_crystals.lattices import build
-from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability, long_wave_stable
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.errors import InputError
-
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability, long_wave_stable
 
 
 def _bond_terms(bonds: np.ndarray, potential: str | PairPotential):

@@ -23,10 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
 from surfwave.solvers import rayleigh
 from surfwave.solvers.tensors import rotate4
-from surfwave.errors import InputError
 from surfwave.validate import as_1d
 from surfwave.vocab import WAVE_TYPES  # noqa: F401 (the wave types the rayleigh cube may hold)
 

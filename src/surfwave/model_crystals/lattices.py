@@ -30,11 +30,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from surfwave.errors import GeometryError, InputError
-from surfwave.solvers.orientation import lab_axes
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.orientation import lab_axes
 from surfwave.validate import as_1d
 from surfwave.vocab import Direction, Lattice, Loading
-
 
 LATTICES: dict[str, dict] = {
     "fcc": {"dim": 3, "loadings": ("in_plane_hydrostatic", "uniaxial"),

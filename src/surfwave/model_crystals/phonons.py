@@ -35,10 +35,10 @@ from typing import Literal
 
 import numpy as np
 
-from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.errors import InputError, PhonopyPointError, SurfwaveError
 from surfwave.model_crystals.lattices import build_checked, check_combination
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.validate import as_1d
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).

@@ -24,12 +24,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.real_crystals import toec
 from surfwave.real_crystals.stressed_wave import REASON_TRACTION, TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.real_crystals.toec import DEFAULT_TOL
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import rotate2
-from surfwave.errors import InputError
 from surfwave.vocab import STRESS_LOADINGS
 
 __all__ = ["DEFAULT_STEP", "LOADINGS", "REASON_TRACTION", "TRACTION_TOL", "acoustoelastic_coefficients",

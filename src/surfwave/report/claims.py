@@ -10,11 +10,11 @@ import numpy as np
 
 from surfwave.report.checks import (
     FAIL,
+    FCC_DIRECTIONS,
     INCONCLUSIVE,
     NOT_COMPUTED,
     PASS,
     STRAIN_MATCH,
-    FCC_DIRECTIONS,
     Check,
     _potentials,
     _theta_c,

@@ -24,11 +24,11 @@ from typing import Iterable
 import numpy as np
 import xarray as xr
 
-from surfwave.report import checks as _values
-from surfwave.report import claims as _claims
 from surfwave.data.cube import open_cube as _open_cube
 from surfwave.data.paper import load_paper_values  # noqa: F401 (re-exported)
 from surfwave.pipeline.targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
+from surfwave.report import checks as _values
+from surfwave.report import claims as _claims
 from surfwave.report.checks import (
     FAIL,
     INCONCLUSIVE,
@@ -36,9 +36,12 @@ from surfwave.report.checks import (
     PASS,
     Check,
     fmt,
-    pick as _pick,
     sel_strain,
 )
+from surfwave.report.checks import (
+    pick as _pick,
+)
+
 
 # --------------------------------------------------------------------------- I/O helpers
 def open_cube(path: str | Path) -> xr.Dataset | None:

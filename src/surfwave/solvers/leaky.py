@@ -28,9 +28,9 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.vocab import ELECTRICAL
 from surfwave.solvers.piezo_stroh import generalised_blocks
 from surfwave.solvers.piezo_tensors import EPS0
+from surfwave.vocab import ELECTRICAL
 
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)

@@ -33,11 +33,18 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
+from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
 from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
-    generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
-    stroh_polynomial_parts)
-from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
+    generalised_blocks,
+    generalised_tensor,
+    impedance,
+    impedance_slope,
+    limiting_x,
+    piezo_bulk_speeds,
+    stroh_matrix,
+    stroh_polynomial_parts,
+)
 from surfwave.solvers.piezo_tensors import EPS0  # noqa: F401  (vacuum permittivity, F/m; re-exported)
 
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).

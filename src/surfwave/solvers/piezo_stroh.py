@@ -8,9 +8,9 @@ Physics: docs/physics/piezoelectric.md.
 """
 from __future__ import annotations
 
-import numpy as np
-
 import itertools
+
+import numpy as np
 
 from surfwave.solvers.impedance import _monic, _pmul, track_roots
 

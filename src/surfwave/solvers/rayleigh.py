@@ -35,11 +35,10 @@ import itertools
 
 import numpy as np
 
+from surfwave.errors import SymmetryError
 from surfwave.solvers.cubic import newton_polish as _polish
 from surfwave.solvers.cubic import real_roots_closed_form as _cubic_rows
-from surfwave.errors import SymmetryError
 from surfwave.vocab import SAGITTAL_WAVE_TYPES
-
 
 #: Wave types this solver reports (it never reports ``pseudo``).
 WAVE_TYPES = SAGITTAL_WAVE_TYPES

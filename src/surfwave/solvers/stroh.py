@@ -28,9 +28,9 @@ import itertools
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.solvers import impedance as imp
 from surfwave.solvers import rayleigh
-from surfwave.errors import InputError
 from surfwave.vocab import WAVE_TYPES  # noqa: F401 (re-exported: the wave types solve() reports)
 
 #: Smallest t = sqrt(1 - X/X_L) searched: roots closer to X_L than T_MIN^2 relative are "none".
