@@ -103,6 +103,7 @@ class Constants:
     permittivity: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        """Normalise the constants: Voigt (6, 6) GPa (a (3, 3, 3, 3) tensor is converted), rho float."""
         C = np.asarray(self.voigt, dtype=float)
         if C.shape == (3, 3, 3, 3):
             C = tensor_to_voigt(C)
