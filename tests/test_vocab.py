@@ -19,7 +19,7 @@ import pytest
 
 import surfwave
 from surfwave import vocab
-from surfwave.data.variables import CUBES, MODEL_COORDS, SURFACE_WAVE_COORDS
+from surfwave.data.variables import CUBES, MODEL_COORDS, PIEZO_WAVE_COORDS, SURFACE_WAVE_COORDS
 from surfwave.pipeline.scenes import load_schema
 from surfwave.records import MaterialResult, PointResult
 
@@ -71,6 +71,15 @@ def test_schema_enums_are_the_vocabularies():
     assert tuple(scene["directions"]["oneOf"][0]["items"]["enum"]) == vocab.DIRECTIONS
 
 
+def test_schema_electrical_is_the_vocabulary():
+    """Piezoelectric scenes: the electrical enum and its default are the vocabulary's."""
+    found = [v["properties"]["electrical"] for v in _schema_defs().values()
+             if isinstance(v, dict) and "electrical" in v.get("properties", {})]
+    assert found
+    for prop in found:
+        assert tuple(prop["items"]["enum"]) == vocab.ELECTRICAL and tuple(prop["default"]) == vocab.ELECTRICAL
+
+
 def test_schema_stress_loadings_are_the_vocabulary():
     """Real-crystal scenes: the loading pattern's alternatives are the stress loadings (axis as axis_<hkl>)."""
     pattern = _schema_defs()["crystal_scene"]["properties"]["loading"]["items"]["pattern"]
@@ -99,6 +108,9 @@ def test_modules_use_the_vocabularies():
     from surfwave.solvers import leaky, piezo
 
     assert leaky.ELECTRICAL is vocab.ELECTRICAL and piezo.ELECTRICAL is vocab.ELECTRICAL
+    from surfwave.real_crystals import piezo_sweep, piezo_wave
+
+    assert piezo_wave.ELECTRICAL is vocab.ELECTRICAL and piezo_sweep.ELECTRICAL is vocab.ELECTRICAL
 
 
 def test_cli_choices_are_the_vocabularies():
@@ -175,9 +187,22 @@ def test_no_second_metadata_table():
         module = importlib.import_module(info.name)
         for attr, value in vars(module).items():
             if (attr.endswith("VARIABLES") and isinstance(value, dict) and value
-                    and value is not CUBES.get("surface_wave")):
+                    and not any(value is table for table in CUBES.values())):
                 found.append(f"{info.name}.{attr}")
     assert found == []
+
+
+def test_piezo_cube_carries_the_table():
+    """A piezoelectric cube (128Y-X LiNbO3, free and metallized) writes only variables and
+    coordinates of the table, with the table's attributes."""
+    from surfwave.real_crystals.piezo_sweep import piezo_wave_sweep
+
+    ds = piezo_wave_sweep(["LiNbO3"], cuts=["128Y-X"])
+    for name, var in ds.data_vars.items():
+        assert var.attrs.get("long_name") == CUBES["piezo_wave"][name]["long_name"], name
+        assert var.attrs.get("units") == CUBES["piezo_wave"][name].get("units"), name
+    for name in ("material", "surface", "angle", "electrical", "euler_phi", "euler_psi", "cut"):
+        assert ds[name].attrs == PIEZO_WAVE_COORDS[name], name
 
 
 def test_coordinate_tables():
@@ -196,7 +221,12 @@ def test_written_cubes_carry_the_table():
         if path.stem not in DEFAULT_RUN:
             continue
         ds = open_cube(path)
-        table = CUBES["rayleigh_angles" if path.stem == "rayleigh" and "angle" in ds.dims else path.stem]
+        if path.stem == "rayleigh" and "angle" in ds.dims:
+            table = CUBES["rayleigh_angles"]
+        elif path.stem == "surface_wave" and "electrical" in ds.dims:
+            table = CUBES["piezo_wave"]
+        else:
+            table = CUBES[path.stem]
         for name, var in ds.data_vars.items():
             assert var.attrs.get("long_name") == table[name]["long_name"], (path, name)
             if name not in UNITLESS:

@@ -332,8 +332,9 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
 
     if is_piezo_call(C11, piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical):
-        return material_piezo(C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec,
-                              piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical)
+        return cast(MaterialResult, material_piezo(
+            C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec, piezo=piezo,
+            permittivity=permittivity, euler=euler, cut=cut, electrical=electrical))
     C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
         raise InputError("the density rho (kg/m^3) is missing")

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["CUBES", "MODEL_COORDS", "SURFACE_WAVE_COORDS"]
+__all__ = ["CUBES", "MODEL_COORDS", "PIEZO_WAVE_COORDS", "SURFACE_WAVE_COORDS"]
 
 #: cube name -> variable name -> {"long_name", "units", "dims"}; the cube name is the file
 #: name under results/<scene>/ (``rayleigh_angles``: the rayleigh.nc of an FCC angle scene).
@@ -524,6 +524,50 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
             "units": "degree",
         },
     },
+    # surface_wave.nc of a piezoelectric scene (rule piezo_wave, surfwave.real_crystals.piezo_sweep; dims set
+    # by the builder)
+    "piezo_wave": {
+        "c_R": {
+            "long_name": "subsonic surface acoustic wave speed for the electrical condition (NaN where none)",
+            "units": "m s-1",
+        },
+        "c_limit": {
+            "long_name": "limiting speed: lowest trace speed along x1 of the piezoelectrically stiffened bulk waves",
+            "units": "m s-1",
+        },
+        "K2": {"long_name": "electromechanical coupling K^2 = 2 (v_free - v_metallized) / v_free", "units": "1"},
+        "c_leaky": {
+            "long_name": "leaky SAW phase speed omega / Re k (radiating into the slowest bulk sheet "
+                         "only; NaN where none)",
+            "units": "m s-1",
+        },
+        "leaky_attenuation": {"long_name": "leaky SAW attenuation per wavelength", "units": "dB"},
+        "power_flow_angle": {
+            "long_name": "power-flow (beam-steering) angle of the SAW from x1 toward +x2 of the SAW frame (our +x3)",
+            "units": "degree",
+        },
+        "potential_share": {
+            "long_name": "electric share of the surface energy density, eps |phi|^2 / (rho c^2 |u|^2 + eps |phi|^2)",
+            "units": "1",
+        },
+        "polarisation": {
+            "long_name": "surface (u1, u2, u3, phi), lab frame, complex: |u| = 1, phase with u2 real "
+                         ">= 0; phi in V per m of displacement",
+            "units": "1",
+        },
+        "decay": {
+            "long_name": "Stroh eigenvalues p (Im p > 0) of the four partial waves of the SAW, complex",
+            "units": "1",
+        },
+        "penetration_depth": {
+            "long_name": "1/e depth of the slowest-decaying partial wave, in wavelengths",
+            "units": "1",
+        },
+        "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
+        "reason": {"long_name": "why no subsonic SAW exists at the point (empty when one does)"},
+        "leaky_reason": {"long_name": "why no leaky SAW is reported at the point (empty when one is)"},
+        "rho": {"long_name": "density", "units": "kg m-3"},
+    },
 }
 
 #: Coordinates of the model-lattice cubes (``angle``: FCC angle scenes only).
@@ -557,4 +601,29 @@ SURFACE_WAVE_COORDS: dict[str, dict[str, str]] = {
                      "second-order constants of the natural state)",
     },
     "stress": {"long_name": "applied in-plane stress (negative = compression)", "units": "GPa"},
+}
+
+#: Coordinates of the piezoelectric cube (rule piezo_wave).
+PIEZO_WAVE_COORDS: dict[str, dict[str, str]] = {
+    "material": {"long_name": "piezoelectric constant set (surfwave.real_crystals.piezo_materials name)"},
+    "surface": {"long_name": "the plate: a named cut, or SAW Euler angles (phi, theta) in degrees"},
+    "angle": {
+        "long_name": "propagation angle in the plate, psi - psi0 (psi0: the named cut's psi, else 0)",
+        "units": "degree",
+    },
+    "cut": {"long_name": "named SAW cut (surfwave.real_crystals.piezo_materials.get_cut)"},
+    "euler_phi": {"long_name": "SAW Euler angle phi (ZXZ, first rotation about crystal Z)", "units": "degree"},
+    "euler_theta": {
+        "long_name": "SAW Euler angle theta (about the new X; rotated Y cut by theta + 90)",
+        "units": "degree",
+    },
+    "euler_psi": {
+        "long_name": "SAW Euler angle psi (about the new Z: propagation in the plate), psi0 + angle",
+        "units": "degree",
+    },
+    "electrical": {"long_name": "surface condition: free (open circuit, vacuum above) or metallized (phi = 0)"},
+    "stress": {
+        "long_name": "uniaxial prestress along the propagation direction (negative = compression)",
+        "units": "GPa",
+    },
 }
