@@ -1,6 +1,6 @@
 # surfwave: two commands set everything up on a fresh machine.
 #   make reproduce   build .venv from environment.lock (if missing or stale), run snakemake -j2
-#   make test        build the same environment and run the test suite
+#   make test        build the same environment, run the static checks (make check) and the test suite
 #   make test-slurm  opt-in: the SLURM profile on a real single-node cluster (root; see below)
 #   make cluster-env .venv-cluster from environment-cluster.lock: the above plus the SLURM
 #                    executor plugin (kept out of .venv: it probes the cluster on every
@@ -13,10 +13,10 @@ CLUSTER_VENV := .venv-cluster
 CLUSTER_STAMP := $(CLUSTER_VENV)/.surfwave-stamp
 JOBS ?= 2
 
-.PHONY: env cluster-env reproduce test test-slurm bench lint lock clean-results help
+.PHONY: env cluster-env reproduce check test test-slurm bench lint lock clean-results help
 
 help:
-	@echo "make reproduce | make test | make test-slurm | make cluster-env | make bench | make lint | make lock | make clean-results"
+	@echo "make reproduce | make test | make check | make test-slurm | make cluster-env | make bench | make lint | make lock | make clean-results"
 
 # The environment is rebuilt only when the lock or the project metadata change.
 $(STAMP): environment.lock pyproject.toml
@@ -39,9 +39,15 @@ cluster-env: $(CLUSTER_STAMP)
 reproduce: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS)
 
+# Static checks the house style assumes (pyproject.toml: [tool.ruff], [tool.mypy]): ruff with the
+# numpy docstring rules on the code and tests, mypy on the library's public modules.
+check: $(STAMP)
+	$(BIN)/ruff check src tests benchmarks workflow/scripts
+	$(BIN)/mypy
+
 # One BLAS thread per test worker: two workers on two cores, no oversubscription (dense
 # eigensolves in the slab tests run ~2.5x slower with competing BLAS threads).
-test: $(STAMP)
+test: $(STAMP) check
 	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 $(BIN)/python -m pytest -n 2 --dist loadgroup -q
 
 # The SLURM profile on a real single-node SLURM cluster on localhost (tests/workflow/test_slurm.py):

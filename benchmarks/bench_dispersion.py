@@ -24,7 +24,8 @@ import numpy as np
 import xarray as xr
 
 from surfwave import __version__
-from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
+from surfwave.dynamics import dispersion
+from surfwave.dynamics import triangular_surface as lattice_dynamics
 from surfwave.plots.dispersion import plt
 
 POTENTIALS = ("harmonic", "lj", "morse")

@@ -29,9 +29,9 @@ import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
 from surfwave.dynamics.entropy import surface_entropy, theta_integrals, theta_rule  # noqa: E402
-from surfwave.plots.entropy import convergence  # noqa: E402
 from surfwave.dynamics.surface_green import slab_s_theta, zone_grid_mean_log_omega  # noqa: E402
 from surfwave.dynamics.triangular import row_matrices  # noqa: E402
+from surfwave.plots.entropy import convergence  # noqa: E402
 
 CASES = [("harmonic", 1.0), ("lj", 0.92)]
 N_THETA = [2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]

@@ -32,8 +32,8 @@ import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
 from surfwave.model_crystals import elastic
-from surfwave.solvers import long_wave  # noqa: E402
 from surfwave.model_crystals.lattices import build  # noqa: E402
+from surfwave.solvers import long_wave  # noqa: E402
 
 CASES = [("fcc", "in_plane_hydrostatic", "lj", "[100]"), ("fcc", "in_plane_hydrostatic", "lj", "[110]"),
          ("fcc", "uniaxial", "lj", "[100]"), ("fcc", "uniaxial", "lj", "[110]"),

@@ -36,8 +36,8 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
-from surfwave.solvers.rayleigh import cauchy_c2  # noqa: E402
 from surfwave.report.benchmarks import READERS  # noqa: E402
+from surfwave.solvers.rayleigh import cauchy_c2  # noqa: E402
 
 N_POINTS = 10**6
 BATCHES = [10**3, 10**4, 10**5]

@@ -41,8 +41,8 @@ import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
 from surfwave.model_crystals import elastic
-from surfwave.solvers import rayleigh, stroh  # noqa: E402
 from surfwave.model_crystals.lattices import build  # noqa: E402
+from surfwave.solvers import rayleigh, stroh  # noqa: E402
 from surfwave.solvers.orientation import lab_axes  # noqa: E402
 from surfwave.solvers.tensors import cubic_voigt, rotate4, voigt_to_tensor  # noqa: E402
 

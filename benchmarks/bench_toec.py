@@ -32,10 +32,14 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
-from surfwave.real_crystals.acoustoelastic import (DEFAULT_STEP, acoustoelastic_coefficients,  # noqa: E402
-                                               loading_stress, surface_wave_speed)
-from surfwave.real_crystals.toec import cubic_toec  # noqa: E402
+from surfwave.real_crystals.acoustoelastic import (  # noqa: E402
+    DEFAULT_STEP,
+    acoustoelastic_coefficients,
+    loading_stress,
+    surface_wave_speed,
+)
 from surfwave.real_crystals.materials import available_materials, get_material  # noqa: E402
+from surfwave.real_crystals.toec import cubic_toec  # noqa: E402
 
 STEPS = 10.0 ** np.arange(-7, -0.5, 0.5)  # 1e-7 ... 0.3 GPa
 DIRECTIONS = ("[100]", "[110]")

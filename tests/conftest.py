@@ -12,7 +12,7 @@ from hypothesis import settings
 settings.register_profile("ci", derandomize=True, print_blob=True)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "default"))
 
-from surfwave.report.reproduction import load_paper_values
+from surfwave.report.reproduction import load_paper_values  # noqa: E402 (after the profile)
 
 
 def load_table1() -> dict[str, np.ndarray]:

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 import surfwave
+from surfwave.errors import InputError
 from surfwave.real_crystals.acoustoelastic import loading_stress, surface_wave_speed
 from surfwave.real_crystals.materials import get_material
-from surfwave.errors import InputError
 
 CU = get_material("Cu")
 

@@ -15,8 +15,8 @@ import pytest
 
 import surfwave
 from surfwave.cli import main
-from surfwave.model_crystals.potentials import available_potentials
 from surfwave.data import cache
+from surfwave.model_crystals.potentials import available_potentials
 
 
 def test_python_dash_m_and_version():

@@ -6,18 +6,22 @@ measured elastic constants (or a material name), optionally with third-order con
 """
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from surfwave import validate
+from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
-from surfwave.solvers import long_wave, rayleigh, stroh
 from surfwave.model_crystals.lattices import build
+from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.records import MaterialResult, PointResult
+from surfwave.solvers import long_wave, rayleigh, stroh
 from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
 from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
-from surfwave.errors import InputError
-from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.vocab import Direction
 
-__all__ = ["material", "point"]
+__all__ = ["MaterialResult", "PointResult", "material", "point"]
 
 
 def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
@@ -28,7 +32,7 @@ def _extras(C: np.ndarray, sigma: np.ndarray) -> dict:
 
 
 def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, load_direction=None,
-          min_eig: bool = False, details: bool = False) -> dict:
+          min_eig: bool = False, details: bool = False) -> PointResult:
     """Stress, bulk sound speeds, stability and Rayleigh speed of a prestressed crystal.
 
     Parameters
@@ -63,14 +67,15 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
 
     Returns
     -------
-    dict
+    PointResult (a dict; keys in :class:`surfwave.records.PointResult`)
         Shapes: (n,) per strain, or (n, m) for an array of m angles (scalar angle or string:
         (n,)). ``stress`` (sigma_xx V / K d0^2, x = propagation), ``c2_L_par``, ``c2_T_par``,
         ``c2_L_perp``, ``c2_T_perp``, ``c2_SH`` (NaN in 2D), ``c2_R`` (K d0^2 / m; the real
         part for a pseudo wave), ``c2_limit`` (v_L^2), ``wave_type``, ``reason``,
         ``polarisation`` (..., d) and ``decay`` (..., d) complex, ``penetration_depth``
-        (wavelengths) (at mirror directions only with ``details``), ``stable`` (n,) (long-wave stability in every direction),
-        ``min_acoustic_eig`` (n,) (only with ``min_eig``), ``C`` and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
+        (wavelengths) (at mirror directions only with ``details``), ``stable`` (n,) (long-wave
+        stability in every direction), ``min_acoustic_eig`` (n,) (only with ``min_eig``), ``C``
+        and ``S`` (..., d, d, d, d; times V, lab frame of the propagation),
         ``volume``, ``d_over_d0`` (n,), and ``angle`` (degrees from [100], FCC only).
 
     Raises
@@ -100,11 +105,11 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
             out.update(extra)
         if lattice == "fcc":
             out["angle"] = np.full(out["c2_R"].shape, direction_angle("(001)", direction))
-        return out
+        return cast(PointResult, out)
     return _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig)
 
 
-def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig) -> dict:
+def _point_general(lattice, loading, potential, direction, d_over_d0, load_direction, min_eig) -> PointResult:
     """:func:`point` at any direction of the FCC (001) surface (the general solver)."""
     if lattice != "fcc":
         raise InputError(f"directions other than the mirror ones need lattice 'fcc', got {lattice!r} "
@@ -114,7 +119,7 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     if angle.ndim > 1:
         raise InputError(f"angles must be a scalar or a 1-D array, got shape {angle.shape}")
     if loading == "in_plane_hydrostatic":
-        load = "[100]"  # tetragonal: the loading has no in-plane direction
+        load: Direction = "[100]"  # tetragonal: the loading has no in-plane direction
     elif load_direction in ("[100]", "[110]"):
         load = load_direction
     else:
@@ -144,7 +149,7 @@ def _point_general(lattice, loading, potential, direction, d_over_d0, load_direc
     if angle.ndim == 0:  # a scalar angle: no angle axis
         for key in _ANGLE_KEYS:
             out[key] = out[key][:, 0]
-    return out
+    return cast(PointResult, out)
 
 
 #: Outputs of :func:`point` that carry the angle axis (the rest depend on the strain only).
@@ -176,8 +181,8 @@ def _stress_tensor(stress, R: np.ndarray) -> np.ndarray:
 
 def _resolve_material(C11, C12, C44, rho, voigt, toec):
     """(Voigt C (6, 6), rho, C3 Voigt (6, 6, 6) or None, label) from the material arguments."""
-    from surfwave.real_crystals.toec import cubic_toec
     from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
+    from surfwave.real_crystals.toec import cubic_toec
 
     name = None
     C3 = None
@@ -227,7 +232,7 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
 
 def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
              voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
-             electrical=None, leaky=None) -> dict:
+             electrical=None, leaky=None) -> MaterialResult:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
 
     Parameters
@@ -296,7 +301,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
 
     Returns
     -------
-    dict
+    MaterialResult (a dict; keys in :class:`surfwave.records.MaterialResult`)
         Floats for one direction, arrays of shape (m,) for m angles: ``c_R`` (m/s, NaN where
         none; real part for a pseudo wave), ``c_R_imag``, ``c_limit`` (v_L), ``c_L_par``,
         ``c_T_par``, ``c_L_perp``, ``c_T_perp``, ``c_SH`` (bulk speeds along x1 and x2, m/s,
@@ -339,9 +344,9 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     if leaky is not None and not isinstance(leaky, (bool, np.bool_)):
         raise InputError(f"leaky must be None, True or False, got {leaky!r}")
     if is_piezo_call(C11, piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical):
-        return material_piezo(C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec,
-                              piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical,
-                              leaky=leaky)
+        return cast(MaterialResult, material_piezo(
+            C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec, piezo=piezo,
+            permittivity=permittivity, euler=euler, cut=cut, electrical=electrical, leaky=leaky))
     C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
     if rho is None:
         raise InputError("the density rho (kg/m^3) is missing")
@@ -383,4 +388,4 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
             out[key] = str(out[key])
         out["stable"] = bool(out["stable"])
         out["toec"] = bool(out["toec"])
-    return out
+    return cast(MaterialResult, out)

@@ -17,6 +17,7 @@ import numpy as np
 
 from surfwave import __version__, cli_piezo
 from surfwave.errors import SurfwaveError
+from surfwave.vocab import DIRECTIONS, LATTICES, LOADINGS
 
 SPEED_KEYS = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH", "c2_R")
 
@@ -28,7 +29,7 @@ y = surface normal (into the crystal), z = in-plane normal to x.
 examples:
   surfwave point --lattice fcc --loading in_plane_hydrostatic --potential lj --direction "[110]" --d-over-d0 1.02
   surfwave point --lattice triangular --loading uniaxial --potential harmonic --direction "[10]" --d-over-d0 0.9 1.0 1.1 --json
-"""
+"""  # noqa: E501 (commands to copy, printed by --help)
 
 EPILOG_MATERIAL = """\
 The crystal: a name from the materials database (--material Cu; 'surfwave material --list'),
@@ -116,12 +117,12 @@ def _parser() -> argparse.ArgumentParser:
         "prestressed nearest-neighbour crystal at one or more strains.",
         epilog=EPILOG_POINT, formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    pt.add_argument("--lattice", required=True, choices=["fcc", "triangular"])
-    pt.add_argument("--loading", required=True, choices=["uniaxial", "in_plane_hydrostatic"],
+    pt.add_argument("--lattice", required=True, choices=list(LATTICES))
+    pt.add_argument("--loading", required=True, choices=list(LOADINGS),
                     help="uniaxial stress along the propagation direction, or in-plane hydrostatic (fcc)")
     pt.add_argument("--potential", required=True,
                     help="pair potential: harmonic, lj or any registered one (see 'surfwave potentials')")
-    pt.add_argument("--direction", required=True, choices=["[100]", "[110]", "[10]"],
+    pt.add_argument("--direction", required=True, choices=list(DIRECTIONS),
                     help="propagation direction; '[10]' = close-packed rows of the triangular lattice")
     pt.add_argument("--d-over-d0", required=True, type=float, nargs="+", metavar="D",
                     help="stretch along the propagation direction, 1 = unstressed (one or more values)")

@@ -118,7 +118,7 @@ def density(rho, name: str = "rho") -> float:
     Traceback (most recent call last):
     ...
     surfwave.errors.InputError: rho = 1e-300 kg/m^3 lies outside [1, 1e+12] kg/m^3 (no solid is lighter than 1 kg/m^3; is it in g/cm^3 or another unit?)
-    """
+    """  # noqa: E501 (a doctest's expected message)
     if isinstance(rho, np.ndarray) and rho.ndim == 0:
         rho = rho.item()
     if isinstance(rho, (bool, np.bool_)) or not isinstance(rho, (int, float, np.integer, np.floating)):

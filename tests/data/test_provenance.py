@@ -40,10 +40,10 @@ def test_figures_jobs_depend_on_the_plotting_code_they_use():
     """The per-scene figures rule lists exactly the modules its outputs need
     (surfwave.pipeline.targets.OUTPUT_NEEDS): Fig. 2 of an FCC scene does not rerun when the
     entropy plot changes, and the triangular scene's figures do."""
+    from pathlib import Path
+
     from surfwave.pipeline.scenes import load_config, validate_config
     from surfwave.pipeline.targets import scene_output_inputs
-
-    from pathlib import Path
 
     scenes = validate_config(load_config([Path(__file__).parents[2] / "config" / "config.yaml"]))
     for scene, wanted, unwanted in (("fig2", "plots/speeds.py", "plots/entropy.py"),

@@ -7,16 +7,26 @@ import numpy as np
 import pytest
 from scipy import integrate
 
+from surfwave.data.variables import CUBES
 from surfwave.dynamics.entropy import (
-    VARIABLES, band_edge_coefficients, estimate_terms, rayleigh_c2, surface_entropy,
-    theta_integrals, theta_rule,
+    OUTPUTS,
+    band_edge_coefficients,
+    estimate_terms,
+    rayleigh_c2,
+    surface_entropy,
+    theta_integrals,
+    theta_rule,
 )
-from surfwave.errors import GeometryError, InputError
 from surfwave.dynamics.surface_green import (
-    bulk_schur, hermitian, jensen_bulk_log_det, positive_definite2, slab_log_det, slab_s_theta,
+    bulk_schur,
+    hermitian,
+    positive_definite2,
+    slab_log_det,
+    slab_s_theta,
     theta_log_dets,
 )
 from surfwave.dynamics.triangular import row_matrices
+from surfwave.errors import GeometryError, InputError
 
 #: Huckaby's mean of ln(omega/omega0) over the bulk modes of the unstressed harmonic
 #: triangular lattice, quoted in the paper before Eq. (26) and in docs/physics/paper.md.
@@ -31,6 +41,34 @@ S_SURF = 2.0 * (3.0 - np.sqrt(7.0))
 def _blocks(potential, d, theta):
     a0, a0s, a1 = row_matrices(potential, [d], np.asarray(theta, dtype=float))
     return a0[0], a0s[0], a1[0]
+
+
+def jensen_bulk_log_det(a0: np.ndarray, a1: np.ndarray) -> np.ndarray:
+    """B(theta) from the roots of det(A1 z^2 + A0 z + A1^H) (Jensen's formula).
+
+    B = ln|det A1| + sum over roots with |z| > 1 of ln|z|. An independent route to
+    ln det S, here the test's reference (the quartic's roots as eigenvalues of its
+    companion matrix, vectorised over theta).
+
+    Parameters
+    ----------
+    a0, a1 : ndarray, shape (m, 2, 2)
+
+    Returns
+    -------
+    ndarray, shape (m,)
+    """
+    p = [hermitian(a1), a0, a1]  # coefficients of z^0, z^1, z^2, each (m, 2, 2)
+    # det(P0 + P1 z + P2 z^2) of 2x2 polynomial matrices: coefficients by convolution
+    coef = np.zeros((a0.shape[0], 5), dtype=complex)
+    for j in range(3):
+        for k in range(3):
+            coef[:, j + k] += p[j][:, 0, 0] * p[k][:, 1, 1] - p[j][:, 0, 1] * p[k][:, 1, 0]
+    companion = np.zeros((a0.shape[0], 4, 4), dtype=complex)
+    companion[:, 0, :] = -coef[:, 3::-1] / coef[:, 4:5]  # monic, descending powers z^3 .. z^0
+    companion[:, 1:, :-1] = np.eye(3)
+    mod = np.abs(np.linalg.eigvals(companion))
+    return np.log(np.abs(coef[:, 4])) + np.sum(np.log(np.where(mod > 1.0, mod, 1.0)), axis=-1)
 
 
 # --- zero stress: the acceptance numbers -------------------------------------------------
@@ -63,11 +101,12 @@ def test_eq26_terms_separately():
 def test_api_keys_shapes_and_metadata():
     """Every returned array has shape (n,) and CF metadata in VARIABLES (the workflow's contract)."""
     r = surface_entropy("lj", [0.95, 1.0, 1.05])
-    assert set(r) == set(VARIABLES)
+    assert set(r) == set(OUTPUTS) == set(CUBES["entropy"])
     for name, arr in r.items():
         assert arr.shape == (3,)
-        assert {"long_name", "units", "dims"} <= set(VARIABLES[name])
-    assert VARIABLES["S_surface_exact"]["units"] == "k_B"
+        meta = CUBES["entropy"][name]
+        assert {"long_name", "dims"} <= set(meta) and ("units" in meta) != (name == "reason")
+    assert CUBES["entropy"]["S_surface_exact"]["units"] == "k_B"
 
 
 def test_separable_per_strain():

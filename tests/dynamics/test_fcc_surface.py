@@ -10,8 +10,14 @@ import pytest
 from scipy.sparse.linalg import eigsh
 
 import surfwave
-from surfwave.dynamics.fcc_surface import (layer_matrices, long_wave_c2, sagittal_blocks, slab_matrix,
-                                  surface_mode, tail_ratio)
+from surfwave.dynamics.fcc_surface import (
+    layer_matrices,
+    long_wave_c2,
+    sagittal_blocks,
+    slab_matrix,
+    surface_mode,
+    tail_ratio,
+)
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import get_potential
 

@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 
 import surfwave
 from surfwave.model_crystals import elastic
-from surfwave.solvers import long_wave
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import get_potential
+from surfwave.solvers import long_wave
 
 
 @pytest.mark.parametrize("pot", ["harmonic"])

@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave.model_crystals import fcc_angles
-from surfwave.real_crystals.materials import Material
 from surfwave.errors import InputError
+from surfwave.model_crystals import fcc_angles
 from surfwave.pipeline.scenes import SceneError, validate_config
+from surfwave.real_crystals.materials import Material
 
 D = np.array([0.97, 1.0, 1.03])
 

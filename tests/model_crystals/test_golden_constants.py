@@ -25,9 +25,9 @@ import math
 
 import numpy as np
 import pytest
+from acoustic_brute import brute_at
 from scipy.optimize import brentq
 
-from acoustic_brute import brute_at
 from surfwave.dynamics import dispersion as D
 
 

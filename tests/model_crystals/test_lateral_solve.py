@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, root
 
-from surfwave.model_crystals import lattices
-from surfwave.solvers.orientation import lab_axes
-from surfwave.model_crystals.potentials import get_potential
 from surfwave.errors import GeometryError
+from surfwave.model_crystals import lattices
+from surfwave.model_crystals.potentials import get_potential
+from surfwave.solvers.orientation import lab_axes
 
 
 def _fcc_neighbours() -> np.ndarray:

@@ -15,9 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from acoustic_brute import EIG_ATOL, EIG_RTOL, SPHERE, brute_at, q_min, tensors
 from scipy.optimize import brentq
 
-from acoustic_brute import EIG_ATOL, EIG_RTOL, SPHERE, brute_at, q_min, tensors
 from surfwave.model_crystals import elastic
 
 

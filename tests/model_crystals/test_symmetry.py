@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 import spglib.error
 
-from surfwave.model_crystals import symmetry
 from surfwave.errors import SymmetryError
+from surfwave.model_crystals import symmetry
 from surfwave.model_crystals.lattices import build
 
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 import yaml
 
-from surfwave.model_crystals import phonons
 from surfwave.dynamics import entropy
+from surfwave.model_crystals import phonons
 from surfwave.pipeline import knobs, scenes
 from surfwave.pipeline.scenes import SceneError, load_config, validate_config
 

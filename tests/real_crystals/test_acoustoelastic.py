@@ -15,11 +15,15 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave.real_crystals.acoustoelastic import (acoustoelastic_coefficients, check_in_plane,
-                                               loading_stress, surface_wave_speed)
-from surfwave.real_crystals.toec import cubic_toec
-from surfwave.real_crystals.materials import get_material
 from surfwave.errors import InputError
+from surfwave.real_crystals.acoustoelastic import (
+    acoustoelastic_coefficients,
+    check_in_plane,
+    loading_stress,
+    surface_wave_speed,
+)
+from surfwave.real_crystals.materials import get_material
+from surfwave.real_crystals.toec import cubic_toec
 
 CU = get_material("Cu")
 CU_C3 = cubic_toec(**CU.toec)

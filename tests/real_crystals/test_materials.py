@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave.real_crystals.materials import CUBIC_TOEC, Material, available_materials, get_material
 from surfwave.errors import InputError
+from surfwave.real_crystals.materials import CUBIC_TOEC, Material, available_materials, get_material
 
 #: Amount of substance per kg: 1 u = 1.66053907e-27 kg.
 _U = 1.66053907e-27

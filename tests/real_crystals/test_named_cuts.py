@@ -146,8 +146,9 @@ def test_every_cut_is_covered():
 def test_recorded_computed_values_match_the_solvers():
     """The ``computed`` blocks of piezoelectric.yaml (a record for readers) are what the solvers
     give now, to their printed digits (0.1 m/s, 0.01 % K^2 rounded; 0.001 dB/λ)."""
-    import yaml
     from importlib import resources
+
+    import yaml
 
     raw = yaml.safe_load(resources.files("surfwave.real_crystals").joinpath("piezoelectric.yaml").read_text())
     for name, entry in raw["cuts"].items():

@@ -15,15 +15,31 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from surfwave.solvers.euler import euler_lab_axes, saw_euler_matrix
-from surfwave.real_crystals.piezo_materials import (available_cuts, available_piezo_materials, check_piezo_record, get_cut,
-                                           get_piezo_material, lab_tensors)
-from surfwave.solvers.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, invariance_residual,
-                                         is_invariant, piezo_tensor_to_voigt, piezo_voigt_to_tensor,
-                                         point_group_generators, stiffened_bulk_speeds, trigonal_32_piezo,
-                                         trigonal_3m_piezo, trigonal_3m_voigt)
-from surfwave.solvers.tensors import voigt_to_tensor
 from surfwave.errors import InputError
+from surfwave.real_crystals.piezo_materials import (
+    available_cuts,
+    available_piezo_materials,
+    check_piezo_record,
+    get_cut,
+    get_piezo_material,
+    lab_tensors,
+)
+from surfwave.solvers.euler import euler_lab_axes, saw_euler_matrix
+from surfwave.solvers.piezo_tensors import (
+    EPS0,
+    cubic_43m_piezo,
+    hexagonal_6mm_piezo,
+    invariance_residual,
+    is_invariant,
+    piezo_tensor_to_voigt,
+    piezo_voigt_to_tensor,
+    point_group_generators,
+    stiffened_bulk_speeds,
+    trigonal_3m_piezo,
+    trigonal_3m_voigt,
+    trigonal_32_piezo,
+)
+from surfwave.solvers.tensors import voigt_to_tensor
 
 ALL = available_piezo_materials()
 

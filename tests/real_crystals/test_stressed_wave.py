@@ -24,8 +24,13 @@ from surfwave.errors import InputError
 from surfwave.real_crystals import toec
 from surfwave.real_crystals.acoustoelastic import loading_stress, surface_wave_speed
 from surfwave.real_crystals.materials import Material, get_material
-from surfwave.real_crystals.stressed_wave import (REASON_NO_STATE, REASON_TRACTION, Constants, stress_tensor,
-                                                  surface_wave)
+from surfwave.real_crystals.stressed_wave import (
+    REASON_NO_STATE,
+    REASON_TRACTION,
+    Constants,
+    stress_tensor,
+    surface_wave,
+)
 from surfwave.real_crystals.sweep import applied_stress, surface_wave_sweep
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor

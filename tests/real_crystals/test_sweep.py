@@ -16,13 +16,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from surfwave.model_crystals import elastic
-from surfwave.solvers import rayleigh
-from surfwave.real_crystals.sweep import applied_stress, surface_wave_sweep, symmetry_reduced_range
-from surfwave.solvers.tensors import cubic_voigt, rotate4, voigt_to_tensor
-from surfwave.real_crystals.materials import Material, get_material
 from surfwave.errors import InputError
+from surfwave.model_crystals import elastic
 from surfwave.pipeline.scenes import SceneError, validate_config
+from surfwave.real_crystals.materials import Material, get_material
+from surfwave.real_crystals.sweep import applied_stress, surface_wave_sweep, symmetry_reduced_range
+from surfwave.solvers import rayleigh
+from surfwave.solvers.tensors import cubic_voigt, rotate4, voigt_to_tensor
 
 ISOTROPIC = Material(name="iso", symmetry="cubic", rho=5000.0, voigt=cubic_voigt(150.0, 50.0, 50.0),
                      constants={"C11": 150.0, "C12": 50.0, "C44": 50.0}, toec=None, sources={})

@@ -14,15 +14,21 @@ import numpy as np
 import pytest
 
 import surfwave
+from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
-from surfwave.solvers import rayleigh
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import get_potential
+from surfwave.real_crystals.toec import (
+    cauchy_stress,
+    cubic_toec,
+    deformation_for_stress,
+    lagrangian_strain,
+    stressed_constants,
+    stressed_state,
+    toec_tensor,
+)
+from surfwave.solvers import rayleigh
 from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor
-from surfwave.real_crystals.toec import (cauchy_stress, cubic_toec, deformation_for_stress,
-                                     lagrangian_strain, stressed_constants, stressed_state,
-                                     toec_tensor)
-from surfwave.errors import InputError
 
 CU_C2 = cubic_voigt(168.4, 121.4, 75.4)
 CU_C3 = cubic_toec(-1271, -814, -50, -3, -780, -95)  # Hiki & Granato (1966)

@@ -14,8 +14,7 @@ import pytest
 
 from surfwave.errors import InputError
 from surfwave.real_crystals.toec import cubic_toec
-from surfwave.real_crystals.toec_classes import (TRIGONAL_32_TOEC, invariant_toec_basis, rotate_toec,
-                                                 trigonal_32_toec)
+from surfwave.real_crystals.toec_classes import TRIGONAL_32_TOEC, invariant_toec_basis, rotate_toec, trigonal_32_toec
 from surfwave.solvers.piezo_tensors import _rot
 
 

@@ -30,9 +30,14 @@ from pymatgen.core import Lattice, Structure  # noqa: E402
 from pymatgen.core.elasticity import ElasticTensorExpansion  # noqa: E402
 from pymatgen.core.tensors import Tensor  # noqa: E402
 
+from surfwave.real_crystals.toec import (  # noqa: E402
+    cauchy_stress,
+    cubic_toec,
+    deformation_for_stress,
+    stressed_constants,
+    toec_tensor,
+)
 from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor  # noqa: E402
-from surfwave.real_crystals.toec import (cauchy_stress, cubic_toec, deformation_for_stress,  # noqa: E402
-                                     stressed_constants, toec_tensor)
 
 CU = (-1271.0, -814.0, -50.0, -3.0, -780.0, -95.0)  # Hiki & Granato (1966), GPa
 C2V = cubic_voigt(168.4, 121.4, 75.4)

@@ -3,19 +3,18 @@
 References: the synthetic cubes built here (which curves coincide, which points are
 unstable, which potentials are identical), and the paper's Table I layout (paper_values.yaml).
 """
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 import xarray as xr
 from matplotlib.legend_handler import HandlerTuple  # noqa: F401 (the fig2 legend uses it)
-
-import matplotlib.pyplot as plt
+from test_report import table1_cubes
 
 from surfwave.data import cube
 from surfwave.plots import dispersion as pdisp
 from surfwave.plots import speeds
 from surfwave.plots.labels import potential_label
 from surfwave.report import benchmarks, reproduction
-from test_report import table1_cubes
 
 
 def _fcc(tmp_path, coincide: bool, unstable: bool):

@@ -20,13 +20,12 @@ import numpy as np
 import pytest
 
 import surfwave
-from surfwave.solvers import orientation, tensors
 from surfwave.errors import InputError
-from surfwave.solvers import leaky as L
-from surfwave.solvers.leaky import EPS0, leaky_wave
-
 from surfwave.real_crystals.piezo_materials import get_cut, lab_tensors
+from surfwave.solvers import leaky as L
+from surfwave.solvers import orientation, tensors
 from surfwave.solvers.euler import euler_lab_axes
+from surfwave.solvers.leaky import EPS0, leaky_wave
 
 #: The LiNbO3 set behind the quoted rotated Y-X leaky speeds (database cut record).
 LN = get_cut("64Y-X").material

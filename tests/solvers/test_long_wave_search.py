@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from surfwave.model_crystals import elastic
-from surfwave.solvers import long_wave
 from surfwave.model_crystals.lattices import build
+from surfwave.solvers import long_wave
 
 # (lattice, loading, direction, potential) -> d/d0 span through its long-wave instabilities
 # and up to its geometry edge (limits from surfwave.model_crystals.stability.instability_limits).

@@ -9,10 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from surfwave.model_crystals.lattices import _FCC_LAB_AXES
-from surfwave.solvers.orientation import (direction_angle, lab_axes, parse_direction, parse_plane,
-                                            reference_direction)
 from surfwave.errors import InputError
+from surfwave.model_crystals.lattices import _FCC_LAB_AXES
+from surfwave.solvers.orientation import direction_angle, lab_axes, parse_direction, parse_plane, reference_direction
 
 S2, S3, S6 = np.sqrt(2.0), np.sqrt(3.0), np.sqrt(6.0)
 

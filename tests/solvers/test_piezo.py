@@ -12,13 +12,12 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from surfwave.solvers import stroh
-from surfwave.solvers.orientation import lab_axes
-from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 from surfwave.errors import InputError
-from surfwave.solvers import piezo
-from surfwave.solvers.piezo import EPS0, euler_lab_axes, piezo_surface_wave
 from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
+from surfwave.solvers import piezo, stroh
+from surfwave.solvers.orientation import lab_axes
+from surfwave.solvers.piezo import EPS0, euler_lab_axes, piezo_surface_wave
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 
 CU = (168.4e9, 121.4e9, 75.4e9)
 #: Voigt positions of C14 in the trigonal form (C14 at 14, 41, 56, 65; -C14 at 24, 42).

@@ -13,12 +13,12 @@ import scipy.linalg
 from scipy.optimize import brentq
 
 import surfwave
+from surfwave.errors import InputError, SymmetryError
 from surfwave.model_crystals import elastic
-from surfwave.solvers import impedance, rayleigh, stroh
 from surfwave.model_crystals.lattices import build
+from surfwave.solvers import impedance, rayleigh, stroh
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import cubic_voigt, rotate4, voigt_to_tensor
-from surfwave.errors import InputError, SymmetryError
 
 CU = dict(C11=168.4, C12=121.4, C44=75.4, rho=8960.0)
 PB = dict(C11=49.5, C12=42.3, C44=14.9, rho=11340.0)

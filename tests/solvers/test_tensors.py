@@ -1,8 +1,7 @@
 """Voigt conversions and rotations (references: the definitions and rotation invariants)."""
 import numpy as np
 
-from surfwave.solvers.tensors import (cubic_voigt, hexagonal_voigt, rotate2, rotate4,
-                                        tensor_to_voigt, voigt_to_tensor)
+from surfwave.solvers.tensors import cubic_voigt, hexagonal_voigt, rotate2, rotate4, tensor_to_voigt, voigt_to_tensor
 
 
 def test_voigt_round_trip_and_symmetries():

@@ -309,7 +309,7 @@ def snakemake(workdir: Path, args: list[str], deadline: float, env: dict) -> tup
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
             raise AssertionError(f"snakemake {' '.join(args)} did not finish in time:\n"
-                                 + log.read_text()[-4000:])
+                                 + log.read_text()[-4000:]) from None
         except BaseException:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()

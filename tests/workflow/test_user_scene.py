@@ -37,7 +37,7 @@ def test_report_inputs_ignore_user_scenes():
     assert {"table1", "fig2", "triangular", "entropy"} <= set(paper_scenes())
 
 
-def test_user_scene_does_not_schedule_the_paper_report(built, tmp_path):
+def test_user_scene_does_not_schedule_the_paper_report(built, tmp_path):  # noqa: F811 (fixture)
     """A user scene with bulk used to rewrite report.md ("0 PASS ... 18 not computed") and
     leave the default config out of date; now the run schedules its summary, never the report.
     (A dry run: the real run was checked by hand, see the report of issue 12.)"""

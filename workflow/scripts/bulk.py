@@ -6,8 +6,9 @@ By hand (from the repository root): python workflow/scripts/bulk.py SCENE [CONFI
 import sys
 
 from surfwave.data import cache, cube
-from surfwave.pipeline import stage
+from surfwave.data.variables import CUBES
 from surfwave.model_crystals import phonons, sanity
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -28,15 +29,15 @@ def compute(pot, direction):
         label=f"bulk, scene {job['scene']}")
 
 
-ds = stage.block_cube(job, compute, phonons.VARIABLES)
+ds = stage.block_cube(job, compute, CUBES["bulk"])
 analytic = cube.open_cube(snakemake.input.elastic)
 ds, n_implausible = sanity.check_bulk(ds, analytic)
 if n_implausible:
     print(f"{n_implausible} points with implausible phonopy speeds set to NaN (see `reason`)", file=sys.stderr)
 for name in ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH"):
     dev = ds[f"{name}_phonopy"] - analytic[name].sel(potential=ds.potential, direction=ds.direction)
-    ds[f"{name}_deviation"] = dev.assign_attrs(
-        long_name=f"{name}_phonopy minus the analytic {name} of elastic.nc", units=analytic[name].attrs["units"])
+    meta = CUBES["bulk"][f"{name}_deviation"]
+    ds[f"{name}_deviation"] = dev.assign_attrs(long_name=meta["long_name"], units=meta["units"])
 print(cache.info(snakemake.params.cache), file=sys.stderr)
 cube.finish(ds, snakemake, what="bulk (phonopy)", crystal=snakemake.input.crystal,
             method="phonopy finite-displacement force constants from the pair forces; speeds "

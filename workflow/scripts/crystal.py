@@ -5,8 +5,9 @@ By hand (from the repository root): python workflow/scripts/crystal.py SCENE [CO
 import sys
 
 from surfwave.data import cube
-from surfwave.pipeline import stage
+from surfwave.data.variables import CUBES
 from surfwave.model_crystals import symmetry
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -30,6 +31,6 @@ def analyse(pot, direction):
     return r
 
 
-ds = stage.block_cube(job, analyse, symmetry.VARIABLES)
+ds = stage.block_cube(job, analyse, CUBES["crystal"])
 cube.finish(ds, snakemake, what="crystal",
             method=symmetry.METHOD + " (one-atom primitive cell; 2D lattices padded with vacuum)")

@@ -8,8 +8,10 @@ By hand (from the repository root): python workflow/scripts/dispersion.py SCENE 
 import numpy as np
 
 from surfwave.data import cache, cube
+from surfwave.data.variables import CUBES
+from surfwave.dynamics import dispersion
+from surfwave.dynamics import triangular_surface as lattice_dynamics
 from surfwave.pipeline import stage
-from surfwave.dynamics import dispersion, triangular_surface as lattice_dynamics
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -20,15 +22,11 @@ stage.open_log(snakemake)
 job = snakemake.params.job
 theta = np.asarray(job["theta"])
 tol = job["accuracy"]["tol"]
-meta = {**dispersion.VARIABLES, **lattice_dynamics.VARIABLES,
-        "omega_lattice_deviation": {"long_name": "omega_lattice minus omega (numerical minus analytic)",
-                                    "units": dispersion.VARIABLES["omega"]["units"], "dims": ("theta",)}}
+meta = CUBES["dispersion"]
 
 
 d_all = np.asarray(job["d_over_d0"], dtype=float)
 sample = lattice_dynamics.check_sample(d_all, job["accuracy"]["check_points"])
-meta["n_surface_modes"] = {**meta["n_surface_modes"],
-                           "long_name": meta["n_surface_modes"]["long_name"] + " (-1: strain not checked)"}
 
 
 def compute(pot):

@@ -5,6 +5,7 @@ By hand (from the repository root): python workflow/scripts/displacements.py SCE
 import numpy as np
 
 from surfwave.data import cube
+from surfwave.data.variables import CUBES
 from surfwave.dynamics import dispersion
 from surfwave.pipeline import stage
 
@@ -23,7 +24,7 @@ def compute(pot):
 
 
 # Row counts sized from the decay length may differ between potentials: padded with NaN.
-ds = stage.block_cube(job, compute, dispersion.VARIABLES, by=("potential",), ragged=("row", ("u", "v")),
+ds = stage.block_cube(job, compute, CUBES["displacements"], by=("potential",), ragged=("row", ("u", "v")),
                       coords={"theta": theta}, skip=("row",))
 cube.finish(ds, snakemake, what="displacements", crystal=snakemake.input.crystal,
             method="row amplitudes U_I = Lambda^I U_0 from the exact decay constants q1, q2 "

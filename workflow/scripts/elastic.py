@@ -4,8 +4,9 @@ By hand (from the repository root): python workflow/scripts/elastic.py SCENE [CO
 """
 import sys
 
-from surfwave.model_crystals import elastic
 from surfwave.data import cube
+from surfwave.data.variables import CUBES
+from surfwave.model_crystals import elastic
 from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
@@ -23,14 +24,13 @@ if job.get("angles") is not None:  # FCC propagation angles in the (001) surface
         out = fcc_angles.properties_at_angles(pot, job["angles"], job["d_over_d0"], job["loading"])
         for i, angle in enumerate(job["angles"]):
             blocks[(pot, angle)] = cube.documented({k: v[i] for k, v in out.items()},
-                                                   elastic.VARIABLES, sys.stderr)
+                                                   CUBES["elastic"], sys.stderr)
     ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
-                    job["d_over_d0"], elastic.VARIABLES)
-    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+                    job["d_over_d0"], CUBES["elastic"])
 else:
     ds = stage.block_cube(
         job, lambda pot, direction: elastic.properties(job["lattice"], job["loading"], pot, direction,
-                                                       job["d_over_d0"]), elastic.VARIABLES)
+                                                       job["d_over_d0"]), CUBES["elastic"])
 cube.finish(ds, snakemake, what="elastic", crystal=snakemake.input.crystal,
             method="analytic nearest-neighbour sums (docs/physics/paper.md Appendix, Eq. A11); long-wave "
             f"stability from the acoustic tensor over {elastic.STABILITY_DIRECTIONS} directions, "

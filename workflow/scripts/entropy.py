@@ -5,8 +5,9 @@ By hand (from the repository root): python workflow/scripts/entropy.py SCENE [CO
 """
 
 from surfwave.data import cache, cube
-from surfwave.pipeline import stage
+from surfwave.data.variables import CUBES
 from surfwave.dynamics import entropy
+from surfwave.pipeline import stage
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -25,7 +26,7 @@ def compute(pot):
                                chunk=cache.CHUNK, label=f"entropy, scene {job['scene']}")
 
 
-ds = stage.block_cube(job, compute, entropy.VARIABLES, by=("potential",))
+ds = stage.block_cube(job, compute, CUBES["entropy"], by=("potential",))
 cube.finish(ds, snakemake, what="entropy", crystal=snakemake.input.crystal,
             method="classical harmonic surface entropy per surface atom (k_B): Eq. (25) "
             "estimate and the exact slab-minus-bulk limit")

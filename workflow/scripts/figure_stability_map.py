@@ -1,8 +1,8 @@
 """Rule `figure_stability_map`: the FCC stability map (library), its cube and its figure."""
 import sys
 
-from surfwave.model_crystals import stability_map as sm
 from surfwave.data import cube
+from surfwave.model_crystals import stability_map as sm
 from surfwave.plots.stability import plot_stability_map
 
 if "snakemake" not in globals():  # by hand: python workflow/scripts/figure_stability_map.py

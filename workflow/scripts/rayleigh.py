@@ -5,6 +5,7 @@ By hand (from the repository root): python workflow/scripts/rayleigh.py SCENE [C
 """
 
 from surfwave.data import cube
+from surfwave.data.variables import CUBES
 from surfwave.pipeline import stage
 from surfwave.solvers import rayleigh
 
@@ -35,10 +36,9 @@ if job.get("angles") is not None:  # FCC propagation angles: the general solver 
         for i, angle in enumerate(job["angles"]):
             blocks[(pot, angle)] = {k: v[i] for k, v in result.items()}
     ds = cube.build(blocks, {"potential": job["potentials"], "angle": job["angles"]},
-                    job["d_over_d0"], fcc_angles.RAYLEIGH_VARIABLES)
-    ds["angle"].attrs.update(fcc_angles.ANGLE_ATTRS)
+                    job["d_over_d0"], CUBES["rayleigh_angles"])
 else:
-    ds = stage.block_cube(job, solve, rayleigh.VARIABLES)
+    ds = stage.block_cube(job, solve, CUBES["rayleigh"])
 ds = ds.assign_coords(space_group=elastic["space_group"])
 cube.finish(ds, snakemake, what="rayleigh",
             method="Eq. (17) secular equation; root in 0 < rho c^2 < min(S_xyyx, S_xxxx) "

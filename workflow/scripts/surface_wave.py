@@ -5,10 +5,11 @@ By hand (from the repository root): python workflow/scripts/surface_wave.py SCEN
 """
 import sys
 
-from surfwave.real_crystals.sweep import METHOD, UNITS_NOTE, surface_wave_sweep
 from surfwave.data import cube
-from surfwave.real_crystals.materials import get_material
 from surfwave.pipeline import stage
+from surfwave.real_crystals.materials import get_material
+from surfwave.real_crystals.sweep import METHOD, UNITS_NOTE, surface_wave_sweep
+from surfwave.vocab import WAVE_TYPES
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -17,10 +18,10 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
-ds = surface_wave_sweep([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"], stress=job["stress"],
-                        loadings=job["loading"], toec=job["toec"], directions=job["directions"],
+ds = surface_wave_sweep([get_material(m) for m in job["materials"]], job["surfaces"], job["angles"],
+                        stress=job["stress"], loadings=job["loading"], toec=job["toec"], directions=job["directions"],
                         tol=job["accuracy"].get("tol"))
-for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):
+for wave_type in WAVE_TYPES:
     print(f"{wave_type}: {int((ds.wave_type == wave_type).sum())} points", file=sys.stderr)
 ds = cube.provenance(ds, title=f"surfwave surface_wave cube, scene {job['scene']}", params=job,
                      rule=snakemake.rule, method=METHOD, extra={"units_note": UNITS_NOTE})

@@ -40,9 +40,9 @@ import numpy as np
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
-from surfwave.errors import InputError
 from surfwave.data.progress import Progress, summary_line
 from surfwave.data.provenance import module_closure
+from surfwave.errors import InputError
 from surfwave.validate import as_1d
 
 #: Default location, relative to the working directory of the workflow.

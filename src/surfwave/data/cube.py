@@ -35,8 +35,9 @@ import xarray as xr
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
-from surfwave.errors import DamagedCubeError, InputError
 from surfwave.data.integrity import check_readable, rebuild_hint
+from surfwave.data.variables import MODEL_COORDS
+from surfwave.errors import DamagedCubeError, InputError
 
 #: netCDF engine used on write and read: the netCDF-C library (netCDF4-python); on this
 #: machine it writes a cube 4-5x and opens one 7x faster than h5netcdf.
@@ -47,15 +48,8 @@ COMPLEX_DIM = "complex"
 #: Variable attribute naming that dimension (the marker :func:`open_cube` decodes).
 COMPLEX_ATTR = "complex_dimension"
 
-COORDS: dict[str, dict[str, str]] = {
-    "potential": {"long_name": "pair potential (surfwave.model_crystals.potentials registry name)"},
-    "direction": {"long_name": "propagation direction x (crystal axes; [10]: triangular rows)"},
-    "strain": {"long_name": "strain along the propagation direction, d/d0 - 1", "units": "1"},
-    "d_over_d0": {"long_name": "stretch along the propagation direction, d/d0", "units": "1"},
-    "theta": {"long_name": "reduced wave number theta = k d_x", "units": "rad"},
-    "row": {"long_name": "atomic row below the surface (0 = surface row)", "units": "1"},
-    COMPLEX_DIM: {"long_name": "part of a complex number: real or imaginary"},
-}
+#: Attributes of the coordinates (the one table: surfwave.data.variables).
+COORDS = MODEL_COORDS
 
 
 def strain_coords(d_over_d0) -> dict[str, Any]:

@@ -27,48 +27,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.errors import InputError
-from surfwave.validate import as_1d
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import inv2, null_vector2
 from surfwave.dynamics.triangular import bond_force_constants, row_matrices
-
-_W = "(K/m)^(1/2)"
-#: Metadata of every array :func:`solve` and :func:`displacements` return (CF attributes).
-VARIABLES: dict[str, dict] = {
-    "omega": {"long_name": "surface-wave angular frequency, Eq. 15, omega = (c_R/d_x) sin theta",
-              "units": _W, "dims": ("strain", "theta")},
-    "q1": {"long_name": "first decay constant per row (rows decay as exp(-q I)), Eq. 6a; real q: the "
-                        "slower one; complex: q1 = conj(q2) (+ i pi beyond pi - theta_c)",
-           "units": "1", "dims": ("strain", "theta")},
-    "q2": {"long_name": "second decay constant per row, Re q2 > 0, Eq. 6a",
-           "units": "1", "dims": ("strain", "theta")},
-    "R1": {"long_name": "polarisation ratio (a/c)^(1/2) U/V of the q1 wave (d_x U / d_y V for springs), Eq. 3a",
-           "units": "1", "dims": ("strain", "theta")},
-    "R2": {"long_name": "polarisation ratio (a/c)^(1/2) U/V of the q2 wave, Eq. 3a",
-           "units": "1", "dims": ("strain", "theta")},
-    "amplitude_ratio": {"long_name": "amplitude ratio V1/V2 of the two waves, Eq. 8a",
-                        "units": "1", "dims": ("strain", "theta")},
-    "theta_c": {"long_name": "crossover k d_x above which q1, q2 are complex (complex band is "
-                             "theta_c < theta < pi - theta_c)", "units": "rad", "dims": ("strain",)},
-    "omega_L": {"long_name": "frequency of the longitudinal bulk wave along the surface (q = 0), Eq. 4a",
-                "units": _W, "dims": ("strain", "theta")},
-    "omega_T": {"long_name": "frequency of the transverse bulk wave along the surface (q = 0), Eq. 4a",
-                "units": _W, "dims": ("strain", "theta")},
-    "c2_R": {"long_name": "squared Rayleigh speed from the lattice solution (Eq. 16 for springs)",
-             "units": "K d0^2 / m", "dims": ("strain",)},
-    "reason": {"long_name": "why the values at this point are NaN (empty when valid)",
-               "units": "", "dims": ("strain", "theta")},
-    "boundary_residual": {"long_name": "relative residual of the unsquared free-surface condition "
-                                       "(Eqs. 7a-9a) at the Eq. 15 root", "units": "1",
-                          "dims": ("strain", "theta")},
-    "u": {"long_name": "row amplitude of the x displacement, u_IJ = u_I exp(i theta (I + 2J)), "
-                       "normalised so max_I |(u_I, v_I)| = 1 and v_0 / i real positive",
-          "units": "1", "dims": ("strain", "theta", "row")},
-    "v": {"long_name": "row amplitude of the y displacement (y into the crystal), same convention as u",
-          "units": "1", "dims": ("strain", "theta", "row")},
-    "row": {"long_name": "row index below the surface (0 = surface row)", "units": "1", "dims": ("row",)},
-}
+from surfwave.errors import InputError
+from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.validate import as_1d
 
 REASON_THETA = "theta outside (0, pi)"
 REASON_SURFACE = "surface unstable: c_R^2 <= 0 (the free surface buckles before or with the bulk)"
@@ -296,7 +259,7 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
         ``q1``, ``q2``, ``R1``, ``R2``, ``amplitude_ratio`` (n, m) complex, dimensionless;
         ``theta_c`` (n,) rad; ``c2_R`` (n,) K d0^2/m; ``reason`` (n, m) str ("" if valid);
         ``boundary_residual`` (n, m): relative residual of the unsquared surface condition.
-        Metadata in :data:`VARIABLES`.
+        Metadata in ``surfwave.data.variables.CUBES["dispersion"]``.
 
     Examples
     --------

@@ -47,45 +47,14 @@ from functools import lru_cache
 
 import numpy as np
 
-from surfwave.model_crystals.lattices import build
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import positive_definite2, theta_log_dets
 from surfwave.dynamics.triangular import bond_force_constants, long_wave, row_matrices
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 
-_STRAIN = ("strain",)
-_ESTIMATE_NOTE = (
-    "omega_R = (c_R/d_x) sin(theta) (Eq. 15, derived for the harmonic lattice; for other pair "
-    "potentials it is the definition used, and checked against a semi-infinite lattice solve) "
-    "with c_R^2 from Eq. (20), omega_L, omega_T from Eq. (4a) at normal wave-number 0"
-)
-
-#: Metadata of every array :func:`surface_entropy` returns (CF long_name, units, dims).
-VARIABLES: dict[str, dict] = {
-    "S_surface_estimate": {
-        "long_name": "surface entropy per surface atom, estimate of Eq. (25) corrected: "
-        "<ln(omega_L omega_T/omega0^2)> - <ln(omega_R/omega0)> - <ln(omega/omega0)>_bulk, "
-        + _ESTIMATE_NOTE,
-        "units": "k_B", "dims": _STRAIN},
-    "S_surface_estimate_error": {
-        "long_name": "error estimate of S_surface_estimate", "units": "k_B", "dims": _STRAIN},
-    "bulk_mean_log_omega": {
-        "long_name": "mean of ln(omega/omega0) over all bulk modes of the 2D lattice, "
-        "omega0 = (K/m)^(1/2)", "units": "1", "dims": _STRAIN},
-    "bulk_mean_log_omega_error": {
-        "long_name": "error estimate of bulk_mean_log_omega", "units": "1", "dims": _STRAIN},
-    "S_surface_exact": {
-        "long_name": "exact classical harmonic surface entropy per surface atom of the "
-        "semi-infinite crystal (free (10) surface, lattice dynamics)",
-        "units": "k_B", "dims": _STRAIN},
-    "S_surface_exact_error": {
-        "long_name": "error estimate of S_surface_exact", "units": "k_B", "dims": _STRAIN},
-    "n_theta": {
-        "long_name": "Gauss-Legendre nodes on [0, pi/2] used for the theta averages",
-        "units": "1", "dims": _STRAIN},
-    "reason": {
-        "long_name": "why values are NaN at this strain (empty if all are valid)",
-        "units": "1", "dims": _STRAIN},
-}
+#: Names of the arrays :func:`surface_entropy` returns (metadata: surfwave.data.variables.CUBES["entropy"]).
+OUTPUTS = ("S_surface_estimate", "S_surface_estimate_error", "bulk_mean_log_omega", "bulk_mean_log_omega_error",
+           "S_surface_exact", "S_surface_exact_error", "n_theta", "reason")
 
 #: Default first and largest Gauss-Legendre sizes of the adaptive theta quadrature.
 N_THETA_START = 4
@@ -335,7 +304,7 @@ def surface_entropy(
         ``bulk_mean_log_omega_error``, ``S_surface_exact``, ``S_surface_exact_error``
         (floats; entropies in k_B per surface atom, the mean log in ln omega0 units),
         ``n_theta`` (int) and ``reason`` (str, "" where everything is valid). Unstable
-        strains give NaN with the reason, never an exception. See :data:`VARIABLES`.
+        strains give NaN with the reason, never an exception. Metadata: ``surfwave.data.variables.CUBES["entropy"]``.
 
     Raises
     ------
@@ -346,7 +315,7 @@ def surface_entropy(
     s = build("triangular", "uniaxial", None, "[10]", d_over_d0).d_over_d0  # validates
     rows = [_one_strain(pot, float(d), tol, n_theta_start, n_theta_max) for d in s]
     out = {k: np.array([r[k] for r in rows], dtype=float)
-           for k in VARIABLES if k not in ("reason", "n_theta")}
+           for k in OUTPUTS if k not in ("reason", "n_theta")}
     out["n_theta"] = np.array([r["n_theta"] for r in rows], dtype=int)
     out["reason"] = np.array([r["reason"] for r in rows], dtype=str)
     return out

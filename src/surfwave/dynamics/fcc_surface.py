@@ -43,17 +43,17 @@ Units: m = K = d0 = 1; k in 1/d0, omega^2 in K/m, speeds squared in K d0^2/m.
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 from scipy import sparse
 from scipy.linalg import eigh
 from scipy.sparse.linalg import eigsh
 
-import dataclasses
-
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.model_crystals.lattices import Crystal, build
-from surfwave.solvers.orientation import lab_axes
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.orientation import lab_axes
 
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
 #: "the sagittal motion decouples".

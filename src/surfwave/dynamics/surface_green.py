@@ -116,7 +116,7 @@ def bulk_schur(
     used = 0
     converged = np.zeros(ok.shape, dtype=bool)
     with np.errstate(all="ignore"):
-        for used in range(1, n + 1):
+        for used in range(1, n + 1):  # noqa: B007 (returned: the levels used)
             g = inv2(e)
             agb = al @ g @ be
             bga = be @ g @ al
@@ -238,34 +238,6 @@ def slab_s_theta(a0: np.ndarray, a0_surface: np.ndarray, a1: np.ndarray, n_rows:
     """
     x = 2.0 * slab_log_det(a0, a0_surface, a1, n_rows) - slab_log_det(a0, a0_surface, a1, 2 * n_rows)
     return -0.25 * x
-
-
-def jensen_bulk_log_det(a0: np.ndarray, a1: np.ndarray) -> np.ndarray:
-    """B(theta) from the roots of det(A1 z^2 + A0 z + A1^H) (Jensen's formula).
-
-    B = ln|det A1| + sum over roots with |z| > 1 of ln|z|. An independent route to
-    ln det S, used by tests and benchmarks (the quartic's roots as eigenvalues of its
-    companion matrix, vectorised over theta).
-
-    Parameters
-    ----------
-    a0, a1 : ndarray, shape (m, 2, 2)
-
-    Returns
-    -------
-    ndarray, shape (m,)
-    """
-    p = [hermitian(a1), a0, a1]  # coefficients of z^0, z^1, z^2, each (m, 2, 2)
-    # det(P0 + P1 z + P2 z^2) of 2x2 polynomial matrices: coefficients by convolution
-    coef = np.zeros((a0.shape[0], 5), dtype=complex)
-    for j in range(3):
-        for k in range(3):
-            coef[:, j + k] += p[j][:, 0, 0] * p[k][:, 1, 1] - p[j][:, 0, 1] * p[k][:, 1, 0]
-    companion = np.zeros((a0.shape[0], 4, 4), dtype=complex)
-    companion[:, 0, :] = -coef[:, 3::-1] / coef[:, 4:5]  # monic, descending powers z^3 .. z^0
-    companion[:, 1:, :-1] = np.eye(3)
-    mod = np.abs(np.linalg.eigvals(companion))
-    return np.log(np.abs(coef[:, 4])) + np.sum(np.log(np.where(mod > 1.0, mod, 1.0)), axis=-1)
 
 
 def zone_grid_mean_log_omega(a0: np.ndarray, a1: np.ndarray, n_p: int) -> np.ndarray:

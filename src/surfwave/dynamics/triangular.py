@@ -17,7 +17,8 @@ where "row" is the in-row bond (2 d_x, 0), "up" the bond (d_x, d_y) and "um" (-d
 All functions are vectorised: strain axis first, theta axis second.
 
 :func:`long_wave` is the one place where the modules of the triangular lattice
-(:mod:`surfwave.dynamics.dispersion`, :mod:`surfwave.dynamics.triangular_surface`, :mod:`surfwave.dynamics.entropy`) get the
+(:mod:`surfwave.dynamics.dispersion`, :mod:`surfwave.dynamics.triangular_surface`,
+:mod:`surfwave.dynamics.entropy`) get the
 long-wave sound speeds, stability and the Cauchy-case Rayleigh speed, Eq. (20): from the bond
 sums of :mod:`surfwave.model_crystals.elastic` (Eqs. A11, A12).
 """
@@ -26,9 +27,9 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.model_crystals import elastic
-from surfwave.solvers import rayleigh
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers import rayleigh
 from surfwave.validate import as_1d
 
 

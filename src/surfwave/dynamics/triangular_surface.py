@@ -20,42 +20,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.errors import InputError
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.dynamics.surface_green import det2, inv2, null_vector2
 from surfwave.dynamics.triangular import long_wave, row_matrices
+from surfwave.errors import InputError
+from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.validate import as_1d
-
-_W = "(K/m)^(1/2)"
-#: Metadata of every array :func:`surface_mode` returns (CF attributes).
-VARIABLES: dict[str, dict] = {
-    "omega_lattice": {"long_name": "surface-wave angular frequency from the numerical semi-infinite "
-                                   "lattice-dynamics solve (decimation)", "units": _W,
-                      "dims": ("strain", "theta")},
-    "omega_lattice_error": {"long_name": "error estimate of omega_lattice (extrapolated decimation "
-                                         "truncation, root bracket and rounding)", "units": _W,
-                            "dims": ("strain", "theta")},
-    "omega_bulk_min": {"long_name": "bottom of the bulk continuum at this k d_x", "units": _W,
-                       "dims": ("strain", "theta")},
-    "omega_sine_law": {"long_name": "(c_R/d_x) sin theta with c_R^2 from the long-wave elastic "
-                                    "constants (Eq. 20)", "units": _W, "dims": ("strain", "theta")},
-    "sine_law_deviation": {"long_name": "omega_lattice / omega_sine_law - 1", "units": "1",
-                           "dims": ("strain", "theta")},
-    "c2_R_long_wave": {"long_name": "squared Rayleigh speed from Eq. 20 with the long-wave sound speeds "
-                                    "of the bond sums (Eqs. A7, A11, A12); NaN where Eq. 20 has no root "
-                                    "in (0, c2_T_par) (no long-wave Rayleigh wave)",
-                       "units": "K d0^2 / m", "dims": ("strain",)},
-    "depth": {"long_name": "rows of crystal the decimation coupled to the surface (2^steps); NaN where "
-                           "omega_lattice is NaN (see reason_lattice)",
-              "units": "1", "dims": ("strain", "theta")},
-    "n_surface_modes": {"long_name": "number of bound surface modes below the bulk continuum; -1 where "
-                                     "no scan ran (bulk unstable, theta outside (0, pi) or at rounding)",
-                        "units": "1", "dims": ("strain", "theta")},
-    "polarisation": {"long_name": "|v_0|^2 / (|u_0|^2 + |v_0|^2) of the surface row (1 = normal)",
-                     "units": "1", "dims": ("strain", "theta")},
-    "reason_lattice": {"long_name": "why omega_lattice is NaN (empty when valid)", "units": "",
-               "dims": ("strain", "theta")},
-}
 
 REASON_ROUNDING = ("theta too close to 0 or pi: the bulk band bottom omega^2 (~theta^2) is within "
                    "rounding of 0, stability undecidable in double precision")

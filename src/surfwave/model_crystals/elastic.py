@@ -18,35 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.model_crystals.lattices import build
-from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability, long_wave_stable
-from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.errors import InputError
-
-#: Metadata of the arrays this module produces (used to build the netCDF cubes).
-VARIABLES: dict[str, dict] = {
-    "stress": {"long_name": "in-plane stress sigma0_xx times volume per atom, sigma0 V / (K d0^2)",
-               "units": "1", "dims": ()},
-    "c2_L_par": {"long_name": "squared longitudinal sound speed along x (propagation), rho c^2 = S_xxxx",
-                 "units": "K d0^2 / m", "dims": ()},
-    "c2_T_par": {"long_name": "squared transverse sound speed along x polarised along y, rho c^2 = S_xyyx",
-                 "units": "K d0^2 / m", "dims": ()},
-    "c2_L_perp": {"long_name": "squared longitudinal sound speed along y (surface normal), rho c^2 = S_yyyy",
-                  "units": "K d0^2 / m", "dims": ()},
-    "c2_T_perp": {"long_name": "squared transverse sound speed along y polarised along x, rho c^2 = S_xyxy",
-                  "units": "K d0^2 / m", "dims": ()},
-    "c2_SH": {"long_name": "squared shear-horizontal sound speed along x polarised along z, rho c^2 = S_xzzx",
-              "units": "K d0^2 / m", "dims": ()},
-    "stable": {"long_name": "long-wave (acoustic tensor) stability over all propagation directions",
-               "units": "1", "dims": ()},
-    "min_acoustic_eig": {"long_name": "lowest eigenvalue of the acoustic tensor V Q(n) over all directions n",
-                         "units": "K d0^2", "dims": ()},
-    "C": {"long_name": "elastic constants times volume per atom, V C_ijkl, lab frame",
-          "units": "K d0^2", "dims": ("i", "j", "k", "l")},
-    "S": {"long_name": "stress derivatives (Eq. A11) times volume per atom, V S_ijkl, lab frame",
-          "units": "K d0^2", "dims": ("i", "j", "k", "l")},
-    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^3 (d0^2 for the 2D triangular lattice)", "dims": ()},
-}
+from surfwave.model_crystals.lattices import build
+from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability, long_wave_stable
 
 
 def _bond_terms(bonds: np.ndarray, potential: str | PairPotential):

@@ -23,19 +23,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
 from surfwave.solvers import rayleigh
 from surfwave.solvers.tensors import rotate4
-from surfwave.errors import InputError
 from surfwave.validate import as_1d
+from surfwave.vocab import WAVE_TYPES  # noqa: F401 (the wave types the rayleigh cube may hold)
 
 #: The only loading whose stressed crystal is the same for every in-plane angle.
 LOADING = "in_plane_hydrostatic"
-#: Attributes of the ``angle`` coordinate of the elastic and rayleigh cubes.
-ANGLE_ATTRS = {"long_name": "propagation angle in the (001) surface, from [100] toward [010]",
-               "units": "degree"}
-#: Wave types the rayleigh cube may hold at any angle.
-WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 
 def lab_rotation(angles) -> np.ndarray:
@@ -141,12 +137,3 @@ def rayleigh_at_angles(C, stress, S, angles) -> dict:
     return {"c2_R": c2, "wave_type": wave_type, "reason": reason}
 
 
-#: Metadata of the rayleigh cube of an angle scene (c2_R also off the mirror directions).
-RAYLEIGH_VARIABLES: dict[str, dict] = {
-    "c2_R": {"long_name": "squared surface-wave speed, long-wave limit (Eq. 17 on mirror directions, "
-             "general anisotropic solver elsewhere; real part squared for a pseudo surface wave)",
-             "units": "K d0^2 / m", "dims": ()},
-    "wave_type": {"long_name": "surface, supersonic_decoupled (faster than the SH bulk wave, exists "
-                  "by mirror symmetry), pseudo (leaky, off the mirrors) or none", "dims": ()},
-    "reason": {"long_name": "why c2_R is NaN (empty if it is not)", "dims": ()},
-}

@@ -26,18 +26,14 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 
 from surfwave.errors import GeometryError, InputError
-from surfwave.solvers.orientation import lab_axes
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.orientation import lab_axes
 from surfwave.validate import as_1d
-
-Lattice = Literal["fcc", "triangular"]
-Loading = Literal["uniaxial", "in_plane_hydrostatic"]
-Direction = Literal["[100]", "[110]", "[10]"]
+from surfwave.vocab import Direction, Lattice, Loading
 
 LATTICES: dict[str, dict] = {
     "fcc": {"dim": 3, "loadings": ("in_plane_hydrostatic", "uniaxial"),

@@ -35,10 +35,10 @@ from typing import Literal
 
 import numpy as np
 
-from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.errors import InputError, PhonopyPointError, SurfwaveError
 from surfwave.model_crystals.lattices import build_checked, check_combination
 from surfwave.model_crystals.potentials import PairPotential, get_potential
+from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.validate import as_1d
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
@@ -51,30 +51,6 @@ DEFAULT_SECANT_EPS = 1e-3
 TOLERANCE = 1e-7
 
 _SPEEDS = ("c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_SH")
-_C2, _S, _SX = "K d0^2 / m", ("strain",), ("strain", "xyz")
-#: CF metadata of every array :func:`bulk_speeds` returns (name -> long_name, units, dims).
-VARIABLES: dict[str, dict] = {
-    name: {"long_name": long_name, "units": units, "dims": dims}
-    for name, long_name, units, dims in [
-        ("c2_L_par_phonopy", "squared longitudinal sound speed along x (phonopy)", _C2, _S),
-        ("c2_T_par_phonopy", "squared transverse sound speed along x polarised along y (phonopy)", _C2, _S),
-        ("c2_L_perp_phonopy", "squared longitudinal sound speed along y, the normal (phonopy)", _C2, _S),
-        ("c2_T_perp_phonopy", "squared transverse sound speed along y polarised along x (phonopy)", _C2, _S),
-        ("c2_SH_phonopy", "squared sound speed along x polarised along z (phonopy; NaN in 2D)", _C2, _S),
-        ("stable_phonon", "no imaginary frequency on the zone mesh nor at long waves", "1", _S),
-        ("min_omega2", "lowest omega^2 on the zone mesh, Gamma excluded (refined if < 0)", "K / m", _S),
-        (
-            "min_omega2_q",
-            "Cartesian lab-frame wave vector k of min_omega2, phase exp(i k.r)",
-            "rad / d0",
-            _SX,
-        ),
-        ("min_c2_phonopy", "lowest acoustic-tensor eigenvalue over all directions (phonopy)", _C2, _S),
-        ("min_c2_direction", "unit propagation direction of min_c2_phonopy, lab frame", "1", _SX),
-        ("supercell_used", "N of the N^dim supercell used (raised if images are ambiguous)", "1", _S),
-        ("reason", "why a point has NaN phonopy values (empty if computed)", "1", _S),
-    ]
-}
 
 
 
@@ -429,7 +405,7 @@ def bulk_speeds(
     Returns
     -------
     dict of ndarray
-        Keys and units in :data:`VARIABLES`: ``c2_*_phonopy`` (n,) K d0^2/m
+        Keys and units in ``surfwave.data.variables.CUBES["bulk"]``: ``c2_*_phonopy`` (n,) K d0^2/m
         (``c2_SH_phonopy`` NaN in 2D), ``stable_phonon`` (n,) bool, ``min_omega2`` (n,)
         K/m, ``min_omega2_q`` (n, 3) rad/d0 (Cartesian lab frame), ``min_c2_phonopy`` (n,),
         ``min_c2_direction`` (n, 3), ``reason`` (n,) str.

@@ -15,6 +15,7 @@ from typing import Literal
 
 import numpy as np
 
+from surfwave.errors import GeometryError, InputError
 from surfwave.model_crystals.elastic import properties
 from surfwave.model_crystals.lattices import build_checked
 from surfwave.model_crystals.phonons import (
@@ -24,7 +25,6 @@ from surfwave.model_crystals.phonons import (
     bulk_speeds,
 )
 from surfwave.model_crystals.potentials import PairPotential, get_potential
-from surfwave.errors import GeometryError, InputError
 from surfwave.validate import as_1d
 
 

@@ -47,15 +47,6 @@ MIRRORS = {"mirror_x": np.diag([-1.0, 1.0, 1.0]), "mirror_z": np.diag([1.0, 1.0,
 #: within symprec when that is smaller): exact up to rounding, as Eq. (17) needs.
 MIRROR_TOL = 1e-6
 
-VARIABLES = {
-    "space_group": {"long_name": "space group (Hermann-Mauguin, spglib) of the prestressed lattice", "dims": ()},
-    "space_group_number": {"long_name": "space group number (International Tables)", "units": "1", "dims": ()},
-    "mirror_x": {"long_name": "lab-frame reflection x -> -x is a symmetry operation", "dims": ()},
-    "mirror_z": {"long_name": "lab-frame reflection z -> -z is a symmetry operation (sagittal plane is a mirror)", "dims": ()},
-    "cell": {"long_name": "primitive lattice vectors (rows) in the lab frame (2D lattices padded with vacuum along z)",
-             "units": "d0", "dims": ("vector", "xyz")},
-    "volume": {"long_name": "volume (area in 2D) per atom", "units": "d0^3 (d0^2 for the 2D triangular lattice)", "dims": ()},
-}
 
 #: What the crystal cube's ``method`` attribute says about how the groups were found.
 METHOD = ("space group: spglib once per symmetry class (key: surviving operations of the "

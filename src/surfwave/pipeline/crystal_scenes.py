@@ -19,9 +19,7 @@ import copy
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.pipeline.grids import (DECIMALS, MAX_POINTS, MAX_STRESS_GPA, SceneError, check_points,
-                                     expand_grid)
-
+from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, MAX_STRESS_GPA, SceneError, check_points, expand_grid
 
 #: Quantities an FCC scene with propagation angles can compute.
 ANGLE_QUANTITIES = ("elastic", "rayleigh")
@@ -62,8 +60,8 @@ def _check_angle_range(angles, where: str) -> None:
 
 def crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> tuple[list, list | None]:
     """Angles (degrees) of a real-crystal scene and their Miller labels (or None)."""
-    from surfwave.solvers import orientation
     from surfwave.real_crystals.sweep import symmetry_reduced_range
+    from surfwave.solvers import orientation
 
     if "directions" in raw:
         if "angles" in raw:
@@ -114,9 +112,9 @@ def check_crystal_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
 
 def _expand_crystal_scene(name: str, raw: dict) -> dict:
     """Physical checks and expansion of a real-crystal scene; the first problem raises."""
-    from surfwave.solvers import orientation
-    from surfwave.real_crystals.sweep import applied_stress
     from surfwave.real_crystals.materials import get_material
+    from surfwave.real_crystals.sweep import applied_stress
+    from surfwave.solvers import orientation
 
     where = f"scene {name!r}"
     mats, given = [], {}

@@ -42,7 +42,7 @@ def check_points(where: str, sizes: dict[str, int]) -> int:
     Traceback (most recent call last):
     ...
     surfwave.errors.SceneError: scene 's': 90001 angles x 50001 d/d0 = 4500140001 points exceed the limit of 100000 points per scene; split it into several scenes or use coarser grids
-    """
+    """  # noqa: E501 (a doctest's expected message)
     n = 1
     for size in sizes.values():
         n *= int(size)

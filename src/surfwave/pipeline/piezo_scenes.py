@@ -17,6 +17,7 @@ import copy
 
 from surfwave.errors import InputError
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
+from surfwave.vocab import ELECTRICAL
 
 #: Solver points of one piezoelectric scene at most (each costs ~2 ms free + metallized + leaky).
 MAX_PIEZO_POINTS = 20_000
@@ -77,7 +78,7 @@ def _expand(name: str, raw: dict) -> dict:
     stress = None
     if "stress" in raw:
         stress = [float(x) for x in expand_grid(raw["stress"], f"{where}, key 'stress'")]
-    electrical = list(raw.get("electrical", ["free", "metallized"]))
+    electrical = list(raw.get("electrical", ELECTRICAL))
     n = scene_points(len(mats), cuts, euler, electrical, stress)
     if n > min(MAX_PIEZO_POINTS, MAX_POINTS):
         raise SceneError(f"{where}: {n} points (materials x orientations x electrical x stress) exceed the limit "

@@ -26,13 +26,11 @@ import re
 from pathlib import Path
 from typing import Any
 
-
-from surfwave.errors import SurfwaveError, InputError
+from surfwave.errors import InputError, SurfwaveError
 from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.model_crystals.potentials import get_potential
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
-from surfwave.pipeline.grids import (DECIMALS, MAX_POINTS, SceneError, check_points,  # noqa: F401 (public)
-                                     expand_grid, theta_grid)
+from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid, theta_grid  # noqa: F401 (public)
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).

@@ -77,9 +77,10 @@ def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, m
     omega, wl, wt = _get(data, "omega"), _get(data, "omega_L"), _get(data, "omega_T")
     bottom = lattice = None
     src = numerical if numerical is not None else data
-    if isinstance(src, dict) and "omega_bulk_min" in src or (not isinstance(src, dict) and "omega_bulk_min" in src.variables):
+    names = src if isinstance(src, dict) else src.variables
+    if "omega_bulk_min" in names:
         bottom = _get(src, "omega_bulk_min")
-    if isinstance(src, dict) and "omega_lattice" in src or (not isinstance(src, dict) and "omega_lattice" in src.variables):
+    if "omega_lattice" in names:
         lattice = _get(src, "omega_lattice")
     rows = np.arange(d.size)
     if lattice is not None and np.isfinite(lattice).any():  # draw checked strains (markers)

@@ -16,7 +16,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from surfwave.data.paper import load_paper_values  # noqa: E402
-from surfwave.dynamics.entropy import VARIABLES  # noqa: E402
+from surfwave.data.variables import CUBES  # noqa: E402
 from surfwave.plots.labels import potential_label  # noqa: E402
 from surfwave.plots.output import savefig  # noqa: E402
 from surfwave.validate import as_1d  # noqa: E402
@@ -59,7 +59,7 @@ def to_dataset(result: Mapping[str, np.ndarray], d_over_d0, potential: str) -> x
     d = as_1d(d_over_d0)
     data = {}
     for name, arr in result.items():
-        attrs = {k: v for k, v in VARIABLES.get(name, {}).items() if k != "dims"}
+        attrs = {k: v for k, v in CUBES["entropy"].get(name, {}).items() if k != "dims"}
         data[name] = (("potential", "strain"), np.asarray(arr)[None], attrs)
     return xr.Dataset(data, coords={"potential": [potential], "strain": d - 1.0,
                                     "d_over_d0": ("strain", d)})
@@ -72,7 +72,7 @@ def entropy_vs_strain(ds: xr.Dataset, path: str | Path, title: str | None = None
     ----------
     ds : xarray.Dataset
         Dims (potential, strain) (``potential`` optional), variables of
-        :data:`surfwave.dynamics.entropy.VARIABLES`, coordinate ``strain`` = d/d0 - 1.
+        ``surfwave.data.variables.CUBES["entropy"]``, coordinate ``strain`` = d/d0 - 1.
     path : str or Path
         PNG to write.
 

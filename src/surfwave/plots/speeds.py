@@ -27,6 +27,7 @@ from surfwave.plots.output import savefig  # noqa: E402
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"
 from surfwave.plots.labels import POTENTIAL_NAMES, potential_label  # noqa: E402,F401
+
 # quantity -> (legend label, colour, line width)
 CURVES = {
     "c2_L_par": (r"$c_{L\parallel}^2$", "tab:blue", 1.2),

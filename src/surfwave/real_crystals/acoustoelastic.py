@@ -24,19 +24,20 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.real_crystals import toec
 from surfwave.real_crystals.stressed_wave import REASON_TRACTION, TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.real_crystals.toec import DEFAULT_TOL
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import rotate2
-from surfwave.errors import InputError
+from surfwave.vocab import STRESS_LOADINGS
 
 __all__ = ["DEFAULT_STEP", "LOADINGS", "REASON_TRACTION", "TRACTION_TOL", "acoustoelastic_coefficients",
            "check_in_plane", "deformed_axes", "loading_stress", "surface_wave_speed"]
 
 #: Loading kinds: uniaxial along / across the propagation direction (in the surface),
 #: equi-biaxial in the surface plane, uniaxial along a given crystal axis in the surface.
-LOADINGS = ("along", "across", "biaxial", "axis")
+LOADINGS = STRESS_LOADINGS
 #: Central-difference step of the acoustoelastic coefficient, GPa.
 DEFAULT_STEP = 1e-4
 

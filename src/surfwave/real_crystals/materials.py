@@ -26,9 +26,9 @@ from typing import Literal
 import numpy as np
 import yaml
 
-from surfwave.solvers.tensors import cubic_voigt, hexagonal_voigt
-from surfwave.errors import InputError
 from surfwave.data.paper import SAFE_LOADER
+from surfwave.errors import InputError
+from surfwave.solvers.tensors import cubic_voigt, hexagonal_voigt
 
 #: Independent second-order constants of each crystal class, in the order the constructors take.
 SECOND_ORDER = {"cubic": ("C11", "C12", "C44"), "hexagonal": ("C11", "C12", "C13", "C33", "C44")}

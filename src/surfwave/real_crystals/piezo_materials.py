@@ -29,13 +29,22 @@ from importlib import resources
 import numpy as np
 import yaml
 
-from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
-from surfwave.solvers.euler import euler_lab_axes
 from surfwave.data.paper import SAFE_LOADER
-from surfwave.solvers.piezo_tensors import (EPS0, cubic_43m_piezo, hexagonal_6mm_piezo, hexagonal_6mm_voigt,
-                                         piezo_voigt_to_tensor, rotate3, trigonal_3m_piezo, trigonal_3m_voigt,
-                                         trigonal_32_piezo, uniaxial_eps)
 from surfwave.errors import InputError
+from surfwave.solvers.euler import euler_lab_axes
+from surfwave.solvers.piezo_tensors import (
+    EPS0,
+    cubic_43m_piezo,
+    hexagonal_6mm_piezo,
+    hexagonal_6mm_voigt,
+    piezo_voigt_to_tensor,
+    rotate3,
+    trigonal_3m_piezo,
+    trigonal_3m_voigt,
+    trigonal_32_piezo,
+    uniaxial_eps,
+)
+from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
 #: Per crystal class: (independent C names or None for "from materials.yaml", e names, eps names,
 #: C builder, e builder).

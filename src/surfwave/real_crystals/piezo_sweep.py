@@ -5,7 +5,8 @@ Grid: materials x (named cuts | Euler angles phi x theta x psi) x electrical con
 ``surface``, ``angle``): a surface is a plate (a named cut, or one Euler pair (phi, theta)),
 the angle the propagation direction psi in it from the plate's reference psi0; coordinates
 ``cut``, ``euler_phi``, ``euler_theta`` (per surface) and ``euler_psi`` (surface, angle) say
-which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point is :func:`surfwave.real_crystals.piezo_wave.piezo_wave`, i.e. the one real-crystal
+which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point
+is :func:`surfwave.real_crystals.piezo_wave.piezo_wave`, i.e. the one real-crystal
 path :func:`surfwave.real_crystals.stressed_wave.surface_wave` (fixed-constants prestress model,
 e and eps at natural values; uniaxial stress along the propagation x1; a point without a
 Born-stable stressed state is NaN with the reason that :func:`surfwave.material` gives).
@@ -22,7 +23,9 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from surfwave.data.variables import CUBES, PIEZO_WAVE_COORDS
 from surfwave.errors import InputError
+from surfwave.vocab import ELECTRICAL
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -37,47 +40,10 @@ UNITS_NOTE = ("SI units: speeds in m/s, stresses in GPa, angles in degrees, atte
               "wavelength, potential in V per m of surface displacement")
 #: Components of the generalised polarisation.
 COMPONENTS = ("u1", "u2", "u3", "phi")
-ELECTRICAL = ("free", "metallized")
 
-VARIABLES: dict[str, dict[str, str]] = {
-    "c_R": {"long_name": "subsonic surface acoustic wave speed for the electrical condition (NaN where none)",
-            "units": "m s-1"},
-    "c_limit": {"long_name": "limiting speed: lowest trace speed along x1 of the piezoelectrically "
-                "stiffened bulk waves", "units": "m s-1"},
-    "K2": {"long_name": "electromechanical coupling K^2 = 2 (v_free - v_metallized) / v_free", "units": "1"},
-    "c_leaky": {"long_name": "leaky SAW phase speed omega / Re k (radiating into the slowest bulk sheet "
-                "only; NaN where none)", "units": "m s-1"},
-    "leaky_attenuation": {"long_name": "leaky SAW attenuation per wavelength", "units": "dB"},
-    "power_flow_angle": {"long_name": "power-flow (beam-steering) angle of the SAW from x1 toward +x2 "
-                         "of the SAW frame (our +x3)", "units": "degree"},
-    "potential_share": {"long_name": "electric share of the surface energy density, eps |phi|^2 / "
-                        "(rho c^2 |u|^2 + eps |phi|^2)", "units": "1"},
-    "polarisation": {"long_name": "surface (u1, u2, u3, phi), lab frame, complex: |u| = 1, phase with u2 "
-                     "real >= 0; phi in V per m of displacement", "units": "1"},
-    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the four partial waves of the SAW, complex",
-              "units": "1"},
-    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, in wavelengths",
-                          "units": "1"},
-    "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
-    "reason": {"long_name": "why no subsonic SAW exists at the point (empty when one does)"},
-    "leaky_reason": {"long_name": "why no leaky SAW is reported at the point (empty when one is)"},
-    "rho": {"long_name": "density", "units": "kg m-3"},
-}
-COORDS: dict[str, dict[str, str]] = {
-    "material": {"long_name": "piezoelectric constant set (surfwave.real_crystals.piezo_materials name)"},
-    "surface": {"long_name": "the plate: a named cut, or SAW Euler angles (phi, theta) in degrees"},
-    "angle": {"long_name": "propagation angle in the plate, psi - psi0 (psi0: the named cut's psi, else 0)",
-              "units": "degree"},
-    "cut": {"long_name": "named SAW cut (surfwave.real_crystals.piezo_materials.get_cut)"},
-    "euler_phi": {"long_name": "SAW Euler angle phi (ZXZ, first rotation about crystal Z)", "units": "degree"},
-    "euler_theta": {"long_name": "SAW Euler angle theta (about the new X; rotated Y cut by theta + 90)",
-                    "units": "degree"},
-    "euler_psi": {"long_name": "SAW Euler angle psi (about the new Z: propagation in the plate), psi0 + angle",
-                  "units": "degree"},
-    "electrical": {"long_name": "surface condition: free (open circuit, vacuum above) or metallized (phi = 0)"},
-    "stress": {"long_name": "uniaxial prestress along the propagation direction (negative = compression)",
-               "units": "GPa"},
-}
+#: Metadata of the cube's variables and coordinates: the one table, surfwave.data.variables.
+VARIABLES = CUBES["piezo_wave"]
+COORDS = PIEZO_WAVE_COORDS
 #: Per-point variables (material, orientation, [stress]) that do not depend on the electrical condition.
 NO_ELECTRICAL = ("K2", "c_limit", "rho")
 
@@ -133,7 +99,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     -------
     xarray.Dataset
         Dims ``material``, ``surface``, ``angle``, ``electrical``, [``stress``] (coordinates
-        ``cut``, ``euler_phi``, ``euler_theta``, ``euler_psi``; module docstring), with ``component`` (u1, u2, u3, phi) for
+        ``cut``, ``euler_phi``, ``euler_theta``, ``euler_psi``; module docstring), with
+        ``component`` (u1, u2, u3, phi) for
         ``polarisation`` and ``partial_wave`` (1..4) for ``decay``; variables of
         :data:`VARIABLES` (``K2``, ``c_limit`` and ``rho`` without ``electrical``).
     """

@@ -50,6 +50,7 @@ from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
+from surfwave.vocab import STRESS_LOADINGS
 
 __all__ = ["Constants", "ELECTRICAL", "GPA", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS", "REASON_LEAKY_OFF",
            "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
@@ -79,7 +80,7 @@ REASON_NO_STATE = "no stressed state: "
 #: Loading kinds: uniaxial along / across the propagation direction (in the surface),
 #: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
 #: along a fixed crystal direction in the surface.
-LOADINGS = ("along", "across", "biaxial")
+LOADINGS = tuple(k for k in STRESS_LOADINGS if k != "axis")
 #: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
 PIEZO_TOL = 1e-12
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
@@ -112,6 +113,7 @@ class Constants:
     permittivity: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        """Normalise the constants: Voigt (6, 6) GPa (a (3, 3, 3, 3) tensor is converted), rho float."""
         C = np.asarray(self.voigt, dtype=float)
         if C.shape == (3, 3, 3, 3):
             C = tensor_to_voigt(C)

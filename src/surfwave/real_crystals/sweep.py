@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from surfwave.data.variables import CUBES, SURFACE_WAVE_COORDS
 from surfwave.errors import InputError
 from surfwave.real_crystals.stressed_wave import LOADINGS, Constants, axis_of_loading, stress_tensor, surface_wave
 from surfwave.solvers.tensors import rotate4, voigt_to_tensor
@@ -60,44 +61,9 @@ METHOD = ("general anisotropic surface-wave solver (Stroh formalism, surfwave.so
 #: The ``units_note`` attribute of the cube (SI, unlike the model-lattice cubes).
 UNITS_NOTE = "SI units: speeds in m/s, stresses in GPa, densities in kg/m^3, angles in degrees"
 
-#: Metadata of the cube's variables (CF long_name/units); dims are set by the builder.
-VARIABLES: dict[str, dict[str, str]] = {
-    "c_R": {"long_name": "surface-wave speed (real part for a pseudo surface wave)", "units": "m s-1"},
-    "c_R_imag": {"long_name": "imaginary part of the complex speed of a leaky pseudo surface wave "
-                 "(0 for a true surface wave)", "units": "m s-1"},
-    "c_limit": {"long_name": "limiting speed v_L: lowest bulk speed with a real slowness "
-                "projection along x1 (onset of bulk radiation)", "units": "m s-1"},
-    "wave_type": {"long_name": "surface | supersonic_decoupled | pseudo | none"},
-    "reason": {"long_name": "why no surface wave exists at the point (empty when one does)"},
-    "polarisation": {"long_name": "surface displacement (u1, u2, u3) in the lab frame, complex, "
-                     "unit length, phase such that u2 is real and >= 0", "units": "1"},
-    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, "
-                          "1/(2 pi min Im p), in wavelengths", "units": "1"},
-    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the partial waves exp(ik(x1 + p x2)) of the "
-              "surface wave, ascending Im p (decoupled mirror wave: the two sagittal ones, then the SH "
-              "one or NaN), complex", "units": "1"},
-    "rho": {"long_name": "density of the (stressed) crystal", "units": "kg m-3"},
-    "c_leaky": {"long_name": "leaky SAW phase speed omega / Re k (radiating into the slowest bulk sheet "
-                "only; NaN where none; the exact wave at a supersonic_decoupled point)", "units": "m s-1"},
-    "leaky_attenuation": {"long_name": "leaky SAW attenuation per wavelength", "units": "dB"},
-    "leaky_reason": {"long_name": "why no leaky SAW is reported at the point (empty when one is)"},
-    "symmetric_range": {"long_name": "width of the symmetry-reduced angle range [0, w]: the "
-                        "unstressed speeds repeat mirror-symmetrically about multiples of w",
-                        "units": "degree"},
-}
-
-COORDS: dict[str, dict[str, str]] = {
-    "material": {"long_name": "crystal (surfwave.real_crystals.materials name)"},
-    "surface": {"long_name": "surface plane, Miller indices in crystal axes"},
-    "angle": {"long_name": "propagation angle from the surface's reference direction ((001): [100], "
-              "(110): [001], (111): [1-10]) toward n x reference", "units": "degree"},
-    "direction": {"long_name": "propagation direction, Miller indices in crystal axes"},
-    "loading": {"long_name": "stress kind: along / across the propagation (uniaxial), in-plane "
-                "biaxial, or axis_<hkl> uniaxial along a fixed crystal axis"},
-    "toec": {"long_name": "constants of the stressed state from third-order elastic constants "
-             "(false: second-order constants of the natural state)"},
-    "stress": {"long_name": "applied in-plane stress (negative = compression)", "units": "GPa"},
-}
+#: Metadata of the cube's variables and coordinates: the one table, surfwave.data.variables.
+VARIABLES = CUBES["surface_wave"]
+COORDS = SURFACE_WAVE_COORDS
 
 
 # --------------------------------------------------------------------------- symmetry

@@ -36,8 +36,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
 from surfwave.errors import InputError
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
 
 #: Newton iterations of the deformation solve before it is declared failed.
 MAX_ITERATIONS = 60

@@ -21,6 +21,7 @@ import numpy as np
 import xarray as xr
 
 from surfwave.errors import InputError
+from surfwave.vocab import REAL_WAVE_TYPES
 
 #: 1/GPa -> 1/TPa.
 PER_TPA = 1.0e3
@@ -68,7 +69,7 @@ def coefficients(ds: xr.Dataset) -> xr.Dataset:
     if first is None:
         raise InputError(f"stress grid {s.tolist()} needs 0 and one point at +/- h on each side")
     i0 = int(np.flatnonzero(s == 0.0)[0])
-    wave_ok = ds.wave_type.isin(["surface", "supersonic_decoupled"])
+    wave_ok = ds.wave_type.isin(list(REAL_WAVE_TYPES))
     c = ds.c_R.where(wave_ok)
 
     def central(st):

@@ -10,11 +10,11 @@ import numpy as np
 
 from surfwave.report.checks import (
     FAIL,
+    FCC_DIRECTIONS,
     INCONCLUSIVE,
     NOT_COMPUTED,
     PASS,
     STRAIN_MATCH,
-    FCC_DIRECTIONS,
     Check,
     _potentials,
     _theta_c,
@@ -219,7 +219,8 @@ def _faster_110(name, spec, cubes):
         ratio = np.sqrt(b["c2_R"][m] / a["c2_R"][m])
         # 'a little' is judged where the crystal exists: the long-wave stable compressed points
         # (beyond the instability the ratio blows up as c_R[100] -> 0).
-        stable = (a["stable"].astype(bool) & b["stable"].astype(bool))[m] if "stable" in a else np.ones_like(ratio, bool)
+        stable = ((a["stable"].astype(bool) & b["stable"].astype(bool))[m] if "stable" in a
+                  else np.ones_like(ratio, bool))
         rmax = float(ratio[stable].max()) if stable.any() else float("nan")
         ok = bool(ratio.min() >= 1 - 1e-9) and bool(stable.any()) and not (rmax > spec["max_ratio"])
         out.append(_claim(name, spec, PASS if ok else FAIL,

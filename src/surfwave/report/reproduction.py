@@ -24,11 +24,11 @@ from typing import Iterable
 import numpy as np
 import xarray as xr
 
-from surfwave.report import checks as _values
-from surfwave.report import claims as _claims
 from surfwave.data.cube import open_cube as _open_cube
 from surfwave.data.paper import load_paper_values  # noqa: F401 (re-exported)
 from surfwave.pipeline.targets import CUBE_NAMES, report_inputs  # noqa: F401 (re-exported)
+from surfwave.report import checks as _values
+from surfwave.report import claims as _claims
 from surfwave.report.checks import (
     FAIL,
     INCONCLUSIVE,
@@ -36,9 +36,12 @@ from surfwave.report.checks import (
     PASS,
     Check,
     fmt,
-    pick as _pick,
     sel_strain,
 )
+from surfwave.report.checks import (
+    pick as _pick,
+)
+
 
 # --------------------------------------------------------------------------- I/O helpers
 def open_cube(path: str | Path) -> xr.Dataset | None:
@@ -57,10 +60,12 @@ class Cubes:
 
     @classmethod
     def from_dir(cls, results: str | Path) -> "Cubes":
+        """The cubes of the paper's scenes found under ``results`` (results/<scene>/<cube>.nc)."""
         root = Path(results)
         return cls(p for p in sorted(root.glob("*/*.nc")) if p.stem in CUBE_NAMES)
 
     def get(self, scene: str, cube: str) -> xr.Dataset | None:
+        """The cube ``scene/cube``, opened once and kept; None if the run did not make it."""
         key = f"{scene}/{cube}"
         if key not in self._cache:
             path = self.paths.get(key)
@@ -68,6 +73,7 @@ class Cubes:
         return self._cache[key]
 
     def listing(self) -> list[tuple[str, str]]:
+        """(scene/cube, path) of every cube, ``(missing)`` appended where the file is absent."""
         return [(k, str(p) if p.is_file() else f"{p} (missing)") for k, p in self.paths.items()]
 
 

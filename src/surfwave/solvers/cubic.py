@@ -140,6 +140,6 @@ def real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
     c3, c2, c1, c0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (c3, c2, c1, c0)))
     shape = c3.shape
     cs = [np.ravel(v) for v in (c3, c2, c1, c0)]
-    x, B, C, D = real_roots_closed_form(*cs)
-    x = newton_polish(x.ravel().copy(), *(np.tile(v, 3) for v in (B, C, D))).reshape(x.shape)
+    x, B, C, D = real_roots_closed_form(cs[0], cs[1], cs[2], cs[3])
+    x = newton_polish(x.ravel().copy(), np.tile(B, 3), np.tile(C, 3), np.tile(D, 3)).reshape(x.shape)
     return np.moveaxis(x, 0, -1).reshape(shape + (3,))

@@ -289,7 +289,8 @@ def track_roots(c: np.ndarray, guess: np.ndarray) -> tuple[np.ndarray, np.ndarra
             if conv.all():
                 break
         scale = np.abs(z).max(axis=-1)
-        ok &= conv.all(axis=-1) & np.isfinite(z).all(axis=-1) & (z.imag > TRACK_SEPARATION * scale[:, None]).all(axis=-1)
+        ok &= (conv.all(axis=-1) & np.isfinite(z).all(axis=-1)
+               & (z.imag > TRACK_SEPARATION * scale[:, None]).all(axis=-1))
         d = z.shape[-1]
         for i in range(d):
             for j in range(i + 1, d):
@@ -457,7 +458,8 @@ def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None, parts
         for _ in range(1, d):
             aM = np.einsum("mi,mij->mj", aj[-1], M)
             aj.append(np.einsum("mi,mij->mj", aj[-1], n4) - np.einsum("mi,mij->mj", aM, n2))
-            bi.append(np.einsum("mij,mj->mi", n1, bi[-1]) + np.einsum("mij,mj->mi", n2, np.einsum("mij,mj->mi", M, bi[-1])))
+            bi.append(np.einsum("mij,mj->mi", n1, bi[-1])
+                      + np.einsum("mij,mj->mi", n2, np.einsum("mij,mj->mi", M, bi[-1])))
         uGy = sum(c[:, k] * sum(np.einsum("mi,mi->m", aj[j], bi[k - 1 - j]) for j in range(k)) for k in range(1, d + 1))
         out["lam"] = np.where(bad, np.nan, lam)
         out["u"] = u

@@ -30,6 +30,7 @@ import numpy as np
 from surfwave.errors import InputError
 from surfwave.solvers.piezo_stroh import generalised_blocks
 from surfwave.solvers.piezo_tensors import EPS0
+from surfwave.vocab import ELECTRICAL
 
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
@@ -241,7 +242,7 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     InputError
         Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
     """
-    if electrical not in ("free", "metallized"):
+    if electrical not in ELECTRICAL:
         raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
     A, rho, e, eps = _check(A, rho, e, eps)
     m = A.shape[0]
@@ -373,7 +374,8 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     tg = 0.5 * np.pi * (np.arange(SCAN) + 0.5) / SCAN
     # 1. real scan: |det| with the outgoing choice at each grid speed
     Xg = (x0[:, None] + span[:, None] * np.sin(tg) ** 2).reshape(-1)
-    pg, xig = _partial_waves(*(np.repeat(B, SCAN, axis=0) for B in (Q, R, T)), Xg, d)
+    Qg, Rg, Tg = (np.repeat(B, SCAN, axis=0) for B in (Q, R, T))
+    pg, xig = _partial_waves(Qg, Rg, Tg, Xg, d)
     idx = _choose_real(pg, xig, d)
     fg, _ = _boundary(xig, idx, d, electrical)
     pc = np.take_along_axis(pg, idx, axis=1)
@@ -438,7 +440,7 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     # polarisation: null vector of the boundary condition at the root
     _, M = _boundary(xiall[b], ich[b], d, electrical)
     fin = np.all(np.isfinite(M), axis=(1, 2))
-    w = np.full(M.shape[:2], np.nan + 0j)
+    w: np.ndarray = np.full(M.shape[:2], np.nan + 0j)
     if fin.any():
         w[fin] = np.linalg.svd(M[fin])[2][:, -1].conj()
     if d == 4 and electrical == "metallized":

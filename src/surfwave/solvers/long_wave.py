@@ -50,9 +50,9 @@ def _sphere_directions(dim: int, n: int, octant: bool = False) -> np.ndarray:
     n_fib = max(n // _OCTANT_DIVISOR, 1) if octant else n
     i = np.arange(n_fib) + 0.5
     zc = i / n_fib  # upper hemisphere z in (0, 1)
-    phi = np.pi * (1 + 5**0.5) * i
+    azimuth = np.pi * (1 + 5**0.5) * i
     rxy = np.sqrt(1 - zc**2)
-    fib = np.column_stack([rxy * np.cos(phi), rxy * np.sin(phi), zc])
+    fib = np.column_stack([rxy * np.cos(azimuth), rxy * np.sin(azimuth), zc])
     out = np.vstack([_SYMMETRY_DIRECTIONS, fib])
     return np.unique(np.abs(out).round(15), axis=0) if octant else out
 
@@ -284,8 +284,8 @@ def long_wave_stability(
             cand = [n_best[:, None, a] + step * (offsets[:, 0] * t1[:, None, a] + offsets[:, 1] * t2[:, None, a])
                     for a in range(3)]
         else:
-            t1 = (-n_best[:, 1], n_best[:, 0])
-            cand = [n_best[:, None, a] + step * offsets[:, 0] * t1[a][:, None] for a in range(2)]
+            tangent = (-n_best[:, 1], n_best[:, 0])
+            cand = [n_best[:, None, a] + step * offsets[:, 0] * tangent[a][:, None] for a in range(2)]
         norm = cand[0] * cand[0]
         for c in cand[1:]:
             norm += c * c

@@ -33,19 +33,28 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
+from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
 from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
-    generalised_blocks, generalised_tensor, impedance, impedance_slope, limiting_x, piezo_bulk_speeds, stroh_matrix,
-    stroh_polynomial_parts)
-from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
+    generalised_blocks,
+    generalised_tensor,
+    impedance,
+    impedance_slope,
+    limiting_x,
+    piezo_bulk_speeds,
+    stroh_matrix,
+    stroh_polynomial_parts,
+)
 from surfwave.solvers.piezo_tensors import EPS0  # noqa: F401  (vacuum permittivity, F/m; re-exported)
+from surfwave.vocab import ELECTRICAL
 
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
 T_MIN = search.T_MIN
 
 REASON_PSEUDO = ("no subsonic surface wave: the lowest eigenvalue of the surface impedance stays positive "
                  "up to the stiffened limiting speed (pseudo/leaky regime; see surfwave.solvers.leaky)")
-REASON_UNSTABLE = "no surface wave: the impedance is not positive definite at v = 0 or a stiffened bulk wave has rho v^2 <= 0"
+REASON_UNSTABLE = ("no surface wave: the impedance is not positive definite at v = 0 or a stiffened bulk wave "
+                   "has rho v^2 <= 0")
 REASON_T = "no surface wave: the stiffened T block (A_i2k2 + e e / eps22) is not positive definite"
 REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sub-problem of the mirror, "
                         "below its own limiting speed")
@@ -114,7 +123,7 @@ def _check(A, e, eps, rho, electrical):
     if np.any(sA == 0):
         raise InputError("A vanishes at some point")
     el = np.broadcast_to(np.asarray(electrical, dtype=object), (m,))
-    unknown = sorted({str(v) for v in el if v not in ("free", "metallized")})
+    unknown = sorted({str(v) for v in el if v not in ELECTRICAL})
     if unknown:
         raise InputError(f"electrical must be 'free' or 'metallized', got {unknown}")
     return A, e, eps, rho, el == "free"
@@ -304,7 +313,7 @@ def _mirror_waves(Q, R, T, XL, free, eps0, mir, tol):
         rows = np.flatnonzero(mir == name)
         if rows.size == 0:
             continue
-        ix = np.ix_(rows, S, S)
+        ix = np.ix_(rows, np.asarray(S), np.asarray(S))
         q, r, t = Q[ix], R[ix], T[ix]
         xl = limiting_x(q, r, t, nm)
         okl = np.isfinite(xl) & (xl > 0)

@@ -15,11 +15,10 @@ import numpy as np
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.piezo import piezo_surface_wave
 from surfwave.solvers.stroh import surface_wave
+from surfwave.vocab import ELECTRICAL
 
 __all__ = ["DELTA_EXACT", "ELECTRICAL", "PIEZO_KEYS", "piezo_saw"]
 
-#: Electrical surface conditions (open circuit, shorted).
-ELECTRICAL = ("free", "metallized")
 #: Extra per-point float outputs of a piezoelectric crystal.
 PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle",
               "potential_share")

@@ -8,9 +8,9 @@ Physics: docs/physics/piezoelectric.md.
 """
 from __future__ import annotations
 
-import numpy as np
-
 import itertools
+
+import numpy as np
 
 from surfwave.solvers.impedance import _monic, _pmul, track_roots
 
@@ -254,7 +254,7 @@ def _minor(G: np.ndarray, rows: tuple, cols: tuple, cache: dict) -> np.ndarray:
         if len(rows) == 1:
             cache[key] = G[:, rows[0], cols[0]]
         else:
-            out = 0.0
+            out: np.ndarray | float = 0.0
             for j, c in enumerate(cols):
                 term = _pmul(G[:, rows[0], c], _minor(G, rows[1:], cols[:j] + cols[j + 1:], cache))
                 out = out + term if j % 2 == 0 else out - term
@@ -305,8 +305,8 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None, N0=None) -> dict:
         N = stroh_matrix(Q, R, T, X, nm)
     else:
         N = N0.copy()
-        k = np.arange(nm)
-        N[:, n + k, k] += X[:, None]
+        diag = np.arange(nm)
+        N[:, n + diag, diag] += X[:, None]
     m = len(X)
     up = np.full((m, n), np.nan + 0j)
     ok = np.zeros(m, dtype=bool)

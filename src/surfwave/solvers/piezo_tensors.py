@@ -29,8 +29,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexagonal_voigt
 from surfwave.errors import InputError
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexagonal_voigt
 
 #: Vacuum permittivity, F/m (CODATA 2018).
 EPS0 = 8.8541878128e-12

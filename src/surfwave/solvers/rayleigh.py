@@ -35,26 +35,13 @@ import itertools
 
 import numpy as np
 
-from surfwave.solvers.cubic import newton_polish as _polish
-from surfwave.solvers.cubic import real_cubic_roots as _real_cubic_roots  # noqa: F401 (tests)
-from surfwave.solvers.cubic import real_roots_closed_form as _cubic_rows
 from surfwave.errors import SymmetryError
+from surfwave.solvers.cubic import newton_polish as _polish
+from surfwave.solvers.cubic import real_roots_closed_form as _cubic_rows
+from surfwave.vocab import SAGITTAL_WAVE_TYPES
 
-#: Metadata of the arrays this module produces.
-VARIABLES: dict[str, dict] = {
-    "c2_R": {"long_name": "squared Rayleigh (surface) wave speed, long-wave limit (Eq. 17)",
-             "units": "K d0^2 / m", "dims": ()},
-    "wave_type": {"long_name": "kind of sagittal surface wave: surface, supersonic_decoupled "
-                  "(faster than the SH bulk wave; exists by mirror symmetry) or none",
-                  "dims": ()},
-    "reason": {"long_name": "why c2_R is NaN (empty if it is not)", "dims": ()},
-    "kappa1": {"long_name": "first decay constant kappa of the surface wave (per k)",
-               "units": "1", "dims": ()},
-    "kappa2": {"long_name": "second decay constant kappa of the surface wave (per k)",
-               "units": "1", "dims": ()},
-}
-
-WAVE_TYPES = ("surface", "supersonic_decoupled", "none")
+#: Wave types this solver reports (it never reports ``pseudo``).
+WAVE_TYPES = SAGITTAL_WAVE_TYPES
 
 REASON_SHEAR = "no surface wave: c_T,par^2 <= 0 (shear instability along the surface)"
 REASON_PERP = "no surface wave: S_yyyy <= 0 or S_xyxy <= 0 (unstable normal to the surface)"
@@ -283,7 +270,8 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     margin = _POLISH_MARGIN
     a, b, c, d, f = an
     # |c2|, |c1|, |c0| <= 16 when max |a..f| = 1 (secular_coefficients term by term); 17 for rounding
-    X, B, C, D = _cubic_rows(*secular_coefficients(a, b, c, d, f), coef_bound=17.0)   # (3, n)
+    c3, c2, c1, c0 = secular_coefficients(a, b, c, d, f)
+    X, B, C, D = _cubic_rows(c3, c2, c1, c0, coef_bound=17.0)   # (3, n)
     with np.errstate(invalid="ignore"):
         hi = np.where((b > 0) & (d > 0), np.minimum(a, c) + margin, -np.inf)
         near = (X > -margin) & (X < hi)

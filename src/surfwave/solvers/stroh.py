@@ -28,9 +28,10 @@ import itertools
 
 import numpy as np
 
+from surfwave.errors import InputError
 from surfwave.solvers import impedance as imp
 from surfwave.solvers import rayleigh
-from surfwave.errors import InputError
+from surfwave.vocab import WAVE_TYPES  # noqa: F401 (re-exported: the wave types solve() reports)
 
 #: Smallest t = sqrt(1 - X/X_L) searched: roots closer to X_L than T_MIN^2 relative are "none".
 T_MIN = 1e-6
@@ -40,7 +41,6 @@ MAX_ITER = 100
 #: Starting point of the Newton iteration, t = sqrt(1 - X/X_L) (X = 0.91 X_L).
 T_START = 0.3
 
-WAVE_TYPES = ("surface", "supersonic_decoupled", "pseudo", "none")
 
 REASON_UNSTABLE = "no surface wave: a bulk wave in the sagittal plane has rho v^2 <= 0 (unstable crystal)"
 REASON_T = "no surface wave: T_ik = A_i2k2 is not positive definite (unstable normal to the surface)"
@@ -50,20 +50,6 @@ REASON_PSEUDO = ("pseudo-surface wave: no subsonic root (the lowest eigenvalue o
 REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupled sagittal motion, "
                         "below its own limiting speed")
 
-VARIABLES: dict[str, dict] = {
-    "c": {"long_name": "phase speed of the surface wave (real part for a pseudo wave)", "dims": ()},
-    "c_imag": {"long_name": "imaginary part of the complex speed of a pseudo wave (0 for real waves; NaN where "
-               "not computed)", "dims": ()},
-    "c_limit": {"long_name": "limiting speed v_L: lowest trace velocity along x1 of the bulk waves", "dims": ()},
-    "wave_type": {"long_name": "surface, supersonic_decoupled, pseudo or none", "dims": ()},
-    "reason": {"long_name": "why the speed is NaN (empty if it is not)", "dims": ()},
-    "polarisation": {"long_name": "surface displacement (u1, u2, u3), lab frame, unit norm, u2 real >= 0",
-                     "units": "1", "dims": ("component",)},
-    "decay": {"long_name": "Stroh eigenvalues p (Im p > 0) of the partial waves exp(ik(x1 + p x2))",
-              "units": "1", "dims": ("partial_wave",)},
-    "penetration_depth": {"long_name": "1/e depth of the slowest-decaying partial wave, 1/(2 pi min Im p)",
-                          "units": "wavelength", "dims": ()},
-}
 
 
 def wave_propagation_tensor(C, sigma, *, rtol: float = 1e-9) -> np.ndarray:
@@ -114,7 +100,7 @@ def _odd_components(d: int, axis: int) -> tuple[np.ndarray, ...]:
     return tuple(np.array(col) for col in zip(*idx))
 
 
-def _relative_max(A: np.ndarray, comps, scale: np.ndarray) -> np.ndarray:
+def _relative_max(A: np.ndarray, comps, scale: np.ndarray | float) -> np.ndarray:
     return np.abs(A[(slice(None),) + comps]).max(axis=-1) / scale
 
 

@@ -1,0 +1,176 @@
+"""Typed records of the front door's results: :class:`PointResult` and :class:`MaterialResult`.
+
+They are :class:`typing.TypedDict`: at run time the results stay plain dicts with exactly the
+keys documented here (nothing changes for a caller that indexes them), and a type checker
+knows every key. Also importable as ``surfwave.api.PointResult`` and
+``surfwave.api.MaterialResult``.
+
+>>> from surfwave.records import MaterialResult, PointResult
+>>> sorted(MaterialResult.__required_keys__)[:3]
+['angle', 'c_L_par', 'c_L_perp']
+>>> sorted(PointResult.__optional_keys__)
+['angle', 'c2_limit', 'decay', 'min_acoustic_eig', 'penetration_depth', 'polarisation']
+"""
+
+# No ``from __future__ import annotations`` here: on Python 3.11 TypedDict reads NotRequired
+# only from evaluated annotations (with strings every key would count as required).
+from typing import Any, NotRequired, TypedDict
+
+__all__ = ["MaterialResult", "PointResult"]
+
+#: Values are NumPy arrays (shapes below); ``Any`` keeps the record free of a NumPy typing
+#: dependency and lets MaterialResult hold Python scalars for one direction.
+_Array = Any
+
+
+class PointResult(TypedDict):
+    """Result of :func:`surfwave.point`: a prestressed pair-potential model crystal.
+
+    Reduced units (d0 = K = m = 1; tensors times the volume per atom V). Shapes: n strains;
+    with an array of m angles (FCC, general solver) the per-direction keys gain a trailing
+    axis of m; d = 3 (FCC) or 2 (triangular lattice).
+
+    Attributes
+    ----------
+    d_over_d0, volume : ndarray, shape (n,)
+        Stretch along the load direction (1), volume (area in 2D) per atom (d0^3 or d0^2).
+    stress : ndarray, shape (n,) or (n, m)
+        sigma_xx V (x = propagation), K d0^2.
+    c2_L_par, c2_T_par, c2_L_perp, c2_T_perp, c2_SH : ndarray, shape (n,) or (n, m)
+        Squared bulk sound speeds along x (par) and along the inward normal y (perp), K d0^2 / m;
+        ``c2_SH`` (along x, polarised along z) is NaN in 2D.
+    c2_R : ndarray, shape (n,) or (n, m)
+        Squared surface-wave speed, K d0^2 / m (real part for a pseudo wave; NaN where none).
+    wave_type : ndarray of str (object), shape (n,) or (n, m)
+        :data:`surfwave.vocab.WAVE_TYPES`.
+    reason : ndarray of str (object), shape (n,) or (n, m)
+        Why ``c2_R`` is NaN (empty where it is not).
+    stable : ndarray of bool, shape (n,)
+        Long-wave (acoustic tensor) stability in every direction.
+    C, S : ndarray, shape (n, [m,] d, d, d, d)
+        V C and V S (Eq. A11) in the lab frame of the propagation, K d0^2.
+    angle : ndarray, shape (n,) or (n, m), FCC only
+        Propagation angle in the (001) surface, degrees from [100] toward [010].
+    c2_limit : ndarray, shape (n,) or (n, m)
+        Squared limiting speed v_L^2, K d0^2 / m (general solver: off the mirror directions,
+        or with ``details``).
+    polarisation, decay : ndarray of complex, shape (n, [m,] d)
+        Surface displacement (unit norm, u2 real >= 0) and Stroh eigenvalues p of the partial
+        waves (1); same condition as ``c2_limit``.
+    penetration_depth : ndarray, shape (n,) or (n, m)
+        1/e depth of the slowest-decaying partial wave, in wavelengths (1); same condition.
+    min_acoustic_eig : ndarray, shape (n,)
+        Lowest eigenvalue of V Q(n) over all directions, K d0^2 (only with ``min_eig``).
+    """
+
+    d_over_d0: _Array
+    volume: _Array
+    stress: _Array
+    c2_L_par: _Array
+    c2_T_par: _Array
+    c2_L_perp: _Array
+    c2_T_perp: _Array
+    c2_SH: _Array
+    c2_R: _Array
+    wave_type: _Array
+    reason: _Array
+    stable: _Array
+    C: _Array
+    S: _Array
+    angle: NotRequired[_Array]
+    c2_limit: NotRequired[_Array]
+    polarisation: NotRequired[_Array]
+    decay: NotRequired[_Array]
+    penetration_depth: NotRequired[_Array]
+    min_acoustic_eig: NotRequired[_Array]
+
+
+class MaterialResult(TypedDict):
+    """Result of :func:`surfwave.material`: a real crystal, SI units.
+
+    Python scalars (float, str, bool) for one direction; arrays of shape (m,) for m angles
+    (``polarisation`` and ``decay``: (3,) or (m, 3)).
+
+    Attributes
+    ----------
+    c_R : float or ndarray
+        Surface-wave speed, m/s (real part for a pseudo wave; NaN where none).
+    c_R_imag : float or ndarray
+        Imaginary part of the complex speed of a pseudo wave, m/s (0 for a real wave).
+    c_limit : float or ndarray
+        Limiting speed v_L, m/s.
+    c_L_par, c_T_par, c_L_perp, c_T_perp, c_SH : float or ndarray
+        Bulk speeds along x1 (par) and along the inward normal x2 (perp), m/s; NaN where
+        imaginary.
+    wave_type : str or ndarray of str
+        :data:`surfwave.vocab.WAVE_TYPES`.
+    reason : str or ndarray of str
+        Why ``c_R`` is NaN (empty where it is not).
+    stable : bool or ndarray of bool
+        Born stability and a positive acoustic tensor in every direction.
+    polarisation, decay : ndarray of complex, shape (3,) or (m, 3)
+        Surface displacement (lab frame, unit norm, u2 real >= 0) and Stroh eigenvalues p (1).
+    penetration_depth : float or ndarray
+        1/e depth of the slowest-decaying partial wave, in wavelengths (1).
+    angle : float or ndarray
+        Propagation angle, degrees from the surface's reference direction.
+    method : str or ndarray of str
+        Which solver path produced the speed.
+    rho : float or ndarray
+        Density of the stressed state, kg/m^3.
+    toec : bool or ndarray of bool
+        Whether the third-order (stressed-state) model was used.
+    c_free, c_metallized : float or ndarray
+        Piezoelectric route only (``piezo=``, ``permittivity=``, ``euler=``, ``cut=``,
+        ``electrical=`` or a crystal of the piezoelectric database; so are the keys below):
+        subsonic SAW speed with a free and with a metallized surface, m/s. On this route
+        ``polarisation`` and ``decay`` have a fourth component (the potential phi, V per m of
+        displacement) and ``c_limit`` is the stiffened limiting speed.
+    K2 : float or ndarray
+        Coupling 2 (c_free - c_metallized) / c_free (fraction, 1).
+    c_leaky, leaky_attenuation : float or ndarray
+        Leaky wave radiating into the slowest bulk sheet: speed, m/s, and attenuation, dB per
+        wavelength (NaN where none).
+    leaky_reason : str or ndarray of str
+        Why ``c_leaky`` is NaN (empty where it is not).
+    power_flow_angle : float or ndarray
+        Beam-steering angle of the SAW, degrees.
+    potential_share : float or ndarray
+        Share of the electric potential in the polarisation (1).
+    electrical : str or ndarray of str
+        :data:`surfwave.vocab.ELECTRICAL`: the surface condition of ``c_R``.
+    euler : ndarray, shape (3,) or (m, 3)
+        Euler angles (phi, theta, psi) of the cut, degrees (NaN for a surface/direction call).
+    model : str
+        Which constant set and model produced the numbers.
+    """
+
+    c_R: _Array
+    c_R_imag: _Array
+    c_limit: _Array
+    c_L_par: _Array
+    c_T_par: _Array
+    c_L_perp: _Array
+    c_T_perp: _Array
+    c_SH: _Array
+    wave_type: _Array
+    reason: _Array
+    stable: _Array
+    polarisation: _Array
+    decay: _Array
+    penetration_depth: _Array
+    angle: _Array
+    method: _Array
+    rho: _Array
+    toec: _Array
+    c_free: NotRequired[_Array]
+    c_metallized: NotRequired[_Array]
+    K2: NotRequired[_Array]
+    c_leaky: NotRequired[_Array]
+    leaky_attenuation: NotRequired[_Array]
+    leaky_reason: NotRequired[_Array]
+    power_flow_angle: NotRequired[_Array]
+    potential_share: NotRequired[_Array]
+    electrical: NotRequired[_Array]
+    euler: NotRequired[_Array]
+    model: NotRequired[_Array]
