@@ -120,6 +120,11 @@ class MaterialResult(TypedDict):
         Density of the stressed state, kg/m^3.
     toec : bool or ndarray of bool
         Whether the third-order (stressed-state) model was used.
+    c_leaky, leaky_attenuation : float or ndarray
+        Every crystal: the leaky wave radiating into the slowest bulk sheet, speed in m/s and
+        attenuation in dB per wavelength (NaN where none or not computed: ``leaky=``).
+    leaky_reason : str or ndarray of str
+        Why ``c_leaky`` is NaN (empty where it is not).
     c_free, c_metallized : float or ndarray
         Piezoelectric route only (``piezo=``, ``permittivity=``, ``euler=``, ``cut=``,
         ``electrical=`` or a crystal of the piezoelectric database; so are the keys below):
@@ -128,11 +133,6 @@ class MaterialResult(TypedDict):
         displacement) and ``c_limit`` is the stiffened limiting speed.
     K2 : float or ndarray
         Coupling 2 (c_free - c_metallized) / c_free (fraction, 1).
-    c_leaky, leaky_attenuation : float or ndarray
-        Leaky wave radiating into the slowest bulk sheet: speed, m/s, and attenuation, dB per
-        wavelength (NaN where none).
-    leaky_reason : str or ndarray of str
-        Why ``c_leaky`` is NaN (empty where it is not).
     power_flow_angle : float or ndarray
         Beam-steering angle of the SAW, degrees.
     potential_share : float or ndarray
@@ -163,12 +163,12 @@ class MaterialResult(TypedDict):
     method: _Array
     rho: _Array
     toec: _Array
+    c_leaky: _Array
+    leaky_attenuation: _Array
+    leaky_reason: _Array
     c_free: NotRequired[_Array]
     c_metallized: NotRequired[_Array]
     K2: NotRequired[_Array]
-    c_leaky: NotRequired[_Array]
-    leaky_attenuation: NotRequired[_Array]
-    leaky_reason: NotRequired[_Array]
     power_flow_angle: NotRequired[_Array]
     potential_share: NotRequired[_Array]
     electrical: NotRequired[_Array]
