@@ -147,3 +147,43 @@ def test_angle_figure_draws_the_leaky_branch(tmp_path):
     finally:
         sw_plots.savefig = real_savefig
         plt.close("all")
+
+
+def _A(name, surface, angles):
+    mat = get_material(name)
+    C = rotate4(voigt_to_tensor(mat.voigt)[None], lab_axes(surface, np.asarray(angles, float))) * 1e9
+    return stroh.wave_propagation_tensor(C, np.zeros((len(angles), 3, 3))), mat.rho
+
+
+@pytest.mark.parametrize("name", ["Si", "Ni"])
+def test_reported_roots_have_decaying_partial_waves(name):
+    """Si and Ni (001), 0 to 45 deg in 1-degree steps: every reported leaky root must be a surface
+    wave on the slowest sheet, i.e. at its complex X the Stroh roots p it reports are eigenvalues
+    of N (recomputed here with numpy from the blocks Q, R, T of A, an independent route) and the
+    d - 1 non-radiating ones decay into the crystal (Im p > 0, the definition of a surface
+    partial wave; docs/physics/leaky-waves.md). Before this check the solver returned roots at a
+    real X whose 'decaying' waves were a complex-conjugate pair (one growing with depth):
+    Si (001) 22-23 deg near 5830 m/s and Ni (001) 10-11 deg near 3540 m/s, attenuation ~1e-13."""
+    angles = np.arange(0.0, 45.5, 1.0)
+    A, rho = _A(name, "(001)", angles)
+    r = leaky_wave(A, rho)
+    found = r["reason"] == ""
+    assert found.any()
+    p = r["decay"][found]
+    assert np.all(p[:, 1:].imag > 0), angles[found][np.any(p[:, 1:].imag <= 0, axis=1)]
+    assert np.all(p[:, 0].imag <= 1e-12)   # radiating: Im p <= 0 (0 at the [110] mirror)
+    # the reported p are roots of the 6 x 6 Stroh matrix at the reported X = rho v^2
+    X = rho * r["c_leaky_complex"][found] ** 2
+    Af = A[found]
+    Q, R, T = Af[:, :, 0, :, 0], Af[:, :, 0, :, 1], Af[:, :, 1, :, 1]
+    Ti = np.linalg.inv(T)
+    N = np.block([[-Ti @ np.swapaxes(R, 1, 2), Ti],
+                  [R @ Ti @ np.swapaxes(R, 1, 2) - Q + X[:, None, None] * np.eye(3), -R @ Ti]])
+    ev = np.linalg.eigvals(N)
+    dist = np.abs(ev[:, None, :] - p[:, :, None]).min(axis=2)
+    assert np.all(dist <= 1e-6 * (1 + np.abs(p)))
+    # the spurious points of the crystals scene are NaN with the reason
+    bad = {"Si": [22.0, 23.0], "Ni": [10.0, 11.0]}[name]
+    rb = leaky_wave(*_A(name, "(001)", bad))
+    assert np.all(np.isnan(rb["c_leaky"]))
+    assert all("Im p <= 0" in s for s in rb["reason"])

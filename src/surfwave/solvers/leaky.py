@@ -62,6 +62,8 @@ REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v
                 "has a single real pair of Stroh roots")
 REASON_MULTI = ("leaky root where the slowest sheet has more than one real pair of Stroh roots (cuspidal "
                 "slowness or a second radiating sheet): not computed")
+REASON_SHEET = ("root on another partial-wave choice: a partial wave meant to decay into the crystal has "
+                "Im p <= 0 (grows or does not decay with depth), so it is not the slowest sheet's leaky wave")
 REASON_TRACK = "partial-wave tracking failed (two chosen roots merged)"
 REASON_UNSTABLE = "no leaky wave: T = A_i2k2 (mechanical block) not positive definite or v_L1^2 <= 0"
 
@@ -409,6 +411,10 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
     why[(why == "") & (Xc.real > XL[rows, 1])] = REASON_ABOVE
     why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
+    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
+    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
+    # pair at a real X) satisfies det = 0 but is not a surface wave
+    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
     # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
     chk = np.nonzero(why == "")[0]
     if chk.size:
