@@ -448,17 +448,17 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
     # pair at a real X) satisfies det = 0 but is not a surface wave
     why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
-    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
-    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X))
-    chk = np.nonzero(why == "")[0]
-    if chk.size:
-        why[chk[~_back_to_real(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk], pch[chk], d)]] = REASON_INCOMING
     # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
     chk = np.nonzero(why == "")[0]
     if chk.size:
         pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real, d)
         nr = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
         why[chk[nr != 2]] = REASON_MULTI
+    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
+    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X))
+    chk = np.nonzero(why == "")[0]
+    if chk.size:
+        why[chk[~_back_to_real(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk], pch[chk], d)]] = REASON_INCOMING
     # 3. per point: the least-attenuated good candidate, else the reason of the first one
     score = np.where(why == "", delta_c, np.inf)
     best = np.full(m, -1)
