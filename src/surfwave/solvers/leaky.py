@@ -22,6 +22,11 @@ v_L1 and v_L2; the least-attenuated root is kept.
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
 is NaN with a reason, as is a root with growing amplitude along x1 (delta < 0).
+
+Every root is validated before it is reported (docs/physics/leaky-waves.md, "Every root is
+validated"): c_leaky below v_L2, the d - 1 non-radiating partial waves decaying (Im p > 0) at the
+root, and, followed back to real speed Re X, the chosen set is the outgoing bulk wave (real p,
+flux > 0) plus d - 1 decaying waves, not the incoming one. Otherwise NaN with a reason.
 """
 from __future__ import annotations
 
