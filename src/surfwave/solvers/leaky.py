@@ -22,6 +22,11 @@ v_L1 and v_L2; the least-attenuated root is kept.
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
 is NaN with a reason, as is a root with growing amplitude along x1 (delta < 0).
+
+Every root is validated before it is reported (docs/physics/leaky-waves.md, "Every root is
+validated"): c_leaky below v_L2, the d - 1 non-radiating partial waves decaying (Im p > 0) at the
+root, and, followed back to real speed Re X, the chosen set is the outgoing bulk wave (real p,
+flux > 0) plus d - 1 decaying waves, not the incoming one. Otherwise NaN with a reason.
 """
 from __future__ import annotations
 
@@ -49,6 +54,8 @@ GROW_TOL = 1e-9
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
 T_EDGE = 1e-3
+#: Steps of the check path X = Re X0 + i s Im X0, s: 1 -> 0, from a root back to real speed.
+BACK_STEPS = 8
 #: |Im p| below REAL_TOL max(1, |p|) counts as a real Stroh root on the real-speed grid.
 REAL_TOL = 1e-7
 
@@ -63,6 +70,11 @@ REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v
                 "has a single real pair of Stroh roots")
 REASON_MULTI = ("leaky root where the slowest sheet has more than one real pair of Stroh roots (cuspidal "
                 "slowness or a second radiating sheet): not computed")
+REASON_SHEET = ("root on another partial-wave choice: a partial wave meant to decay into the crystal has "
+                "Im p <= 0 (grows or does not decay with depth), so it is not the slowest sheet's leaky wave")
+REASON_INCOMING = ("root of another partial-wave choice: followed back to real speed (Re X), the chosen waves are "
+                   "not the outgoing bulk wave (real p, energy flux into the crystal) plus d - 1 decaying waves "
+                   "(e.g. the incoming bulk wave was taken instead of a decaying one)")
 REASON_TRACK = "partial-wave tracking failed (two chosen roots merged)"
 REASON_UNSTABLE = "no leaky wave: T = A_i2k2 (mechanical block) not positive definite or v_L1^2 <= 0"
 
@@ -363,6 +375,31 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
     return t_prev, p_prev, (p_all, xi_all, idx), conv, trk, its
 
 
+def _back_to_real(Q, R, T, X0, p0, d) -> np.ndarray:
+    """True where the chosen roots p0 (n, d) at the complex roots X0 (n,) are the leaky-wave set.
+
+    The roots are followed (nearest-root tracking, :func:`_track`) along X = Re X0 + i s Im X0,
+    s = 1 -> 0 in :data:`BACK_STEPS` steps; at real X the first must be real with energy flux
+    Re(a^H b) > 0 into the crystal (the outgoing bulk wave), the other d - 1 must have
+    Im p > REAL_TOL max(1, |p|) (decaying, not the incoming bulk wave). An ambiguous match on
+    the way counts as not verified (False).
+    """
+    p_prev = p0.copy()
+    ok = np.ones(X0.shape[0], dtype=bool)
+    for s in np.linspace(1.0, 0.0, BACK_STEPS + 1)[1:]:
+        X = X0.real + 1j * s * X0.imag if s > 0 else X0.real.astype(complex)
+        p, xi = _partial_waves(Q, R, T, X, d)
+        idx, okt = _track(p_prev, p)
+        ok &= okt
+        p_prev = np.take_along_axis(p, idx, axis=1)
+    flux = np.einsum("mjk,mjk->mk", xi[:, :d].conj(), xi[:, d:]).real
+    f0 = np.take_along_axis(flux, idx[:, :1], axis=1)[:, 0]
+    tol = REAL_TOL * np.maximum(1, np.abs(p_prev))
+    ok &= (np.abs(p_prev[:, 0].imag) <= tol[:, 0]) & (f0 > 0)
+    ok &= np.all(p_prev[:, 1:].imag > tol[:, 1:], axis=1)
+    return ok
+
+
 def _solve(Q, R, T, XL, d, electrical, tol):
     """Scan, choose, secant in w from every local minimum of |det|; the least-attenuated root wins.
 
@@ -409,14 +446,26 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     why[~conv] = REASON_NOROOT
     why[~trk] = REASON_TRACK
     why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
-    why[(why == "") & (Xc.real > XL[rows, 1])] = REASON_ABOVE
+    # the reported real speed c_leaky = 1 / Re(1 / v) (>= Re v) must lie below v_L2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x_real = 1.0 / (1.0 / np.sqrt(Xc)).real ** 2
+    why[(why == "") & ((Xc.real > XL[rows, 1]) | (x_real >= XL[rows, 1]))] = REASON_ABOVE
     why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
+    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
+    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
+    # pair at a real X) satisfies det = 0 but is not a surface wave
+    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
     # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
     chk = np.nonzero(why == "")[0]
     if chk.size:
         pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real, d)
         nr = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
         why[chk[nr != 2]] = REASON_MULTI
+    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
+    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X))
+    chk = np.nonzero(why == "")[0]
+    if chk.size:
+        why[chk[~_back_to_real(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk], pch[chk], d)]] = REASON_INCOMING
     # 3. per point: the least-attenuated good candidate, else the reason of the first one
     score = np.where(why == "", delta_c, np.inf)
     best = np.full(m, -1)
