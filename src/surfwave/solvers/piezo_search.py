@@ -6,8 +6,9 @@ components are mechanical and whose last (if n > nm) is the electric potential.
 Root search (docs/physics/piezoelectric.md): the lowest eigenvalue lam of the effective 3 x 3
 impedance (metallized: Z_mm; free: Z_mm - Z_me (Z_ee - eps0)^-1 Z_em) decreases with X; its
 zero in (0, X_L) is found by Newton's method in t = sqrt(1 - X/X_L) from ``T_START`` (then
-inverse cubic Hermite steps through the two latest points, :func:`stroh._hermite_correction`),
-safeguarded by bisection, as in :func:`surfwave.solvers.stroh._root_search`. The slope
+inverse cubic Hermite steps through the two latest points) safeguarded by bisection: one step
+is :func:`surfwave.solvers.stroh.bracketed_step`, shared with the elastic search
+(:func:`surfwave.solvers.stroh._root_search`). The slope
 d lam / dX = a^H (dZ/dX) a comes in closed form from the Sylvester equation of the Riccati
 equation (:func:`piezo_stroh.impedance_slope`), a = (u, phi). After the first step the decaying
 Stroh roots are tracked (Newton on the Stroh polynomial); eigenvalues of N only at the first
@@ -23,10 +24,8 @@ import numpy as np
 
 from surfwave.solvers.impedance import lowest_eigenpair
 from surfwave.solvers.piezo_stroh import impedance, impedance_slope, stroh_matrix
-from surfwave.solvers.stroh import _hermite_correction
+from surfwave.solvers.stroh import T_MIN, bracketed_step
 
-#: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
-T_MIN = 1e-6
 #: Starting point of the Newton iteration (X = 0.91 X_L), as in the elastic solver.
 T_START = 0.3
 MAX_ITER = 100
@@ -139,21 +138,9 @@ def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
         p = r["p"]
         bad = ~np.isfinite(lam) | ~np.isfinite(dlam)
         lam = np.where(bad, -1.0, lam)                             # supersonic by rounding: root lies above
-        neg = lam <= 0
-        lo, hi = np.where(neg, t, lo), np.where(neg, hi, t)
+        neg, lo, hi, new, done = bracketed_step(lam, dlam, t, lo, hi, bad, (tp, lp, gp), XL[idx], tol)
         hi_checked |= ~neg
         none = ~neg & (t <= T_MIN)
-        with np.errstate(all="ignore"):
-            step = lam / dlam
-            step = step - _hermite_correction(lam, t, 1.0 / dlam, lp, tp, 1.0 / gp, step)
-        new = np.maximum(t - step, T_MIN)
-        inside = np.isfinite(new) & (new >= lo) & (new < hi) & ~bad & (new != t)
-        exact = (lam == 0) | (np.isfinite(step) & ~bad & (t - step == t))
-        new = np.where(exact, t, np.where(inside, new, 0.5 * (lo + hi)))
-        dX = np.abs(2.0 * t * step) * XL[idx]
-        Xn = XL[idx] * (1.0 - new * new)
-        done = (inside & (dX <= tol * Xn)) | exact
-        done |= (hi - lo) * 2.0 * hi * XL[idx] <= tol * Xn
         need = done & ~hi_checked & (new > 0.99)
         st = np.where(none, 1, 0)
         if need.any():

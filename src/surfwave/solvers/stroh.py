@@ -148,23 +148,9 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
         lam, dlam, u, p = ev(idx, t, guess)
         bad = ~np.isfinite(lam)
         lam = np.where(bad, -1.0, lam)                             # supersonic by rounding: root lies above
-        neg = lam <= 0
-        lo, hi = np.where(neg, t, lo), np.where(neg, hi, t)
+        neg, lo, hi, new, done = bracketed_step(lam, dlam, t, lo, hi, bad, (tp, lp, gp), XL[idx], tol)
         hi_checked |= ~neg
         none = ~neg & (t <= T_MIN)                                 # lam > 0 even at X_L (1 - T_MIN^2)
-        with np.errstate(all="ignore"):
-            step = lam / dlam
-            step = step - _hermite_correction(lam, t, 1.0 / dlam, lp, tp, 1.0 / gp, step)
-        new = np.maximum(t - step, T_MIN)
-        inside = np.isfinite(new) & (new >= lo) & (new < hi) & ~bad & (new != t)
-        # lam = 0, or a step below the resolution of t (t - step == t in floating point): t is the
-        # root to rounding (else such a step would count as leaving the bracket and bisect away)
-        exact = (lam == 0) | (np.isfinite(step) & ~bad & (t - step == t))
-        new = np.where(exact, t, np.where(inside, new, 0.5 * (lo + hi)))
-        dX = np.abs(2.0 * t * step) * XL[idx]                      # |dX| of the step, to first order
-        Xn = XL[idx] * (1.0 - new * new)
-        done = (inside & (dX <= tol * Xn)) | exact
-        done |= (hi - lo) * 2.0 * hi * XL[idx] <= tol * Xn         # bracket below tolerance
         # a root near X = 0 needs lam(X = 0) > 0 verified; points converging there check it
         need = done & ~hi_checked & (new > 0.99)
         if need.any():
@@ -180,6 +166,52 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
         tp, lp, gp = (np.where(bad, np.nan, v)[keep] for v in (t, lam, dlam))
         idx, lo, hi, t, hi_checked, guess = idx[keep], lo[keep], hi[keep], new[keep], hi_checked[keep], p[keep]
     return X, found, U, P
+
+
+def bracketed_step(lam, dlam, t, lo, hi, bad, previous, XL, tol: float):
+    """One safeguarded step of the root search in t = sqrt(1 - X/X_L) (elastic and piezoelectric).
+
+    Newton's step lam / (d lam/dt) with the inverse cubic Hermite correction through the previous
+    point, kept inside the bracket [lo, hi] (bisection otherwise).
+
+    Parameters
+    ----------
+    lam, dlam : ndarray, shape (k,)
+        Lowest impedance eigenvalue at t and its derivative d lam / dt (``bad`` rows: lam = -1).
+    t, lo, hi : ndarray, shape (k,)
+        Current point and bracket (lam(lo) <= 0 < lam(hi) once both are known).
+    bad : ndarray of bool, shape (k,)
+        Rows whose evaluation failed (supersonic by rounding).
+    previous : tuple of ndarray, shape (k,) each
+        (t, lam, d lam/dt) of the previous step (NaN where there is none).
+    XL : ndarray, shape (k,)
+        Limiting X of each row.
+    tol : float
+        Relative tolerance on X.
+
+    Returns
+    -------
+    neg, lo, hi, new, done : ndarray, shape (k,)
+        lam <= 0, the updated bracket, the next t, and rows converged (step or bracket below tol,
+        or t the root to rounding).
+    """
+    tp, lp, gp = previous
+    neg = lam <= 0
+    lo, hi = np.where(neg, t, lo), np.where(neg, hi, t)
+    with np.errstate(all="ignore"):
+        step = lam / dlam
+        step = step - _hermite_correction(lam, t, 1.0 / dlam, lp, tp, 1.0 / gp, step)
+    new = np.maximum(t - step, T_MIN)
+    inside = np.isfinite(new) & (new >= lo) & (new < hi) & ~bad & (new != t)
+    # lam = 0, or a step below the resolution of t (t - step == t in floating point): t is the
+    # root to rounding (else such a step would count as leaving the bracket and bisect away)
+    exact = (lam == 0) | (np.isfinite(step) & ~bad & (t - step == t))
+    new = np.where(exact, t, np.where(inside, new, 0.5 * (lo + hi)))
+    dX = np.abs(2.0 * t * step) * XL                               # |dX| of the step, to first order
+    Xn = XL * (1.0 - new * new)
+    done = (inside & (dX <= tol * Xn)) | exact
+    done |= (hi - lo) * 2.0 * hi * XL <= tol * Xn                  # bracket below tolerance
+    return neg, lo, hi, new, done
 
 
 def _hermite_correction(y1, s1, ds1, y0, s0, ds0, newton):
