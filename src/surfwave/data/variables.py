@@ -363,82 +363,6 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
             "dims": ("theta",),
         },
     },
-    # displacements.nc: row amplitudes (surfwave.dynamics.dispersion)
-    "displacements": {
-        "omega": {
-            "long_name": "surface-wave angular frequency, Eq. 15, omega = (c_R/d_x) sin theta",
-            "units": "(K/m)^(1/2)",
-            "dims": ("strain", "theta"),
-        },
-        "q1": {
-            "long_name": "first decay constant per row (rows decay as exp(-q I)), Eq. 6a; real q: the"
-                         " slower one; complex: q1 = conj(q2) (+ i pi beyond pi - theta_c)",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "q2": {
-            "long_name": "second decay constant per row, Re q2 > 0, Eq. 6a",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "R1": {
-            "long_name": "polarisation ratio (a/c)^(1/2) U/V of the q1 wave (d_x U / d_y V for springs), Eq. 3a",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "R2": {
-            "long_name": "polarisation ratio (a/c)^(1/2) U/V of the q2 wave, Eq. 3a",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "amplitude_ratio": {
-            "long_name": "amplitude ratio V1/V2 of the two waves, Eq. 8a",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "theta_c": {
-            "long_name": "crossover k d_x above which q1, q2 are complex (complex band is theta_c < "
-                         "theta < pi - theta_c)",
-            "units": "rad",
-            "dims": ("strain",),
-        },
-        "omega_L": {
-            "long_name": "frequency of the longitudinal bulk wave along the surface (q = 0), Eq. 4a",
-            "units": "(K/m)^(1/2)",
-            "dims": ("strain", "theta"),
-        },
-        "omega_T": {
-            "long_name": "frequency of the transverse bulk wave along the surface (q = 0), Eq. 4a",
-            "units": "(K/m)^(1/2)",
-            "dims": ("strain", "theta"),
-        },
-        "c2_R": {
-            "long_name": "squared Rayleigh speed from the lattice solution (Eq. 16 for springs)",
-            "units": "K d0^2 / m",
-            "dims": ("strain",),
-        },
-        "reason": {
-            "long_name": "why the values at this point are NaN (empty when valid)",
-            "dims": ("strain", "theta"),
-        },
-        "boundary_residual": {
-            "long_name": "relative residual of the unsquared free-surface condition (Eqs. 7a-9a) at the Eq. 15 root",
-            "units": "1",
-            "dims": ("strain", "theta"),
-        },
-        "u": {
-            "long_name": "row amplitude of the x displacement, u_IJ = u_I exp(i theta (I + 2J)), "
-                         "normalised so max_I |(u_I, v_I)| = 1 and v_0 / i real positive",
-            "units": "1",
-            "dims": ("strain", "theta", "row"),
-        },
-        "v": {
-            "long_name": "row amplitude of the y displacement (y into the crystal), same convention as u",
-            "units": "1",
-            "dims": ("strain", "theta", "row"),
-        },
-        "row": {"long_name": "row index below the surface (0 = surface row)", "units": "1", "dims": ("row",)},
-    },
     # entropy.nc: surface entropy (surfwave.dynamics.entropy)
     "entropy": {
         "S_surface_estimate": {
@@ -576,6 +500,12 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
         "rho": {"long_name": "density", "units": "kg m-3"},
     },
 }
+
+#: displacements.nc (row amplitudes, surfwave.dynamics.dispersion) carries a subset of the dispersion
+#: cube's variables with the same metadata.
+CUBES["displacements"] = {k: CUBES["dispersion"][k] for k in (
+    "omega", "q1", "q2", "R1", "R2", "amplitude_ratio", "theta_c", "omega_L", "omega_T", "c2_R", "reason",
+    "boundary_residual", "u", "v", "row")}
 
 #: Coordinates of the model-lattice cubes (``angle``: FCC angle scenes only).
 MODEL_COORDS: dict[str, dict[str, str]] = {
