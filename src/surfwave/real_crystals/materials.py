@@ -90,8 +90,12 @@ def _read() -> dict:
     return yaml.load(text, Loader=SAFE_LOADER)
 
 
-def _numbers(block: dict, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
-    """The constants ``names`` of one block as floats, and the citation of its source."""
+def read_constants(block: dict, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
+    """The constants ``names`` of one YAML block as floats, and the citation of its source.
+
+    Shared by the elastic and the piezoelectric databases (``materials.yaml``,
+    ``piezoelectric.yaml``); ``where`` names the entry in every error.
+    """
     if not isinstance(block, dict):
         raise InputError(f"{where}: expected a mapping of constants with a source, got {block!r}")
     src = block.get("source")
@@ -112,15 +116,15 @@ def _build(name: str, entry: dict, refs: dict) -> Material:
     symmetry = entry.get("symmetry")
     if symmetry not in SECOND_ORDER:
         raise InputError(f"material {name}: symmetry {symmetry!r} not one of {sorted(SECOND_ORDER)}")
-    constants, c_src = _numbers(entry.get("C"), SECOND_ORDER[symmetry], f"material {name} C", refs)
+    constants, c_src = read_constants(entry.get("C"), SECOND_ORDER[symmetry], f"material {name} C", refs)
     rho_block = entry.get("rho") or {}
-    rho, rho_src = _numbers({k: v for k, v in rho_block.items()}, ("value",), f"material {name} rho", refs)
+    rho, rho_src = read_constants({k: v for k, v in rho_block.items()}, ("value",), f"material {name} rho", refs)
     sources = {"rho": rho_src, **{k: c_src for k in constants}}
     toec = None
     if entry.get("toec") is not None:
         if symmetry != "cubic":
             raise InputError(f"material {name}: third-order constants are supported for cubic crystals only")
-        toec, t_src = _numbers(entry["toec"], CUBIC_TOEC, f"material {name} toec", refs)
+        toec, t_src = read_constants(entry["toec"], CUBIC_TOEC, f"material {name} toec", refs)
         sources.update({k: t_src for k in toec})
     voigt = _BUILDERS[symmetry](*(constants[k] for k in SECOND_ORDER[symmetry]))
     voigt.setflags(write=False)

@@ -31,6 +31,7 @@ import yaml
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
+from surfwave.real_crystals.materials import read_constants
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.piezo_tensors import (
     EPS0,
@@ -214,21 +215,8 @@ def _read() -> dict:
 
 
 def _block(entry: dict, key: str, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
-    block = entry.get(key)
-    if not isinstance(block, dict):
-        raise InputError(f"{where}: {key} must be a mapping of constants with a source, got {block!r}")
-    src = block.get("source")
-    if src not in refs:
-        raise InputError(f"{where}: {key} source {src!r} is not a key of the references")
-    missing = [n for n in names if n not in block]
-    extra = sorted(set(block) - set(names) - {"source"})
-    if missing or extra:
-        raise InputError(f"{where}: {key} missing constants {missing}, unexpected keys {extra}")
-    values = {n: float(block[n]) for n in names}
-    bad = {n: v for n, v in values.items() if not np.isfinite(v)}
-    if bad:
-        raise InputError(f"{where}: {key} has non-finite constants {bad}")
-    return values, refs[src]
+    """Constants ``names`` of the block ``key`` of one entry (:func:`materials.read_constants`)."""
+    return read_constants(entry.get(key), names, f"{where}: {key}", refs)
 
 
 def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
