@@ -170,22 +170,47 @@ def _refine(Q, R, T, phi0, h):
         best[idx], best_p[idx] = np.where(better, lam, best[idx]), np.where(better, pi, best_p[idx])
         a0 = V[:, :, 0]
         G1a = np.einsum("mij,mj->mi", r + 2.0 * pi[:, None, None] * t, a0)
-        d1 = np.einsum("mi,mi->m", a0, G1a)
         d2 = 2.0 * np.einsum("mi,mij,mj->m", a0, t, a0)
-        scale = np.abs(w).max(axis=1)
-        for j in (1, 2)[: Q.shape[-1] - 1]:
-            gap = w[:, 0] - w[:, j]
-            c = np.einsum("mi,mi->m", V[:, :, j], G1a)
-            with np.errstate(all="ignore"):
-                d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
-        with np.errstate(all="ignore"):
-            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust[idx])
-        step = np.clip(np.nan_to_num(step), -trust[idx], trust[idx])
+        step, done = lowest_eigenvalue_step(w, V, G1a, d2, trust[idx])
         p[idx] = pi + step
-        # near a smooth minimum lam(p + step) = lam(p) - d2 step^2 / 2 + ...: where that gain is
-        # below the rounding of lam (eps max|w|) the row is done
-        idx = idx[~((d2 > 0) & (0.5 * d2 * step * step <= 1e-16 * scale))]
+        idx = idx[~done]
     return best, np.arctan(best_p)
+
+
+def lowest_eigenvalue_step(w, V, S1a, d2, trust) -> tuple[np.ndarray, np.ndarray]:
+    """Newton step on the lowest eigenvalue lam(p) of a symmetric matrix S(p), kept in a trust range.
+
+    Shared by the elastic and the piezoelectric limiting-speed refinements.
+
+    Parameters
+    ----------
+    w, V : ndarray, shapes (m, n) and (m, n, n)
+        Eigenvalues (ascending) and eigenvectors of S(p).
+    S1a : ndarray, shape (m, n)
+        S'(p) a0, with a0 = V[:, :, 0] (so d lam / dp = a0 . S1a).
+    d2 : ndarray, shape (m,)
+        a0 . S''(p) a0; the second-order perturbation sum over the other eigenpairs is added here.
+    trust : ndarray, shape (m,)
+        Largest step; a non-positive curvature steps downhill by half of it.
+
+    Returns
+    -------
+    step : ndarray, shape (m,)
+    done : ndarray of bool, shape (m,)
+        Near a smooth minimum lam(p + step) = lam(p) - d2 step^2 / 2 + ...: rows whose gain is
+        below the rounding of lam (eps max|w|).
+    """
+    d1 = np.einsum("mi,mi->m", V[:, :, 0], S1a)
+    scale = np.abs(w).max(axis=1)
+    for j in range(1, w.shape[-1]):
+        gap = w[:, 0] - w[:, j]
+        c = np.einsum("mi,mi->m", V[:, :, j], S1a)
+        with np.errstate(all="ignore"):
+            d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
+    with np.errstate(all="ignore"):
+        step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust)
+    step = np.clip(np.nan_to_num(step), -trust, trust)
+    return step, (d2 > 0) & (0.5 * d2 * step * step <= 1e-16 * scale)
 
 
 def stroh_matrix(Q, R, T, X) -> np.ndarray:

@@ -12,7 +12,7 @@ import itertools
 
 import numpy as np
 
-from surfwave.solvers.impedance import _monic, _pmul, track_roots
+from surfwave.solvers.impedance import _monic, _pmul, lowest_eigenvalue_step, track_roots
 
 #: Wave-normal grid and refinement of the limiting-speed search.
 LIMIT_GRID = 48
@@ -217,18 +217,9 @@ def _refine(Q, R, T, nm: int, phi0, h) -> np.ndarray:
             S1a = S1a + (h1 / hh ** 2 * al)[:, None] * g - (al[:, None] * g1 + al1[:, None] * g) / hh[:, None]
             d2 = (d2 + (h2 / hh ** 2 - 2.0 * h1 * h1 / hh ** 3) * al * al + 4.0 * h1 / hh ** 2 * al * al1
                   - 2.0 * (al * al2 + al1 * al1) / hh)
-        d1 = np.einsum("mi,mi->m", a0, S1a)
-        scale = np.abs(w).max(axis=1)
-        for j in range(1, nm):
-            gap = w[:, 0] - w[:, j]
-            c = np.einsum("mi,mi->m", V[:, :, j], S1a)
-            with np.errstate(all="ignore"):
-                d2 = d2 + np.where(np.abs(gap) > 1e-9 * scale, 2.0 * c * c / gap, 0.0)
-        with np.errstate(all="ignore"):
-            step = np.where(d2 > 0, -d1 / d2, -0.5 * np.sign(d1) * trust[idx])
-        step = np.clip(np.nan_to_num(step), -trust[idx], trust[idx])
+        step, done = lowest_eigenvalue_step(w, V, S1a, d2, trust[idx])
         p[idx] = pi + step
-        idx = idx[~((d2 > 0) & (0.5 * d2 * step * step <= 1e-16 * scale))]
+        idx = idx[~done]
     return best
 
 
