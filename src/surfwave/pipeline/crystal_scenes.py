@@ -41,13 +41,40 @@ def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
                             f"as directions (choose from {list(ANGLE_QUANTITIES)})")
     try:
         angles = [float(a) for a in expand_grid(raw["directions"], f"{where}, key 'directions'")]
-        _check_angle_range(angles, f"{where}, key 'directions'")
+        check_angle_range(angles, f"{where}, key 'directions'")
     except SceneError as exc:
         return None, problems + [str(exc)]
     return (None if problems else angles), problems
 
 
-def _check_angle_range(angles, where: str) -> None:
+def unique_records(where: str, key: str, names, lookup) -> list:
+    """Database records of ``names`` (``lookup(name)``), refusing unknown names and two spellings
+    of one record ("Cu" and "copper" would give two labels Cu in one cube)."""
+    records, given = [], {}
+    for n in names:
+        try:
+            rec = lookup(n)
+        except InputError as exc:
+            raise SceneError(f"{where}, key {key!r}: value {n!r}: {exc}") from None
+        if rec.name in given:
+            raise SceneError(f"{where}, key {key!r}: values {given[rec.name]!r} and {n!r} name the same "
+                             f"{key[:-1]} {rec.name!r}; give it once")
+        given[rec.name] = n
+        records.append(rec)
+    return records
+
+
+def stress_grid(where: str, spec) -> list[float]:
+    """The stress values of a scene, GPa; values beyond :data:`MAX_STRESS_GPA` look like Pa."""
+    stress = [float(x) for x in expand_grid(spec, f"{where}, key 'stress'")]
+    big = [x for x in stress if abs(x) > MAX_STRESS_GPA]
+    if big:
+        raise SceneError(f"{where}, key 'stress': value {big[0]!r} is in GPa and beyond "
+                         f"{MAX_STRESS_GPA:g} GPa: it looks like Pa (divide by 1e9: {big[0] / 1e9:g} GPa)")
+    return stress
+
+
+def check_angle_range(angles, where: str) -> None:
     """SceneError if an angle exceeds :data:`surfwave.validate.MAX_ANGLE` in magnitude."""
     from surfwave.validate import MAX_ANGLE
 
@@ -98,7 +125,7 @@ def crystal_angles(where: str, raw: dict, surfaces: list[str], voigts: list) -> 
             grid.update(np.round(np.arange(0.0, w - 1e-9, step), DECIMALS).tolist() + [w])
         return sorted(float(a) for a in grid), None
     angles = [float(a) for a in expand_grid(spec, f"{where}, key 'angles'")]
-    _check_angle_range(angles, f"{where}, key 'angles'")
+    check_angle_range(angles, f"{where}, key 'angles'")
     return angles, None
 
 
@@ -117,17 +144,7 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
     from surfwave.solvers import orientation
 
     where = f"scene {name!r}"
-    mats, given = [], {}
-    for m in raw["materials"]:
-        try:
-            mat = get_material(m)
-        except InputError as exc:
-            raise SceneError(f"{where}, key 'materials': value {m!r}: {exc}") from None
-        if mat.name in given:  # "Cu" and "copper" (or "CU"): two labels Cu in one cube
-            raise SceneError(f"{where}, key 'materials': values {given[mat.name]!r} and {m!r} name the same "
-                             f"material {mat.name!r}; give it once")
-        given[mat.name] = m
-        mats.append(mat)
+    mats = unique_records(where, "materials", raw["materials"], get_material)
     surfaces = []
     for sf in raw["surfaces"]:
         try:
@@ -138,12 +155,7 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
     angles, directions = crystal_angles(where, raw, surfaces, [m.voigt for m in mats])
     stress = None
     if "stress" in raw:
-        stress = [float(x) for x in expand_grid(raw["stress"], f"{where}, key 'stress'")]
-        big = [x for x in stress if abs(x) > MAX_STRESS_GPA]
-        if big:
-            raise SceneError(f"{where}, key 'stress': value {big[0]!r} is in GPa and beyond "
-                             f"{MAX_STRESS_GPA:g} GPa: it looks like Pa (divide by 1e9: "
-                             f"{big[0] / 1e9:g} GPa)")
+        stress = stress_grid(where, raw["stress"])
         for loading in raw["loading"]:
             for sf in surfaces:
                 try:  # an axis_<hkl> must lie in every surface: no stress on the free face

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import copy
 
-from surfwave.errors import InputError
+from surfwave.pipeline.crystal_scenes import check_angle_range, stress_grid, unique_records
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
 from surfwave.vocab import ELECTRICAL
 
@@ -30,8 +30,11 @@ def is_piezo_scene(raw) -> bool:
 
 def _angle(spec, where: str) -> list[float]:
     if isinstance(spec, (int, float)) and not isinstance(spec, bool):
-        return [float(spec)]
-    return [float(v) for v in expand_grid(spec, where)]
+        angles = [float(spec)]
+    else:
+        angles = [float(v) for v in expand_grid(spec, where)]
+    check_angle_range(angles, where)
+    return angles
 
 
 def check_piezo_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
@@ -53,20 +56,11 @@ def _expand(name: str, raw: dict) -> dict:
                              "orientation; stress is uniaxial along the propagation, fixed constants)")
     if "cuts" in raw and "euler" in raw:
         raise SceneError(f"{where}, key 'euler': give either 'cuts' or 'euler', not both")
-    mats = []
-    for m in raw["materials"]:
-        try:
-            mats.append(get_piezo_material(m))
-        except InputError as exc:
-            raise SceneError(f"{where}, key 'materials': value {m!r}: {exc}") from None
+    mats = unique_records(where, "materials", raw["materials"], get_piezo_material)
     cuts = euler = None
     if "cuts" in raw:
         cuts = []
-        for c in raw["cuts"]:
-            try:
-                cut = get_cut(c)
-            except InputError as exc:
-                raise SceneError(f"{where}, key 'cuts': value {c!r}: {exc}") from None
+        for c, cut in zip(raw["cuts"], unique_records(where, "cuts", raw["cuts"], get_cut)):
             want = get_piezo_material(cut.material).formula
             wrong = [m.name for m in mats if m.formula != want]
             if wrong:
@@ -77,7 +71,7 @@ def _expand(name: str, raw: dict) -> dict:
         euler = {k: _angle(spec.get(k, 0.0), f"{where}, key 'euler.{k}'") for k in ("phi", "theta", "psi")}
     stress = None
     if "stress" in raw:
-        stress = [float(x) for x in expand_grid(raw["stress"], f"{where}, key 'stress'")]
+        stress = stress_grid(where, raw["stress"])
     electrical = list(raw.get("electrical", ELECTRICAL))
     n = scene_points(len(mats), cuts, euler, electrical, stress)
     if n > min(MAX_PIEZO_POINTS, MAX_POINTS):
