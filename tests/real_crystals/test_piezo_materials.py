@@ -408,3 +408,14 @@ def test_brute_saw_reduces_to_the_elastic_stroh_solver_without_piezoelectricity(
     for free in (True, False):
         v = saw_speed(t["C"], 0 * t["e"], t["eps"], t["rho"], 3000, 3290, free=free)
         assert v == pytest.approx(c_elastic, abs=0.05)
+
+
+def test_euler_angles_that_lose_precision_are_refused():
+    """Issue 20 item 4 for Euler cuts: 1e20 degrees cannot be represented to a degree in float64
+    (the spacing of doubles there is 1.6e4), so the cut computed would not be the cut labelled;
+    the limit is surfwave.validate.MAX_ANGLE, as for propagation angles."""
+    with pytest.raises(InputError, match="lose precision"):
+        euler_lab_axes(0.0, 1.0e20, 0.0)
+    with pytest.raises(InputError, match="lose precision"):
+        euler_lab_axes([0.0, 0.0], [10.0, 20.0], [0.0, -2.0e6])
+    assert euler_lab_axes(0.0, 1.0e6, 0.0).shape == (3, 3)

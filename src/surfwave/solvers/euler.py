@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.validate import MAX_ANGLE
 
 
 def saw_euler_matrix(phi, theta, psi) -> np.ndarray:
@@ -77,7 +78,8 @@ def euler_lab_axes(phi, theta=None, psi=None) -> np.ndarray:
     Raises
     ------
     InputError
-        Non-finite angles, or a shape that is not three angles.
+        Non-finite angles, angles beyond :data:`surfwave.validate.MAX_ANGLE` degrees, or a shape that
+        is not three angles.
     """
     if theta is None and psi is None:
         angles = np.asarray(phi, dtype=float)
@@ -97,5 +99,12 @@ def euler_lab_axes(phi, theta=None, psi=None) -> np.ndarray:
         i = int(np.flatnonzero(np.atleast_1d(bad))[0])
         trip = tuple(float(np.atleast_1d(a)[i]) for a in (phi, theta, psi))
         raise InputError(f"Euler angles must be finite, got (phi, theta, psi) = {trip} degrees")
+    big = (np.abs(phi) > MAX_ANGLE) | (np.abs(theta) > MAX_ANGLE) | (np.abs(psi) > MAX_ANGLE)
+    if np.any(big):
+        i = int(np.flatnonzero(np.atleast_1d(big))[0])
+        trip = tuple(float(np.atleast_1d(a)[i]) for a in (phi, theta, psi))
+        raise InputError(f"Euler angles beyond {MAX_ANGLE:g} degrees lose precision in float64 (the angle "
+                         f"computed would not be the angle given): (phi, theta, psi) = {trip}; reduce them "
+                         "modulo 360")
     a = saw_euler_matrix(phi, theta, psi)
     return np.stack([a[..., 0, :], -a[..., 2, :], a[..., 1, :]], axis=-2) + 0.0  # no -0.0
