@@ -113,3 +113,42 @@ def test_toec_state_with_piezo_constants():
     f = surface_wave(mixed, R, s, toec=False)
     np.testing.assert_allclose(t["c_free"][0], f["c_free"][0], rtol=1e-12)
     assert t["K2"][0] > 0 and abs(t["c_free"][1] / f["c_free"][1] - 1) > 1e-5
+
+
+def test_both_conditions_from_one_solve_equal_two_calls():
+    """surface_wave_conditions / piezo_wave_conditions share the stressed state and the solves
+    between the free and metallized conditions; each condition's dict equals a separate
+    surface_wave call bit for bit (reference: the single-condition path), for rotated Y-cuts of
+    LiNbO3 (a leaky range included) under stress, with bulk speeds."""
+    from surfwave.real_crystals.piezo_wave import piezo_wave, piezo_wave_conditions
+    from surfwave.solvers.euler import euler_lab_axes
+
+    R = euler_lab_axes(np.column_stack([np.zeros(7), np.linspace(-90, 90, 7), np.zeros(7)]))
+    mat = get_piezo_material("LiNbO3")
+    both = piezo_wave_conditions(mat, R, np.linspace(-0.1, 0.1, 7), bulk=True)
+    assert set(both) == {"free", "metallized"}
+    for el, r in both.items():
+        one = piezo_wave(mat, R, np.linspace(-0.1, 0.1, 7), electrical=el, bulk=True)
+        assert set(one) == set(r)
+        for key, v in one.items():
+            if isinstance(v, np.ndarray) and v.dtype.kind in "fc":
+                np.testing.assert_array_equal(r[key], v, err_msg=key)
+            elif isinstance(v, np.ndarray):
+                assert list(r[key].ravel()) == list(v.ravel()), key
+            else:
+                assert r[key] == v, key
+    assert np.isfinite(both["free"]["c_leaky"]).any()
+
+
+def test_conditions_are_checked():
+    """Repeated, unknown or (for an elastic crystal) any electrical condition: InputError."""
+    quartz = Constants.from_piezo_material(get_piezo_material("quartz"))
+    R = get_cut("ST-X quartz").lab_axes
+    for bad in [("free", "free"), ("open",), ()]:
+        with pytest.raises(InputError, match="conditions"):
+            stressed_wave.surface_wave_conditions(quartz, R, np.zeros((3, 3)), conditions=bad)
+    cu = Constants.from_material(surfwave.real_crystals.materials.get_material("Cu"))
+    with pytest.raises(InputError, match="conditions"):
+        stressed_wave.surface_wave_conditions(cu, R, np.zeros((3, 3)), conditions=("free",))
+    r = stressed_wave.surface_wave_conditions(cu, R, np.zeros((3, 3)), conditions=(None,))[None]
+    assert r["c_R"] == surface_wave(cu, R, np.zeros((3, 3)))["c_R"]

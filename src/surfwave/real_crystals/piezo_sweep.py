@@ -107,7 +107,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     import xarray as xr
 
     from surfwave.real_crystals.piezo_materials import get_piezo_material
-    from surfwave.real_crystals.piezo_wave import piezo_wave
+    from surfwave.real_crystals.piezo_wave import piezo_wave_conditions
     from surfwave.solvers.euler import euler_lab_axes
 
     angles, oc, oshape = _orientations(cuts, euler)
@@ -120,8 +120,9 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     el = list(electrical)
     out: dict[str, np.ndarray] = {}
     for i, m in enumerate(mats):
+        rs = piezo_wave_conditions(m, R, S, conditions=el, tol=tol)   # both conditions from one solve
         for j, cond in enumerate(el):
-            r = piezo_wave(m, R, S, electrical=cond, tol=tol)
+            r = rs[cond]
             for key in VARIABLES:
                 v = np.asarray(r[key])
                 if key not in out:

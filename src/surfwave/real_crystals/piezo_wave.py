@@ -27,7 +27,7 @@ from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_pi
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
-__all__ = ["MODEL", "piezo_wave", "resolve_piezo_material"]
+__all__ = ["MODEL", "piezo_wave", "piezo_wave_conditions", "resolve_piezo_material"]
 
 #: The prestress model, recorded in every result and cube.
 MODEL = ("fixed constants: A = C + sigma0 delta (C^E of the data set); e and clamped eps at their natural "
@@ -184,15 +184,46 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     """
     if electrical not in ELECTRICAL:
         raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
+                                 voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
+
+
+def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=ELECTRICAL, leaky: bool = True,
+                          tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None, toec: bool = False,
+                          bulk: bool = False) -> dict:
+    """:func:`piezo_wave` for several electrical conditions from one solve (both cost what one costs).
+
+    Parameters
+    ----------
+    material, axes, stress, leaky, tol, voigt, e, eps_r, rho, toec, bulk
+        As :func:`piezo_wave`.
+    conditions : sequence of {"free", "metallized"}
+        Distinct conditions.
+
+    Returns
+    -------
+    dict
+        Condition -> the dict :func:`piezo_wave` returns for it.
+
+    Raises
+    ------
+    InputError
+        As :func:`piezo_wave`; also repeated or unknown conditions.
+    """
+    conditions = tuple(conditions)
+    if not conditions or len(set(conditions)) != len(conditions) or any(c not in ELECTRICAL for c in conditions):
+        raise InputError(f"conditions must be distinct values of {ELECTRICAL}, got {conditions!r}")
     mat = resolve_piezo_material(material, voigt=voigt, e=e, eps_r=eps_r, rho=rho)
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)
     sigma_c = _prestress(stress, R)
-    r = sw_path.surface_wave(sw_path.Constants.from_piezo_material(mat), R, sigma_c, toec=toec, tol=tol,
-                             bulk=bulk, electrical=electrical, leaky=leaky)
-    r["c_imag"] = r["c_R_imag"]
-    lab = r["axes"]
-    r.update(C=rotate4(voigt_to_tensor(mat.voigt) * 1e9, lab), e=rotate3(piezo_voigt_to_tensor(mat.e), lab),
-             eps=rotate2(mat.eps_r * EPS0, lab), sigma=rotate2(sigma_c, lab), model=MODEL)
-    return r
+    rs = sw_path.surface_wave_conditions(sw_path.Constants.from_piezo_material(mat), R, sigma_c,
+                                         conditions=conditions, toec=toec, tol=tol, bulk=bulk, leaky=leaky)
+    lab = rs[conditions[0]]["axes"]
+    extra = dict(C=rotate4(voigt_to_tensor(mat.voigt) * 1e9, lab), e=rotate3(piezo_voigt_to_tensor(mat.e), lab),
+                 eps=rotate2(mat.eps_r * EPS0, lab), sigma=rotate2(sigma_c, lab), model=MODEL)
+    for r in rs.values():
+        r["c_imag"] = r["c_R_imag"]
+        r.update(extra)
+    return rs

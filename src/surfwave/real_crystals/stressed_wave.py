@@ -47,14 +47,14 @@ from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.long_wave import long_wave_stable
-from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw
+from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw_conditions
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 from surfwave.vocab import STRESS_LOADINGS
 
 __all__ = ["Constants", "ELECTRICAL", "GPA", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS", "REASON_LEAKY_OFF",
            "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
-           "surface_wave"]
+           "surface_wave", "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -317,6 +317,47 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         ``electrical`` without piezoelectric constants. Never for a point: those get NaN and a
         reason.
     """
+    if constants.is_piezo:
+        electrical = "free" if electrical is None else electrical
+        if electrical not in ELECTRICAL:
+            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    elif electrical is not None:
+        raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
+    return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,
+                                   state_tol=state_tol, bulk=bulk, leaky=leaky)[electrical]
+
+
+def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=ELECTRICAL, toec: bool = False,
+                            tol: float | None = None, state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
+                            leaky: bool | None = None) -> dict:
+    """:func:`surface_wave` for several electrical conditions from one stressed state and one solve.
+
+    The stressed state, the bulk speeds and the piezoelectric solves are shared: the subsonic
+    search and (piezoelectric crystals) the leaky search always solve both conditions, so both
+    cost what one costs (:func:`surfwave.solvers.piezo_saw.piezo_saw_conditions`).
+
+    Parameters
+    ----------
+    constants, axes, stress, toec, tol, state_tol, bulk, leaky
+        As :func:`surface_wave`.
+    conditions : sequence of {"free", "metallized"}, or (None,)
+        Distinct electrical conditions (piezoelectric crystals); ``(None,)`` for a crystal
+        without piezoelectric constants.
+
+    Returns
+    -------
+    dict
+        Condition -> the dict :func:`surface_wave` returns for it.
+
+    Raises
+    ------
+    InputError
+        As :func:`surface_wave`; also repeated or unknown conditions.
+    """
+    conditions = tuple(conditions)
+    allowed = ELECTRICAL if constants.is_piezo else (None,)
+    if not conditions or len(set(conditions)) != len(conditions) or any(c not in allowed for c in conditions):
+        raise InputError(f"conditions must be distinct values of {allowed}, got {conditions!r}")
     axes = np.asarray(axes, dtype=float)
     sigma = np.asarray(stress, dtype=float)
     if axes.shape[-2:] != (3, 3) or sigma.shape[-2:] != (3, 3):
@@ -329,17 +370,11 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
                 "of class 32: C111, C112, C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, "
                 "C444" if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
         raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
-    if constants.is_piezo:
-        electrical = "free" if electrical is None else electrical
-        if electrical not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
-    elif electrical is not None:
-        raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
-    out = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, electrical, leaky)
-    return {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
+    outs = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, conditions, leaky)
+    return {c: {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()} for c, out in outs.items()}
 
 
-def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool, electrical,
+def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol, bulk: bool, conditions,
                   leaky: bool | None) -> dict:
     n = sigma.shape[0]
     # the stressed state (Born stability included) and the axes it carries
@@ -366,7 +401,23 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
         C_lab = rotate4(st["C_star"][idx], lab[idx]) * GPA
     A = stroh.wave_propagation_tensor(C_lab, s_lab[idx] * GPA)
     rho = st["rho"][idx]
-    sw = _solve(A, rho, constants, lab[idx], tol, electrical, leaky)
+    sws = _solve(A, rho, constants, lab[idx], tol, conditions, leaky)
+    shared: dict = {}
+    shared["rho"] = np.full(n, np.nan)
+    shared["rho"][idx] = rho
+    shared.update(ok=ok, F=st["F"], axes=lab)
+    if bulk:
+        shared.update(_bulk(A, rho, n, idx))
+        shared["stable"] = np.zeros(n, dtype=bool)
+        shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
+    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in conditions}
+
+
+def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict) -> dict:
+    """One condition's output arrays (n points) from the solver dict ``sw`` of the points ``idx``
+    with a state; points without one keep NaN and their ``reason``; ``shared`` (state, bulk
+    speeds) is copied in."""
+    n = reason.shape[0]
     out: dict = {}
     floats = PIEZO_KEYS if constants.is_piezo else LEAKY_KEYS
     for key, name in (("c_R", "c"), ("c_R_imag", "c_imag"), ("c_limit", "c_limit"),
@@ -383,34 +434,30 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
         out["electrical"] = np.full(n, electrical, dtype=object)
     out["wave_type"] = np.full(n, "none", dtype=object)
     out["wave_type"][idx] = sw["wave_type"]
-    reason[idx] = sw["reason"]
-    out["reason"] = reason
+    out["reason"] = reason.copy()
+    out["reason"][idx] = sw["reason"]
     out["method"] = np.full(n, "", dtype=object)
     out["method"][idx] = sw["method"]
-    out["rho"] = np.full(n, np.nan)
-    out["rho"][idx] = rho
-    out.update(ok=ok, F=st["F"], axes=lab)
-    if bulk:
-        out.update(_bulk(A, rho, n, idx))
-        out["stable"] = np.zeros(n, dtype=bool)
-        out["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
+    out.update({k: v.copy() for k, v in shared.items()})
     return out
 
 
-def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol, electrical=None,
+def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray, tol, conditions=(None,),
            leaky: bool | None = None) -> dict:
-    """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3).
+    """The bare solver on the points with a state (A in Pa, lab frame; rho kg/m^3), per condition.
 
-    Without piezoelectric constants: :func:`surfwave.solvers.stroh.surface_wave`. With them: e
-    and eps_r rotated into ``lab`` (natural values), :func:`surfwave.solvers.piezo_saw.piezo_saw`.
+    Without piezoelectric constants: :func:`surfwave.solvers.stroh.surface_wave` (condition
+    None). With them: e and eps_r rotated into ``lab`` (natural values),
+    :func:`surfwave.solvers.piezo_saw.piezo_saw_conditions`.
     """
     if not constants.is_piezo:
         sw = stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
-        return {**sw, **_elastic_leaky(A, rho, sw, leaky)}
+        return {None: {**sw, **_elastic_leaky(A, rho, sw, leaky)}}
     leaky = True if leaky is None else leaky
     e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
     eps = rotate2(constants.permittivity * EPS0, lab)
-    return piezo_saw(A, rho, e, eps, electrical=electrical, tol=PIEZO_TOL if tol is None else tol, leaky=leaky)
+    return piezo_saw_conditions(A, rho, e, eps, conditions=conditions, tol=PIEZO_TOL if tol is None else tol,
+                                leaky=leaky)
 
 
 def _elastic_leaky(A: np.ndarray, rho: np.ndarray, sw: dict, leaky: bool | None) -> dict:

@@ -17,7 +17,7 @@ from surfwave.solvers.piezo import piezo_surface_wave
 from surfwave.solvers.stroh import surface_wave
 from surfwave.vocab import ELECTRICAL
 
-__all__ = ["DELTA_EXACT", "ELECTRICAL", "PIEZO_KEYS", "piezo_saw"]
+__all__ = ["DELTA_EXACT", "ELECTRICAL", "PIEZO_KEYS", "piezo_saw", "piezo_saw_conditions"]
 
 #: Extra per-point float outputs of a piezoelectric crystal.
 PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle",
@@ -60,23 +60,58 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     :func:`surfwave.solvers.leaky.leaky_wave`, and where no subsonic SAW exists but the leaky root
     does not attenuate (a mirror direction) that root is the SAW (:func:`_supersonic`).
     """
+    return piezo_saw_conditions(A, rho, e, eps, conditions=(electrical,), tol=tol, leaky=leaky)[electrical]
+
+
+def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 1e-12,
+                         leaky: bool = True) -> dict[str, dict]:
+    """:func:`piezo_saw` for several electrical conditions from one set of solves.
+
+    The subsonic search always solves both conditions (K^2 needs both) and, for a piezoelectric
+    point, the leaky search too (an exact supersonic root fixes c_free / c_metallized); asking for
+    both conditions therefore costs what one costs.
+
+    Parameters
+    ----------
+    A, rho, e, eps, tol, leaky
+        As :func:`piezo_saw`.
+    conditions : sequence of {"free", "metallized"}
+        The conditions wanted, each once.
+
+    Returns
+    -------
+    dict
+        Condition -> the dict :func:`piezo_saw` returns for it.
+    """
+    conditions = tuple(conditions)
     m = A.shape[0]
     if m == 0:                           # no point with a state
         f, c = np.empty(0), np.empty((0, 4), dtype=complex)
-        return {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
-                **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
-                "polarisation": c, "decay": c}
+        return {el: {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
+                     **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
+                     "polarisation": c, "decay": c} for el in conditions}
     with np.errstate(invalid="ignore"):    # a point without a wave is NaN + reason, not a warning
         both = piezo_surface_wave(np.concatenate([A, A]), np.concatenate([e, e]), np.concatenate([eps, eps]),
                                   np.concatenate([rho, rho]),
                                   electrical=np.repeat(np.array(ELECTRICAL, dtype=object), m), tol=tol)
+    piezo = bool(np.any(e))
+    lws: dict = {}
+    if leaky:
+        with np.errstate(invalid="ignore"):
+            lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else conditions)}
+    return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo) for el in conditions}
+
+
+def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo) -> dict:
+    """The :func:`piezo_saw` dict of one condition from the shared subsonic (``both``) and
+    leaky (``lws``, empty without leaky) solves."""
+    m = A.shape[0]
     k = ELECTRICAL.index(electrical)
     sw = {key: v[k * m:(k + 1) * m] for key, v in both.items()}
     c_free, c_met = both["c"][:m], both["c"][m:]
     with np.errstate(invalid="ignore"):
         K2 = 2 * (c_free - c_met) / c_free
     c_imag = np.where(np.isfinite(sw["c"]), 0.0, np.nan)
-    piezo = bool(np.any(e))
     if not piezo:                        # e = 0: the elastic solver, exactly (supersonic waves too)
         sw, c_free, c_met, K2, c_imag = _elastic_piezo_keys(A, rho, eps, sw, tol)
     im = np.where(np.isfinite(sw["decay"].imag), sw["decay"].imag, np.inf).min(axis=-1)
@@ -85,9 +120,7 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     depth = sw.get("penetration_depth", depth)
     c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
     leaky_reason = np.full(m, "not computed (leaky=False)", dtype=object)
-    if leaky and m:
-        with np.errstate(invalid="ignore"):
-            lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else (electrical,))}
+    if lws:
         lw = lws[electrical]
         c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
         if piezo:
