@@ -19,10 +19,12 @@ Examples
 """
 from __future__ import annotations
 
+from functools import partial
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, PIEZO_WAVE_COORDS
 from surfwave.errors import InputError
 from surfwave.vocab import ELECTRICAL
@@ -120,7 +122,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     el = list(electrical)
     out: dict[str, np.ndarray] = {}
     for i, m in enumerate(mats):
-        rs = piezo_wave_conditions(m, R, S, conditions=el, tol=tol)   # both conditions from one solve
+        solve = partial(_solve_points, piezo_wave_conditions, m, R, S, conditions=el, tol=tol)
+        rs = solve_in_chunks(solve, len(R), f"piezo_wave, {m.name}")      # both conditions from one solve
         for j, cond in enumerate(el):
             r = rs[cond]
             for key in VARIABLES:
@@ -158,6 +161,11 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     if stress is None:
         ds = ds.isel(stress=0, drop=True)
     return ds
+
+
+def _solve_points(solver, material, R, S, start: int, stop: int, **kw) -> dict:
+    """``solver`` (:func:`piezo_wave_conditions`) on the orientations ``start:stop`` (one chunk)."""
+    return solver(material, R[start:stop], S[start:stop], **kw)
 
 
 def scene_points(n_materials: int, cuts, euler, electrical, stress) -> int:

@@ -31,10 +31,12 @@ Examples
 from __future__ import annotations
 
 import itertools
+from functools import partial
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, SURFACE_WAVE_COORDS
 from surfwave.errors import InputError
 from surfwave.real_crystals.stressed_wave import LOADINGS, Constants, axis_of_loading, stress_tensor, surface_wave
@@ -280,15 +282,17 @@ def surface_wave_sweep(
     # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
     sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
-    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape)
+    point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape).reshape(-1, 3, 3)
+    sig = sig.reshape(-1, 3, 3)
     sub = (nsf, na, len(loads), len(s))
     for im, mat in enumerate(mats):
         constants = Constants.from_material(mat)
         for it, use in enumerate(models):
             # every value comes from this material and model's own solve (NaN where no state)
-            res = surface_wave(constants, point_axes, sig, toec=use, tol=tol, bulk=False, leaky=leaky)
+            solve = partial(_solve_points, constants, point_axes, sig, toec=use, tol=tol, leaky=leaky)
+            res = solve_in_chunks(solve, len(sig), f"surface_wave, {mat.name}" + (", toec" if use else ""))
             for name in keys:
-                arr = res[name].reshape(sub + res[name].shape[3:])
+                arr = res[name].reshape(sub + res[name].shape[1:])
                 if name not in out:
                     out[name] = np.empty(shape + arr.shape[len(sub):], dtype=arr.dtype)
                 out[name][im, :, :, :, it, :] = arr
@@ -297,6 +301,11 @@ def surface_wave_sweep(
     width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
     return ds.assign(symmetric_range=(("material", "surface"), np.array(width),
                                       VARIABLES["symmetric_range"]))
+
+
+def _solve_points(constants, axes, sig, start: int, stop: int, *, toec: bool, tol, leaky) -> dict:
+    """:func:`surface_wave` of the points ``start:stop`` (one chunk of the sweep)."""
+    return surface_wave(constants, axes[start:stop], sig[start:stop], toec=toec, tol=tol, bulk=False, leaky=leaky)
 
 
 def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, directions) -> xr.Dataset:
