@@ -97,26 +97,35 @@ def _limits(Q, R, T, d) -> np.ndarray:
     """Limiting X = rho v_L^2 of the slowest and second sheet, min over real p, shape (m, 2).
 
     Grid in the bulk-wave angle phi (p = tan phi), then golden-section refinement of each
-    branch's best grid minimum (a bracket of two grid steps).
+    branch's best grid minimum (a bracket of two grid steps), both sheets in one evaluation per
+    step: each step reuses one interior point, so it costs one new point per sheet.
     """
     m = Q.shape[0]
     h = np.pi / LIMIT_GRID
     phi = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
     lam = _sheet_x(Q, R, T, np.broadcast_to(np.tan(phi), (m, LIMIT_GRID)), d)   # (m, k, 3)
-    out = np.empty((m, 2))
     g = 0.5 * (np.sqrt(5) - 1)
-    for s in range(2):
-        j = np.argmin(lam[:, :, s], axis=1)
-        lo, hi = phi[j] - h, phi[j] + h
-        for _ in range(GOLDEN):
-            x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-            f = _sheet_x(Q, R, T, np.tan(np.stack([x1, x2], 1)), d)[:, :, s]
-            left = f[:, 0] < f[:, 1]
-            hi = np.where(left, x2, hi)
-            lo = np.where(left, lo, x1)
-        c = 0.5 * (lo + hi)
-        out[:, s] = np.minimum(_sheet_x(Q, R, T, np.tan(c)[:, None], d)[:, 0, s], lam[:, :, s].min(1))
-    return out
+    sh = np.arange(2)
+
+    def branch(x):   # sheet s at x[:, s], shape (m, 2)
+        return _sheet_x(Q, R, T, np.tan(x), d)[:, sh, sh]
+
+    j = np.argmin(lam[:, :, :2], axis=1)                                        # (m, 2)
+    lo, hi = phi[j] - h, phi[j] + h
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = branch(x1), branch(x2)
+    for it in range(GOLDEN):
+        left = f1 < f2      # the minimum lies in [lo, x2]: x2 <- x1 and a new x1, else mirrored
+        hi = np.where(left, x2, hi)
+        lo = np.where(left, lo, x1)
+        if it == GOLDEN - 1:
+            break
+        new = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
+        fn = branch(new)
+        x1, x2 = np.where(left, new, x2), np.where(left, x1, new)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    c = 0.5 * (lo + hi)
+    return np.minimum(branch(c), lam[:, :, :2].min(1))
 
 
 def _stroh_base(Q, R, T, d) -> np.ndarray:
