@@ -241,3 +241,25 @@ def test_pb_111_reports_one_continuous_branch_of_outgoing_plus_decaying_waves():
     p17, f17 = _follow_to_real(A17 / s17, np.array([X]), np.array([[0.2549 - 0.0033j, -0.7653 + 0.0275j,
                                                                        0.7763 + 1.642j]]))
     assert abs(p17[0, 1].imag) < 1e-6 and f17[0, 1] < 0
+
+
+def test_al_111_root_next_to_the_v_l2_branch_point_is_verified():
+    """Al (111) 28 and 32 deg (mirror copies): the slowest sheet's leaky root lies 2.8e-8 below v_L2
+    (3127.9532 m/s, 0.00105 dB per wavelength), 6e-8 X_L2 from the branch point where the second
+    sheet's decaying pair turns real. The solver's old check path (8 equal steps back to real
+    speed) stepped ~80 times that distance at once and could not match the roots (NaN
+    'incoming'); the root-sized steps now verify it. Reference: an independent straight-path
+    tracking X0 -> Re X0 in 4096 equal numpy steps (each ~1/6 of the distance to the branch point)
+    ends on the outgoing bulk wave (real p, flux > 0) and two decaying waves (Im p = 2.4e-4 and
+    1.05 > 0, the second sheet's pair not yet real), and the root is inside the window
+    (c_leaky < v_L2, c_limits)."""
+    A, rho = _A("Al", "(111)", [28.0, 32.0])
+    r = leaky_wave(A, rho)
+    assert list(r["reason"]) == ["", ""]
+    assert np.all(r["c_leaky"] < r["c_limits"][:, 1])
+    assert r["c_leaky"] == pytest.approx(3127.9532, abs=2e-3)
+    s = np.abs(A).max(axis=(1, 2, 3, 4))
+    X0 = rho * r["c_leaky_complex"] ** 2 / s
+    p, flux = _follow_to_real(A / s[:, None, None, None, None], X0, r["decay"], steps=4096)
+    assert np.all(np.abs(p[:, 0].imag) < 1e-8) and np.all(flux[:, 0] > 0)
+    assert np.all(p[:, 1:].imag > 1e-4)
