@@ -17,7 +17,10 @@ exp(ik x1 + k x2) gives D2 = -EPS0 dphi/dx2 = -EPS0 k phi, hence b4 = D2 / (ik) 
 metallized det(M_mech) (phi = 0). Its root in the complex variable w,
 X = X_L1 + (X_L2 - X_L1) sin^2 w (sqrt(X - X_L1) and sqrt(X_L2 - X) are analytic in w), is
 found by the secant method from every minimum of |det| over a grid of real speeds between
-v_L1 and v_L2; the least-attenuated root is kept.
+v_L1 and v_L2; the least-attenuated root is kept. Where none of these searches converges, searches
+from w = pi/2 + i y (real X above X_L2) look for the branch that left the window through v_L2
+(kept only as a NaN with REASON_ABOVE). Without a verified root the reason of the first converged
+search is reported, else the first search's.
 
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
@@ -50,6 +53,9 @@ MAX_ITER = 80
 STEP_MAX = 0.05
 #: delta below -GROW_TOL: a root growing along x1 (rejected with a reason).
 GROW_TOL = 1e-9
+#: Starts w = pi/2 + i y of the searches for a root above v_L2 where no search from the real-axis
+#: minima converged (X = X_L1 + (X_L2 - X_L1) cosh^2 y: up to 2.4 (X_L2 - X_L1) above X_L2).
+PROBE_Y = np.array([0.1, 0.3, 0.6, 1.0])
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
@@ -185,7 +191,8 @@ def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
             M[:, 3, 3] -= 1j
         else:
             M = M[:, :3, :3]
-    return np.linalg.det(M), M
+    with np.errstate(invalid="ignore"):
+        return np.linalg.det(M), M
 
 
 def _choose_real(p, xi, d) -> np.ndarray:
@@ -505,6 +512,64 @@ def _back_to_real(N0, X0, p0, pall0, g0, d) -> tuple[np.ndarray, np.ndarray, np.
     return ok, nreal, steps
 
 
+def _candidates(N0, XL, rows, t, t1, f1, p1, g1, d, electrical, tol) -> dict:
+    """Secant searches (:func:`_secant`) and the validation of their roots, one per candidate.
+
+    Parameters
+    ----------
+    N0 : ndarray, shape (m, 2d, 2d)
+        Real Stroh matrices at X = 0 (:func:`_stroh_base`).
+    XL : ndarray, shape (m, 2)
+        Scaled limiting X of the slowest and second sheet.
+    rows : ndarray, shape (n,), int
+        Orientation of each candidate.
+    t, t1 : ndarray, shape (n,), complex
+        First trial point and the last accepted point (w) of each search.
+    f1, p1, g1 : ndarray, shapes (n,), (n, d), (n, d), complex
+        Boundary function, chosen roots and their dp/dX at ``t1``.
+    d : int
+    electrical : str
+    tol : float
+
+    Returns
+    -------
+    dict
+        ``why`` (n,) reasons ("" for a verified leaky root); ``X`` (n,) complex roots; ``delta``
+        (n,); ``p`` (n, d) chosen roots; ``xi`` (n, 2d, 2d) and ``idx`` (n, d) eigen-data at the
+        root; ``its`` (n,) evaluations; ``converged`` (n,) bool (search converged and tracked).
+    """
+    x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
+    tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
+        N0[rows], x0[rows], span[rows], t, t1, f1, p1, g1, d, electrical, tol)
+    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
+    delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
+    why = np.full(rows.size, "", dtype=object)
+    why[~conv] = REASON_NOROOT
+    why[~trk] = REASON_TRACK
+    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
+    # the reported real speed c_leaky = 1 / Re(1 / v) (>= Re v) must lie below v_L2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x_real = 1.0 / (1.0 / np.sqrt(Xc)).real ** 2
+    why[(why == "") & ((Xc.real > XL[rows, 1]) | (x_real >= XL[rows, 1]))] = REASON_ABOVE
+    why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
+    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
+    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
+    # pair at a real X) satisfies det = 0 but is not a surface wave
+    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
+    # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet), and,
+    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
+    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X));
+    # one path per root gives both (its end point is the real-speed decomposition)
+    chk = np.nonzero(why == "")[0]
+    if chk.size:
+        r_ = rows[chk]
+        okb, nr, _ = _back_to_real(N0[r_], Xc[chk], pch[chk], pall[chk], _dp_dx(xiall[chk], ich[chk], d), d)
+        why[chk[nr != 2]] = REASON_MULTI
+        why[chk[(nr == 2) & ~okb]] = REASON_INCOMING
+    return {"why": why, "X": Xc, "delta": delta_c, "p": pch, "xi": xiall, "idx": ich, "its": its,
+            "converged": conv & trk}
+
+
 def _solve(Q, R, T, XL, d, electrical, tol):
     """Scan, choose, secant in w from every local minimum of |det|; the least-attenuated root wins.
 
@@ -542,44 +607,43 @@ def _solve(Q, R, T, XL, d, electrical, tol):
         dt = -2 * f0 / den
     fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
     t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
-    tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
-        N0[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d,
-        electrical, tol)
-    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
-    delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
-    why = np.full(rows.size, "", dtype=object)
-    why[~conv] = REASON_NOROOT
-    why[~trk] = REASON_TRACK
-    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
-    # the reported real speed c_leaky = 1 / Re(1 / v) (>= Re v) must lie below v_L2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        x_real = 1.0 / (1.0 / np.sqrt(Xc)).real ** 2
-    why[(why == "") & ((Xc.real > XL[rows, 1]) | (x_real >= XL[rows, 1]))] = REASON_ABOVE
-    why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
-    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
-    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
-    # pair at a real X) satisfies det = 0 but is not a surface wave
-    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
-    # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet), and,
-    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
-    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X));
-    # one path per root gives both (its end point is the real-speed decomposition)
-    chk = np.nonzero(why == "")[0]
-    back = np.zeros(rows.size, dtype=int)
-    if chk.size:
-        r_ = rows[chk]
-        okb, nr, back[chk] = _back_to_real(N0[r_], Xc[chk], pch[chk], pall[chk],
-                                           _dp_dx(xiall[chk], ich[chk], d), d)
-        why[chk[nr != 2]] = REASON_MULTI
-        why[chk[(nr == 2) & ~okb]] = REASON_INCOMING
-    # 3. per point: the least-attenuated good candidate, else the reason of the first one
+    cand = _candidates(N0, XL, rows, t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d, electrical, tol)
+    # 2b. points where no search converged: the branch may have left the window through v_L2,
+    # out of reach from the real-axis minima; searches from w = pi/2 + i y (real X above X_L2,
+    # X = X_L1 + (X_L2 - X_L1) cosh^2 y), continued from the highest grid point with a single
+    # real pair, find such roots. Only roots above v_L2 (REASON_ABOVE after the same validation)
+    # are kept: a probe that drifts back into the window is the real-axis search's business
+    extra_its = np.zeros(m)
+    conv_row = np.zeros(m, dtype=bool)
+    conv_row[rows[cand["converged"]]] = True
+    has_row = np.zeros(m, dtype=bool)
+    has_row[rows] = True
+    fin = np.isfinite(af)
+    stuck = np.nonzero(has_row & ~conv_row & fin.any(axis=1))[0]
+    if stuck.size:
+        top = SCAN - 1 - np.argmax(fin[stuck, ::-1], axis=1)
+        prow = np.repeat(stuck, PROBE_Y.size)
+        kp = prow * SCAN + np.repeat(top, PROBE_Y.size)
+        tp = 0.5 * np.pi + 1j * np.tile(PROBE_Y, stuck.size)
+        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
+                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
+        extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
+        keep = extra["why"] == REASON_ABOVE
+        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
+        rows = np.concatenate([rows, prow[keep]])
+    why, Xc, delta_c, pch, ich, its = (cand[key] for key in ("why", "X", "delta", "p", "idx", "its"))
+    xiall = cand["xi"]
+    # 3. per point: the least-attenuated good candidate, else the reason of the first converged
+    # search (it names what was found), else of the first one
     score = np.where(why == "", delta_c, np.inf)
+    key = np.where(cand["converged"], 0, 1)
     best = np.full(m, -1)
     bscore = np.full(m, np.inf)
+    bkey = np.full(m, 2)
     for c in range(rows.size):
         r = rows[c]
-        if best[r] < 0 or score[c] < bscore[r]:
-            best[r], bscore[r] = c, score[c]
+        if best[r] < 0 or score[c] < bscore[r] or (score[c] == bscore[r] == np.inf and key[c] < bkey[r]):
+            best[r], bscore[r], bkey[r] = c, score[c], key[c]
     reason = np.full(m, REASON_NOMIN, dtype=object)
     X = np.full(m, np.nan + 0j)
     p_out = np.full((m, d), np.nan + 0j)
@@ -589,7 +653,7 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     b = best[has]
     reason[has] = why[b]
     X[has] = Xc[b]
-    nit[has] += np.bincount(rows, weights=its, minlength=m)[has].astype(int)
+    nit[has] += (np.bincount(rows, weights=its, minlength=m) + extra_its)[has].astype(int)
     rest = np.take_along_axis(pch[b, 1:], np.argsort(pch[b, 1:].imag, axis=1), axis=1)
     p_out[has] = np.concatenate([pch[b, :1], rest], axis=1)
     # polarisation: null vector of the boundary condition at the root
