@@ -33,7 +33,6 @@ for _v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import inspect  # noqa: E402
 import json  # noqa: E402
-import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -231,6 +230,13 @@ def main(outdir: str) -> Path:
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        raise SystemExit(__doc__.split("\n\n")[1])
-    main(sys.argv[1])
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=__doc__.split("\n\n")[1])
+    ap.add_argument("outdir", help="output directory (leaky_speed_tol.nc, .png)")
+    ap.add_argument("--repeats", type=int, default=REPEATS, help=f"speed rounds (default {REPEATS})")
+    ap.add_argument("--angles", type=int, default=N_ANGLES,
+                    help=f"orientations per case and call (default {N_ANGLES})")
+    args = ap.parse_args()
+    REPEATS, N_ANGLES = args.repeats, args.angles
+    main(args.outdir)

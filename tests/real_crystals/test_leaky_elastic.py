@@ -22,6 +22,7 @@ from surfwave.real_crystals.materials import get_material
 from surfwave.real_crystals.stressed_wave import REASON_LEAKY_OFF, REASON_LEAKY_SUBSONIC
 from surfwave.real_crystals.sweep import VARIABLES, surface_wave_sweep
 from surfwave.solvers import stroh
+from surfwave.solvers.leaky import REASON_ABOVE as L_REASON_ABOVE
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import rotate4, voigt_to_tensor
@@ -241,3 +242,93 @@ def test_pb_111_reports_one_continuous_branch_of_outgoing_plus_decaying_waves():
     p17, f17 = _follow_to_real(A17 / s17, np.array([X]), np.array([[0.2549 - 0.0033j, -0.7653 + 0.0275j,
                                                                        0.7763 + 1.642j]]))
     assert abs(p17[0, 1].imag) < 1e-6 and f17[0, 1] < 0
+
+
+def test_al_111_root_next_to_the_v_l2_branch_point_is_verified():
+    """Al (111) 28 and 32 deg (mirror copies): the slowest sheet's leaky root lies 2.8e-8 below v_L2
+    (3127.9532 m/s, 0.00105 dB per wavelength), 6e-8 X_L2 from the branch point where the second
+    sheet's decaying pair turns real. The solver's old check path (8 equal steps back to real
+    speed) stepped ~80 times that distance at once and could not match the roots (NaN
+    'incoming'); the root-sized steps now verify it. Reference: an independent straight-path
+    tracking X0 -> Re X0 in 4096 equal numpy steps (each ~1/6 of the distance to the branch point)
+    ends on the outgoing bulk wave (real p, flux > 0) and two decaying waves (Im p = 2.4e-4 and
+    1.05 > 0, the second sheet's pair not yet real), and the root is inside the window
+    (c_leaky < v_L2, c_limits)."""
+    A, rho = _A("Al", "(111)", [28.0, 32.0])
+    r = leaky_wave(A, rho)
+    assert list(r["reason"]) == ["", ""]
+    assert np.all(r["c_leaky"] < r["c_limits"][:, 1])
+    assert r["c_leaky"] == pytest.approx(3127.9532, abs=2e-3)
+    s = np.abs(A).max(axis=(1, 2, 3, 4))
+    X0 = rho * r["c_leaky_complex"] ** 2 / s
+    p, flux = _follow_to_real(A / s[:, None, None, None, None], X0, r["decay"], steps=4096)
+    assert np.all(np.abs(p[:, 0].imag) < 1e-8) and np.all(flux[:, 0] > 0)
+    assert np.all(p[:, 1:].imag > 1e-4)
+
+
+def _continue_in_angle(name, surface, angles, X, p):
+    """The root X (scaled rho v^2 / max|A|) with Stroh roots p (3,) at angles[0], followed along
+    ``angles`` by a secant in X at each angle, the three partial waves matched to the nearest
+    roots of the previous X (numpy eig of the 6 x 6 N; independent of the solver). Returns the
+    root X and its roots p at angles[-1]."""
+    def det(Q, R, T, X, p_prev):
+        Ti = np.linalg.inv(T)
+        N = np.block([[-Ti @ R.T, Ti], [R @ Ti @ R.T - Q + X * np.eye(3), -R @ Ti]])
+        ev, vec = np.linalg.eig(N)
+        j = np.abs(ev[None, :] - p_prev[:, None]).argmin(axis=1)
+        assert len(set(j)) == 3
+        return np.linalg.det(vec[3:, j] @ np.linalg.inv(vec[:3, j])), ev[j]
+    for a in angles[1:]:
+        A, _ = _A(name, surface, [a])
+        A = A[0] / np.abs(A).max()
+        Q, R, T = A[:, 0, :, 0], A[:, 0, :, 1], A[:, 1, :, 1]
+        fa, pa = det(Q, R, T, X, p)
+        Xb = X * (1 + 1e-6)
+        for _ in range(50):
+            fb, pb = det(Q, R, T, Xb, pa)
+            X, Xb, fa, pa = Xb, Xb - fb * (Xb - X) / (fb - fa), fb, pb
+            if abs(Xb - X) < 1e-14 * abs(X):
+                break
+        p = pa
+    return X, p
+
+
+@pytest.mark.parametrize("angle", [28.0, 32.0])
+def test_cu_111_branch_left_through_v_l2_is_named(angle):
+    """Cu (111) 28 and 32 deg (mirror copies about 30 deg) were NaN with 'secant search did not
+    converge'. Reference: the branch reported at 24.5 deg (2381 m/s, 1.76 dB per wavelength),
+    followed in 0.1-degree steps by an independent secant continuation (numpy, nearest-root
+    matching), crosses v_L2 near 25.1 deg and lies above it at 28 deg (2337.7 m/s against
+    v_L2 = 2303.1 m/s, delta = 0.0365): a leaky wave radiating into two sheets. The solver now
+    finds that root (a search from above v_L2 where none from the real-axis minima converged)
+    and names it with REASON_ABOVE; its signed delta is the continuation's."""
+    A0, rho = _A("Cu", "(111)", [24.5])
+    r0 = leaky_wave(A0, rho)
+    assert r0["reason"][0] == ""
+    s0 = np.abs(A0).max()
+    X0 = rho * r0["c_leaky_complex"][0] ** 2 / s0
+    a_end = min(angle, 60.0 - angle)          # 32 deg is the mirror image of 28 deg
+    X, p = _continue_in_angle("Cu", "(111)", np.arange(24.5, a_end + 1e-9, 0.1), X0, r0["decay"][0])
+    A, _ = _A("Cu", "(111)", [angle])
+    r = leaky_wave(A, rho)
+    v = np.sqrt(X * np.abs(A).max() / rho)
+    c_cont, delta_cont = 1 / (1 / v).real, (1 / v).imag / (1 / v).real
+    assert c_cont > r["c_limits"][0, 1]                       # above v_L2
+    assert r["reason"][0] == L_REASON_ABOVE and np.isnan(r["c_leaky"][0])
+    assert r["delta"][0] == pytest.approx(delta_cont, rel=1e-6)
+    assert delta_cont == pytest.approx(0.0365, abs=5e-4)
+
+
+def test_converged_search_names_the_reason_before_an_unconverged_one():
+    """Si (001) 8-12 deg and GaAs (001) 16 deg were NaN with 'secant search did not converge'
+    although a second search from another |det| minimum had converged to a root above v_L2 (the
+    reason of the first search was reported). Reference: the neighbouring points, Si (001) 14 deg
+    and GaAs (001) 18 deg, were already REASON_ABOVE with the same kind of root (X real to
+    1e-11: delta ~ 0), and the root followed from there in angle stays above v_L2 (checked
+    with the solver's own secant continuation in 0.1-degree steps down to 12.7 deg for Si,
+    15.5 deg for GaAs)."""
+    for name, angles, ref in (("Si", [8.0, 10.0, 12.0], 14.0), ("GaAs", [16.0], 18.0)):
+        A, rho = _A(name, "(001)", angles + [ref])
+        r = leaky_wave(A, rho)
+        assert all(s == L_REASON_ABOVE for s in r["reason"]), r["reason"]
+        assert np.all(np.abs(r["delta"]) < 1e-9)

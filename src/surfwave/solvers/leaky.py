@@ -17,7 +17,10 @@ exp(ik x1 + k x2) gives D2 = -EPS0 dphi/dx2 = -EPS0 k phi, hence b4 = D2 / (ik) 
 metallized det(M_mech) (phi = 0). Its root in the complex variable w,
 X = X_L1 + (X_L2 - X_L1) sin^2 w (sqrt(X - X_L1) and sqrt(X_L2 - X) are analytic in w), is
 found by the secant method from every minimum of |det| over a grid of real speeds between
-v_L1 and v_L2; the least-attenuated root is kept.
+v_L1 and v_L2; the least-attenuated root is kept. Where none of these searches converges, searches
+from w = pi/2 + i y (real X above X_L2) look for the branch that left the window through v_L2
+(kept only as a NaN with REASON_ABOVE). Without a verified root the reason of the first converged
+search is reported, else the first search's.
 
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
@@ -50,12 +53,18 @@ MAX_ITER = 80
 STEP_MAX = 0.05
 #: delta below -GROW_TOL: a root growing along x1 (rejected with a reason).
 GROW_TOL = 1e-9
+#: Starts w = pi/2 + i y of the searches for a root above v_L2 where no search from the real-axis
+#: minima converged (X = X_L1 + (X_L2 - X_L1) cosh^2 y: up to 2.4 (X_L2 - X_L1) above X_L2).
+PROBE_Y = np.array([0.1, 0.3, 0.6, 1.0])
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
 T_EDGE = 1e-3
-#: Steps of the check path X = Re X0 + i s Im X0, s: 1 -> 0, from a root back to real speed.
-BACK_STEPS = 8
+#: Largest first-order move of a chosen root on the check path X = Re X0 + i s Im X0 (s: 1 -> 0,
+#: from a root back to real speed), as a fraction of its distance to the nearest other root.
+BACK_FRAC = 0.125
+#: Most eigen-decompositions on that path before the root counts as not verified.
+BACK_MAX = 64
 #: |Im p| below REAL_TOL max(1, |p|) counts as a real Stroh root on the real-speed grid.
 REAL_TOL = 1e-7
 
@@ -94,43 +103,70 @@ def _limits(Q, R, T, d) -> np.ndarray:
     """Limiting X = rho v_L^2 of the slowest and second sheet, min over real p, shape (m, 2).
 
     Grid in the bulk-wave angle phi (p = tan phi), then golden-section refinement of each
-    branch's best grid minimum (a bracket of two grid steps).
+    branch's best grid minimum (a bracket of two grid steps), both sheets in one evaluation per
+    step: each step reuses one interior point, so it costs one new point per sheet.
     """
     m = Q.shape[0]
     h = np.pi / LIMIT_GRID
     phi = -0.5 * np.pi + h * (np.arange(LIMIT_GRID) + 0.5)
     lam = _sheet_x(Q, R, T, np.broadcast_to(np.tan(phi), (m, LIMIT_GRID)), d)   # (m, k, 3)
-    out = np.empty((m, 2))
     g = 0.5 * (np.sqrt(5) - 1)
-    for s in range(2):
-        j = np.argmin(lam[:, :, s], axis=1)
-        lo, hi = phi[j] - h, phi[j] + h
-        for _ in range(GOLDEN):
-            x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-            f = _sheet_x(Q, R, T, np.tan(np.stack([x1, x2], 1)), d)[:, :, s]
-            left = f[:, 0] < f[:, 1]
-            hi = np.where(left, x2, hi)
-            lo = np.where(left, lo, x1)
-        c = 0.5 * (lo + hi)
-        out[:, s] = np.minimum(_sheet_x(Q, R, T, np.tan(c)[:, None], d)[:, 0, s], lam[:, :, s].min(1))
-    return out
+    sh = np.arange(2)
+
+    def branch(x):   # sheet s at x[:, s], shape (m, 2)
+        return _sheet_x(Q, R, T, np.tan(x), d)[:, sh, sh]
+
+    j = np.argmin(lam[:, :, :2], axis=1)                                        # (m, 2)
+    lo, hi = phi[j] - h, phi[j] + h
+    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+    f1, f2 = branch(x1), branch(x2)
+    for it in range(GOLDEN):
+        left = f1 < f2      # the minimum lies in [lo, x2]: x2 <- x1 and a new x1, else mirrored
+        hi = np.where(left, x2, hi)
+        lo = np.where(left, lo, x1)
+        if it == GOLDEN - 1:
+            break
+        new = np.where(left, hi - g * (hi - lo), lo + g * (hi - lo))
+        fn = branch(new)
+        x1, x2 = np.where(left, new, x2), np.where(left, x1, new)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    c = 0.5 * (lo + hi)
+    return np.minimum(branch(c), lam[:, :, :2].min(1))
+
+
+def _stroh_base(Q, R, T, d) -> np.ndarray:
+    """Real Stroh matrix at X = 0, shape (m, 2d, 2d), from the scaled blocks Q, R, T (m, d, d).
+
+    N(X) = N(0) + X [[0, 0], [M, 0]], M = diag(1, 1, 1[, 0]) (:func:`_roots_at`); built once
+    per orientation (the inverse of T and the products do not depend on X).
+    """
+    Ti = np.linalg.inv(T)
+    Rt = np.swapaxes(R, -1, -2)
+    N = np.empty((Q.shape[0], 2 * d, 2 * d))
+    N[:, :d, :d] = -Ti @ Rt
+    N[:, :d, d:] = Ti
+    N[:, d:, :d] = R @ Ti @ Rt - Q
+    N[:, d:, d:] = -R @ Ti
+    return N
 
 
 def _partial_waves(Q, R, T, X, d) -> tuple[np.ndarray, np.ndarray]:
     """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d), complex, at X (m,).
 
-    A real X (float dtype) builds the real N (its eigen-decomposition is ~3x cheaper).
+    Q, R, T (m, d, d) scaled blocks: :func:`_roots_at` of :func:`_stroh_base`.
     """
-    Ti = np.linalg.inv(T)
-    Rt = np.swapaxes(R, -1, -2)
-    mass = np.eye(d)
-    if d == 4:
-        mass[3, 3] = 0.0
-    N = np.empty((Q.shape[0], 2 * d, 2 * d), dtype=X.dtype)
-    N[:, :d, :d] = -Ti @ Rt
-    N[:, :d, d:] = Ti
-    N[:, d:, :d] = R @ Ti @ Rt - Q + X[:, None, None] * mass
-    N[:, d:, d:] = -R @ Ti
+    return _roots_at(_stroh_base(Q, R, T, d), X, d)
+
+
+def _roots_at(N0, X, d) -> tuple[np.ndarray, np.ndarray]:
+    """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d), complex, at X (m,).
+
+    ``N0`` (m, 2d, 2d) from :func:`_stroh_base`. A real X (float dtype) builds the real N (its
+    eigen-decomposition is ~3x cheaper).
+    """
+    N = N0.astype(X.dtype)
+    k = np.arange(3)
+    N[:, d + k, k] += X[:, None]
     p, xi = np.linalg.eig(N)
     return p.astype(complex), xi.astype(complex)
 
@@ -155,7 +191,8 @@ def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
             M[:, 3, 3] -= 1j
         else:
             M = M[:, :3, :3]
-    return np.linalg.det(M), M
+    with np.errstate(invalid="ignore"):
+        return np.linalg.det(M), M
 
 
 def _choose_real(p, xi, d) -> np.ndarray:
@@ -319,7 +356,7 @@ def _dp_dx(xi, idx, d) -> np.ndarray:
     return np.einsum("nkj,nkj->nj", am, am) / (2 * np.einsum("nkj,nkj->nj", a, b))
 
 
-def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
+def _secant(N0, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
     """Secant iteration in complex w from (t1, f1) and t, tracking the chosen roots p1 (n, d).
 
     The chosen roots are followed from the last accepted point, predicted to first order with
@@ -329,7 +366,7 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
     eigen-data (roots (n, 2d), vectors (n, 2d, 2d), indices (n, d)), converged and
     tracking-ok flags, and the number of evaluations.
     """
-    n = Q.shape[0]
+    n = N0.shape[0]
     t_prev, f_prev, p_prev, g = t1.copy(), f1.copy(), p1.copy(), g1.copy()
     conv = np.zeros(n, dtype=bool)
     trk = np.ones(n, dtype=bool)
@@ -341,7 +378,7 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
     act = np.arange(n)
     for _ in range(MAX_ITER):
         X = x0[act] + span[act] * np.sin(t[act]) ** 2
-        p, xi = _partial_waves(Q[act], R[act], T[act], X, d)
+        p, xi = _roots_at(N0[act], X, d)
         dw = (span[act] * np.sin(2 * t_prev[act]) * (t[act] - t_prev[act]))[:, None]
         sel, okt = _track(p_prev[act] + g[act] * dw, p)
         its[act] += 1
@@ -375,29 +412,162 @@ def _secant(Q, R, T, x0, span, t, t1, f1, p1, g1, d, electrical, tol):
     return t_prev, p_prev, (p_all, xi_all, idx), conv, trk, its
 
 
-def _back_to_real(Q, R, T, X0, p0, d) -> np.ndarray:
-    """True where the chosen roots p0 (n, d) at the complex roots X0 (n,) are the leaky-wave set.
+def _back_to_real(N0, X0, p0, pall0, g0, d) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Follow the chosen roots from the complex roots X0 back to real speed Re X0.
 
-    The roots are followed (nearest-root tracking, :func:`_track`) along X = Re X0 + i s Im X0,
-    s = 1 -> 0 in :data:`BACK_STEPS` steps; at real X the first must be real with energy flux
-    Re(a^H b) > 0 into the crystal (the outgoing bulk wave), the other d - 1 must have
-    Im p > REAL_TOL max(1, |p|) (decaying, not the incoming bulk wave). An ambiguous match on
-    the way counts as not verified (False).
+    Path X = Re X0 + i s Im X0, s: 1 -> 0. Each step's length is set by the roots themselves:
+    the first-order move |dp/dX| |dX| of every chosen root is at most :data:`BACK_FRAC` times its
+    distance to the nearest other root. Near a square-root branch point X_b of p(X) (where two
+    roots can swap), p = p_b +- c sqrt(X - X_b) gives |X - X_b| = sep / (4 |dp/dX|), so such a step
+    stays within |X - X_b| / 2 of its start: no branch point is stepped over. Each new point is
+    matched to the first-order prediction p + dp/dX dX (:func:`_track`, unambiguous match); an
+    ambiguous match halves the step (at most :data:`MAX_HALVING` times in a row), more than
+    :data:`BACK_MAX` steps count as not verified.
+
+    Parameters
+    ----------
+    N0 : ndarray, shape (n, 2d, 2d)
+        Real Stroh matrices at X = 0 (:func:`_stroh_base`).
+    X0 : ndarray, shape (n,), complex
+        Roots (scaled rho v^2).
+    p0 : ndarray, shape (n, d), complex
+        Chosen roots at X0, the radiating one first.
+    pall0 : ndarray, shape (n, 2d), complex
+        All Stroh roots at X0.
+    g0 : ndarray, shape (n, d), complex
+        dp/dX of the chosen roots at X0.
+    d : int
+        3 (elastic) or 4 (piezoelectric).
+
+    Returns
+    -------
+    ok : ndarray, shape (n,), bool
+        True where the path was followed and, at real X, the first root is real with energy flux
+        Re(a^H b) > 0 into the crystal (the outgoing bulk wave) and the other d - 1 have
+        Im p > REAL_TOL max(1, |p|) (decaying, not the incoming bulk wave).
+    nreal : ndarray, shape (n,), int
+        Number of real Stroh roots (|Im p| <= REAL_TOL max(1, |p|)) at Re X0.
+    steps : ndarray, shape (n,), int
+        Eigen-decompositions on the path (the real end point included).
     """
-    p_prev = p0.copy()
-    ok = np.ones(X0.shape[0], dtype=bool)
-    for s in np.linspace(1.0, 0.0, BACK_STEPS + 1)[1:]:
-        X = X0.real + 1j * s * X0.imag if s > 0 else X0.real.astype(complex)
-        p, xi = _partial_waves(Q, R, T, X, d)
-        idx, okt = _track(p_prev, p)
-        ok &= okt
-        p_prev = np.take_along_axis(p, idx, axis=1)
-    flux = np.einsum("mjk,mjk->mk", xi[:, :d].conj(), xi[:, d:]).real
-    f0 = np.take_along_axis(flux, idx[:, :1], axis=1)[:, 0]
-    tol = REAL_TOL * np.maximum(1, np.abs(p_prev))
-    ok &= (np.abs(p_prev[:, 0].imag) <= tol[:, 0]) & (f0 > 0)
-    ok &= np.all(p_prev[:, 1:].imag > tol[:, 1:], axis=1)
-    return ok
+    n = X0.shape[0]
+    ok = np.zeros(n, dtype=bool)
+    nreal = np.zeros(n, dtype=int)
+    steps = np.zeros(n, dtype=int)
+    if n == 0:
+        return ok, nreal, steps
+    s = np.ones(n)
+    p_prev, g, pall = p0.copy(), g0.copy(), pall0.copy()
+    halv = np.zeros(n, dtype=int)
+    fail = np.zeros(n, dtype=bool)
+    act = np.arange(n)
+    eta = np.abs(X0.imag)
+    while act.size:
+        # separation of every chosen root from the nearest other root at the current point
+        dist = np.abs(pall[act][:, None, :] - p_prev[act][:, :, None])
+        sep = np.sort(dist, axis=2)[:, :, 1]
+        move = np.max(np.abs(g[act]) * eta[act, None] / sep, axis=1)   # |dp/dX| |Im X0| / sep per unit s
+        with np.errstate(divide="ignore"):
+            ds = np.where(move > 0, BACK_FRAC / move, np.inf) * 0.5 ** halv[act]
+        s_new = np.where(ds >= s[act], 0.0, s[act] - ds)
+        p_new = np.zeros((act.size, 2 * d), dtype=complex)
+        xi_new = np.zeros((act.size, 2 * d, 2 * d), dtype=complex)
+        real = s_new == 0
+        for part, Xp in ((real, X0[act].real), (~real, X0[act].real + 1j * s_new * X0[act].imag)):
+            if part.any():
+                j = act[part]
+                p_new[part], xi_new[part] = _roots_at(N0[j], Xp[part], d)
+        steps[act] += 1
+        dX = 1j * (s_new - s[act]) * X0[act].imag
+        sel, okt = _track(p_prev[act] + g[act] * dX[:, None], p_new)
+        bad = act[~okt]
+        halv[bad] += 1
+        fail[bad[halv[bad] > MAX_HALVING]] = True
+        acc = act[okt]
+        halv[acc] = 0
+        s[acc] = s_new[okt]
+        p_prev[acc] = np.take_along_axis(p_new[okt], sel[okt], axis=1)
+        pall[acc] = p_new[okt]
+        g[acc] = _dp_dx(xi_new[okt], sel[okt], d)
+        end = okt & real
+        if end.any():
+            e_ = act[end]
+            xi_e, sel_e, pa = xi_new[end], sel[end], p_new[end]
+            nreal[e_] = (np.abs(pa.imag) <= REAL_TOL * np.maximum(1, np.abs(pa))).sum(axis=1)
+            flux = np.einsum("mjk,mjk->mk", xi_e[:, :d].conj(), xi_e[:, d:]).real
+            f0 = np.take_along_axis(flux, sel_e[:, :1], axis=1)[:, 0]
+            pe = p_prev[e_]
+            tl = REAL_TOL * np.maximum(1, np.abs(pe))
+            ok[e_] = (np.abs(pe[:, 0].imag) <= tl[:, 0]) & (f0 > 0) & np.all(pe[:, 1:].imag > tl[:, 1:], axis=1)
+        fail[act[steps[act] >= BACK_MAX]] = True
+        done = np.zeros(n, dtype=bool)
+        done[act[end]] = True
+        done |= fail
+        act = act[~done[act]]
+    # not followed to the end: the real-speed root count still decides REASON_MULTI
+    f = np.nonzero(fail)[0]
+    if f.size:
+        pr, _ = _roots_at(N0[f], X0[f].real, d)
+        nreal[f] = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
+    return ok, nreal, steps
+
+
+def _candidates(N0, XL, rows, t, t1, f1, p1, g1, d, electrical, tol) -> dict:
+    """Secant searches (:func:`_secant`) and the validation of their roots, one per candidate.
+
+    Parameters
+    ----------
+    N0 : ndarray, shape (m, 2d, 2d)
+        Real Stroh matrices at X = 0 (:func:`_stroh_base`).
+    XL : ndarray, shape (m, 2)
+        Scaled limiting X of the slowest and second sheet.
+    rows : ndarray, shape (n,), int
+        Orientation of each candidate.
+    t, t1 : ndarray, shape (n,), complex
+        First trial point and the last accepted point (w) of each search.
+    f1, p1, g1 : ndarray, shapes (n,), (n, d), (n, d), complex
+        Boundary function, chosen roots and their dp/dX at ``t1``.
+    d : int
+    electrical : str
+    tol : float
+
+    Returns
+    -------
+    dict
+        ``why`` (n,) reasons ("" for a verified leaky root); ``X`` (n,) complex roots; ``delta``
+        (n,); ``p`` (n, d) chosen roots; ``xi`` (n, 2d, 2d) and ``idx`` (n, d) eigen-data at the
+        root; ``its`` (n,) evaluations; ``converged`` (n,) bool (search converged and tracked).
+    """
+    x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
+    tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
+        N0[rows], x0[rows], span[rows], t, t1, f1, p1, g1, d, electrical, tol)
+    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
+    delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
+    why = np.full(rows.size, "", dtype=object)
+    why[~conv] = REASON_NOROOT
+    why[~trk] = REASON_TRACK
+    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
+    # the reported real speed c_leaky = 1 / Re(1 / v) (>= Re v) must lie below v_L2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x_real = 1.0 / (1.0 / np.sqrt(Xc)).real ** 2
+    why[(why == "") & ((Xc.real > XL[rows, 1]) | (x_real >= XL[rows, 1]))] = REASON_ABOVE
+    why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
+    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
+    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
+    # pair at a real X) satisfies det = 0 but is not a surface wave
+    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
+    # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet), and,
+    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
+    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X));
+    # one path per root gives both (its end point is the real-speed decomposition)
+    chk = np.nonzero(why == "")[0]
+    if chk.size:
+        r_ = rows[chk]
+        okb, nr, _ = _back_to_real(N0[r_], Xc[chk], pch[chk], pall[chk], _dp_dx(xiall[chk], ich[chk], d), d)
+        why[chk[nr != 2]] = REASON_MULTI
+        why[chk[(nr == 2) & ~okb]] = REASON_INCOMING
+    return {"why": why, "X": Xc, "delta": delta_c, "p": pch, "xi": xiall, "idx": ich, "its": its,
+            "converged": conv & trk}
 
 
 def _solve(Q, R, T, XL, d, electrical, tol):
@@ -407,12 +577,12 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     evaluations (m,), reasons (m,).
     """
     m = Q.shape[0]
+    N0 = _stroh_base(Q, R, T, d)
     x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
     tg = 0.5 * np.pi * (np.arange(SCAN) + 0.5) / SCAN
     # 1. real scan: |det| with the outgoing choice at each grid speed
     Xg = (x0[:, None] + span[:, None] * np.sin(tg) ** 2).reshape(-1)
-    Qg, Rg, Tg = (np.repeat(B, SCAN, axis=0) for B in (Q, R, T))
-    pg, xig = _partial_waves(Qg, Rg, Tg, Xg, d)
+    pg, xig = _roots_at(np.repeat(N0, SCAN, axis=0), Xg, d)
     idx = _choose_real(pg, xig, d)
     fg, _ = _boundary(xig, idx, d, electrical)
     pc = np.take_along_axis(pg, idx, axis=1)
@@ -437,43 +607,43 @@ def _solve(Q, R, T, XL, d, electrical, tol):
         dt = -2 * f0 / den
     fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
     t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
-    tc, pch, (pall, xiall, ich), conv, trk, its = _secant(
-        Q[rows], R[rows], T[rows], x0[rows], span[rows], t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d,
-        electrical, tol)
-    Xc = x0[rows] + span[rows] * np.sin(tc) ** 2
-    delta_c = -(np.sqrt(Xc)).imag / np.sqrt(Xc).real
-    why = np.full(rows.size, "", dtype=object)
-    why[~conv] = REASON_NOROOT
-    why[~trk] = REASON_TRACK
-    why[(why == "") & (np.abs(np.sin(tc)) < T_EDGE)] = REASON_EDGE
-    # the reported real speed c_leaky = 1 / Re(1 / v) (>= Re v) must lie below v_L2
-    with np.errstate(invalid="ignore", divide="ignore"):
-        x_real = 1.0 / (1.0 / np.sqrt(Xc)).real ** 2
-    why[(why == "") & ((Xc.real > XL[rows, 1]) | (x_real >= XL[rows, 1]))] = REASON_ABOVE
-    why[(why == "") & (delta_c < -GROW_TOL)] = REASON_GROW
-    # every non-radiating partial wave must decay into the crystal (Im p > 0) at the root: a
-    # root of a set that includes a growing wave (e.g. both members of a complex-conjugate
-    # pair at a real X) satisfies det = 0 but is not a surface wave
-    why[(why == "") & np.any(~(pch[:, 1:].imag > 0), axis=1)] = REASON_SHEET
-    # the slowest sheet must have a single real pair at Re X (no cusp, no second sheet)
-    chk = np.nonzero(why == "")[0]
-    if chk.size:
-        pr, _ = _partial_waves(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk].real, d)
-        nr = (np.abs(pr.imag) <= REAL_TOL * np.maximum(1, np.abs(pr))).sum(axis=1)
-        why[chk[nr != 2]] = REASON_MULTI
-    # followed back to real speed, the chosen waves must be the outgoing bulk wave and d - 1
-    # decaying ones (a decaying and the incoming wave can swap around a branch point of p(X))
-    chk = np.nonzero(why == "")[0]
-    if chk.size:
-        why[chk[~_back_to_real(Q[rows[chk]], R[rows[chk]], T[rows[chk]], Xc[chk], pch[chk], d)]] = REASON_INCOMING
-    # 3. per point: the least-attenuated good candidate, else the reason of the first one
+    cand = _candidates(N0, XL, rows, t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d, electrical, tol)
+    # 2b. points where no search converged: the branch may have left the window through v_L2,
+    # out of reach from the real-axis minima; searches from w = pi/2 + i y (real X above X_L2,
+    # X = X_L1 + (X_L2 - X_L1) cosh^2 y), continued from the highest grid point with a single
+    # real pair, find such roots. Only roots above v_L2 (REASON_ABOVE after the same validation)
+    # are kept: a probe that drifts back into the window is the real-axis search's business
+    extra_its = np.zeros(m)
+    conv_row = np.zeros(m, dtype=bool)
+    conv_row[rows[cand["converged"]]] = True
+    has_row = np.zeros(m, dtype=bool)
+    has_row[rows] = True
+    fin = np.isfinite(af)
+    stuck = np.nonzero(has_row & ~conv_row & fin.any(axis=1))[0]
+    if stuck.size:
+        top = SCAN - 1 - np.argmax(fin[stuck, ::-1], axis=1)
+        prow = np.repeat(stuck, PROBE_Y.size)
+        kp = prow * SCAN + np.repeat(top, PROBE_Y.size)
+        tp = 0.5 * np.pi + 1j * np.tile(PROBE_Y, stuck.size)
+        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
+                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
+        extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
+        keep = extra["why"] == REASON_ABOVE
+        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
+        rows = np.concatenate([rows, prow[keep]])
+    why, Xc, delta_c, pch, ich, its = (cand[key] for key in ("why", "X", "delta", "p", "idx", "its"))
+    xiall = cand["xi"]
+    # 3. per point: the least-attenuated good candidate, else the reason of the first converged
+    # search (it names what was found), else of the first one
     score = np.where(why == "", delta_c, np.inf)
+    key = np.where(cand["converged"], 0, 1)
     best = np.full(m, -1)
     bscore = np.full(m, np.inf)
+    bkey = np.full(m, 2)
     for c in range(rows.size):
         r = rows[c]
-        if best[r] < 0 or score[c] < bscore[r]:
-            best[r], bscore[r] = c, score[c]
+        if best[r] < 0 or score[c] < bscore[r] or (score[c] == bscore[r] == np.inf and key[c] < bkey[r]):
+            best[r], bscore[r], bkey[r] = c, score[c], key[c]
     reason = np.full(m, REASON_NOMIN, dtype=object)
     X = np.full(m, np.nan + 0j)
     p_out = np.full((m, d), np.nan + 0j)
@@ -483,7 +653,7 @@ def _solve(Q, R, T, XL, d, electrical, tol):
     b = best[has]
     reason[has] = why[b]
     X[has] = Xc[b]
-    nit[has] += np.bincount(rows, weights=its, minlength=m)[has].astype(int)
+    nit[has] += (np.bincount(rows, weights=its, minlength=m) + extra_its)[has].astype(int)
     rest = np.take_along_axis(pch[b, 1:], np.argsort(pch[b, 1:].imag, axis=1), axis=1)
     p_out[has] = np.concatenate([pch[b, :1], rest], axis=1)
     # polarisation: null vector of the boundary condition at the root
