@@ -136,3 +136,28 @@ def test_list_cuts_and_bad_euler(capsys):
     assert "only one Euler angle" in capsys.readouterr().err
     assert main(["material", "--material", "quartz", "--cut", "ST-X", "--euler", "0", "0", "0"]) == 2
     assert "either --cut or --euler" in capsys.readouterr().err
+
+
+def test_toec_file_equals_the_library_with_the_same_constants(tmp_path, capsys):
+    """--toec-file (YAML, named constants, a source key allowed): Cu with the database's six gives
+    the library's toec=True value; a quartz file with the wrong names, a missing file and text
+    values are one-line errors (exit 2). Reference: surfwave.material with toec=True."""
+    import yaml
+
+    from surfwave.real_crystals.materials import get_material
+
+    f = tmp_path / "cu.yaml"
+    f.write_text(yaml.safe_dump({"source": "the database's Cu set", **get_material("Cu").toec}))
+    assert main(["material", "--material", "Cu", "--direction", "[100]", "--stress", "0.1", "--toec-file", str(f),
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = surfwave.material("Cu", direction="[100]", stress=0.1, toec=True)
+    assert out["c_R"] == pytest.approx(ref["c_R"], rel=1e-15)
+    assert main(["material", "--material", "quartz", "--cut", "ST-X", "--stress", "0.1", "--toec-file", str(f)]) == 2
+    assert "class-32 third-order constants: missing" in capsys.readouterr().err
+    assert main(["material", "--material", "Cu", "--toec-file", str(tmp_path / "none.yaml")]) == 2
+    assert "cannot read" in capsys.readouterr().err
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("C111: minus twelve\n")
+    assert main(["material", "--material", "Cu", "--toec-file", str(bad)]) == 2
+    assert "not numbers" in capsys.readouterr().err

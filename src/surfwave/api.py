@@ -6,6 +6,7 @@ measured elastic constants (or a material name), optionally with third-order con
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import cast
 
 import numpy as np
@@ -213,6 +214,14 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
     if toec is True and name is None:
         raise InputError("toec=True takes the third-order constants from the materials database: "
                          "give the material by name (e.g. material('Cu', ...)) or pass toec=(C111, ...)")
+    if isinstance(toec, Mapping):                  # the cubic six by name (a crystal class needs its own names)
+        names = dict(toec)
+        names.pop("source", None)
+        if set(names) != set(CUBIC_TOEC):
+            raise InputError(f"third-order constants by name: here the cubic six {list(CUBIC_TOEC)} (GPa), got "
+                             f"{sorted(names)}; a crystal of the piezoelectric database takes its class's names "
+                             "(surfwave.real_crystals.toec_classes.TOEC_NAMES); else give a (6, 6, 6) Voigt array")
+        toec = tuple(names[k] for k in CUBIC_TOEC)
     if toec is not None and toec is not True and toec is not False:
         t = np.asarray(toec, dtype=float)
         if t.shape == (6,):
@@ -220,8 +229,8 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
         elif t.shape == (6, 6, 6):
             C3 = t
         else:
-            raise InputError("toec must be True, (C111, C112, C123, C144, C155, C456) in GPa or a (6, 6, 6) "
-                             f"Voigt array; got shape {t.shape}")
+            raise InputError("toec must be True, (C111, C112, C123, C144, C155, C456) in GPa (a sequence or a "
+                             f"mapping of these names) or a (6, 6, 6) Voigt array; got shape {t.shape}")
         if not np.all(np.isfinite(C3)):
             raise InputError(f"third-order constants must be finite, got {toec!r}")
         if np.abs(C3).max() > MAX_GPA:
@@ -267,7 +276,11 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         the stressed state are used, the wave propagates along F m0 (m0 the given direction of
         the unstressed crystal) on the surface of normal F^-T n0, and speeds are true phase
         speeds in the stressed state (docs/physics/third-order-constants.md). A stress beyond the
-        model's range gives NaN with the reason.
+        model's range gives NaN with the reason. Piezoelectric crystals: True (GaAs only in the
+        database), or the caller's set as a mapping of the class's named constants (e.g. the 14 of
+        quartz, ``{"C111": ..., ..., "C444": ...}``,
+        :data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`) or a (6, 6, 6) Voigt array, in
+        the database's axis setting (checked: invariant under the crystal's class).
     piezo : array_like, shape (3, 6), keyword only
         Piezoelectric stress constants e_kI, C/m^2, crystal axes (with ``voigt`` and ``permittivity``).
     permittivity : array_like, shape (3, 3), keyword only

@@ -50,6 +50,9 @@ Two models of the stressed crystal:
     and third-order constants are those of the UNSTRESSED crystal; the crystal deforms
     (F) under the stress, the wave travels along F m0 (m0 the given direction) on the
     surface of normal F^-T n0, and speeds are true phase speeds in the stressed state.
+  --toec-file FILE: the same model with your constants from a YAML mapping (name: GPa), the
+    crystal class's names (quartz or LiNbO3: the 14 from C111 to C444; cubic: the six); needed
+    for piezoelectric crystals other than GaAs, whose measured sets the database lacks.
 
 examples:
   surfwave material --material Cu --direction "[100]"                    # 2012.12 m/s
@@ -153,6 +156,10 @@ def _parser() -> argparse.ArgumentParser:
     mt.add_argument("--toec", type=float, nargs="*", metavar="C",
                     help="third-order model: no value = the database's constants of --material; or "
                     "six values C111 C112 C123 C144 C155 C456, GPa (Brugger)")
+    mt.add_argument("--toec-file", metavar="YAML",
+                    help="third-order model with your constants: a YAML mapping name: value in GPa (Brugger), "
+                    "the crystal class's names (quartz, LiNbO3: C111 C112 C113 C114 C123 C124 C133 C134 C144 "
+                    "C155 C222 C333 C344 C444; cubic: C111 C112 C123 C144 C155 C456); a 'source' key is allowed")
     mt.add_argument("--json", action="store_true", help="print JSON instead of a table")
     cli_piezo.add_options(mt)
 
@@ -215,6 +222,29 @@ def _cmd_point(args) -> int:
         if row["reason"]:
             print(f"    note: {row['reason']}")
     return 0
+
+
+def _toec_file(path: str) -> dict:
+    """Named third-order constants (GPa) from a YAML mapping, for ``--toec-file``."""
+    import yaml
+
+    from surfwave.data.paper import SAFE_LOADER
+    from surfwave.errors import InputError
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = yaml.load(fh, Loader=SAFE_LOADER)
+    except OSError as err:
+        raise InputError(f"--toec-file: cannot read {path}: {err.strerror}") from None
+    except yaml.YAMLError as err:
+        raise InputError(f"--toec-file: {path} is not valid YAML ({err})") from None
+    if not isinstance(data, dict) or not data:
+        raise InputError(f"--toec-file: {path} must hold a mapping 'C111: value' of third-order constants in GPa")
+    bad = [k for k, v in data.items()
+           if k != "source" and (isinstance(v, bool) or not isinstance(v, (int, float)))]
+    if bad:
+        raise InputError(f"--toec-file: {path}: these values are not numbers (GPa): {bad}")
+    return data
 
 
 def _angles(text: str) -> np.ndarray | float:
@@ -305,7 +335,11 @@ def _cmd_material(args) -> int:
         constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
     if args.rho is None and args.material is None and not (args.cut is not None and not given):
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
-    if args.toec is None:
+    if args.toec_file is not None:
+        if args.toec is not None:
+            raise InputError("give --toec or --toec-file, not both")
+        toec = _toec_file(args.toec_file)
+    elif args.toec is None:
         toec = None
     elif len(args.toec) == 0:
         toec = True

@@ -113,7 +113,8 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
     where = (f"cut {args.cut}" if args.cut else
              f"Euler {' '.join(args.euler)}" if args.euler else f"surface {args.surface}")
     print(f"# {args.material + ', ' if args.material else ''}{where}, stress "
-          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, fixed constants; "
+          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, "
+          f"{'third-order constants' if np.any(r['toec']) else 'fixed constants'}; "
           f"leaky wave and PFA for a {electrical} surface")
     if np.ndim(r["c_R"]) == 0:
         row = rows[0]

@@ -68,11 +68,13 @@ def test_one_path_keys_and_zero_e_is_the_elastic_solver():
 
 
 def test_toec_with_piezo_constants_is_refused_naming_what_is_missing():
-    """No piezoelectric set of the database carries third-order constants (Thurston, McSkimin and
-    Andreatch 1966 for quartz were not found in a stored source): toec=True raises an InputError
-    that names the 14 class-32 constants."""
-    with pytest.raises(InputError, match="C444"):
+    """Of the piezoelectric database only GaAs carries third-order constants (Thurston, McSkimin
+    and Andreatch 1966 for quartz were not found in a stored source): toec=True on quartz raises an
+    InputError that names the 14 class-32 constants and how to give them."""
+    with pytest.raises(InputError, match="C444.*and this crystal has none"):
         surfwave.material("quartz", cut="ST-X quartz", stress=0.1, toec=True)
+    with pytest.raises(InputError, match="give a set as toec="):
+        surfwave.material("LiNbO3", cut="128Y-X", stress=0.1, toec=True)
 
 
 def test_real_crystals_never_import_model_crystals():
@@ -90,8 +92,7 @@ def test_real_crystals_never_import_model_crystals():
 
 
 def test_toec_state_with_piezo_constants():
-    """The third-order model runs for a record with piezoelectric constants once it has C3 (none
-    of the database has): Cu with its TOEC and e = 0 gives the elastic TOEC value 2019.06 m/s at
+    """The third-order model runs for a record with piezoelectric constants once it has C3: Cu with its TOEC and e = 0 gives the elastic TOEC value 2019.06 m/s at
     +0.1 GPa along [100] (docs example of stressed_wave, values from before this change) exactly;
     with a non-zero e (LiNbO3's, on Cu: a synthetic crystal) and zero stress, toec=True equals the
     fixed-C result (F = I), and at 0.1 GPa it differs from it (C* and the deformed axes enter)."""

@@ -32,6 +32,7 @@ import yaml
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
 from surfwave.real_crystals.materials import read_constants
+from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.piezo_tensors import (
     EPS0,
@@ -89,6 +90,10 @@ class PiezoMaterial:
     note : str
         How the numbers were checked, and doubts.
     aliases : tuple of str
+    toec_voigt : ndarray, shape (6, 6, 6), or None
+        Brugger third-order constants, GPa, crystal axes (``sources["toec"]`` names them); None
+        where the database has none (every non-cubic crystal so far). GaAs takes the set of
+        the elastic database's GaAs entry.
     """
 
     name: str
@@ -103,6 +108,7 @@ class PiezoMaterial:
     sources: dict
     note: str = ""
     aliases: tuple = field(default_factory=tuple)
+    toec_voigt: np.ndarray | None = None
 
     @property
     def C_tensor(self) -> np.ndarray:
@@ -239,12 +245,19 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
             raise InputError(f"{where}: C_source {src!r} is not a key of the references")
         c_src = rho_src = refs[src]
         eps = np.eye(3) * eps_vals["eps11"]
+        C3 = base.toec_voigt                                    # the elastic entry's set, one place
+        toec_src = (f"the elastic database's {base.name} entry: {base.sources.get('C111', '')}"
+                    if C3 is not None else "")
     else:
         c_vals, c_src = _block(entry, "C", c_names, where, refs)
         (rho_vals, rho_src) = _block(entry, "rho", ("value",), where, refs)
         rho = rho_vals["value"]
         voigt = c_builder(*(c_vals[k] for k in c_names))
         eps = uniaxial_eps(eps_vals["eps11"], eps_vals["eps33"])
+        C3, toec_src = None, ""
+        if "toec" in entry:                                     # Brugger constants by name, GPa
+            t_vals, toec_src = _block(entry, "toec", TOEC_NAMES[cls], where, refs)
+            C3 = toec_from_named(cls, t_vals)
     e = e_builder(*(e_vals[k] for k in e_names))
     check_piezo_record(voigt, e, eps, rho, name=where)
     for arr in (voigt, e, eps):
@@ -253,9 +266,10 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
         name=name, formula=str(entry.get("formula", name)), crystal_class=cls, rho=float(rho), voigt=voigt,
         e=e, eps_r=eps, constants={**c_vals, **e_vals, **eps_vals},
         setting=" ".join(str(entry.get("setting", "")).split()),
-        sources={"rho": rho_src, "C": c_src, "e": e_src, "eps_r": eps_src},
+        sources={"rho": rho_src, "C": c_src, "e": e_src, "eps_r": eps_src, **({"toec": toec_src} if toec_src else {})},
         note=" ".join(str(entry.get("note", "")).split()),
         aliases=tuple(str(a) for a in entry.get("aliases", ())),
+        toec_voigt=C3,
     )
 
 

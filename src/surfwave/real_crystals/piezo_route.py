@@ -9,6 +9,9 @@ decouples; the result equals the elastic solver's).
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import replace
+
 import numpy as np
 
 from surfwave.errors import InputError
@@ -87,14 +90,15 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     :func:`surfwave.real_crystals.stressed_wave.surface_wave` (through
     :func:`surfwave.real_crystals.piezo_wave.piezo_wave`): bulk speeds, ``stable`` and the
     reasons are those of the one path. ``toec=True`` needs third-order constants in the record
-    (no piezoelectric crystal of the database has them: InputError naming them); explicit
-    third-order arrays are refused here.
+    (of the piezoelectric database only GaAs has them: InputError naming them otherwise);
+    ``toec`` may also be the caller's set: a mapping of the class's named constants (a crystal
+    given by name; :data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`) or a (6, 6, 6) Voigt
+    array in GPa, checked for invariance under the crystal's class
+    (:func:`surfwave.real_crystals.toec_classes.checked_toec`).
     """
     from surfwave.real_crystals.piezo_materials import get_piezo_material
 
-    if toec is not None and toec is not False and toec is not True:
-        raise InputError("explicit third-order constants (toec=) are not supported with piezoelectric constants, "
-                         "cut= or euler=; toec=True takes them from the database")
+    explicit_toec = toec is not None and toec is not False and toec is not True
     electrical = "free" if electrical is None else electrical
     piezo_name = _piezo_only_name(C11) or (isinstance(C11, str) and piezo is None and _in_piezo_db(C11))
     R, scalar, eul, ang, cut_material = _orientation(cut, euler, surface, direction, angle, C11)
@@ -105,6 +109,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError(f"material {C11!r} given by name: do not also give C12, C44, voigt=, piezo= or "
                              "permittivity=")
         mat = resolve_piezo_material(C11, rho=rho)
+        C3 = _user_toec(toec, mat.crystal_class) if explicit_toec else None
         if cut_material is not None:
             want = get_piezo_material(cut_material).formula
             if mat.formula != want:
@@ -112,7 +117,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     else:
         from surfwave.api import _resolve_material
 
-        C6, rho, _ = _resolve_material(C11, C12, C44, rho, voigt, None)
+        C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)     # cubic six (named or not) or an array
         if rho is None:
             raise InputError("the density rho (kg/m^3) is missing")
         if piezo is None and permittivity is None:                  # non-piezoelectric crystal, e = 0
@@ -121,12 +126,16 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError("a piezoelectric crystal needs both piezo= (e, 3 x 6, C/m^2) and permittivity= "
                              "(eps_r, 3 x 3, relative)")
         mat = resolve_piezo_material(None, voigt=C6, e=piezo, eps_r=permittivity, rho=rho)
-    r = piezo_wave(mat, R, stress, electrical=electrical, toec=bool(toec), bulk=True,
+    if C3 is not None:                                              # a caller's set, or the elastic database's
+        mat = replace(mat, toec_voigt=C3, sources={**mat.sources, "toec": "given by the caller" if explicit_toec
+                                                   else "the elastic database"})
+    use_toec = explicit_toec or toec is True
+    r = piezo_wave(mat, R, stress, electrical=electrical, toec=use_toec, bulk=True,
                    leaky=True if leaky is None else bool(leaky))
     out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
                                    "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
                                    "penetration_depth", "method", "rho")}
-    out.update(angle=ang, toec=np.full(R.shape[0], bool(toec)))
+    out.update(angle=ang, toec=np.full(R.shape[0], use_toec))
     for key in ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "leaky_reason",
                 "power_flow_angle", "potential_share", "electrical"):
         out[key] = r[key]
@@ -139,6 +148,22 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
         out["toec"] = bool(out["toec"])
     out["model"] = r["model"]
     return out
+
+
+def _user_toec(toec, crystal_class: str) -> np.ndarray:
+    """A caller's third-order constants (GPa) for a database crystal of class ``crystal_class``, as
+    a checked Voigt (6, 6, 6) array: a mapping of the class's named constants
+    (:data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`), or an array invariant under the
+    class (:func:`surfwave.real_crystals.toec_classes.checked_toec`)."""
+    from surfwave.real_crystals.toec_classes import checked_toec, toec_from_named
+
+    if isinstance(toec, Mapping):
+        names = dict(toec)
+        names.pop("source", None)                                   # a YAML file may cite its source
+        return toec_from_named(crystal_class, names)
+    if isinstance(toec, str):
+        raise InputError(f"toec must be True, False, a mapping of named constants or a (6, 6, 6) array, got {toec!r}")
+    return checked_toec(toec, crystal_class)
 
 
 def _in_piezo_db(name) -> bool:

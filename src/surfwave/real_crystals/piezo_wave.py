@@ -27,11 +27,14 @@ from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_pi
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
-__all__ = ["MODEL", "piezo_wave", "piezo_wave_conditions", "resolve_piezo_material"]
+__all__ = ["MODEL", "MODEL_TOEC", "piezo_wave", "piezo_wave_conditions", "resolve_piezo_material"]
 
 #: The prestress model, recorded in every result and cube.
 MODEL = ("fixed constants: A = C + sigma0 delta (C^E of the data set); e and clamped eps at their natural "
          "values (no stress derivatives)")
+#: The prestress model with third-order constants (``toec=True``), recorded likewise.
+MODEL_TOEC = ("third-order constants: the stressed state (deformation F, C*, rho0/J) of the Brugger constants; "
+              "e and clamped eps at their natural values, rotated with the crystal (no stress derivatives)")
 #: Largest |stress| (GPa) accepted; larger values are almost surely in Pa.
 MAX_STRESS_GPA = 1e3
 #: The one traction tolerance and wording (:mod:`surfwave.real_crystals.stressed_wave`).
@@ -133,7 +136,7 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     stress : float or array_like, shape (3, 3), (m,) or (m, 3, 3)
         Prestress, GPa (negative = compression): a scalar is uniaxial along each propagation
         direction x1; a 3 x 3 Cauchy tensor is in crystal axes; (m,) and (m, 3, 3): one per
-        orientation. Fixed-constants model (:data:`MODEL`).
+        orientation. Fixed-constants model (:data:`MODEL`) unless ``toec``.
     electrical : {"free", "metallized"}
         Condition of ``c_R``, the power flow, the polarisation and the leaky wave.
     leaky : bool
@@ -146,8 +149,9 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
         Explicit constants (GPa; C/m^2, 3 x 6; relative, 3 x 3; kg/m^3); see
         :func:`resolve_piezo_material`.
     toec : bool
-        Third-order model of the stressed state (needs third-order constants in the record;
-        none of the piezoelectric database has them: InputError naming what is missing).
+        Third-order model of the stressed state (:data:`MODEL_TOEC`): needs ``toec_voigt`` in
+        the record (the database: GaAs only; else InputError naming what is missing; the API
+        takes a caller's set, :func:`surfwave.material`).
     bulk : bool
         Also the mechanical bulk speeds and ``stable`` (:func:`stressed_wave.surface_wave`).
 
@@ -162,7 +166,8 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
         SAW convention), ``polarisation`` (m, 4) complex (u1, u2, u3 unit mechanical norm; phi
         in V per m of displacement), ``potential_share``, ``decay`` (m, 4) complex,
         ``penetration_depth`` wavelengths, ``wave_type``, ``reason``, ``method``, ``electrical``,
-        ``C`` (m, 3, 3, 3, 3) Pa, ``e`` (m, 3, 3, 3) C/m^2, ``eps`` (m, 3, 3) F/m, ``sigma`` (m, 3, 3)
+        ``C`` (m, 3, 3, 3, 3) Pa (the natural C^E in the lab frame; with ``toec`` the solver used
+        the stressed state's C*), ``e`` (m, 3, 3, 3) C/m^2, ``eps`` (m, 3, 3) F/m, ``sigma`` (m, 3, 3)
         GPa (lab frame), ``rho`` (m,) kg/m^3, ``model`` (str); and every key of
         :func:`surfwave.real_crystals.stressed_wave.surface_wave` (``ok``, ``F``, ``axes``, ...).
         A point whose stress loads the surface, or without a (Born-stable) stressed state, is
@@ -222,7 +227,8 @@ def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=EL
                                          conditions=conditions, toec=toec, tol=tol, bulk=bulk, leaky=leaky)
     lab = rs[conditions[0]]["axes"]
     extra = dict(C=rotate4(voigt_to_tensor(mat.voigt) * 1e9, lab), e=rotate3(piezo_voigt_to_tensor(mat.e), lab),
-                 eps=rotate2(mat.eps_r * EPS0, lab), sigma=rotate2(sigma_c, lab), model=MODEL)
+                 eps=rotate2(mat.eps_r * EPS0, lab), sigma=rotate2(sigma_c, lab),
+                 model=MODEL_TOEC if toec else MODEL)
     for r in rs.values():
         r["c_imag"] = r["c_R_imag"]
         r.update(extra)

@@ -366,9 +366,10 @@ def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=EL
     axes = np.broadcast_to(axes, shape + (3, 3)).reshape(-1, 3, 3)
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
     if toec and constants.toec is None:
-        what = ("no piezoelectric crystal of the database carries them yet; alpha-quartz would need the 14 "
-                "of class 32: C111, C112, C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, "
-                "C444" if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
+        what = ("of the piezoelectric database only GaAs carries them; give a set as toec= (a (6, 6, 6) Voigt "
+                "array in GPa, or the class's named constants, e.g. the 14 of quartz (class 32): C111, C112, "
+                "C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, C444)"
+                if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
         raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
     outs = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, conditions, leaky)
     return {c: {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()} for c, out in outs.items()}

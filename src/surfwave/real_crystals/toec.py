@@ -467,3 +467,45 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
     rho = np.where(ok, rho, np.nan)
     return {"F": F, "C_star": C_star, "rho": rho, "sigma": sigma, "ok": ok,
             "reason": np.asarray(reason).astype(str)}
+
+
+def pressure_derivatives(C2, C3, *, h: float = 1e-3, tol: float = 1e-12) -> np.ndarray:
+    """Initial pressure derivatives dB_IJ/dP of the effective constants a crystal shows under pressure.
+
+    Under hydrostatic pressure P (sigma = -P I) ultrasonic velocities measure Wallace's
+    effective constants B (:func:`wallace_tensor` of the stressed state's C*): B11 = C*11 - P,
+    B12 = C*12 + P, B44 = C*44 - P, ... (Voigt), the quantities tabulated as "pressure
+    derivatives of the elastic constants" (e.g. McSkimin, Jayaraman and Andreatch 1967 for GaAs;
+    McSkimin, Andreatch and Thurston 1965 for quartz). Central difference through the full
+    deformation solve (:func:`stressed_state`), any symmetry; the derivative is dimensionless.
+    With a cubic crystal it reproduces the closed forms, e.g. dB11/dP = -(C111 + 2 C112 + 2 C11 +
+    2 C12) / (C11 + 2 C12).
+
+    Parameters
+    ----------
+    C2 : array_like, shape (6, 6)
+        Natural-state second-order constants, GPa, crystal axes.
+    C3 : array_like, shape (6, 6, 6)
+        Brugger third-order constants, GPa, the same axes.
+    h : float
+        Pressure step, GPa (the result's error is O(h^2) times the fourth-order terms).
+    tol : float
+        Tolerance of the deformation solve, GPa.
+
+    Returns
+    -------
+    ndarray, shape (6, 6)
+        dB_IJ/dP at P = 0, crystal axes (Voigt).
+
+    Raises
+    ------
+    InputError
+        Bad shapes, or no Born-stable stressed state at P = +-h.
+    """
+    P = np.array([-h, h])
+    st = stressed_state(C2, np.asarray(C3, dtype=float), -P[:, None, None] * np.eye(3), 1.0, tol=tol)
+    if not np.all(st["ok"]):
+        raise InputError(f"no stressed state at P = +-{h} GPa: {list(st['reason'])}")
+    B = wallace_tensor(st["C_star"], st["sigma"])
+    return (B[1] - B[0]) / (2 * h)
+
