@@ -215,9 +215,7 @@ def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=EL
     InputError
         As :func:`piezo_wave`; also repeated or unknown conditions.
     """
-    conditions = tuple(conditions)
-    if not conditions or len(set(conditions)) != len(conditions) or any(c not in ELECTRICAL for c in conditions):
-        raise InputError(f"conditions must be distinct values of {ELECTRICAL}, got {conditions!r}")
+    conditions = tuple(conditions)                                  # checked by surface_wave_conditions
     mat = resolve_piezo_material(material, voigt=voigt, e=e, eps_r=eps_r, rho=rho)
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
