@@ -56,6 +56,16 @@ GROW_TOL = 1e-9
 #: Starts w = pi/2 + i y of the searches for a root above v_L2 where no search from the real-axis
 #: minima converged (X = X_L1 + (X_L2 - X_L1) cosh^2 y: up to 2.4 (X_L2 - X_L1) above X_L2).
 PROBE_Y = np.array([0.1, 0.3, 0.6, 1.0])
+#: Starts w = u - i y (u in PROBE_U, y in PROBE_Y1, Im X < 0) of the complex searches where no search
+#: converged (no real-axis minimum, or none of its searches converged): a branch whose real speed runs
+#: toward v_L1 with Im w comparable to Re w has no real-axis minimum of |det| (Re X - X_L1 << |Im X|),
+#: e.g. LiNbO3 rotated Y-cuts near 0 deg metallized; u = 0.1 starts near v_L1, the others across the window.
+PROBE_U = np.array([0.1, 0.45, 0.8])
+PROBE_Y1 = np.array([0.1, 0.2, 0.35])
+#: A verified root from those complex starts is kept only with delta > PROBE_DELTA: a root with (numerically)
+#: real X lies on the real axis, the real scan's business (e.g. grazing roots at the (111) mirrors of Ni and
+#: at Al (110) 0.5-2 deg and W 0.5-1 deg, whose 'decaying' second-sheet wave has Im p ~ 1e-4).
+PROBE_DELTA = 1e-6
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
@@ -75,8 +85,12 @@ REASON_BELOW = "root below the slowest sheet's limiting speed v_L1: a true (subs
 REASON_GROW = "root with growing amplitude along x1 (delta < 0): not a physical leaky wave"
 REASON_EDGE = ("root at the slowest sheet's limiting speed (|sin w| < T_EDGE): a grazing bulk wave (e.g. the "
                "exceptional surface-skimming wave of a mirror direction), not a leaky surface wave")
-REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v_L2 where the slowest sheet "
-                "has a single real pair of Stroh roots")
+REASON_NOMIN = ("no leaky root found: |det| has no interior minimum between v_L1 and v_L2 where the slowest "
+                "sheet has a single real pair of Stroh roots, and no search from the complex starts near v_L1 "
+                "converged (the root, if any, was not found)")
+REASON_LOW = ("no leaky root found between v_L1 and v_L2; the search found a root of the continued "
+              "partial-wave set with Re(rho v^2) at or below rho v_L1^2 (below the slowest sheet's limiting "
+              "speed: real speed below v_L1, or a real root below v_L1), not a leaky wave of the window")
 REASON_MULTI = ("leaky root where the slowest sheet has more than one real pair of Stroh roots (cuspidal "
                 "slowness or a second radiating sheet): not computed")
 REASON_SHEET = ("root on another partial-wave choice: a partial wave meant to decay into the crystal has "
@@ -564,7 +578,9 @@ def _candidates(N0, XL, rows, t, t1, f1, p1, g1, d, electrical, tol) -> dict:
     if chk.size:
         r_ = rows[chk]
         okb, nr, _ = _back_to_real(N0[r_], Xc[chk], pch[chk], pall[chk], _dp_dx(xiall[chk], ich[chk], d), d)
-        why[chk[nr != 2]] = REASON_MULTI
+        low = Xc[chk].real <= XL[r_, 0]       # no real pair at Re X: below the window, not a cusp
+        why[chk[(nr != 2) & low]] = REASON_LOW
+        why[chk[(nr != 2) & ~low]] = REASON_MULTI
         why[chk[(nr == 2) & ~okb]] = REASON_INCOMING
     return {"why": why, "X": Xc, "delta": delta_c, "p": pch, "xi": xiall, "idx": ich, "its": its,
             "converged": conv & trk}
@@ -629,6 +645,25 @@ def _solve(Q, R, T, XL, d, electrical, tol):
                             _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
         extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
         keep = extra["why"] == REASON_ABOVE
+        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
+        rows = np.concatenate([rows, prow[keep]])
+    # 2c. points where no search from the real axis converged (or there was no minimum): the branch
+    # may run toward v_L1 with Im w comparable to Re w (Re X - X_L1 << |Im X|), where |det| over real
+    # speeds is monotone. Searches from w = u - i y (PROBE_U x PROBE_Y1, Im X < 0), continued from the
+    # lowest grid point with a single real pair, find it; kept are verified roots with delta >
+    # PROBE_DELTA and roots that left the window through v_L1 (REASON_LOW), after the same validation
+    low_rows = np.nonzero(~conv_row & fin.any(axis=1))[0]
+    if low_rows.size:
+        bot = np.argmax(fin[low_rows], axis=1)
+        starts = (PROBE_U[:, None] - 1j * PROBE_Y1[None, :]).reshape(-1)
+        prow = np.repeat(low_rows, starts.size)
+        kp = prow * SCAN + np.repeat(bot, starts.size)
+        tp = np.tile(starts, low_rows.size)
+        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
+                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
+        extra_its += np.bincount(prow, weights=extra["its"], minlength=m)
+        keep = extra["converged"] & (((extra["why"] == "") & (extra["delta"] > PROBE_DELTA))
+                                     | (extra["why"] == REASON_LOW))
         cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
         rows = np.concatenate([rows, prow[keep]])
     why, Xc, delta_c, pch, ich, its = (cand[key] for key in ("why", "X", "delta", "p", "idx", "its"))
