@@ -135,3 +135,56 @@ def test_nomin_reason_does_not_claim_absence():
     """REASON_NOMIN is returned where no search converged; it must not say "no leaky wave"."""
     assert not REASON_NOMIN.startswith("no leaky wave")
     assert "not found" in REASON_NOMIN
+
+
+@pytest.mark.parametrize("name", ["LiNbO3", "LiTaO3", "quartz"])
+def test_both_conditions_in_one_call_are_bit_identical(name):
+    """leaky_wave(..., electrical=("free", "metallized")) shares the limits, the real scan's
+    eigen-decompositions and the grid impedance; reference: two separate calls (one per
+    condition), every output bit-identical (rotated Y-cuts 0-180 deg in 3-degree steps, gaps and
+    their complex starts included)."""
+    rot = np.arange(0.0, 180.0, 3.0)
+    t = lab_tensors(name, euler_lab_axes(0 * rot, rot - 90.0, 0 * rot).reshape(-1, 3, 3))
+    kw = {"A": t["C"], "rho": t["rho"], "e": t["e"], "eps": t["eps"]}
+    both = leaky_wave(**kw, electrical=("free", "metallized"))
+    assert set(both) == {"free", "metallized"}
+    for el in ("free", "metallized"):
+        one = leaky_wave(**kw, electrical=el)
+        assert set(one) == set(both[el])
+        for k, v in one.items():
+            if v.dtype == object:
+                assert np.array_equal(v, both[el][k]), k
+            else:
+                assert np.array_equal(v, both[el][k], equal_nan=True), k
+
+
+def test_both_conditions_elastic_and_bad_input():
+    """Without e the condition is ignored: each key gets the single-call answer (own arrays).
+    A repeated or unknown condition, or none, is an InputError."""
+    from surfwave.errors import InputError
+    from surfwave.solvers.tensors import cubic_voigt, voigt_to_tensor
+    C = voigt_to_tensor(cubic_voigt(168.4e9, 121.4e9, 75.4e9))[None]
+    one = leaky_wave(C, 8960.0)
+    both = leaky_wave(C, 8960.0, electrical=["metallized", "free"])
+    for el in ("free", "metallized"):
+        for k, v in one.items():
+            assert np.array_equal(v, both[el][k], equal_nan=True) if v.dtype != object else np.array_equal(v, both[el][k])
+    assert both["free"]["c_limits"] is not both["metallized"]["c_limits"]
+    for bad in (("free", "free"), (), ("free", "shorted")):
+        with pytest.raises(InputError):
+            leaky_wave(C, 8960.0, electrical=bad)
+
+
+def test_piezo_saw_conditions_uses_one_leaky_call():
+    """piezo_saw_conditions now solves both leaky conditions in one call; reference: the separate
+    leaky_wave calls (per condition), c_leaky / attenuation / reason identical."""
+    from surfwave.solvers.piezo_saw import piezo_saw_conditions
+    rot = np.array([0.0, 41.0, 64.0, 120.0, 128.0, 150.0])
+    t = _tensors(rot)
+    rho = np.full(rot.size, t["rho"])
+    res = piezo_saw_conditions(t["C"], rho, t["e"], t["eps"])
+    for el in ("free", "metallized"):
+        one = leaky_wave(t["C"], rho, t["e"], t["eps"], electrical=el)
+        assert np.array_equal(res[el]["c_leaky"], one["c_leaky"], equal_nan=True)
+        assert np.array_equal(res[el]["leaky_attenuation"], one["leaky_attenuation"], equal_nan=True)
+        assert np.array_equal(res[el]["leaky_reason"], one["reason"])
