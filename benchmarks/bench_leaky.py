@@ -8,13 +8,19 @@ Cases (N_ANGLES orientations each, one vectorised call):
   kg/m^3): the elastic leaky branch (6 x 6 Stroh problem) between the pseudo region and [110];
 * rotated Y-cut, X-propagating LiNbO3 (``LiNbO3-Warner1967``: Warner, Onoe, Coquin, JASA 42,
   1223 (1967)), cut angles 40-80 deg (SAW Euler angles (0, angle - 90, 0), which contain 41Y-X
-  and 64Y-X), electrically free and metallized (8 x 8).
+  and 64Y-X), electrically free and metallized (8 x 8);
+* the same LiNbO3 cuts, both conditions in one call (``leaky_wave(..., electrical=("free",
+  "metallized"))``: limits, real scan and grid impedance shared), one orientation = both conditions.
 
 1. Speed. Each round times the elastic solver stroh.surface_wave on the same A (e ignored; the
    yardstick: in the leaky region it returns `pseudo` NaN, its cost is still the search) and
    leaky_wave, alternating which goes first; per round the ratio of the two; min / median /
    max over REPEATS rounds. CPU time of this process (time.process_time, numpy pinned to one
-   thread). Target (issue 19): leaky waves >= 1e3 orientations per second per core.
+   thread). Target (issue 19): leaky waves >= 1e3 orientations per second per core. The
+   both-conditions row times, in each round and in rotating order, the elastic solver, the one
+   call for both conditions and the two separate calls; it reports the rate, the ratio to the
+   elastic solver's time in the same round and the speed-up against the two calls, and checks
+   that the one call's answers are bit-identical to the two calls'.
 2. Accuracy knob ``tol`` (relative accuracy of the complex X = rho v^2 in the secant search):
    at every tol of TOLS, error = max over the orientations of |c_leaky / c_leaky(tol = 1e-15)
    - 1| and of |attenuation - attenuation(1e-15)| (dB per wavelength), the number of
@@ -58,6 +64,8 @@ DEFAULT_TOL = inspect.signature(leaky_wave).parameters["tol"].default
 TARGET = 1e3  # orientations per second per core
 CASES = ["Cu (001) 30-45 deg, elastic", "LiNbO3 rotated Y-X 40-80 deg, free",
          "LiNbO3 rotated Y-X 40-80 deg, metallized"]
+BOTH_CASE = "LiNbO3 rotated Y-X 40-80 deg, both conditions, one call"
+BOTH_SOLVERS = ["elastic", "leaky both conditions, one call", "leaky two calls (free, metallized)"]
 
 
 def cases(m: int) -> list[dict]:
@@ -96,6 +104,24 @@ def speed(kw: list[dict]) -> np.ndarray:
     return secs
 
 
+def speed_both(k: dict) -> tuple[np.ndarray, bool]:
+    """CPU seconds (solver = BOTH_SOLVERS, round) of the both-conditions case (``k``: the
+    piezoelectric keyword arguments without ``electrical``), the order rotated each round; and
+    whether the one call's answers are bit-identical to the two calls'."""
+    both = ("free", "metallized")
+    calls = (lambda: stroh.surface_wave(k["A"], k["rho"]), lambda: leaky_wave(**k, electrical=both),
+             lambda: [leaky_wave(**k, electrical=el) for el in both])
+    one, two = calls[1](), calls[2]()
+    same = all(np.array_equal(one[el][q], r[q], equal_nan=r[q].dtype != object)
+               for el, r in zip(both, two) for q in r)
+    calls[0]()
+    secs = np.zeros((3, REPEATS))
+    for r in range(REPEATS):
+        for j in np.roll(np.arange(3), r):
+            secs[j, r] = cpu(calls[j])[0]
+    return secs, same
+
+
 def knob(kw: list[dict]) -> dict[str, np.ndarray]:
     """Errors, mismatches, CPU time and evaluations (case, tol), tols incl. REF_TOL."""
     tols = TOLS + [REF_TOL]
@@ -123,6 +149,8 @@ def main(outdir: str) -> Path:
     out.mkdir(parents=True, exist_ok=True)
     kw = cases(N_ANGLES)
     secs = speed(kw)
+    kb = {key: v for key, v in kw[1].items() if key != "electrical"}
+    secs_b, same_b = speed_both(kb)
     kn = knob(kw)
     rate = N_ANGLES / secs                                 # (case, solver, round)
     ratio = secs[:, 1] / secs[:, 0]                        # leaky / elastic, same round
@@ -150,6 +178,21 @@ def main(outdir: str) -> Path:
             f"{per100:.1f} secant evaluations (of the {ev[i]:.1f}, + {SCAN} scan points, per orientation at the "
             f"default); tol {DEFAULT_TOL:g} saves {ev[TOLS.index(min(TOLS))] - ev[i]:.1f} of them against tol "
             f"{min(TOLS):g} for an error still {kn['error'][c, i]:.0e} in speed"])
+    rate_b = N_ANGLES / secs_b                             # (solver, round)
+    ratio_b = secs_b[1] / secs_b[0]
+    gain_b = secs_b[2] / secs_b[1]
+    r, q, g, el = mmm(rate_b[1]), mmm(ratio_b), mmm(gain_b), mmm(rate_b[0])
+    rows.append([
+        f"leaky SAW `leaky_wave(..., electrical=(\"free\", \"metallized\"))`, {BOTH_CASE} ({N_ANGLES} "
+        f"orientations, one orientation = both conditions)",
+        "tol (as above)", f"{DEFAULT_TOL:g}",
+        f"{'bit-identical' if same_b else 'NOT bit-identical'} to two separate calls (every output)",
+        f"{r[1]:.3g} orientations/s (min / median / max {r[0]:.3g} / {r[1]:.3g} / {r[2]:.3g}) = {q[1]:.1f} x "
+        f"the elastic solver's time on the same tensors (min / median / max ratio {q[0]:.1f} / {q[1]:.1f} / "
+        f"{q[2]:.1f} over {REPEATS} rounds; elastic {el[1]:.3g}/s)",
+        f"{g[1]:.2f} x faster than two calls (min / median / max {g[0]:.2f} / {g[1]:.2f} / {g[2]:.2f}, same "
+        f"rounds): the limits, the {SCAN}-point real scan's eigen-decompositions and the grid impedance are "
+        f"shared; the secant searches and the validation stay per condition"])
     for row in rows:
         print(" | ".join(row))
 
@@ -165,6 +208,15 @@ def main(outdir: str) -> Path:
             "ratio_to_elastic": (("case", "round"), ratio,
                                  {"long_name": "leaky_wave CPU time / stroh.surface_wave's on the same A, same round",
                                   "units": "1"}),
+            "cpu_time_both": (("solver_both", "round"), secs_b,
+                              {"long_name": f"CPU time of one call (or two) on {N_ANGLES} orientations, both "
+                                            "conditions, one core", "units": "s"}),
+            "ratio_to_elastic_both": (("round",), ratio_b,
+                                      {"long_name": "one call for both conditions / stroh.surface_wave, same round",
+                                       "units": "1"}),
+            "speedup_vs_two_calls": (("round",), gain_b,
+                                     {"long_name": "two separate calls / one call for both conditions, same round",
+                                      "units": "1"}),
             "error": (dims, kn["error"], {"long_name": f"max relative change of c_leaky against tol = {REF_TOL:g}",
                                           "units": "1"}),
             "error_attenuation": (dims, kn["error_attenuation"],
@@ -184,13 +236,14 @@ def main(outdir: str) -> Path:
         },
         coords={"case": CASES, "solver": ("solver", ["elastic", "leaky"], {"long_name": "elastic = "
                                                                            "stroh.surface_wave (yardstick)"}),
-                "round": np.arange(REPEATS),
+                "round": np.arange(REPEATS), "solver_both": BOTH_SOLVERS,
                 "tol": ("tol", tols, {"long_name": "relative accuracy asked of complex X = rho v^2", "units": "1"})},
         attrs={"Conventions": "CF-1.10", "title": "surfwave benchmark: leaky surface-wave solver",
                "source": f"surfwave {surfwave.__version__}", "history": f"{time.ctime()}: bench_leaky.py",
                "method": "solvers.leaky.leaky_wave", "knob": "tol", "default": DEFAULT_TOL,
                "default_reason": rows[0][-1], "n_orientations": N_ANGLES, "repeats": REPEATS,
-               "target_per_second": TARGET, "readme_rows": json.dumps(rows)},
+               "target_per_second": TARGET, "both_bit_identical": int(same_b),
+               "readme_rows": json.dumps(rows)},
     )
     nc = out / "leaky_speed_tol.nc"
     ds.to_netcdf(nc, engine="h5netcdf")
@@ -211,12 +264,13 @@ def main(outdir: str) -> Path:
         ax.set_title(f"tol sweep (labels); circled: default {DEFAULT_TOL:g}", fontsize=9)
         ax.legend(fontsize=7)
     ax = axes[2]
-    pos = np.arange(len(CASES))
-    ax.boxplot([rate[c, 1] for c in range(len(CASES))], positions=pos - 0.18, widths=0.3)
-    ax.boxplot([rate[c, 0] for c in range(len(CASES))], positions=pos + 0.18, widths=0.3,
+    pos = np.arange(len(CASES) + 1)
+    ax.boxplot([rate[c, 1] for c in range(len(CASES))] + [rate_b[1]], positions=pos - 0.18, widths=0.3)
+    ax.boxplot([rate[c, 0] for c in range(len(CASES))] + [rate_b[0]], positions=pos + 0.18, widths=0.3,
                boxprops={"color": "gray"}, medianprops={"color": "gray"})
     ax.set_yscale("log")
-    ax.set_xticks(pos, ["Cu (001)\nelastic", "LiNbO3 rot. Y-X\nfree", "LiNbO3 rot. Y-X\nmetallized"])
+    ax.set_xticks(pos, ["Cu (001)\nelastic", "LiNbO3 rot. Y-X\nfree", "LiNbO3 rot. Y-X\nmetallized",
+                        "LiNbO3 rot. Y-X\nboth, one call"])
     ax.axhline(TARGET, color="tab:red", ls="--", label=f"target {TARGET:.0e}/s (leaky)")
     ax.plot([], [], color="gray", label="elastic solver, same tensors")
     ax.set_ylabel("orientations per second, one core (CPU)")

@@ -87,18 +87,21 @@ def test_bench_piezo_small_run(tmp_path, monkeypatch):
 
 def test_bench_leaky_small_run(tmp_path, monkeypatch):
     """One row per case (Cu elastic, LiNbO3 free, metallized) at the library's default tol,
-    self-convergence error below 1e-9, verdict against 1e3 orientations/s."""
+    self-convergence error below 1e-9, verdict against 1e3 orientations/s; a fourth row for both
+    conditions in one call (bit-identical to two calls, its ratio to the elastic solver)."""
     from surfwave.solvers.leaky import leaky_wave
 
     mod = _load("leaky", monkeypatch, N_ANGLES=12, REPEATS=2, KNOB_REPEATS=1)
     nc = mod.main(str(tmp_path))
     rows = _rows(nc)
     default = inspect.signature(leaky_wave).parameters["tol"].default
-    assert len(rows) == 3 and all(r[2] == f"{default:g}" for r in rows)
-    assert all("target >= 1e+03 orientations/s/core: " in r[5] for r in rows)
+    assert len(rows) == 4 and all(r[2] == f"{default:g}" for r in rows)
+    assert all("target >= 1e+03 orientations/s/core: " in r[5] for r in rows[:3])
+    assert rows[3][3].startswith("bit-identical") and "x the elastic solver's time" in rows[3][4]
     ds = xr.open_dataset(nc, engine="h5netcdf")
     assert float(ds["error"].sel(tol=default).max()) < 1e-9
     assert (ds["found"].sel(tol=default) > 0).all()
+    assert ds.attrs["both_bit_identical"] == 1 and (ds["speedup_vs_two_calls"] > 0).all()
 
 
 def test_bench_material_small_run(tmp_path, monkeypatch):

@@ -56,6 +56,18 @@ GROW_TOL = 1e-9
 #: Starts w = pi/2 + i y of the searches for a root above v_L2 where no search from the real-axis
 #: minima converged (X = X_L1 + (X_L2 - X_L1) cosh^2 y: up to 2.4 (X_L2 - X_L1) above X_L2).
 PROBE_Y = np.array([0.1, 0.3, 0.6, 1.0])
+#: Starts w = u - i y (u in PROBE_U, y in PROBE_Y1, Im X < 0) of the complex searches where no search
+#: converged (no real-axis minimum, or none of its searches converged): a branch whose real speed runs
+#: toward v_L1 with Im w comparable to Re w has no real-axis minimum of |det| (Re X - X_L1 << |Im X|),
+#: e.g. LiNbO3 rotated Y-cuts near 0 deg metallized; u = 0.1 starts near v_L1, u = 0.6 mid-window (needed
+#: at free 150-154 deg). Two starts find every root that 3 x 3 starts (u 0.1, 0.45, 0.8; y 0.1, 0.2, 0.35)
+#: find on the crystals scene and the rotated Y-cuts (0.5-degree steps), at less than a quarter of the cost.
+PROBE_U = np.array([0.1, 0.6])
+PROBE_Y1 = np.array([0.2])
+#: A verified root from those complex starts is kept only with delta > PROBE_DELTA: a root with (numerically)
+#: real X lies on the real axis, the real scan's business (e.g. grazing roots at the (111) mirrors of Ni and
+#: at Al (110) 0.5-2 deg and W 0.5-1 deg, whose 'decaying' second-sheet wave has Im p ~ 1e-4).
+PROBE_DELTA = 1e-6
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
@@ -75,8 +87,12 @@ REASON_BELOW = "root below the slowest sheet's limiting speed v_L1: a true (subs
 REASON_GROW = "root with growing amplitude along x1 (delta < 0): not a physical leaky wave"
 REASON_EDGE = ("root at the slowest sheet's limiting speed (|sin w| < T_EDGE): a grazing bulk wave (e.g. the "
                "exceptional surface-skimming wave of a mirror direction), not a leaky surface wave")
-REASON_NOMIN = ("no leaky wave: |det| has no interior minimum between v_L1 and v_L2 where the slowest sheet "
-                "has a single real pair of Stroh roots")
+REASON_NOMIN = ("no leaky root found: |det| has no interior minimum between v_L1 and v_L2 where the slowest "
+                "sheet has a single real pair of Stroh roots, and no search from the complex starts near v_L1 "
+                "converged (the root, if any, was not found)")
+REASON_LOW = ("no leaky root found between v_L1 and v_L2; the search found a root of the continued "
+              "partial-wave set with Re(rho v^2) at or below rho v_L1^2 (below the slowest sheet's limiting "
+              "speed: real speed below v_L1, or a real root below v_L1), not a leaky wave of the window")
 REASON_MULTI = ("leaky root where the slowest sheet has more than one real pair of Stroh roots (cuspidal "
                 "slowness or a second radiating sheet): not computed")
 REASON_SHEET = ("root on another partial-wave choice: a partial wave meant to decay into the crystal has "
@@ -175,8 +191,15 @@ def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
     """Boundary function f (m,) and the effective impedance matrix (m, d', d') of the chosen waves.
 
     M = B A^-1 of the partial waves ``idx`` (m, d); free: M - i e4 e4^T (vacuum), metallized:
-    its mechanical 3 x 3 block (phi = 0); elastic: M.
+    its mechanical 3 x 3 block (phi = 0); elastic: M. :func:`_condition` of :func:`_impedance`.
     """
+    return _condition(_impedance(xi, idx, d), d, electrical)
+
+
+def _impedance(xi, idx, d) -> np.ndarray:
+    """Surface impedance M = B A^-1 (m, d, d) of the partial waves ``idx`` (m, d) of the
+    eigenvectors xi = (a, b) (m, 2d, 2d); NaN where A is singular. The same for every electrical
+    condition (only :func:`_condition` differs)."""
     sel = np.take_along_axis(xi, idx[:, None, :], axis=2)
     a, b = sel[:, :d], sel[:, d:]
     with np.errstate(invalid="ignore", over="ignore"):
@@ -185,6 +208,15 @@ def _boundary(xi, idx, d, electrical) -> tuple[np.ndarray, np.ndarray]:
     M = np.full(b.shape, np.nan + 0j)
     if good.any():
         M[good] = np.swapaxes(np.linalg.solve(np.swapaxes(a[good], 1, 2), np.swapaxes(b[good], 1, 2)), 1, 2)
+    return M
+
+
+def _condition(M, d, electrical) -> tuple[np.ndarray, np.ndarray]:
+    """Boundary function det (m,) and the matrix of one electrical condition from M (m, d, d).
+
+    Free: M - i e4 e4^T (a copy; vacuum, scaled EPS0 = 1); metallized: the mechanical 3 x 3 block
+    (phi = 0); elastic (d = 3): M itself.
+    """
     if d == 4:
         if electrical == "free":
             M = M.copy()
@@ -268,14 +300,19 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         Piezoelectric stress constants e_kij, lab frame; None: non-piezoelectric (6 x 6 problem).
     eps : None or array_like, shape (m, 3, 3), F/m
         Absolute clamped permittivity, lab frame (with ``e``).
-    electrical : {"free", "metallized"}
+    electrical : {"free", "metallized"} or sequence of them
         Electrically free surface (vacuum above) or shorted (phi = 0). Ignored without ``e``.
+        A sequence (e.g. ``("free", "metallized")``, each once) solves every condition in one call:
+        the limits, the real-speed scan's eigen-decompositions, the outgoing choice and the surface
+        impedance M = B A^-1 on the grid are shared (only the boundary function's electrical part
+        differs); the secant searches and the validation are per condition. The answers are
+        bit-identical to one call per condition.
     tol : float
         Relative accuracy of the complex X = rho v^2.
 
     Returns
     -------
-    dict of ndarray, leading shape (m,)
+    dict of ndarray, leading shape (m,); with a sequence ``electrical``: dict condition -> that dict
         ``c_leaky`` omega / k_r (m/s) with k = k_r (1 + i delta); ``leaky_attenuation``
         40 pi log10(e) delta, dB per wavelength (>= 0); ``c_leaky_complex`` v = omega / k
         (complex, m/s, Im v <= 0); ``delta`` (1, signed, also where the root was rejected, e.g.
@@ -291,8 +328,13 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     InputError
         Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
     """
-    if electrical not in ELECTRICAL:
-        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    several = not isinstance(electrical, str)
+    conds = tuple(electrical) if several else (electrical,)
+    for el in conds:
+        if el not in ELECTRICAL:
+            raise InputError(f"electrical must be 'free' or 'metallized', got {el!r}")
+    if not conds or len(set(conds)) != len(conds):
+        raise InputError(f"electrical: each condition once, at least one, got {electrical!r}")
     A, rho, e, eps = _check(A, rho, e, eps)
     m = A.shape[0]
     s = np.abs(A).max(axis=(1, 2, 3, 4))
@@ -304,21 +346,37 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         d = 4
         Q, R, T = generalised_blocks(A / s[:, None, None, None, None], e / np.sqrt(s * EPS0)[:, None, None, None],
                                       eps / EPS0)
-    reason = np.full(m, "", dtype=object)
     XL = np.full((m, 2), np.nan)
     ok = np.linalg.eigvalsh(T[:, :3, :3])[:, 0] > 0
     if ok.any():
         XL[ok] = _limits(Q[ok], R[ok], T[ok], d)
     ok &= XL[:, 0] > 0
-    reason[~ok] = REASON_UNSTABLE
-    X = np.full(m, np.nan + 0j)
-    pch = np.full((m, d), np.nan + 0j)
-    pol = np.full((m, d), np.nan + 0j)
-    its = np.zeros(m, dtype=int)
     ii = np.nonzero(ok)[0]
-    if ii.size:
-        res = _solve(Q[ii], R[ii], T[ii], XL[ii], d, electrical, tol)
-        X[ii], pch[ii], pol[ii], its[ii], reason[ii] = res
+    sc = _scan(Q[ii], R[ii], T[ii], XL[ii], d) if ii.size else None
+    out: dict = {}
+    for el in conds:
+        if d == 3 and out:          # elastic: the condition is ignored, the same answer (copied)
+            first = out[conds[0]]
+            out[el] = {k: v.copy() for k, v in first.items()}
+            continue
+        reason = np.full(m, "", dtype=object)
+        reason[~ok] = REASON_UNSTABLE
+        X = np.full(m, np.nan + 0j)
+        pch = np.full((m, d), np.nan + 0j)
+        pol = np.full((m, d), np.nan + 0j)
+        its = np.zeros(m, dtype=int)
+        if ii.size:
+            X[ii], pch[ii], pol[ii], its[ii], reason[ii] = _solve(sc, XL[ii], d, el, tol)
+        out[el] = _result(X, pch, pol, its, reason, XL, s, rho, d)
+    return out if several else out[conds[0]]
+
+
+def _result(X, pch, pol, its, reason, XL, s, rho, d) -> dict:
+    """The dict :func:`leaky_wave` returns for one condition from the scaled solution.
+
+    X (m,) complex scaled rho v^2; pch, pol (m, d) complex; its (m,) int; reason (m,) object;
+    XL (m, 2) scaled limits; s (m,) Pa stiffness scale; rho (m,) kg/m^3; d 3 or 4.
+    """
     if d == 4:
         pol[:, 3] *= np.sqrt(s / EPS0)              # back from the scaled potential to volts
     # physical speeds: v = omega / k, k = k_r (1 + i delta)  =>  1 / v = (1 + i delta) / c_leaky
@@ -564,29 +622,57 @@ def _candidates(N0, XL, rows, t, t1, f1, p1, g1, d, electrical, tol) -> dict:
     if chk.size:
         r_ = rows[chk]
         okb, nr, _ = _back_to_real(N0[r_], Xc[chk], pch[chk], pall[chk], _dp_dx(xiall[chk], ich[chk], d), d)
-        why[chk[nr != 2]] = REASON_MULTI
+        low = Xc[chk].real <= XL[r_, 0]       # no real pair at Re X: below the window, not a cusp
+        why[chk[(nr != 2) & low]] = REASON_LOW
+        why[chk[(nr != 2) & ~low]] = REASON_MULTI
         why[chk[(nr == 2) & ~okb]] = REASON_INCOMING
     return {"why": why, "X": Xc, "delta": delta_c, "p": pch, "xi": xiall, "idx": ich, "its": its,
             "converged": conv & trk}
 
 
-def _solve(Q, R, T, XL, d, electrical, tol):
-    """Scan, choose, secant in w from every local minimum of |det|; the least-attenuated root wins.
+def _scan(Q, R, T, XL, d) -> dict:
+    """The real-speed scan shared by every electrical condition: Stroh matrices, grid roots, choice.
 
-    Returns X (m,) complex, chosen p (m, d) (radiating first), polarisation (m, d),
-    evaluations (m,), reasons (m,).
+    Parameters
+    ----------
+    Q, R, T : ndarray, shape (m, d, d)
+        Scaled blocks.
+    XL : ndarray, shape (m, 2)
+        Scaled limiting X of the slowest and second sheet.
+    d : int
+
+    Returns
+    -------
+    dict
+        ``N0`` (m, 2d, 2d) real Stroh matrices at X = 0; ``tg`` (SCAN,) grid in w; ``pg`` (m SCAN, 2d)
+        and ``xig`` (m SCAN, 2d, 2d) roots and eigenvectors at the grid speeds; ``idx`` (m SCAN, d)
+        the outgoing choice; ``pc`` (m SCAN, d) its roots; ``nreal`` (m, SCAN) real roots per grid
+        point; ``Mg`` (m SCAN, d, d) the surface impedance of the choice (:func:`_impedance`).
     """
     m = Q.shape[0]
     N0 = _stroh_base(Q, R, T, d)
     x0, span = XL[:, 0], XL[:, 1] - XL[:, 0]
     tg = 0.5 * np.pi * (np.arange(SCAN) + 0.5) / SCAN
-    # 1. real scan: |det| with the outgoing choice at each grid speed
     Xg = (x0[:, None] + span[:, None] * np.sin(tg) ** 2).reshape(-1)
     pg, xig = _roots_at(np.repeat(N0, SCAN, axis=0), Xg, d)
     idx = _choose_real(pg, xig, d)
-    fg, _ = _boundary(xig, idx, d, electrical)
     pc = np.take_along_axis(pg, idx, axis=1)
     nreal = (np.abs(pg.imag) <= REAL_TOL * np.maximum(1, np.abs(pg))).sum(axis=1).reshape(m, SCAN)
+    return {"N0": N0, "tg": tg, "pg": pg, "xig": xig, "idx": idx, "pc": pc, "nreal": nreal,
+            "Mg": _impedance(xig, idx, d)}
+
+
+def _solve(sc, XL, d, electrical, tol):
+    """Secant in w from every local minimum of |det| of the scan ``sc`` (:func:`_scan`) for one
+    electrical condition; the least-attenuated root wins.
+
+    Returns X (m,) complex, chosen p (m, d) (radiating first), polarisation (m, d),
+    evaluations (m,), reasons (m,).
+    """
+    N0, tg, xig, idx, pc, nreal = (sc[k] for k in ("N0", "tg", "xig", "idx", "pc", "nreal"))
+    m = N0.shape[0]
+    # 1. real scan: |det| with the outgoing choice at each grid speed
+    fg, _ = _condition(sc["Mg"], d, electrical)
     af = np.where(nreal == 2, np.abs(fg).reshape(m, SCAN), np.inf)
     # 2. local minima of |det| (grid points where the slowest sheet has one real pair)
     loc = np.zeros((m, SCAN), dtype=bool)
@@ -629,6 +715,25 @@ def _solve(Q, R, T, XL, d, electrical, tol):
                             _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
         extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
         keep = extra["why"] == REASON_ABOVE
+        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
+        rows = np.concatenate([rows, prow[keep]])
+    # 2c. points where no search from the real axis converged (or there was no minimum): the branch
+    # may run toward v_L1 with Im w comparable to Re w (Re X - X_L1 << |Im X|), where |det| over real
+    # speeds is monotone. Searches from w = u - i y (PROBE_U x PROBE_Y1, Im X < 0), continued from the
+    # lowest grid point with a single real pair, find it; kept are verified roots with delta >
+    # PROBE_DELTA and roots that left the window through v_L1 (REASON_LOW), after the same validation
+    low_rows = np.nonzero(~conv_row & fin.any(axis=1))[0]
+    if low_rows.size:
+        bot = np.argmax(fin[low_rows], axis=1)
+        starts = (PROBE_U[:, None] - 1j * PROBE_Y1[None, :]).reshape(-1)
+        prow = np.repeat(low_rows, starts.size)
+        kp = prow * SCAN + np.repeat(bot, starts.size)
+        tp = np.tile(starts, low_rows.size)
+        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
+                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
+        extra_its += np.bincount(prow, weights=extra["its"], minlength=m)
+        keep = extra["converged"] & (((extra["why"] == "") & (extra["delta"] > PROBE_DELTA))
+                                     | (extra["why"] == REASON_LOW))
         cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
         rows = np.concatenate([rows, prow[keep]])
     why, Xc, delta_c, pch, ich, its = (cand[key] for key in ("why", "X", "delta", "p", "idx", "its"))

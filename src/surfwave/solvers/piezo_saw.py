@@ -57,8 +57,9 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     -----
     :func:`surfwave.solvers.piezo.piezo_surface_wave` for both conditions in one call; e = 0
     (every point): the elastic Stroh solver (:func:`_elastic_piezo_keys`); leaky:
-    :func:`surfwave.solvers.leaky.leaky_wave`, and where no subsonic SAW exists but the leaky root
-    does not attenuate (a mirror direction) that root is the SAW (:func:`_supersonic`).
+    :func:`surfwave.solvers.leaky.leaky_wave` (both conditions in one call), and where no
+    subsonic SAW exists but the leaky root does not attenuate (a mirror direction) that root is
+    the SAW (:func:`_supersonic`).
     """
     return piezo_saw_conditions(A, rho, e, eps, conditions=(electrical,), tol=tol, leaky=leaky)[electrical]
 
@@ -98,7 +99,8 @@ def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 
     lws: dict = {}
     if leaky:
         with np.errstate(invalid="ignore"):
-            lws = {el: leaky_wave(A, rho, e, eps, electrical=el) for el in (ELECTRICAL if piezo else conditions)}
+            # both conditions in one call: the scan's eigen-decompositions are shared
+            lws = leaky_wave(A, rho, e, eps, electrical=tuple(ELECTRICAL if piezo else conditions))
     return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo) for el in conditions}
 
 
