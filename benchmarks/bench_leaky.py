@@ -269,8 +269,8 @@ def main(outdir: str) -> Path:
     ax.boxplot([rate[c, 0] for c in range(len(CASES))] + [rate_b[0]], positions=pos + 0.18, widths=0.3,
                boxprops={"color": "gray"}, medianprops={"color": "gray"})
     ax.set_yscale("log")
-    ax.set_xticks(pos, ["Cu (001)\nelastic", "LiNbO3 rot. Y-X\nfree", "LiNbO3 rot. Y-X\nmetallized",
-                        "LiNbO3 rot. Y-X\nboth, one call"])
+    ax.set_xticks(pos, ["Cu (001)\nelastic", "LiNbO3\nrot. Y-X\nfree", "LiNbO3\nrot. Y-X\nmetallized",
+                        "LiNbO3\nrot. Y-X\nboth, one call"])
     ax.axhline(TARGET, color="tab:red", ls="--", label=f"target {TARGET:.0e}/s (leaky)")
     ax.plot([], [], color="gray", label="elastic solver, same tensors")
     ax.set_ylabel("orientations per second, one core (CPU)")
