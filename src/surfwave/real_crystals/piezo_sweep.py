@@ -38,8 +38,10 @@ if TYPE_CHECKING:
 #: The ``method`` attribute of the cube.
 METHOD = ("piezoelectric Stroh solver (8 x 8, surfwave.solvers.piezo) for the subsonic SAW with a free "
           "(open-circuit) and a metallized surface, leaky SAW radiating into the slowest bulk sheet "
-          "(surfwave.solvers.leaky); A_ijkl = C_ijkl + sigma_jl delta_ik with the natural-state C^E, "
-          "piezoelectric constants e and clamped permittivity eps at their natural values; SAW Euler "
+          "(surfwave.solvers.leaky); A_ijkl = C_ijkl + sigma_jl delta_ik with the natural-state C^E (toec "
+          "false) or the stressed-state constants and density from third-order constants (toec true, "
+          "surfwave.real_crystals.toec), piezoelectric constants e and clamped permittivity eps at their "
+          "natural values; SAW Euler "
           "angles (ZXZ) -> lab frame x1 propagation, x2 inward normal (surfwave.solvers.euler)")
 UNITS_NOTE = ("SI units: speeds in m/s, stresses in GPa, angles in degrees, attenuation in dB per "
               "wavelength, potential in V per m of surface displacement")
