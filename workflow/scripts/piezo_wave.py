@@ -8,7 +8,7 @@ import sys
 from surfwave.data import cube
 from surfwave.pipeline import stage
 from surfwave.real_crystals.piezo_sweep import METHOD, UNITS_NOTE, piezo_wave_sweep
-from surfwave.real_crystals.piezo_wave import MODEL
+from surfwave.real_crystals.piezo_wave import MODEL, MODEL_TOEC
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -17,11 +17,21 @@ if "snakemake" not in globals():  # standalone run for debugging
 stage.open_log(snakemake)
 
 job = snakemake.params.job
+toec_file = job.get("toec_file")  # the file's content, read and checked at scene validation
 ds = piezo_wave_sweep(job["materials"], cuts=job["cuts"], euler=job["euler"], electrical=job["electrical"],
-                      stress=job["stress"])
+                      stress=job["stress"], toec=job.get("toec", [False]),
+                      toec_constants=toec_file["constants"] if toec_file else None)
 for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):
     print(f"{wave_type}: {int((ds.wave_type == wave_type).sum())} points", file=sys.stderr)
 print(f"leaky: {int(ds.c_leaky.notnull().sum())} points", file=sys.stderr)
+# one model: its text; both (a toec dim): "toec=false: ...; toec=true: ..."
+models = [bool(t) for t in ds.toec.values] if "toec" in ds.dims else [False]
+stress_model = ("; ".join(f"toec={str(t).lower()}: {MODEL_TOEC if t else MODEL}" for t in models)
+                if len(models) > 1 else MODEL_TOEC if models[0] else MODEL)
+extra = {"units_note": UNITS_NOTE, "stress_model": stress_model}
+if toec_file:
+    extra.update(toec_file=toec_file["path"], toec_file_sha256=toec_file["sha256"],
+                 toec_source=str(toec_file["constants"].get("source", "not given")))
 ds = cube.provenance(ds, title=f"surfwave piezoelectric surface_wave cube, scene {job['scene']}", params=job,
-                     rule=snakemake.rule, method=METHOD, extra={"units_note": UNITS_NOTE, "stress_model": MODEL})
+                     rule=snakemake.rule, method=METHOD, extra=extra)
 cube.write(ds, snakemake.output[0])

@@ -559,6 +559,10 @@ PIEZO_WAVE_COORDS: dict[str, dict[str, str]] = {
         "units": "degree",
     },
     "electrical": {"long_name": "surface condition: free (open circuit, vacuum above) or metallized (phi = 0)"},
+    "toec": {
+        "long_name": "constants of the stressed state from third-order elastic constants (false: "
+                     "second-order constants of the natural state; e and eps at natural values in both)",
+    },
     "stress": {
         "long_name": "uniaxial prestress along the propagation direction (negative = compression)",
         "units": "GPa",

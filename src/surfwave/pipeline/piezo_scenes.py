@@ -14,7 +14,10 @@ Examples
 from __future__ import annotations
 
 import copy
+import hashlib
+from pathlib import Path
 
+from surfwave.errors import InputError
 from surfwave.pipeline.crystal_scenes import check_angle_range, stress_grid, unique_records
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
 from surfwave.vocab import ELECTRICAL
@@ -37,23 +40,27 @@ def _angle(spec, where: str) -> list[float]:
     return angles
 
 
-def check_piezo_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
-    """The expanded piezoelectric scene, or None and its problems."""
+def check_piezo_scene(name: str, raw: dict, base_dir: str | Path | None = None) -> tuple[dict | None, list[str]]:
+    """The expanded piezoelectric scene, or None and its problems.
+
+    ``base_dir``: the directory of the config file that gave ``toec_file`` (a relative path is
+    read from there; the working directory if None).
+    """
     try:
-        return _expand(name, raw), []
+        return _expand(name, raw, base_dir), []
     except SceneError as exc:
         return None, [str(exc)]
 
 
-def _expand(name: str, raw: dict) -> dict:
+def _expand(name: str, raw: dict, base_dir=None) -> dict:
     from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
     from surfwave.real_crystals.piezo_sweep import scene_points
 
     where = f"scene {name!r}"
-    for key in ("surfaces", "angles", "directions", "loading", "toec"):
+    for key in ("surfaces", "angles", "directions", "loading"):
         if key in raw:
             raise SceneError(f"{where}, key {key!r}: not used by a piezoelectric scene (cuts/euler set the "
-                             "orientation; stress is uniaxial along the propagation, fixed constants)")
+                             "orientation; stress is uniaxial along the propagation)")
     if "cuts" in raw and "euler" in raw:
         raise SceneError(f"{where}, key 'euler': give either 'cuts' or 'euler', not both")
     mats = unique_records(where, "materials", raw["materials"], get_piezo_material)
@@ -70,13 +77,17 @@ def _expand(name: str, raw: dict) -> dict:
         spec = raw["euler"]
         euler = {k: _angle(spec.get(k, 0.0), f"{where}, key 'euler.{k}'") for k in ("phi", "theta", "psi")}
     stress = None
+    toec = [bool(t) for t in raw.get("toec", [False])]
     if "stress" in raw:
         stress = stress_grid(where, raw["stress"])
+    elif toec != [False] or "toec_file" in raw:
+        raise SceneError(f"{where}, key 'stress': 'toec' and 'toec_file' need a stress grid")
+    toec_set = _toec_file(where, raw, mats, toec, base_dir) if stress else None
     electrical = list(raw.get("electrical", ELECTRICAL))
-    n = scene_points(len(mats), cuts, euler, electrical, stress)
+    n = scene_points(len(mats), cuts, euler, electrical, stress, toec)
     if n > min(MAX_PIEZO_POINTS, MAX_POINTS):
-        raise SceneError(f"{where}: {n} points (materials x orientations x electrical x stress) exceed the limit "
-                         f"of {min(MAX_PIEZO_POINTS, MAX_POINTS)}")
+        raise SceneError(f"{where}: {n} points (materials x orientations x electrical x toec x stress) exceed "
+                         f"the limit of {min(MAX_PIEZO_POINTS, MAX_POINTS)}")
     return {
         "name": name,
         "kind": "piezo",
@@ -85,6 +96,8 @@ def _expand(name: str, raw: dict) -> dict:
         "euler": euler,
         "electrical": electrical,
         "stress": stress,
+        "toec": toec if stress else [False],
+        "toec_file": toec_set,
         "quantities": list(raw.get("quantities", ["surface_wave"])),
         "accuracy": copy.deepcopy(raw.get("accuracy", {})),
     }
@@ -93,6 +106,60 @@ def _expand(name: str, raw: dict) -> dict:
 def piezo_job_params(scene: dict) -> dict:
     """Everything the ``piezo_wave`` job reads from the config (JSON-able)."""
     params = {"scene": scene["name"], "stage": "piezo_wave"}
-    params.update({k: copy.deepcopy(scene[k]) for k in ("materials", "cuts", "euler", "electrical", "stress")})
+    keys = ("materials", "cuts", "euler", "electrical", "stress", "toec", "toec_file")
+    params.update({k: copy.deepcopy(scene.get(k)) for k in keys})  # toec_file: the file's content and hash
     params["accuracy"] = copy.deepcopy(scene["accuracy"].get("piezo_wave", {}))
     return params
+
+
+def _toec_file(where: str, raw: dict, mats: list, toec: list[bool], base_dir) -> dict | None:
+    """The scene's third-order set: None, or ``{"path", "sha256", "constants"}`` (the file's
+    named constants, GPa, and its ``source``), checked for the materials' one crystal class.
+
+    Without ``toec_file`` every material needs the database's own set where ``toec`` has true.
+    """
+    if "toec_file" not in raw:
+        if True in toec:
+            lacking = [m.name for m in mats if m.toec_voigt is None]
+            if lacking:
+                raise SceneError(f"{where}, key 'toec': value true needs third-order elastic constants, which the "
+                                 f"database lacks for material(s) {lacking} (of the piezoelectric database only "
+                                 "GaAs has them); give toec_file, remove them, or use toec: [false]")
+        return None
+    given = raw["toec_file"]
+    if True not in toec:
+        raise SceneError(f"{where}, key 'toec_file': value {given!r} is not used with toec: {toec}; "
+                         "add true to 'toec'")
+    classes = sorted({m.crystal_class for m in mats})
+    if len(classes) > 1:
+        raise SceneError(f"{where}, key 'toec_file': one set of third-order constants for materials of "
+                         f"different crystal classes {classes} ({[m.name for m in mats]}); give one class "
+                         "per scene")
+    path = Path(str(given)).expanduser()
+    if not path.is_absolute() and base_dir is not None:
+        path = Path(base_dir) / path
+    try:
+        text = path.read_bytes()
+    except OSError as exc:
+        raise SceneError(f"{where}, key 'toec_file': value {given!r}: cannot read {str(path)!r} "
+                         f"({exc.strerror or exc})") from None
+    import yaml
+
+    from surfwave.data.paper import SAFE_LOADER
+    from surfwave.real_crystals.piezo_route import _user_toec
+
+    try:
+        data = yaml.load(text, Loader=SAFE_LOADER)
+    except yaml.YAMLError as exc:
+        raise SceneError(f"{where}, key 'toec_file': {str(path)!r} is not valid YAML: "
+                         f"{' '.join(str(exc).split())}") from None
+    if not isinstance(data, dict):
+        raise SceneError(f"{where}, key 'toec_file': {str(path)!r} must be a mapping of named third-order "
+                         f"constants in GPa (and an optional 'source'), got {type(data).__name__}")
+    constants = {str(k): v for k, v in data.items()}
+    try:
+        _user_toec(constants, classes[0])                            # the library's own check and message
+    except InputError as exc:
+        raise SceneError(f"{where}, key 'toec_file': {str(path)!r}: {exc}") from None
+    return {"path": str(path.resolve()), "sha256": hashlib.sha256(text).hexdigest(),
+            "constants": {k: (str(v) if k == "source" else float(v)) for k, v in constants.items()}}

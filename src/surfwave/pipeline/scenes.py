@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import copy
 import re
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -316,6 +317,17 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     }, []
 
 
+def _key_dir(name: str, key: str, sources: dict[str, list[str]] | None) -> str | None:
+    """Directory of the last config file whose scene ``name`` gives ``key`` (the one Snakemake's
+    merge keeps), where a relative path in that key is read from; None if no file gives it."""
+    for path in reversed((sources or {}).get(name, [])):
+        data = load_yaml(path) or {}
+        scene = (data.get("scenes") or {}).get(name) if isinstance(data, dict) else None
+        if isinstance(scene, dict) and key in scene:
+            return str(Path(path).resolve().parent)
+    return None
+
+
 def _redefined(name: str, files: list[str]) -> str:
     return (f"scene {name!r} is defined in {files[0]} and again in {', '.join(files[1:])}: scene {name!r} "
             f"redefines the scene of {files[0]} and Snakemake merges the two key by key (the later file "
@@ -362,7 +374,8 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
         # a real-crystal scene names materials (surfwave.pipeline.crystal_scenes)
         check = check_crystal_scene if "materials" in raw else _check_scene
         if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
-            check = check_piezo_scene
+            where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
+            check = partial(check_piezo_scene, base_dir=where)
         scene, found = check(name, raw)
         problems += found
         if found and len((sources or {}).get(name, [])) > 1:

@@ -84,6 +84,8 @@ def speeds_vs_euler(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """
     if "stress" in ds.dims:
         ds = ds.isel(stress=int(np.argmin(np.abs(ds.stress.values))))
+    if "toec" in ds.dims:                                           # the fixed-constants model where present
+        ds = ds.sel(toec=False) if False in ds.toec.values else ds.isel(toec=0)
     ds, dim, fixed = _line(ds)
     rotated_y = dim == "euler_theta" and fixed["euler_phi"] == 0 and fixed["euler_psi"] == 0
     x = ds.x.values + (90.0 if rotated_y else 0.0)
@@ -142,13 +144,15 @@ def speeds_vs_euler(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
 def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """SAW velocity (free, metallized) and its fractional change against uniaxial stress.
 
-    One line per (material, orientation, electrical condition); the fractional change is
-    (v(sigma) - v(0)) / v(0) with v(0) interpolated at zero stress.
+    One line per (material, orientation, electrical condition[, prestress model]); the fractional
+    change is (v(sigma) - v(0)) / v(0) with v(0) interpolated at zero stress. With a ``toec`` dim,
+    the third-order model's lines carry dots.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        Piezoelectric cube with a ``stress`` dim (GPa, uniaxial along the propagation).
+        Piezoelectric cube with a ``stress`` dim (GPa, uniaxial along the propagation)[ and
+        ``toec``].
     path : str or Path
     title : str
 
@@ -157,6 +161,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     Path
     """
     s = ds.stress.values
+    models = [bool(t) for t in ds.toec.values] if "toec" in ds.dims else [None]
     stacked = ds.stack(orientation=("surface", "angle"))
     fig, (av, ar) = plt.subplots(1, 2, figsize=(10.5, 4.2))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -168,12 +173,15 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                        "Euler (" + ", ".join(f"{float(o[d]):g}" for d in EULER) + ")")
             colour = colours[k % len(colours)]
             k += 1
-            for el in [str(e) for e in o.electrical.values]:
-                v = o.c_R.sel(electrical=el).values
+            for el, t in [(str(e), t) for e in o.electrical.values for t in models]:
+                p = o.sel(electrical=el) if t is None else o.sel(electrical=el, toec=t)
+                v = p.c_R.values
                 v0 = np.interp(0.0, s, v)
                 lab = f"{label_o}, {_short(mat)}, {el}" if len(ds.material) > 1 else f"{label_o}, {el}"
-                av.plot(s, v, STYLES.get(el, "-"), color=colour, label=lab)
-                ar.plot(s, 1e6 * (v / v0 - 1), STYLES.get(el, "-"), color=colour, label=lab)
+                lab += "" if t is None else ", third-order constants" if t else ", fixed constants"
+                style = STYLES.get(el, "-") + ("." if t else "")
+                av.plot(s, v, style, color=colour, label=lab)
+                ar.plot(s, 1e6 * (v / v0 - 1), style, color=colour, label=lab)
     av.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     ar.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     av.set_ylabel("SAW phase velocity (m/s)")
@@ -182,7 +190,9 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         ax.grid(alpha=0.3)
         ax.axvline(0, color="0.7", lw=0.8)
     av.legend(fontsize=8)
-    fig.suptitle("SAW velocity under prestress (fixed constants: A = C + $\\sigma$; e, $\\varepsilon$ at "
-                 "natural values)" + (f" ({title})" if title else ""), fontsize=10)
+    model = ("third-order constants where marked" if any(models) and len(models) > 1 else
+             "third-order constants" if models == [True] else "fixed constants: A = C + $\\sigma$")
+    fig.suptitle(f"SAW velocity under prestress ({model}; e, $\\varepsilon$ at natural values)"
+                 + (f" ({title})" if title else ""), fontsize=10)
     fig.tight_layout()
     return savefig(fig, path)

@@ -1,15 +1,18 @@
 """Surface waves of piezoelectric crystals over a whole scene, one labelled cube (``surface_wave.nc``).
 
 Grid: materials x (named cuts | Euler angles phi x theta x psi) x electrical condition
-[x stress]. The cube keeps the public layout of ``surface_wave.nc`` (dims ``material``,
+[x toec x stress]. The cube keeps the public layout of ``surface_wave.nc`` (dims ``material``,
 ``surface``, ``angle``): a surface is a plate (a named cut, or one Euler pair (phi, theta)),
 the angle the propagation direction psi in it from the plate's reference psi0; coordinates
 ``cut``, ``euler_phi``, ``euler_theta`` (per surface) and ``euler_psi`` (surface, angle) say
 which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point
 is :func:`surfwave.real_crystals.piezo_wave.piezo_wave`, i.e. the one real-crystal
-path :func:`surfwave.real_crystals.stressed_wave.surface_wave` (fixed-constants prestress model,
-e and eps at natural values; uniaxial stress along the propagation x1; a point without a
-Born-stable stressed state is NaN with the reason that :func:`surfwave.material` gives).
+path :func:`surfwave.real_crystals.stressed_wave.surface_wave` (uniaxial stress along the
+propagation x1; prestress model per ``toec`` coordinate: fixed constants,
+:data:`surfwave.real_crystals.piezo_wave.MODEL`, or the stressed state from third-order
+constants, :data:`~surfwave.real_crystals.piezo_wave.MODEL_TOEC`; e and eps at natural values
+in both; a point without a Born-stable stressed state is NaN with the reason that
+:func:`surfwave.material` gives).
 
 Examples
 --------
@@ -35,8 +38,10 @@ if TYPE_CHECKING:
 #: The ``method`` attribute of the cube.
 METHOD = ("piezoelectric Stroh solver (8 x 8, surfwave.solvers.piezo) for the subsonic SAW with a free "
           "(open-circuit) and a metallized surface, leaky SAW radiating into the slowest bulk sheet "
-          "(surfwave.solvers.leaky); A_ijkl = C_ijkl + sigma_jl delta_ik with the natural-state C^E, "
-          "piezoelectric constants e and clamped permittivity eps at their natural values; SAW Euler "
+          "(surfwave.solvers.leaky); A_ijkl = C_ijkl + sigma_jl delta_ik with the natural-state C^E (toec "
+          "false) or the stressed-state constants and density from third-order constants (toec true, "
+          "surfwave.real_crystals.toec), piezoelectric constants e and clamped permittivity eps at their "
+          "natural values; SAW Euler "
           "angles (ZXZ) -> lab frame x1 propagation, x2 inward normal (surfwave.solvers.euler)")
 UNITS_NOTE = ("SI units: speeds in m/s, stresses in GPa, angles in degrees, attenuation in dB per "
               "wavelength, potential in V per m of surface displacement")
@@ -79,7 +84,7 @@ def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
 
 def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = None, euler: dict | None = None,
                      electrical: Sequence[str] = ELECTRICAL, stress: Sequence[float] | None = None,
-                     tol: float = 1e-12) -> xr.Dataset:
+                     toec: Sequence[bool] = (False,), toec_constants=None, tol: float = 1e-12) -> xr.Dataset:
     """SAW, K^2, leaky wave and power flow of piezoelectric crystals over a scene's grid.
 
     Parameters
@@ -93,18 +98,34 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         (the grid is their product). Exactly one of ``cuts`` and ``euler``.
     electrical : sequence of {"free", "metallized"}
     stress : sequence of float, optional
-        Uniaxial stress along the propagation, GPa; None: unstressed, no ``stress`` dim.
+        Uniaxial stress along the propagation, GPa; None: unstressed, no ``toec`` and
+        ``stress`` dims.
+    toec : sequence of bool
+        Models of the stressed state (as :func:`surfwave.real_crystals.sweep.surface_wave_sweep`):
+        False = fixed constants, True = stressed state from the third-order constants (the
+        material's own set, GaAs, or ``toec_constants``); used only with ``stress``.
+    toec_constants : mapping or array_like, optional
+        The caller's third-order constants for every material (GPa): a mapping of the class's
+        named constants (:data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`, a ``source``
+        key allowed) or a (6, 6, 6) Voigt array, checked as ``surfwave.material(..., toec=...)``
+        checks it (:func:`surfwave.real_crystals.piezo_route._user_toec`).
     tol : float
         Relative accuracy of rho c^2.
 
     Returns
     -------
     xarray.Dataset
-        Dims ``material``, ``surface``, ``angle``, ``electrical``, [``stress``] (coordinates
+        Dims ``material``, ``surface``, ``angle``, ``electrical``, [``toec``, ``stress``] (coordinates
         ``cut``, ``euler_phi``, ``euler_theta``, ``euler_psi``; module docstring), with
         ``component`` (u1, u2, u3, phi) for
         ``polarisation`` and ``partial_wave`` (1..4) for ``decay``; variables of
         :data:`VARIABLES` (``K2``, ``c_limit`` and ``rho`` without ``electrical``).
+
+    Raises
+    ------
+    InputError
+        ``toec`` true for a material without third-order constants (and no ``toec_constants``),
+        or ``toec_constants`` not a valid set for a material's class.
     """
     import xarray as xr
 
@@ -115,27 +136,31 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     angles, oc, oshape = _orientations(cuts, euler)
     R0 = euler_lab_axes(angles).reshape(-1, 3, 3)
     s = np.array([0.0]) if stress is None else np.asarray(stress, dtype=float).reshape(-1)
+    models = [bool(t) for t in toec] if stress is not None else [False]
+    if len(set(models)) < len(models) or not models:
+        raise InputError(f"toec must be distinct booleans, got {list(toec)!r}")
     n_o, n_s = R0.shape[0], s.size
     R = np.repeat(R0, n_s, axis=0)                                   # orientation-major, stress inner
     S = np.tile(s, n_o)
-    mats = [get_piezo_material(m) for m in materials]
+    mats = [_with_toec(get_piezo_material(m), toec_constants, any(models)) for m in materials]
     el = list(electrical)
     out: dict[str, np.ndarray] = {}
     for i, m in enumerate(mats):
-        solve = partial(_solve_points, piezo_wave_conditions, m, R, S, conditions=el, tol=tol)
-        rs = solve_in_chunks(solve, len(R), f"piezo_wave, {m.name}")      # both conditions from one solve
-        for j, cond in enumerate(el):
-            r = rs[cond]
-            for key in VARIABLES:
-                v = np.asarray(r[key])
-                if key not in out:
-                    out[key] = np.empty((len(mats), len(el)) + v.shape, dtype=v.dtype)
-                out[key][i, j] = v
-    grid = (len(mats), len(el)) + oshape + (n_s,)
-    dims = ("material", "electrical", "surface", "angle", "stress")
+        for t, use in enumerate(models):
+            solve = partial(_solve_points, piezo_wave_conditions, m, R, S, conditions=el, tol=tol, toec=use)
+            rs = solve_in_chunks(solve, len(R), f"piezo_wave, {m.name}" + (", toec" if use else ""))
+            for j, cond in enumerate(el):                               # both conditions from one solve
+                r = rs[cond]
+                for key in VARIABLES:
+                    v = np.asarray(r[key])
+                    if key not in out:
+                        out[key] = np.empty((len(mats), len(el), len(models)) + v.shape, dtype=v.dtype)
+                    out[key][i, j, t] = v
+    grid = (len(mats), len(el), len(models)) + oshape + (n_s,)
+    dims = ("material", "electrical", "toec", "surface", "angle", "stress")
     data_vars = {}
     for key, arr in out.items():
-        trailing = arr.shape[3:]
+        trailing = arr.shape[4:]
         arr = arr.reshape(grid + trailing)
         vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay" else ())
         if key in NO_ELECTRICAL:
@@ -145,6 +170,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         data_vars[key] = (vdims, arr, dict(VARIABLES[key]))
     coords = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
               "electrical": ("electrical", np.array(el, dtype=str), COORDS["electrical"]),
+              "toec": ("toec", np.asarray(models, dtype=bool), COORDS["toec"]),
               "stress": ("stress", s, COORDS["stress"]),
               "component": ("component", np.array(COMPONENTS), {"long_name": "u1 along the propagation, u2 "
                             "along the inward normal, u3 in plane; phi the electric potential"}),
@@ -157,10 +183,27 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
                   euler_psi=(("surface", "angle"), oc["psi0"][:, None] + oc["angle"][None, :], COORDS["euler_psi"]))
     if "cut" in oc:
         coords["cut"] = ("surface", np.asarray(oc["cut"], dtype=str), COORDS["cut"])
-    ds = xr.Dataset(data_vars, coords=coords).transpose("material", "surface", "angle", "electrical", "stress", ...)
+    ds = xr.Dataset(data_vars, coords=coords).transpose("material", "surface", "angle", "electrical", "toec",
+                                                        "stress", ...)
     if stress is None:
-        ds = ds.isel(stress=0, drop=True)
+        ds = ds.isel(toec=0, stress=0, drop=True)
     return ds
+
+
+def _with_toec(material, constants, needed: bool):
+    """``material`` carrying ``constants`` (the caller's set, checked for its class) as its
+    third-order set; InputError where a set is ``needed`` and there is none."""
+    from dataclasses import replace
+
+    from surfwave.real_crystals.piezo_route import _user_toec
+
+    if constants is not None:
+        C3 = _user_toec(constants, material.crystal_class)
+        return replace(material, toec_voigt=C3, sources={**material.sources, "toec": "given by the caller"})
+    if needed and material.toec_voigt is None:
+        raise InputError(f"material {material.name!r} has no third-order elastic constants (toec: true needs "
+                         f"a set: give toec_constants, the class-{material.crystal_class} names)")
+    return material
 
 
 def _solve_points(solver, material, R, S, start: int, stop: int, **kw) -> dict:
@@ -168,10 +211,10 @@ def _solve_points(solver, material, R, S, start: int, stop: int, **kw) -> dict:
     return solver(material, R[start:stop], S[start:stop], **kw)
 
 
-def scene_points(n_materials: int, cuts, euler, electrical, stress) -> int:
+def scene_points(n_materials: int, cuts, euler, electrical, stress, toec=(False,)) -> int:
     """Number of solver points of a scene (for the grid cap), without building anything."""
     n_o = len(cuts) if cuts is not None else int(np.prod([np.size(euler[k]) for k in ("phi", "theta", "psi")]))
-    return n_materials * n_o * len(electrical) * (len(stress) if stress else 1)
+    return n_materials * n_o * len(electrical) * (len(stress) * len(toec) if stress else 1)
 
 
 __all__ = ["COMPONENTS", "METHOD", "UNITS_NOTE", "VARIABLES", "piezo_wave_sweep", "scene_points"]
