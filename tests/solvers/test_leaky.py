@@ -32,6 +32,11 @@ LN = get_cut("64Y-X").material
 LT = get_cut("36Y-X").material
 
 
+def _partial_waves(Q, R, T, X, d):
+    """Stroh roots p (m, 2d) and eigenvectors (m, 2d, 2d) at X (m,) from the scaled blocks."""
+    return L._roots_at(L._stroh_base(Q, R, T, d), X, d)
+
+
 def rotated(material, phi, theta, psi):
     """Lab-frame C (m,3,3,3,3) Pa, e (m,3,3,3), eps (m,3,3) and rho of a database set for SAW
     Euler angles (degrees, arrays of shape (m,))."""
@@ -96,11 +101,11 @@ def test_outgoing_root_has_positive_group_velocity():
     for Q, R, T, _, d in cases:
         XL = L._limits(Q, R, T, d)
         X = np.array([0.5 * (XL[0, 0] + XL[0, 1])])
-        p, xi = L._partial_waves(Q, R, T, X, d)
+        p, xi = _partial_waves(Q, R, T, X, d)
         out = p[0, L._choose_real(p, xi, d)[0, 0]]
         assert abs(out.imag) < 1e-8
         h = 1e-7 * X
-        p2, _ = L._partial_waves(Q, R, T, X + h, d)
+        p2, _ = _partial_waves(Q, R, T, X + h, d)
         moved = p2[0, np.argmin(np.abs(p2[0] - out))]
         assert (moved.real - out.real) / h[0] > 0
 
@@ -109,7 +114,7 @@ def _min_abs_det(Q, R, T, XL, d, electrical, t0, width):
     """Golden-section minimum of |det| over real t in [t0 - width, t0 + width] (outgoing choice)."""
     def f(t):
         X = np.array([XL[0, 0] + (XL[0, 1] - XL[0, 0]) * t * t])
-        p, xi = L._partial_waves(Q, R, T, X, d)
+        p, xi = _partial_waves(Q, R, T, X, d)
         return abs(L._boundary(xi, L._choose_real(p, xi, d), d, electrical)[0][0])
     lo, hi = t0 - width, t0 + width
     g = 0.5 * (np.sqrt(5) - 1)
@@ -146,7 +151,7 @@ def test_second_route_real_minimum_of_det(case):
     p_root = r["decay"][0]
 
     def f(X):
-        p, xi = L._partial_waves(Q, R, T, np.array([X]), d)
+        p, xi = _partial_waves(Q, R, T, np.array([X]), d)
         idx, ok = L._track(p_root[None], p)
         assert ok[0]
         return L._boundary(xi, idx, d, el)[0][0]
@@ -206,7 +211,7 @@ def test_yz_linbo3_vacuum_sign_free_above_metallized():
     XL = L._limits(Q, R, T, 4)
     X = XL[0, 0] * np.linspace(0.8, 0.99999, 4000)
     n = X.size
-    p, xi = L._partial_waves(*(np.repeat(B, n, 0) for B in (Q, R, T)), X, 4)
+    p, xi = _partial_waves(*(np.repeat(B, n, 0) for B in (Q, R, T)), X, 4)
     idx = np.argsort(-p.imag, axis=1)[:, :4]
     v = {}
     for el in ("free", "metallized"):

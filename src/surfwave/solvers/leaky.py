@@ -36,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.solvers.piezo_stroh import generalised_blocks
+from surfwave.solvers.piezo_stroh import generalised_blocks, stroh_matrix
 from surfwave.solvers.piezo_tensors import EPS0
 from surfwave.vocab import ELECTRICAL
 
@@ -154,24 +154,10 @@ def _stroh_base(Q, R, T, d) -> np.ndarray:
     """Real Stroh matrix at X = 0, shape (m, 2d, 2d), from the scaled blocks Q, R, T (m, d, d).
 
     N(X) = N(0) + X [[0, 0], [M, 0]], M = diag(1, 1, 1[, 0]) (:func:`_roots_at`); built once
-    per orientation (the inverse of T and the products do not depend on X).
+    per orientation (:func:`surfwave.solvers.piezo_stroh.stroh_matrix`: the inverse of T and the
+    products do not depend on X).
     """
-    Ti = np.linalg.inv(T)
-    Rt = np.swapaxes(R, -1, -2)
-    N = np.empty((Q.shape[0], 2 * d, 2 * d))
-    N[:, :d, :d] = -Ti @ Rt
-    N[:, :d, d:] = Ti
-    N[:, d:, :d] = R @ Ti @ Rt - Q
-    N[:, d:, d:] = -R @ Ti
-    return N
-
-
-def _partial_waves(Q, R, T, X, d) -> tuple[np.ndarray, np.ndarray]:
-    """Stroh roots p (m, 2d) and eigenvectors xi = (a, b) (m, 2d, 2d), complex, at X (m,).
-
-    Q, R, T (m, d, d) scaled blocks: :func:`_roots_at` of :func:`_stroh_base`.
-    """
-    return _roots_at(_stroh_base(Q, R, T, d), X, d)
+    return stroh_matrix(Q, R, T, np.zeros(Q.shape[0]), nm=3)
 
 
 def _roots_at(N0, X, d) -> tuple[np.ndarray, np.ndarray]:
