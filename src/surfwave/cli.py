@@ -226,25 +226,13 @@ def _cmd_point(args) -> int:
 
 def _toec_file(path: str) -> dict:
     """Named third-order constants (GPa) from a YAML mapping, for ``--toec-file``."""
-    import yaml
-
-    from surfwave.data.paper import SAFE_LOADER
     from surfwave.errors import InputError
+    from surfwave.real_crystals.piezo_materials import read_toec_file
 
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = yaml.load(fh, Loader=SAFE_LOADER)
-    except OSError as err:
-        raise InputError(f"--toec-file: cannot read {path}: {err.strerror}") from None
-    except yaml.YAMLError as err:
-        raise InputError(f"--toec-file: {path} is not valid YAML ({err})") from None
-    if not isinstance(data, dict) or not data:
-        raise InputError(f"--toec-file: {path} must hold a mapping 'C111: value' of third-order constants in GPa")
-    bad = [k for k, v in data.items()
-           if k != "source" and (isinstance(v, bool) or not isinstance(v, (int, float)))]
-    if bad:
-        raise InputError(f"--toec-file: {path}: these values are not numbers (GPa): {bad}")
-    return data
+        return read_toec_file(path)[0]
+    except InputError as err:
+        raise InputError(f"--toec-file: {err}") from None
 
 
 def _angles(text: str) -> np.ndarray | float:

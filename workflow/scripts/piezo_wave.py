@@ -8,7 +8,7 @@ import sys
 from surfwave.data import cube
 from surfwave.pipeline import stage
 from surfwave.real_crystals.piezo_sweep import METHOD, UNITS_NOTE, piezo_wave_sweep
-from surfwave.real_crystals.piezo_wave import MODEL, MODEL_TOEC
+from surfwave.real_crystals.piezo_wave import stress_model
 
 if "snakemake" not in globals():  # standalone run for debugging
     from surfwave.pipeline.standalone import standalone
@@ -24,11 +24,7 @@ ds = piezo_wave_sweep(job["materials"], cuts=job["cuts"], euler=job["euler"], el
 for wave_type in ("surface", "supersonic_decoupled", "pseudo", "none"):
     print(f"{wave_type}: {int((ds.wave_type == wave_type).sum())} points", file=sys.stderr)
 print(f"leaky: {int(ds.c_leaky.notnull().sum())} points", file=sys.stderr)
-# one model: its text; both (a toec dim): "toec=false: ...; toec=true: ..."
-models = [bool(t) for t in ds.toec.values] if "toec" in ds.dims else [False]
-stress_model = ("; ".join(f"toec={str(t).lower()}: {MODEL_TOEC if t else MODEL}" for t in models)
-                if len(models) > 1 else MODEL_TOEC if models[0] else MODEL)
-extra = {"units_note": UNITS_NOTE, "stress_model": stress_model}
+extra = {"units_note": UNITS_NOTE, "stress_model": stress_model(ds.toec.values if "toec" in ds.dims else [False])}
 if toec_file:
     extra.update(toec_file=toec_file["path"], toec_file_sha256=toec_file["sha256"],
                  toec_source=str(toec_file["constants"].get("source", "not given")))

@@ -138,28 +138,13 @@ def _toec_file(where: str, raw: dict, mats: list, toec: list[bool], base_dir) ->
     path = Path(str(given)).expanduser()
     if not path.is_absolute() and base_dir is not None:
         path = Path(base_dir) / path
-    try:
-        text = path.read_bytes()
-    except OSError as exc:
-        raise SceneError(f"{where}, key 'toec_file': value {given!r}: cannot read {str(path)!r} "
-                         f"({exc.strerror or exc})") from None
-    import yaml
-
-    from surfwave.data.paper import SAFE_LOADER
-    from surfwave.real_crystals.piezo_route import _user_toec
+    from surfwave.real_crystals.piezo_materials import read_toec_file
+    from surfwave.real_crystals.toec_classes import toec_from_user
 
     try:
-        data = yaml.load(text, Loader=SAFE_LOADER)
-    except yaml.YAMLError as exc:
-        raise SceneError(f"{where}, key 'toec_file': {str(path)!r} is not valid YAML: "
-                         f"{' '.join(str(exc).split())}") from None
-    if not isinstance(data, dict):
-        raise SceneError(f"{where}, key 'toec_file': {str(path)!r} must be a mapping of named third-order "
-                         f"constants in GPa (and an optional 'source'), got {type(data).__name__}")
-    constants = {str(k): v for k, v in data.items()}
-    try:
-        _user_toec(constants, classes[0])                            # the library's own check and message
+        constants, text = read_toec_file(path)
+        toec_from_user(constants, classes[0])                       # the library's own check and message
     except InputError as exc:
-        raise SceneError(f"{where}, key 'toec_file': {str(path)!r}: {exc}") from None
+        raise SceneError(f"{where}, key 'toec_file': value {given!r}: {exc}") from None
     return {"path": str(path.resolve()), "sha256": hashlib.sha256(text).hexdigest(),
             "constants": {k: (str(v) if k == "source" else float(v)) for k, v in constants.items()}}

@@ -22,9 +22,10 @@ from __future__ import annotations
 
 import difflib
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from importlib import resources
+from pathlib import Path
 
 import numpy as np
 import yaml
@@ -32,7 +33,7 @@ import yaml
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
 from surfwave.real_crystals.materials import read_constants
-from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named
+from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named, toec_from_user
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.piezo_tensors import (
     EPS0,
@@ -366,6 +367,62 @@ def get_cut(name: str) -> Cut:
     if k in lookup:
         return cuts[lookup[k]]
     raise _unknown(name, lookup, available_cuts(), "cut")
+
+
+def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller") -> PiezoMaterial:
+    """``material`` carrying a caller's third-order constants, checked for its class.
+
+    Parameters
+    ----------
+    material : PiezoMaterial
+    toec : mapping or array_like
+        Named constants of the class or a (6, 6, 6) Voigt array, GPa
+        (:func:`surfwave.real_crystals.toec_classes.toec_from_user`).
+    source : str
+        What ``sources["toec"]`` says.
+
+    Returns
+    -------
+    PiezoMaterial
+        A copy with ``toec_voigt`` set.
+    """
+    cls = material.crystal_class if material.crystal_class in TOEC_NAMES else None
+    return replace(material, toec_voigt=toec_from_user(toec, cls), sources={**material.sources, "toec": source})
+
+
+def read_toec_file(path) -> tuple[dict, bytes]:
+    """Named third-order constants (GPa) from a YAML mapping ``name: value`` (``source:`` allowed).
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    (dict, bytes)
+        The mapping as read, and the file's bytes (for a content hash).
+
+    Raises
+    ------
+    InputError
+        Unreadable file, invalid YAML, not a mapping, or a value that is not a number.
+    """
+    try:
+        text = Path(path).read_bytes()
+    except OSError as err:
+        raise InputError(f"cannot read {str(path)!r} ({err.strerror or err})") from None
+    try:
+        data = yaml.load(text, Loader=SAFE_LOADER)
+    except yaml.YAMLError as err:
+        raise InputError(f"{str(path)!r} is not valid YAML: {' '.join(str(err).split())}") from None
+    if not isinstance(data, dict) or not data:
+        raise InputError(f"{str(path)!r} must be a mapping of named third-order constants in GPa (and an "
+                         f"optional 'source'), got {type(data).__name__}")
+    data = {str(k): v for k, v in data.items()}
+    bad = [k for k, v in data.items() if k != "source" and (isinstance(v, bool) or not isinstance(v, (int, float)))]
+    if bad:
+        raise InputError(f"{str(path)!r}: these values are not numbers (GPa): {bad}")
+    return data, text
 
 
 def lab_tensors(material: str | PiezoMaterial, R) -> dict[str, np.ndarray]:

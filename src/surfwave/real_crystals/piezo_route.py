@@ -9,7 +9,6 @@ decouples; the result equals the elastic solver's).
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import replace
 
 import numpy as np
@@ -96,7 +95,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     array in GPa, checked for invariance under the crystal's class
     (:func:`surfwave.real_crystals.toec_classes.checked_toec`).
     """
-    from surfwave.real_crystals.piezo_materials import get_piezo_material
+    from surfwave.real_crystals.piezo_materials import get_piezo_material, with_toec
 
     explicit_toec = toec is not None and toec is not False and toec is not True
     electrical = "free" if electrical is None else electrical
@@ -109,7 +108,9 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError(f"material {C11!r} given by name: do not also give C12, C44, voigt=, piezo= or "
                              "permittivity=")
         mat = resolve_piezo_material(C11, rho=rho)
-        C3 = _user_toec(toec, mat.crystal_class) if explicit_toec else None
+        if explicit_toec:                                           # the caller's set, checked for the class
+            mat = with_toec(mat, toec)
+        C3 = None
         if cut_material is not None:
             want = get_piezo_material(cut_material).formula
             if mat.formula != want:
@@ -126,7 +127,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
             raise InputError("a piezoelectric crystal needs both piezo= (e, 3 x 6, C/m^2) and permittivity= "
                              "(eps_r, 3 x 3, relative)")
         mat = resolve_piezo_material(None, voigt=C6, e=piezo, eps_r=permittivity, rho=rho)
-    if C3 is not None:                                              # a caller's set, or the elastic database's
+    if C3 is not None:                          # a crystal given by constants: a checked set, or the elastic database's
         mat = replace(mat, toec_voigt=C3, sources={**mat.sources, "toec": "given by the caller" if explicit_toec
                                                    else "the elastic database"})
     use_toec = explicit_toec or toec is True
@@ -148,22 +149,6 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
         out["toec"] = bool(out["toec"])
     out["model"] = r["model"]
     return out
-
-
-def _user_toec(toec, crystal_class: str) -> np.ndarray:
-    """A caller's third-order constants (GPa) for a database crystal of class ``crystal_class``, as
-    a checked Voigt (6, 6, 6) array: a mapping of the class's named constants
-    (:data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`), or an array invariant under the
-    class (:func:`surfwave.real_crystals.toec_classes.checked_toec`)."""
-    from surfwave.real_crystals.toec_classes import checked_toec, toec_from_named
-
-    if isinstance(toec, Mapping):
-        names = dict(toec)
-        names.pop("source", None)                                   # a YAML file may cite its source
-        return toec_from_named(crystal_class, names)
-    if isinstance(toec, str):
-        raise InputError(f"toec must be True, False, a mapping of named constants or a (6, 6, 6) array, got {toec!r}")
-    return checked_toec(toec, crystal_class)
 
 
 def _in_piezo_db(name) -> bool:

@@ -108,7 +108,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         The caller's third-order constants for every material (GPa): a mapping of the class's
         named constants (:data:`surfwave.real_crystals.toec_classes.TOEC_NAMES`, a ``source``
         key allowed) or a (6, 6, 6) Voigt array, checked as ``surfwave.material(..., toec=...)``
-        checks it (:func:`surfwave.real_crystals.piezo_route._user_toec`).
+        checks it (:func:`surfwave.real_crystals.piezo_materials.with_toec`).
     tol : float
         Relative accuracy of rho c^2.
 
@@ -193,13 +193,10 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
 def _with_toec(material, constants, needed: bool):
     """``material`` carrying ``constants`` (the caller's set, checked for its class) as its
     third-order set; InputError where a set is ``needed`` and there is none."""
-    from dataclasses import replace
-
-    from surfwave.real_crystals.piezo_route import _user_toec
+    from surfwave.real_crystals.piezo_materials import with_toec
 
     if constants is not None:
-        C3 = _user_toec(constants, material.crystal_class)
-        return replace(material, toec_voigt=C3, sources={**material.sources, "toec": "given by the caller"})
+        return with_toec(material, constants)
     if needed and material.toec_voigt is None:
         raise InputError(f"material {material.name!r} has no third-order elastic constants (toec: true needs "
                          f"a set: give toec_constants, the class-{material.crystal_class} names)")

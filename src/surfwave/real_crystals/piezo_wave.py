@@ -27,7 +27,7 @@ from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_pi
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
-__all__ = ["MODEL", "MODEL_TOEC", "piezo_wave", "piezo_wave_conditions", "resolve_piezo_material"]
+__all__ = ["MODEL", "MODEL_TOEC", "piezo_wave", "piezo_wave_conditions", "resolve_piezo_material", "stress_model"]
 
 #: The prestress model, recorded in every result and cube.
 MODEL = ("fixed constants: A = C + sigma0 delta (C^E of the data set); e and clamped eps at their natural "
@@ -35,6 +35,17 @@ MODEL = ("fixed constants: A = C + sigma0 delta (C^E of the data set); e and cla
 #: The prestress model with third-order constants (``toec=True``), recorded likewise.
 MODEL_TOEC = ("third-order constants: the stressed state (deformation F, C*, rho0/J) of the Brugger constants; "
               "e and clamped eps at their natural values, rotated with the crystal (no stress derivatives)")
+
+
+def stress_model(toec) -> str:
+    """The prestress model text of a result or cube: :data:`MODEL` or :data:`MODEL_TOEC` for one
+    model, ``"toec=false: ...; toec=true: ..."`` for both (``toec``: the models, a sequence of bool)."""
+    models = [bool(t) for t in toec]
+    if len(models) == 1:
+        return MODEL_TOEC if models[0] else MODEL
+    return "; ".join(f"toec={str(t).lower()}: {MODEL_TOEC if t else MODEL}" for t in models)
+
+
 #: Largest |stress| (GPa) accepted; larger values are almost surely in Pa.
 MAX_STRESS_GPA = 1e3
 #: The one traction tolerance and wording (:mod:`surfwave.real_crystals.stressed_wave`).
@@ -226,7 +237,7 @@ def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=EL
     lab = rs[conditions[0]]["axes"]
     extra = dict(C=rotate4(voigt_to_tensor(mat.voigt) * 1e9, lab), e=rotate3(piezo_voigt_to_tensor(mat.e), lab),
                  eps=rotate2(mat.eps_r * EPS0, lab), sigma=rotate2(sigma_c, lab),
-                 model=MODEL_TOEC if toec else MODEL)
+                 model=stress_model([toec]))
     for r in rs.values():
         r["c_imag"] = r["c_R_imag"]
         r.update(extra)

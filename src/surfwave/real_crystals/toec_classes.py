@@ -42,7 +42,7 @@ from surfwave.solvers.piezo_tensors import point_group_generators
 from surfwave.solvers.tensors import VOIGT_PAIRS
 
 __all__ = ["HEXAGONAL_6MM_TOEC", "INVARIANCE_TOL", "MAX_TOEC_GPA", "TOEC_NAMES", "TRIGONAL_32_TOEC", "checked_toec",
-           "invariant_toec_basis", "rotate_toec", "toec_from_named", "trigonal_32_toec"]
+           "invariant_toec_basis", "rotate_toec", "toec_from_named", "toec_from_user", "trigonal_32_toec"]
 
 #: The 14 independent Brugger constants of class 32 (Thurston, McSkimin and Andreatch 1966).
 TRIGONAL_32_TOEC = ("C111", "C112", "C113", "C114", "C123", "C124", "C133", "C134", "C144", "C155", "C222",
@@ -230,3 +230,35 @@ def checked_toec(C3, crystal_class: str | None = None) -> np.ndarray:
                              f"{scale:.3g} GPa): check the axis setting and signs, or give the named constants "
                              f"{list(TOEC_NAMES.get(crystal_class, ()))}")
     return C3
+
+
+def toec_from_user(toec, crystal_class: str | None) -> np.ndarray:
+    """A caller's third-order constants (GPa) as a checked Voigt (6, 6, 6) array.
+
+    Parameters
+    ----------
+    toec : mapping or array_like
+        A mapping of the class's named constants (:data:`TOEC_NAMES`; a ``source`` key, as a
+        YAML file may carry, is ignored), or a (6, 6, 6) Voigt array (:func:`checked_toec`).
+    crystal_class : str or None
+        The crystal's class; None (a crystal given by its constants) allows arrays only.
+
+    Returns
+    -------
+    ndarray, shape (6, 6, 6)
+
+    Raises
+    ------
+    InputError
+        A string, a mapping without a class, or what :func:`toec_from_named` and
+        :func:`checked_toec` refuse.
+    """
+    if isinstance(toec, Mapping):
+        if crystal_class is None:
+            raise InputError("third-order constants by name need the crystal's class; give a (6, 6, 6) Voigt array")
+        names = {k: v for k, v in toec.items() if k != "source"}
+        return toec_from_named(crystal_class, names)
+    if isinstance(toec, str):
+        raise InputError(f"toec must be True, False, a mapping of named constants or a (6, 6, 6) array, got {toec!r}")
+    return checked_toec(toec, crystal_class)
+
