@@ -145,7 +145,7 @@ def _parser() -> argparse.ArgumentParser:
     mt.add_argument("--voigt", type=float, nargs=36, metavar="C",
                     help="full 6x6 Voigt stiffness (36 values, row by row), GPa, crystal axes (instead of C11 C12 C44)")
     mt.add_argument("--rho", type=float, help="density, kg/m^3 (a named material brings its own)")
-    mt.add_argument("--surface", default="(001)", help='surface plane "(hkl)" (default "(001)")')
+    mt.add_argument("--surface", help='surface plane "(hkl)" (default "(001)"; not with --euler or --cut)')
     where = mt.add_mutually_exclusive_group()
     where.add_argument("--direction", help='propagation direction "[uvw]" in the surface (default: the reference)')
     where.add_argument("--angle", help="angle in degrees from the reference direction, or a sweep START:STOP:STEP "
@@ -342,12 +342,15 @@ def _cmd_material(args) -> int:
         stress = np.reshape(args.stress, (3, 3))
     else:
         raise InputError(f"--stress takes one value or nine, got {len(args.stress)}")
+    oriented = args.euler is None and args.cut is None      # else the Euler angles set surface and direction
     if args.angle is not None:
         direction = _angles(args.angle)
     elif args.direction is not None:
         direction = args.direction
     else:
-        direction = 0.0
+        direction = 0.0 if oriented else None
+    if oriented and args.surface is None:
+        args.surface = "(001)"
     r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
                  **constants, **piezo_kw)
     rows = _material_rows(r)

@@ -36,9 +36,9 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.piezo_stroh import generalised_blocks, stroh_matrix
 from surfwave.solvers.piezo_tensors import EPS0
-from surfwave.vocab import ELECTRICAL
 
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
@@ -204,11 +204,7 @@ def _condition(M, d, electrical) -> tuple[np.ndarray, np.ndarray]:
     (phi = 0); elastic (d = 3): M itself.
     """
     if d == 4:
-        if electrical == "free":
-            M = M.copy()
-            M[:, 3, 3] -= 1j
-        else:
-            M = M[:, :3, :3]
+        M = as_boundary(electrical).secular_matrix(M)
     with np.errstate(invalid="ignore"):
         return np.linalg.det(M), M
 
@@ -314,11 +310,8 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     InputError
         Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
     """
-    several = not isinstance(electrical, str)
-    conds = tuple(electrical) if several else (electrical,)
-    for el in conds:
-        if el not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {el!r}")
+    several = not isinstance(electrical, (str, Boundary))
+    conds = tuple(as_boundary(el).name for el in (electrical if several else (electrical,)))
     if not conds or len(set(conds)) != len(conds):
         raise InputError(f"electrical: each condition once, at least one, got {electrical!r}")
     A, rho, e, eps = _check(A, rho, e, eps)
@@ -753,8 +746,8 @@ def _solve(sc, XL, d, electrical, tol):
     w: np.ndarray = np.full(M.shape[:2], np.nan + 0j)
     if fin.any():
         w[fin] = np.linalg.svd(M[fin])[2][:, -1].conj()
-    if d == 4 and electrical == "metallized":
-        w = np.concatenate([w, np.zeros((w.shape[0], 1))], axis=1)
+    if w.shape[1] < d:   # a condition that fixes the potential (metallized): phi = 0 at the surface
+        w = np.concatenate([w, np.zeros((w.shape[0], d - w.shape[1]))], axis=1)
     nm = np.linalg.norm(w[:, :3], axis=1)
     w = w / np.where(nm > 0, nm, 1)[:, None]
     big = np.take_along_axis(w, np.argmax(np.abs(w[:, :3]), axis=1)[:, None], axis=1)
