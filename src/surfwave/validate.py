@@ -175,13 +175,20 @@ MAX_PIEZO_E = 100.0
 MIN_EPS_R = 1.0
 
 
+def _has_bool(values) -> bool:
+    """True when ``values`` is or holds a bool (``True`` would silently count as 1)."""
+    if isinstance(values, (bool, np.bool_)):
+        return True
+    if isinstance(values, np.ndarray):
+        return values.dtype.kind == "b" or (values.dtype == object and any(_has_bool(v) for v in values.flat))
+    if isinstance(values, (list, tuple)):
+        return any(_has_bool(v) for v in values)
+    return False
+
+
 def _numbers(values, name: str, unit: str) -> np.ndarray:
     """``values`` as a real float array; booleans, text and complex refused (naming ``unit``)."""
-    try:
-        kind = np.asarray(values).dtype.kind
-    except (TypeError, ValueError):
-        kind = ""
-    if isinstance(values, (bool, np.bool_)) or kind == "b":
+    if _has_bool(values):
         raise InputError(f"{name} must be numbers ({unit}), not True/False: got {brief(values)}")
     a = real_array(values, name).reshape(np.shape(values))
     if not np.all(np.isfinite(a)):

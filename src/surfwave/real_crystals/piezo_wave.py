@@ -21,9 +21,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
 from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_piezo_record, get_piezo_material
+from surfwave.solvers.boundary import as_boundary
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
@@ -46,8 +48,9 @@ def stress_model(toec) -> str:
     return "; ".join(f"toec={str(t).lower()}: {MODEL_TOEC if t else MODEL}" for t in models)
 
 
-#: Largest |stress| (GPa) accepted; larger values are almost surely in Pa.
-MAX_STRESS_GPA = 1e3
+#: Largest |stress| (GPa) accepted; larger values are almost surely in Pa (the one bound,
+#: :data:`surfwave.validate.MAX_STRESS_GPA`).
+MAX_STRESS_GPA = validate.MAX_STRESS_GPA
 #: The one traction tolerance and wording (:mod:`surfwave.real_crystals.stressed_wave`).
 TRACTION_RTOL = sw_path.TRACTION_TOL
 REASON_TRACTION = sw_path.REASON_TRACTION
@@ -102,15 +105,7 @@ def _prestress(stress, axes: np.ndarray) -> np.ndarray:
     point), an (m,) array (uniaxial along x1, one value per point) or an (m, 3, 3) array.
     """
     m = axes.shape[0]
-    try:
-        s = np.asarray(stress, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"stress must be a number or a 3 x 3 tensor (GPa), got {stress!r}") from None
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"stress must be finite, got {stress!r}")
-    if s.size and np.abs(s).max() > MAX_STRESS_GPA:
-        raise InputError(f"stress must be in GPa; got max |stress| = {np.abs(s).max():.4g}, which looks like Pa "
-                         "(divide by 1e9)")
+    s = validate.gpa_stress(stress)                              # numbers, finite, the one Pa guard
     if s.shape == () or s.shape == (m,):                         # uniaxial along each x1: the one loading
         return sw_path.stress_tensor("along", 1.0, axes) * s[..., None, None]
     if s.shape in ((3, 3), (m, 3, 3)):
@@ -198,8 +193,7 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     >>> round(float(r["c_free"][0])), round(float(r["c_metallized"][0]))   # Slobodnik 1973: 3488 / 3404
     (3488, 3404)
     """
-    if electrical not in ELECTRICAL:
-        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+    electrical = as_boundary(electrical).name
     return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 

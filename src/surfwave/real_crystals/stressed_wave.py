@@ -45,6 +45,7 @@ import numpy as np
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw_conditions
@@ -240,7 +241,8 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
 
 
 def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
-                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True, electrical: str | None = None,
+                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
+                 electrical: str | Boundary | None = None,
                  leaky: bool | None = None) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
@@ -264,10 +266,10 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
     bulk : bool
         Also return the bulk speeds along x1 and x2 and ``stable`` (costs a stability test).
         For a piezoelectric crystal these are the mechanical (unstiffened) bulk speeds.
-    electrical : {"free", "metallized"}, optional
-        Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
-        polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
-        come either way.
+    electrical : {"free", "metallized"} or Boundary, optional
+        Piezoelectric crystals only (default "free"; :mod:`surfwave.solvers.boundary`): the
+        surface condition of ``c_R``, the polarisation, the power flow and ``c_leaky``;
+        ``c_free``, ``c_metallized`` and ``K2`` come either way.
     leaky : bool or None
         The leaky wave (``c_leaky``, ``leaky_attenuation``, ``leaky_reason``) radiating into
         the slowest bulk sheet (:func:`surfwave.solvers.leaky.leaky_wave`). True: solved at
@@ -318,9 +320,7 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         reason.
     """
     if constants.is_piezo:
-        electrical = "free" if electrical is None else electrical
-        if electrical not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+        electrical = "free" if electrical is None else as_boundary(electrical).name
     elif electrical is not None:
         raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
     return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,

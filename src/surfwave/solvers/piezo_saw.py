@@ -116,7 +116,10 @@ def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo) -> dict:
     c_imag = np.where(np.isfinite(sw["c"]), 0.0, np.nan)
     if not piezo:                        # e = 0: the elastic solver, exactly (supersonic waves too)
         sw, c_free, c_met, K2, c_imag = _elastic_piezo_keys(A, rho, eps, sw, tol)
-    im = np.where(np.isfinite(sw["decay"].imag), sw["decay"].imag, np.inf).min(axis=-1)
+    # the smallest Im p > 0 of the partial waves carrying the wave (a NaN slot, e.g. the decoupled
+    # potential of a mirror wave, carries none: NaN + 0j must not count as Im p = 0, depth inf)
+    dec = sw["decay"]
+    im = np.where(np.isfinite(dec) & (dec.imag > 0), dec.imag, np.inf).min(axis=-1)
     with np.errstate(divide="ignore"):
         depth = np.where(np.isfinite(sw["c"]) & np.isfinite(im), 1.0 / (2 * np.pi * im), np.nan)
     depth = sw.get("penetration_depth", depth)
