@@ -31,6 +31,7 @@ surfwave.errors.InputError: prestress must lie in the surface plane (001): its t
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -162,9 +163,9 @@ def check_stress(stress, axes: np.ndarray, where: str) -> np.ndarray:
     return s
 
 
-def make_case(constants: Constants, axes, stress, *, electrical=None, toec: bool = False,
-              leaky: bool | None = None, tol: float | None = None, where: str = "(001)", angle=None, euler=None,
-              scalar: bool = False) -> Case:
+def make_case(constants: Constants, axes, stress, *, electrical: Any = None, toec: bool = False,
+              leaky: bool | np.bool_ | None = None, tol: float | None = None, where: str = "(001)",
+              angle: np.ndarray | None = None, euler: np.ndarray | None = None, scalar: bool = False) -> Case:
     """A checked :class:`Case`: the one place where a real-crystal question is checked.
 
     Parameters
@@ -206,8 +207,8 @@ def make_case(constants: Constants, axes, stress, *, electrical=None, toec: bool
     sigma = check_stress(stress, R, where)
     if constants.is_piezo:
         given = (FREE,) if electrical is None else electrical
-        several = isinstance(given, (tuple, list))
-        bounds = tuple(as_boundary(b) for b in (given if several else (given,)))
+        asked = tuple(given) if isinstance(given, (tuple, list)) else (given,)
+        bounds = tuple(as_boundary(b) for b in asked)
         if not bounds or len({b.name for b in bounds}) != len(bounds):
             raise InputError(f"electrical: each condition once, at least one, got {electrical!r}")
     elif electrical is not None:

@@ -11,7 +11,9 @@ import json
 import os
 import re
 import sys
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -205,8 +207,9 @@ def _cmd_point(args) -> int:
     r = point(args.lattice, args.loading, args.potential, args.direction, args.d_over_d0)
     rows = []
     for i, d in enumerate(r["d_over_d0"]):
-        row = {"d_over_d0": float(d), "stress": float(r["stress"][i])}
-        row.update({k: (None if np.isnan(r[k][i]) else float(r[k][i])) for k in SPEED_KEYS})
+        row: dict[str, Any] = {"d_over_d0": float(d), "stress": float(r["stress"][i])}
+        res: dict[str, Any] = dict(r)
+        row.update({k: (None if np.isnan(res[k][i]) else float(res[k][i])) for k in SPEED_KEYS})
         row.update(wave_type=str(r["wave_type"][i]), stable=bool(r["stable"][i]), reason=str(r["reason"][i]))
         rows.append(row)
     if args.json:
@@ -266,12 +269,12 @@ def _angles(text: str) -> np.ndarray | float:
     return start + step * np.arange(int(n))
 
 
-def _material_rows(r: dict) -> list[dict]:
+def _material_rows(r: Mapping[str, Any]) -> list[dict]:
     """JSON-ready rows (one per direction) of a :func:`surfwave.material` result."""
     n = np.size(r["c_R"])
     rows = []
     for i in range(n):
-        row = {}
+        row: dict[str, Any] = {}
         for key, value in r.items():
             v = np.asarray(value)
             v = np.asarray(v[i]) if v.ndim and v.shape[0] == n and np.ndim(r["c_R"]) else v
@@ -323,6 +326,7 @@ def _cmd_material(args) -> int:
         constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
     if args.rho is None and args.material is None and not (args.cut is not None and not given):
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
+    toec: Any
     if args.toec_file is not None:
         if args.toec is not None:
             raise InputError("give --toec or --toec-file, not both")
@@ -343,6 +347,7 @@ def _cmd_material(args) -> int:
     else:
         raise InputError(f"--stress takes one value or nine, got {len(args.stress)}")
     oriented = args.euler is None and args.cut is None      # else the Euler angles set surface and direction
+    direction: Any
     if args.angle is not None:
         direction = _angles(args.angle)
     elif args.direction is not None:

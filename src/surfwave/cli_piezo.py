@@ -7,6 +7,8 @@ of :func:`surfwave.material` (:func:`material_kwargs`) and prints a piezoelectri
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -107,7 +109,7 @@ def _f(v, fmt: str, width: int = 10) -> str:
     return f"{'nan':>{width}}" if v is None or (isinstance(v, float) and np.isnan(v)) else format(v, fmt)
 
 
-def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
+def print_result(args, r: Mapping[str, Any], rows: list[dict], swept: int | None) -> int:
     """Print a piezoelectric :func:`surfwave.material` result as a table (sweep) or a list."""
     electrical = rows[0]["electrical"]
     where = (f"cut {args.cut}" if args.cut else

@@ -50,7 +50,8 @@ def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
 def unique_records(where: str, key: str, names, lookup) -> list:
     """Database records of ``names`` (``lookup(name)``), refusing unknown names and two spellings
     of one record ("Cu" and "copper" would give two labels Cu in one cube)."""
-    records, given = [], {}
+    records: list = []
+    given: dict[str, str] = {}
     for n in names:
         try:
             rec = lookup(n)

@@ -23,7 +23,7 @@ Examples
 from __future__ import annotations
 
 from functools import partial
-from typing import TYPE_CHECKING, NamedTuple, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple, Sequence
 
 import numpy as np
 
@@ -72,7 +72,7 @@ def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
         found = [get_cut(c) for c in cuts]
         e = np.array([c.euler for c in found], dtype=float)
         angle = np.array([0.0])
-        coords = {"surface": [c.name for c in found], "cut": [c.name for c in found]}
+        coords: dict[str, Any] = {"surface": [c.name for c in found], "cut": [c.name for c in found]}
     else:
         phi, theta, angle = (np.atleast_1d(np.asarray(euler[k], dtype=float)) for k in ("phi", "theta", "psi"))
         pt = np.stack(np.meshgrid(phi, theta, indexing="ij"), axis=-1).reshape(-1, 2)
@@ -160,7 +160,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         if arr.dtype == object:
             arr = arr.astype(str)
         data_vars[key] = (vdims, arr, dict(VARIABLES[key]))
-    coords = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
+    coords: dict[str, Any] = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
               "electrical": ("electrical", np.array(el, dtype=str), COORDS["electrical"]),
               "toec": ("toec", np.asarray(models, dtype=bool), COORDS["toec"]),
               "stress": ("stress", s, COORDS["stress"]),
