@@ -145,3 +145,51 @@ def test_stress_true_is_not_one_gigapascal(door, capsys):
         return
     call = _api_surface if door == "api surface" else _api_euler
     assert "not True/False" in _refusal(lambda: call(stress=True))
+
+
+def test_born_unstable_constants_are_the_same_answer_at_both_api_doors():
+    """C11 = 50, C12 = -80, C44 = 30 GPa: C11 + 2 C12 = -110 GPa < 0 (Born and Huang's cubic
+    criterion; the lowest eigenvalue of the Voigt matrix is C11 + 2 C12). Not an input error: both
+    doors answer NaN with the same Born reason naming -110 GPa (before, the Euler door refused
+    such constants with another message)."""
+    a = surfwave.material(50.0, -80.0, 30.0, 5000.0, direction="[100]")
+    b = surfwave.material(50.0, -80.0, 30.0, 5000.0, euler=(0, 0, 0))
+    assert np.isnan(a["c_R"]) and np.isnan(b["c_R"]) and a["reason"] == b["reason"]
+    assert "not Born-stable" in a["reason"] and "-110 GPa" in a["reason"]
+
+
+#: Bad inputs every door of the API and the CLI must refuse with one line (the fragment), each
+#: answered within seconds: (API keyword arguments, CLI arguments, fragment of the refusal).
+BAD = [
+    ({"stress": float("nan")}, ["--stress", "nan"], "stress must be finite"),
+    ({"stress": -5000.0}, ["--stress", "-5000"], "looks like Pa"),
+    ({"stress": np.diag([0.0, 0.0, 0.1])}, ["--stress", "0", "0", "0", "0", "0", "0", "0", "0", "0.1"],
+     "prestress must lie in the surface plane"),
+    ({"stress": np.array([[0.0, 0.1, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]])},
+     ["--stress", "0", "0.1", "0", "0", "0", "0", "0", "0", "0"], "symmetric"),
+    ({"rho": 0.0}, ["--rho", "0"], "rho"),
+    ({"C11": 168.4e9}, ["--C11", "168.4e9"], "looks like Pa"),
+    ({"stress": 0.1, "toec": (1271e9, 814e9, 50e9, 3e9, 780e9, 95e9)},     # magnitudes of Cu's set, in Pa
+     ["--stress", "0.1", "--toec", "1271e9", "814e9", "50e9", "3e9", "780e9", "95e9"], "looks like Pa"),
+]
+
+
+@pytest.mark.parametrize("door", ["api surface", "api euler", "cli"])
+@pytest.mark.parametrize("kw, cli_args, fragment", BAD)
+def test_bad_input_table(door, kw, cli_args, fragment, capsys):
+    """The same refusal by every door (a new door must pass this table), in seconds."""
+    import time
+
+    t0 = time.perf_counter()
+    if door == "cli":
+        given = dict(zip(CU[::2], CU[1::2]))
+        given.update(dict(zip(cli_args[::2], cli_args[1::2])) if len(cli_args) == 2 else {})
+        args = [x for k, v in given.items() for x in (k, v)] + ([] if len(cli_args) == 2 else cli_args)
+        assert main(["material", *args, "--direction", "[100]"]) == 2
+        text = capsys.readouterr().err
+    else:
+        base = dict(zip(("C11", "C12", "C44", "rho"), CU_ARGS))
+        where = {"euler": (0.0, 0.0, 0.0)} if door == "api euler" else {"direction": "[100]"}
+        text = _refusal(lambda: surfwave.material(**{**base, **where, **kw}))
+    assert fragment in text and "\n" not in text.strip()
+    assert time.perf_counter() - t0 < 5.0
