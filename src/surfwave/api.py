@@ -97,7 +97,7 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
     classic = isinstance(direction, str) and direction in ("[100]", "[110]", "[10]") \
         and load_direction in (None, direction)
     if classic:
-        out, sigma = elastic._properties(lattice, loading, potential, direction, d_over_d0, min_eig)
+        out, sigma = elastic.properties_and_stress(lattice, loading, potential, direction, d_over_d0, min_eig)
         ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
         out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
         if details:
