@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import replace
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -59,6 +60,13 @@ def find_crystal(name) -> tuple[Material | None, PiezoMaterial | None]:
         return None, name
     if not isinstance(name, str):
         return None, None
+    return _find_by_name(name)
+
+
+@lru_cache(maxsize=256)
+def _find_by_name(name: str) -> tuple[Material | None, PiezoMaterial | None]:
+    """:func:`find_crystal` of a string, once per name (a miss in a database costs a
+    close-match search for its message; the records are immutable)."""
     found: list[Any] = []
     for lookup in (get_material, get_piezo_material):
         try:
