@@ -183,12 +183,13 @@ def material(C11=None, C12=None, C44=None, rho=None, direction=None, stress=0.0,
     direction : str or float or array_like of float
         A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
         surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
-        n x reference (:mod:`surfwave.solvers.orientation`).
-    stress : float or array_like, shape (3, 3)
+        n x reference (:mod:`surfwave.solvers.orientation`). Default (None): "[100]".
+    stress : float or array_like, shape (3, 3), (m,) or (m, 3, 3)
         A scalar: uniaxial stress along the propagation direction; a 3 x 3 Cauchy stress in
-        crystal axes. GPa, negative = compression. It must lie in the surface plane.
+        crystal axes; or one of them per direction. GPa (at most 1e3 GPa: larger values are
+        taken for Pa and refused), negative = compression. It must lie in the surface plane.
     surface : str
-        "(hkl)".
+        "(hkl)". Default (None): "(001)".
     angle : float or array_like, optional, keyword only
         Same as an angle ``direction`` (wins over it).
     toec : None, True or sequence of 6 floats or array_like (6, 6, 6), keyword only
@@ -211,8 +212,8 @@ def material(C11=None, C12=None, C44=None, rho=None, direction=None, stress=0.0,
         Clamped relative permittivity eps_r (eps / EPS0), crystal axes, symmetric positive definite.
     euler : array_like, shape (3,) or (m, 3), keyword only
         SAW Euler angles (phi, theta, psi) in degrees, ZXZ, lab x1 = propagation, x3 = outward
-        normal (:mod:`surfwave.solvers.euler`); replaces ``surface``/``direction``. Works for any
-        crystal (a non-piezoelectric one is solved with e = 0).
+        normal (:mod:`surfwave.solvers.euler`); replaces ``surface``/``direction`` (giving them
+        too is refused). Works for any crystal (a non-piezoelectric one is solved with e = 0).
     cut : str, keyword only
         A named cut (``"128Y-X LiNbO3"``, ``"ST-X quartz"``, ``"128Y-X"`` with the material given;
         :func:`surfwave.real_crystals.piezo_materials.available_cuts`).
@@ -258,10 +259,14 @@ def material(C11=None, C12=None, C44=None, rho=None, direction=None, stress=0.0,
     Raises
     ------
     InputError
-        Missing or non-finite constants, constants in Pa (hint given), rho <= 0, a direction
-        not in the surface, a stress with sigma . n != 0 (component named), an unknown material
-        name (known ones listed), toec=True for a material without third-order constants (the
-        material and the missing constants named).
+        One line, before any solve, the same by every door (:func:`surfwave.resolve.resolve_material`,
+        checks in :func:`surfwave.case.make_case`): missing or non-finite constants, constants
+        in Pa (hint given), rho outside [1, 1e12] kg/m^3, piezoelectric constants above
+        100 C/m^2 or eps_r below 1, complex or boolean numbers, a direction not in the surface,
+        ``euler=``/``cut=`` with ``surface=``/``direction=``/``angle=``, a stress with
+        sigma . n != 0 (component named) or beyond 1e3 GPa, an unknown material name (known
+        ones listed), toec=True for a material without third-order constants (the material
+        and the missing constants named), third-order constants in Pa or given as True.
 
     Examples
     --------
