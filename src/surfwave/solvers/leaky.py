@@ -282,8 +282,9 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         Piezoelectric stress constants e_kij, lab frame; None: non-piezoelectric (6 x 6 problem).
     eps : None or array_like, shape (m, 3, 3), F/m
         Absolute clamped permittivity, lab frame (with ``e``).
-    electrical : {"free", "metallized"} or sequence of them
-        Electrically free surface (vacuum above) or shorted (phi = 0). Ignored without ``e``.
+    electrical : {"free", "metallized"}, a :class:`surfwave.solvers.boundary.Boundary`, or a sequence of them
+        Electrically free surface (vacuum above) or shorted (phi = 0), or any boundary object
+        (its ``secular_matrix``; the result is keyed by its ``name``). Ignored without ``e``.
         A sequence (e.g. ``("free", "metallized")``, each once) solves every condition in one call:
         the limits, the real-speed scan's eigen-decompositions, the outgoing choice and the surface
         impedance M = B A^-1 on the grid are shared (only the boundary function's electrical part
@@ -311,7 +312,8 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
     """
     several = not isinstance(electrical, (str, Boundary))
-    conds = tuple(as_boundary(el).name for el in (electrical if several else (electrical,)))
+    bounds = tuple(as_boundary(el) for el in (electrical if several else (electrical,)))
+    conds = tuple(b.name for b in bounds)         # the result's keys; the objects do the physics
     if not conds or len(set(conds)) != len(conds):
         raise InputError(f"electrical: each condition once, at least one, got {electrical!r}")
     A, rho, e, eps = _check(A, rho, e, eps)
@@ -333,7 +335,7 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     ii = np.nonzero(ok)[0]
     sc = _scan(Q[ii], R[ii], T[ii], XL[ii], d) if ii.size else None
     out: dict = {}
-    for el in conds:
+    for el, bound in zip(conds, bounds):
         if d == 3 and out:          # elastic: the condition is ignored, the same answer (copied)
             first = out[conds[0]]
             out[el] = {k: v.copy() for k, v in first.items()}
@@ -345,7 +347,7 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         pol = np.full((m, d), np.nan + 0j)
         its = np.zeros(m, dtype=int)
         if ii.size:
-            X[ii], pch[ii], pol[ii], its[ii], reason[ii] = _solve(sc, XL[ii], d, el, tol)
+            X[ii], pch[ii], pol[ii], its[ii], reason[ii] = _solve(sc, XL[ii], d, bound, tol)
         out[el] = _result(X, pch, pol, its, reason, XL, s, rho, d)
     return out if several else out[conds[0]]
 
