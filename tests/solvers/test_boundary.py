@@ -60,3 +60,11 @@ def test_a_new_boundary_class_plugs_into_the_solvers():
         sub_ref = piezo_surface_wave(A, t["e"], t["eps"], rho, electrical="metallized")
         sub_new = piezo_surface_wave(A, t["e"], t["eps"], rho, electrical=np.array([Shorted()], dtype=object))
         np.testing.assert_array_equal(sub_new["c"], sub_ref["c"])
+
+
+def test_the_boundaries_are_the_vocabulary():
+    """The named boundaries are exactly surfwave.vocab.ELECTRICAL, in its order."""
+    from surfwave import vocab
+    from surfwave.solvers.boundary import BOUNDARIES
+
+    assert tuple(BOUNDARIES) == vocab.ELECTRICAL

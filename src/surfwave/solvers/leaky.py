@@ -39,6 +39,7 @@ from surfwave.errors import InputError
 from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.piezo_stroh import generalised_blocks, stroh_matrix
 from surfwave.solvers.piezo_tensors import EPS0
+from surfwave.vocab import ELECTRICAL  # noqa: F401  (kept: a public name of this module)
 
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
