@@ -152,3 +152,19 @@ def test_stress_true_is_refused_as_an_array_entry_too():
     """``stress=True`` was 1 GPa; a tensor holding True likewise."""
     with pytest.raises(InputError, match="not True/False"):
         surfwave.material("Cu", stress=np.array([[True, False, False], [False, False, False], [False] * 3]))
+
+
+# --------------------------------------------------------------------------- item 11 (the API's part)
+
+
+@pytest.mark.parametrize("kw", [
+    {"euler": np.zeros((0, 3))}, {"euler": "0 38 0"}, {"euler": (0, 1j, 0)}, {"euler": [[0, 0, 0], [1, 2]]},
+    {"euler": {"phi": 0}}, {"stress": 0.1, "toec": [[1, 2], [3]]}, {"stress": 0.1, "toec": (1, 2, 3, 4, 5, "a")},
+    {"stress": 0.1, "toec": "abc"},
+])
+def test_api_tracebacks_are_one_line(kw):
+    """Issue 28, item 11: these ended in tracebacks (IndexError, ValueError, TypeError) through
+    the API; the resolver answers each with one InputError line."""
+    with pytest.raises(InputError) as exc:
+        surfwave.material("Cu", **kw)
+    assert "\n" not in str(exc.value)
