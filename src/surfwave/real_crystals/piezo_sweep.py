@@ -129,12 +129,9 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         ``toec`` true for a material without third-order constants (and no ``toec_constants``),
         or ``toec_constants`` not a valid set for a material's class.
     """
-    import xarray as xr
-
     g = scene_cases(materials, cuts=cuts, euler=euler, electrical=electrical, stress=stress, toec=toec,
                     toec_constants=toec_constants, tol=tol)
-    mats, models, el, oc, oshape, s = g.materials, g.models, g.electrical, g.coords, g.shape, g.stress
-    n_s = s.size
+    mats, models, el = g.materials, g.models, g.electrical
     out: dict[str, np.ndarray] = {}
     for i, m in enumerate(mats):
         for t, use in enumerate(models):
@@ -148,7 +145,16 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
                     if key not in out:
                         out[key] = np.empty((len(mats), len(el), len(models)) + v.shape, dtype=v.dtype)
                     out[key][i, j, t] = v
-    grid = (len(mats), len(el), len(models)) + oshape + (n_s,)
+    return _dataset(out, g, stressed=stress is not None)
+
+
+def _dataset(out: dict[str, np.ndarray], g: PiezoSceneGrid, stressed: bool) -> xr.Dataset:
+    """Label the arrays of :func:`piezo_wave_sweep` (``out[key]``: (material, electrical, toec, point, ...))
+    as the cube; without a stress grid the ``toec`` and ``stress`` dims are dropped."""
+    import xarray as xr
+
+    mats, models, el, oc, oshape, s = g.materials, g.models, g.electrical, g.coords, g.shape, g.stress
+    grid = (len(mats), len(el), len(models)) + oshape + (s.size,)
     dims = ("material", "electrical", "toec", "surface", "angle", "stress")
     data_vars = {}
     for key, arr in out.items():
@@ -177,7 +183,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         coords["cut"] = ("surface", np.asarray(oc["cut"], dtype=str), COORDS["cut"])
     ds = xr.Dataset(data_vars, coords=coords).transpose("material", "surface", "angle", "electrical", "toec",
                                                         "stress", ...)
-    if stress is None:
+    if not stressed:
         ds = ds.isel(toec=0, stress=0, drop=True)
     return ds
 
