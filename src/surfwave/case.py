@@ -230,7 +230,7 @@ def solve(case: Case, start: int = 0, stop: int | None = None, *, bulk: bool = T
         passed through; :data:`INTERNAL_KEYS` included).
     """
     sl = slice(start, stop)
-    conditions = tuple(b.name for b in case.boundaries) or (None,)
+    conditions: tuple = case.boundaries or (None,)
     return surface_wave_conditions(case.constants, case.axes[sl], case.stress[sl], conditions=conditions,
                                    toec=case.toec, tol=case.tol, bulk=bulk, leaky=case.leaky)
 

@@ -68,3 +68,17 @@ def test_the_boundaries_are_the_vocabulary():
     from surfwave.solvers.boundary import BOUNDARIES
 
     assert tuple(BOUNDARIES) == vocab.ELECTRICAL
+
+
+def test_a_new_boundary_class_goes_through_the_front_door():
+    """The same renamed metallized surface through surfwave.material: the whole path (resolver,
+    case, one path, piezoelectric batch, leaky wave) answers with the metallized numbers and
+    labels them with the new name; free and metallized speeds and K^2 are unchanged."""
+    import surfwave
+
+    ref = surfwave.material("LiNbO3", cut="64Y-X", electrical="metallized")
+    new = surfwave.material("LiNbO3", cut="64Y-X", electrical=Shorted())
+    assert new["electrical"] == "shorted"
+    for key in ("c_R", "c_leaky", "leaky_attenuation", "c_free", "c_metallized", "K2", "power_flow_angle"):
+        np.testing.assert_array_equal(new[key], ref[key])
+    assert new["wave_type"] == ref["wave_type"]

@@ -319,12 +319,14 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
         ``electrical`` without piezoelectric constants. Never for a point: those get NaN and a
         reason.
     """
+    condition: Boundary | None = None
     if constants.is_piezo:
-        electrical = "free" if electrical is None else as_boundary(electrical).name
+        condition = as_boundary("free" if electrical is None else electrical)
     elif electrical is not None:
         raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
-    return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,
-                                   state_tol=state_tol, bulk=bulk, leaky=leaky)[electrical]
+    return surface_wave_conditions(constants, axes, stress, conditions=(condition,), toec=toec, tol=tol,
+                                   state_tol=state_tol, bulk=bulk, leaky=leaky)[None if condition is None
+                                                                                else condition.name]
 
 
 def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=ELECTRICAL, toec: bool = False,
@@ -340,8 +342,9 @@ def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=EL
     ----------
     constants, axes, stress, toec, tol, state_tol, bulk, leaky
         As :func:`surface_wave`.
-    conditions : sequence of {"free", "metallized"}, or (None,)
-        Distinct electrical conditions (piezoelectric crystals); ``(None,)`` for a crystal
+    conditions : sequence of {"free", "metallized"} or of Boundary objects, or (None,)
+        Distinct electrical conditions (piezoelectric crystals; results keyed by their names,
+        :mod:`surfwave.solvers.boundary`); ``(None,)`` for a crystal
         without piezoelectric constants.
 
     Returns
@@ -356,8 +359,11 @@ def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=EL
     """
     conditions = tuple(conditions)
     allowed = ELECTRICAL if constants.is_piezo else (None,)
-    if not conditions or len(set(conditions)) != len(conditions) or any(c not in allowed for c in conditions):
-        raise InputError(f"conditions must be distinct values of {allowed}, got {conditions!r}")
+    known = all(isinstance(c, Boundary) or c in allowed for c in conditions) and (
+        constants.is_piezo or conditions == (None,))
+    names = tuple(c.name if isinstance(c, Boundary) else c for c in conditions)
+    if not conditions or len(set(names)) != len(names) or not known:
+        raise InputError(f"conditions must be distinct values of {allowed} (or Boundary objects), got {conditions!r}")
     axes = np.asarray(axes, dtype=float)
     sigma = np.asarray(stress, dtype=float)
     if axes.shape[-2:] != (3, 3) or sigma.shape[-2:] != (3, 3):
@@ -411,7 +417,8 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
         shared.update(_bulk(A, rho, n, idx))
         shared["stable"] = np.zeros(n, dtype=bool)
         shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
-    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in conditions}
+    names = [c.name if isinstance(c, Boundary) else c for c in conditions]
+    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in names}
 
 
 def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict) -> dict:
