@@ -150,7 +150,11 @@ def check_stress(stress, axes: np.ndarray, where: str) -> np.ndarray:
     s = validate.gpa_stress(stress)
     if s.shape[-2:] != (3, 3):
         raise InputError(f"stress must be 3 x 3 tensors (GPa), got shape {s.shape}")
-    s = np.broadcast_to(s, axes.shape)
+    try:
+        s = np.broadcast_to(s, axes.shape)
+    except ValueError:
+        raise InputError(f"stress must be one 3 x 3 tensor or one per point ({axes.shape[0]}), got shape "
+                         f"{s.shape}") from None
     scale = max(float(np.abs(s).max()), 1e-300) if s.size else 1.0
     if not np.allclose(s, np.swapaxes(s, -1, -2), rtol=0, atol=1e-12 * scale):
         raise InputError(f"the stress tensor must be symmetric, got {s[0].tolist()}")

@@ -168,3 +168,17 @@ def test_api_tracebacks_are_one_line(kw):
     with pytest.raises(InputError) as exc:
         surfwave.material("Cu", **kw)
     assert "\n" not in str(exc.value)
+
+
+def test_piezo_wave_has_the_same_bounds():
+    """The lower-level piezo_wave (lab axes in) refuses what the API refuses for density and
+    piezoelectric magnitudes (item 5: rho = 1e-3 gave 8.66e6 m/s there too)."""
+    from surfwave.real_crystals.piezo_materials import get_cut
+    from surfwave.real_crystals.piezo_wave import piezo_wave
+
+    c = get_cut("128Y-X LiNbO3")
+    with pytest.raises(InputError, match="lies outside"):
+        piezo_wave(c.material, c.lab_axes, rho=1e-3)
+    ln = get_piezo_material("LiNbO3")
+    with pytest.raises(InputError, match="C/m\\\\^2"):
+        piezo_wave(None, c.lab_axes, voigt=ln.voigt, e=ln.e * 1e6, eps_r=ln.eps_r, rho=ln.rho)

@@ -74,7 +74,8 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
     ------
     InputError
         Unknown name; explicit constants missing, of the wrong shape, non-finite, in Pa, not
-        positive definite (stiffness, eps_r), rho <= 0 (:func:`check_piezo_record`).
+        positive definite (stiffness, eps_r) (:func:`check_piezo_record`); e beyond 100 C/m^2,
+        eps_r below 1, rho outside [1, 1e12] kg/m^3 (:mod:`surfwave.validate`).
     """
     if material is not None:
         if any(v is not None for v in (voigt, e, eps_r)):
@@ -83,8 +84,7 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
         m = get_piezo_material(material)
         if rho is None:
             return m
-        check_piezo_record(m.voigt, m.e, m.eps_r, rho, name=m.name)
-        return PiezoMaterial(**{**m.__dict__, "rho": float(rho)})
+        return PiezoMaterial(**{**m.__dict__, "rho": validate.density(rho)})
     for key, value in (("voigt", voigt), ("piezo (e)", e), ("permittivity (eps_r)", eps_r), ("rho", rho)):
         if value is None:
             raise InputError(f"{key} is missing: a piezoelectric crystal needs voigt (6 x 6, GPa), piezo "
@@ -94,6 +94,8 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
     except (TypeError, ValueError) as exc:
         raise InputError(f"piezoelectric constants must be numeric arrays: {exc}") from None
     check_piezo_record(C6, e6, er, rho, name="constants")
+    validate.piezo_constants(e, eps_r)                 # the bounds of every door: C/m^2, eps_r >= 1
+    rho = validate.density(rho)
     return PiezoMaterial(name="user", formula="", crystal_class="", rho=float(rho), voigt=C6, e=e6, eps_r=er,
                          constants={}, setting="user-supplied, crystal axes", sources={})
 
