@@ -37,6 +37,7 @@ import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
+from surfwave.real_crystals.piezo_wave import stress_model
 from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, surface_wave_conditions
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
 from surfwave.solvers.tensors import rotate2
@@ -244,8 +245,6 @@ def material_result(case: Case) -> dict:
     path (:func:`solve`) but :data:`INTERNAL_KEYS`, plus ``toec``, ``angle`` and, with the
     piezoelectric part, ``euler`` (NaN for a surface/direction orientation) and ``model``; numbers
     (not arrays of one) for a scalar question."""
-    from surfwave.real_crystals.piezo_wave import stress_model
-
     r = solve(case)[case.boundary.name if case.boundary is not None else None]
     out = {key: value for key, value in r.items() if key not in INTERNAL_KEYS}
     out["toec"] = np.full(case.size, case.toec)
