@@ -193,3 +193,23 @@ def test_bad_input_table(door, kw, cli_args, fragment, capsys):
         text = _refusal(lambda: surfwave.material(**{**base, **where, **kw}))
     assert fragment in text and "\n" not in text.strip()
     assert time.perf_counter() - t0 < 5.0
+
+
+#: Bad scene inputs: each refused by the scene check (before any job) with the API's words
+#: after the scene, key and value.
+SCENE_BAD = [
+    ("crystal", {"stress": [-5000]}, "key 'stress': value -5000.0: stress must be in GPa; got -5000.0"),
+    ("piezo", {"stress": [-5000]}, "key 'stress': value -5000.0: stress must be in GPa; got -5000.0"),
+    ("crystal", {"stress": [0.1], "loading": ["axis_001"]}, "the axis is not in the surface plane"),
+    ("piezo", {"euler": {"phi": float("inf")}}, "key 'euler.phi': value inf degrees: Euler angles must be finite"),
+]
+
+
+@pytest.mark.parametrize("kind, kw, fragment", SCENE_BAD)
+def test_bad_scene_table(kind, kw, fragment):
+    """The scene door of the same table: one line naming the scene and key, the API's words."""
+    scene, problems = (_crystal_scene if kind == "crystal" else _piezo_scene)(**kw)
+    assert scene is None and len(problems) == 1 and fragment in problems[0]
+    assert problems[0].startswith("scene 's', key ")
+    if "stress must be in GPa" in fragment:      # the same words as surfwave.material
+        assert problems[0].split(": ", 2)[2] == _refusal(lambda: _api_surface(stress=-5000.0))

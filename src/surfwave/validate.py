@@ -226,8 +226,8 @@ def gpa_stress(values, name: str = "stress") -> np.ndarray:
     surfwave.errors.InputError: stress must be in GPa; got 2000.0, beyond 1000 GPa, which looks like Pa (divide by 1e9: 2e-06 GPa)
     """  # noqa: E501 (a doctest's expected message)
     a = _numbers(values, name, "GPa")
-    big = float(np.abs(a).max()) if a.size else 0.0
-    if big > MAX_STRESS_GPA:
+    big = float(a.flat[np.argmax(np.abs(a))]) if a.size else 0.0
+    if abs(big) > MAX_STRESS_GPA:
         raise InputError(f"{name} must be in GPa; got {big!r}, beyond {MAX_STRESS_GPA:g} GPa, which looks like Pa "
                          f"(divide by 1e9: {big / 1e9:g} GPa)")
     return a
