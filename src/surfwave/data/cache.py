@@ -34,7 +34,7 @@ import re
 import time
 import zipfile
 from pathlib import Path
-from typing import Callable, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
@@ -111,7 +111,8 @@ def _atomic_write(path: Path, arrays: Mapping[str, np.ndarray], text: str) -> No
     """Store one entry (its key text beside the arrays) atomically and durably."""
     def savez(tmp: Path) -> None:
         with open(tmp, "wb") as fh:
-            np.savez(fh, __key__=np.array(text), **arrays)
+            payload: dict[str, Any] = {"__key__": np.array(text), **arrays}
+            np.savez(fh, **payload)
 
     atomic_write(path, savez, prefix=".tmp-", suffix=".npz", fsync=True)
 
@@ -252,7 +253,7 @@ def start_run(root: str | Path = DEFAULT_ROOT) -> None:
     _atomic_write_text(stats / _RUN_MARKER, json.dumps({"time": time.time()}))
 
 
-def info(root: str | Path = DEFAULT_ROOT) -> dict:
+def info(root: str | Path = DEFAULT_ROOT) -> dict[str, Any]:
     """Summary of the store.
 
     Returns
@@ -264,7 +265,7 @@ def info(root: str | Path = DEFAULT_ROOT) -> dict:
         left by killed jobs), ``root``.
     """
     root = Path(root)
-    out = {"root": str(root), "entries": 0, "size": 0, "kinds": {}, "hits": 0, "misses": 0,
+    out: dict[str, Any] = {"root": str(root), "entries": 0, "size": 0, "kinds": {}, "hits": 0, "misses": 0,
            "stale_temporary": 0}
     if not root.is_dir():
         return out
