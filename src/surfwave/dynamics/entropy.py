@@ -44,6 +44,7 @@ Examples
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -223,8 +224,8 @@ def stability(potential: str | PairPotential, d_over_d0: float, n_grid: int = ZO
     return "", "; ".join(reasons)
 
 
-def _one_strain(pot: PairPotential, d: float, tol: float, n_start: int, n_max: int) -> dict:
-    out = dict.fromkeys(
+def _one_strain(pot: PairPotential, d: float, tol: float, n_start: int, n_max: int) -> dict[str, Any]:
+    out: dict[str, Any] = dict.fromkeys(
         ["S_surface_estimate", "S_surface_estimate_error", "bulk_mean_log_omega",
          "bulk_mean_log_omega_error", "S_surface_exact", "S_surface_exact_error"], np.nan)
     out["n_theta"] = 0
