@@ -31,21 +31,23 @@ Stability scans and instability limits built on this module: :mod:`surfwave.mode
 from __future__ import annotations
 
 import itertools
-from typing import Literal
+from typing import Final, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError, PhonopyPointError, SurfwaveError
 from surfwave.model_crystals.lattices import build_checked, check_combination
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Lattice, Loading
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
 DEFAULT_SUPERCELL = 2
 DEFAULT_DISPLACEMENT = 3e-5
 DEFAULT_ZONE_MESH = 8
-DEFAULT_LONG_WAVE = "curvature"
+DEFAULT_LONG_WAVE: Final = "curvature"
 DEFAULT_SECANT_EPS = 1e-3
 #: omega^2 (K/m) or c^2 (K d0^2/m) below -TOLERANCE counts as unstable.
 TOLERANCE = 1e-7
@@ -156,7 +158,9 @@ def make_phonopy(crystal, index: int, potential: PairPotential, supercell: int, 
     table = neighbour_table(sc.scaled_positions, sc.cell, bonds)
     ref = sc.positions
     forces = []
-    for disp_cell in phonon.supercells_with_displacements:
+    displaced = phonon.supercells_with_displacements
+    assert displaced is not None  # set by generate_displacements
+    for disp_cell in displaced:
         u = disp_cell.positions - ref
         u -= np.round(u @ np.linalg.inv(sc.cell)) @ sc.cell  # undo wrapping into the cell
         forces.append(pair_forces(u, bonds, table, potential))
@@ -224,7 +228,7 @@ def dynamical_matrix(phonon, k: np.ndarray, cell: np.ndarray) -> np.ndarray:
     return np.array(phonon.dynamical_matrix.dynamical_matrix)
 
 
-def secant_tensor(phonon, cell: np.ndarray, n: np.ndarray, eps: float) -> np.ndarray:
+def secant_tensor(phonon, cell: np.ndarray, n: ArrayLike, eps: float) -> np.ndarray:
     """A(n) = [D(eps n) - D(0)] / eps^2 from phonopy's dynamical matrix, shape (3, 3), K d0^2/m."""
     d0 = dynamical_matrix(phonon, np.zeros(3), cell)
     return (dynamical_matrix(phonon, eps * np.asarray(n, float), cell) - d0).real / eps**2
@@ -366,10 +370,10 @@ def _point(crystal, index, pot, supercell, displacement, zone_mesh, long_wave, s
 
 
 def bulk_speeds(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential,
-    direction: str,
+    direction: Direction,
     d_over_d0,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
