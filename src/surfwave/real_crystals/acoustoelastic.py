@@ -22,6 +22,8 @@ relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at 1e-3 GPa and 8e-
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from surfwave.errors import InputError
@@ -170,7 +172,7 @@ def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]"
     h = np.array([-step, step])
     sig = np.stack([loading_stress(k, h, surface, direction) for k in kinds])  # (3, 2, 3, 3)
     sig0 = np.zeros((1, 3, 3))
-    out = {"step": float(step)}
+    out: dict[str, Any] = {"step": float(step)}
     for model, c3 in (("toec", C3), ("fixed_C", None)):
         if model == "toec" and C3 is None:
             out[model] = {k: float("nan") for k in kinds}

@@ -212,6 +212,7 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
     if not np.all(np.isfinite(s)):
         raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
     x1, n, x3 = axes[..., 0, :], axes[..., 1, :], axes[..., 2, :]
+    d: np.ndarray | None
     if loading == "axis":
         if axis is None:
             raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
@@ -228,6 +229,7 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
     elif loading == "biaxial":
         unit = np.einsum("...i,...j->...ij", x1, x1) + np.einsum("...i,...j->...ij", x3, x3)
     else:
+        assert d is not None  # an axis loading: axis_of_loading refused every other name
         if np.any(np.abs(n @ d) > TRACTION_TOL):
             raise InputError(f"{name} is not in the surface plane (a stress with a normal component "
                              "cannot act on a free surface)")
@@ -455,6 +457,7 @@ def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray
         sw = stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
         return {None: {**sw, **_elastic_leaky(A, rho, sw, leaky)}}
     leaky = True if leaky is None else leaky
+    assert constants.permittivity is not None  # given with piezo (Constants checks both)
     e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
     eps = rotate2(constants.permittivity * EPS0, lab)
     return piezo_saw_conditions(A, rho, e, eps, conditions=conditions, tol=PIEZO_TOL if tol is None else tol,

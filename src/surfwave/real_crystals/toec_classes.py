@@ -60,7 +60,7 @@ MAX_TOEC_GPA = 1e5
 INVARIANCE_TOL = 1e-6
 _PAIRS = np.array(VOIGT_PAIRS)
 # the 56 independent Voigt components I <= J <= K
-_TRIPLES = [(i, j, k) for i in range(6) for j in range(i, 6) for k in range(j, 6)]
+_TRIPLES: list[tuple[int, ...]] = [(i, j, k) for i in range(6) for j in range(i, 6) for k in range(j, 6)]
 
 
 def _from_triples(x) -> np.ndarray:
