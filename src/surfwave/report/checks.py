@@ -130,9 +130,9 @@ def _plain_value(ds: xr.Dataset, spec: dict):
     err = f"{spec['variable']}_error"
     if err in ds:
         e = ds[err]
-        e = sel_strain(e, 1.0 + float(spec.get("select", {}).get("strain", 0.0))) if "strain" in e.dims else e
-        if e is not None:
-            ev = f"our error estimate {fmt(float(e.values))}"
+        at = sel_strain(e, 1.0 + float(spec.get("select", {}).get("strain", 0.0))) if "strain" in e.dims else e
+        if at is not None:
+            ev = f"our error estimate {fmt(float(at.values))}"
     return float(var.values), ev
 
 

@@ -284,7 +284,7 @@ def _eq15(name, spec, cubes):
         worst, n = 0.0, 0
         for s in d_over_d0(om):
             o, c = sel_strain(om, s), sel_strain(c2, s)
-            if c is None:
+            if o is None or c is None:  # o never is: s runs over om's own grid
                 continue
             model = np.sqrt(float(c.values)) / (s / 2.0) * np.sin(np.asarray(om["theta"].values, float))
             ok = np.isfinite(o.values) & (model > 0)
