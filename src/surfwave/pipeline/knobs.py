@@ -17,6 +17,7 @@ from __future__ import annotations
 import copy
 import inspect
 from dataclasses import dataclass
+from typing import cast
 
 from surfwave.model_crystals import phonons
 
@@ -154,7 +155,7 @@ def estimated_cost(block: str, settings: dict, seconds_at_default: float) -> flo
     for name, knob in knobs().get(block, {}).items():
         if knob.cost_power:
             value = settings.get(name, knob.default)
-            terms.append(knob.cost_seconds * (float(value) / float(knob.default)) ** knob.cost_power)
+            terms.append(knob.cost_seconds * (float(value) / float(cast(float, knob.default))) ** knob.cost_power)
     return sum(terms) if terms else seconds_at_default
 
 

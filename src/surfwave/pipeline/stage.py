@@ -63,8 +63,8 @@ def block_cube(
     """
     log = sys.stderr if log is None else log
     labels = {b: list(job[_LABELS[b]]) for b in by}
-    blocks = _Blocks(list(itertools.product(*labels.values())),
-                     lambda key: cube.documented(compute(*key), variables, log))
+    blocks: Mapping[tuple, Any] = _Blocks(list(itertools.product(*labels.values())),
+                                          lambda key: cube.documented(compute(*key), variables, log))
     if ragged is not None:  # every block is needed to know the longest axis: computed now
         dim, names = ragged
         blocks = {key: dict(blocks[key]) for key in blocks}
