@@ -186,7 +186,9 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
         tx = x[:, None] + scale * (cu[:, None] * np.exp(-1j * t)).real
         ty = -y[:, None] - scale * (cv[:, None] * np.exp(-1j * t)).real
         ax.plot(x, -y, "+", color="0.55", ms=4, mew=0.8, label="equilibrium site")
-        ax.add_collection(LineCollection(np.stack([tx, ty], axis=-1), colors="C0", linewidths=0.8,
+        # one segment per site, shape (sites, times, 2); the stubs want a sequence, the array is one
+        ax.add_collection(LineCollection(np.stack([tx, ty], axis=-1),  # type: ignore[arg-type]
+                                         colors="C0", linewidths=0.8,
                                          label=f"trajectory over one period (amplitude 1 drawn as {scale:g} $d_0$)"))
         ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2.5, label="position at $t = 0$")
         ax.set_title(rf"$\theta = k d_x = {th[k] / np.pi:.3g}\,\pi$", fontsize=10)

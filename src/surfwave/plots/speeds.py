@@ -12,6 +12,7 @@ Examples
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -172,7 +173,7 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
                 ax.plot(xs, y[idx], ls=ls, color=colour, lw=lw)
             done[name] = y[idx]
             drawn.add(name)
-            if name == "c2_R" and "wave_type" in ra:
+            if name == "c2_R" and ra is not None and "wave_type" in ra:
                 wt = np.asarray(ra.sel(direction=direction)["wave_type"].values).astype(str)[idx]
                 m = np.flatnonzero(wt == "supersonic_decoupled")[::3]
                 if m.size:
@@ -199,7 +200,8 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
 
 def _legend_handles(drawn: set) -> list:
     """Legend entries for exactly what :func:`speeds_panel` drew (union over the panels)."""
-    handles = [Line2D([], [], color=c, lw=lw, label=lab) for name, (lab, c, lw) in CURVES.items()
+    # artists, and (artist, artist, label) triples of coinciding curves (drawn by HandlerTuple)
+    handles: list[Any] = [Line2D([], [], color=c, lw=lw, label=lab) for name, (lab, c, lw) in CURVES.items()
                if name in drawn]
     for _, a, b in sorted(x for x in drawn if isinstance(x, tuple)):
         (la, ca, wa), (lb, cb, wb) = CURVES[a], CURVES[b]
@@ -249,7 +251,7 @@ def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
         drawn |= speeds_panel(ax, el, ra, pot, ymax=ymax)
         ax.set_title(f"({chr(ord('a') + k)}) {ax.get_title()}")
     entries = _legend_handles(drawn)
-    handles = [h if not isinstance(h, tuple) else h[:2] for h in entries]
+    handles: list[Any] = [h if not isinstance(h, tuple) else h[:2] for h in entries]
     labels = [h.get_label() if not isinstance(h, tuple) else h[2] for h in entries]
     from matplotlib.legend_handler import HandlerTuple
 
