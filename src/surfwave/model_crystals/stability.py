@@ -14,6 +14,7 @@ from __future__ import annotations
 from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import GeometryError, InputError
 from surfwave.model_crystals.elastic import properties
@@ -57,7 +58,7 @@ def stability_scan(
     loading: Loading,
     potential: str | PairPotential,
     direction: Direction,
-    d_over_d0,
+    d_over_d0: ArrayLike,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
     zone_mesh: int = DEFAULT_ZONE_MESH,

@@ -10,13 +10,16 @@ with :func:`surfwave.data.cube.write` and :mod:`surfwave.plots.stability` draws 
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Any, Literal, Sequence
 
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 from surfwave.model_crystals.phonons import DEFAULT_DISPLACEMENT, DEFAULT_SUPERCELL, DEFAULT_ZONE_MESH, TOLERANCE
+from surfwave.model_crystals.potentials import PairPotential
 from surfwave.model_crystals.stability import geometry_limit, instability_limits, stability_scan
+from surfwave.vocab import Direction, Loading
 
 #: Values of the ``state`` variable.
 STATES = {-1: "no_geometry", 0: "long_wave_unstable", 1: "short_wave_unstable", 2: "stable"}
@@ -27,10 +30,10 @@ _KINDS: tuple[Literal["long_wave", "full_zone"], ...] = ("long_wave", "full_zone
 
 
 def stability_map(
-    potentials=("harmonic", "lj"),
-    loadings=("in_plane_hydrostatic", "uniaxial"),
-    directions=("[100]", "[110]"),
-    d_over_d0=None,
+    potentials: Sequence[str | PairPotential] = ("harmonic", "lj"),
+    loadings: Sequence[Loading] = ("in_plane_hydrostatic", "uniaxial"),
+    directions: Sequence[Direction] = ("[100]", "[110]"),
+    d_over_d0: ArrayLike | None = None,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
     zone_mesh: int = DEFAULT_ZONE_MESH,

@@ -32,6 +32,7 @@ import itertools
 import numpy as np
 import spglib
 import spglib.error
+from numpy.typing import ArrayLike
 
 from surfwave.errors import SymmetryError
 from surfwave.model_crystals.lattices import build
@@ -296,7 +297,7 @@ def crystal_symmetry(
     loading: Loading,
     potential: str | PairPotential | None,
     direction: Direction,
-    d_over_d0,
+    d_over_d0: ArrayLike,
     symprec: float = 1e-5,
     stats: dict | None = None,
 ) -> dict[str, np.ndarray]:
@@ -319,7 +320,7 @@ def crystal_symmetry(
     return out
 
 
-def require_mirrors(result: dict, d_over_d0, what: str = "") -> None:
+def require_mirrors(result: dict, d_over_d0: ArrayLike, what: str = "") -> None:
     """Raise :class:`SymmetryError` naming the first d/d0 whose lattice lacks a needed mirror."""
     d = as_1d(d_over_d0)
     for name in MIRRORS:
