@@ -88,7 +88,8 @@ def bond_force_constants(crystal: Crystal, potential: str | PairPotential) -> np
     return k_par * outer + k_perp * (np.eye(r.shape[-1]) - outer)
 
 
-def layer_matrices(crystal: Crystal, potential: str | PairPotential, k: float):
+def layer_matrices(crystal: Crystal, potential: str | PairPotential,
+                   k: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Layer blocks A0, A0_surface, A1 of the (001)-layered crystal at wavevector k along x.
 
     Parameters
@@ -121,7 +122,7 @@ def layer_matrices(crystal: Crystal, potential: str | PairPotential, k: float):
     return a0, a0s, a1, h
 
 
-def sagittal_blocks(a0, a0s, a1):
+def sagittal_blocks(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The (x, y) sub-blocks, after checking the z motion decouples (mirror z -> -z).
 
     Parameters
@@ -145,7 +146,7 @@ def sagittal_blocks(a0, a0s, a1):
     return a0[..., :2, :2], a0s[..., :2, :2], a1[..., :2, :2]
 
 
-def slab_matrix(a0, a0s, a1, n_layers: int) -> sparse.csc_matrix:
+def slab_matrix(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray, n_layers: int) -> sparse.csc_matrix:
     """Hermitian matrix of a slab with a free top layer and a clamped bottom (U_N = 0).
 
     Parameters
@@ -167,7 +168,8 @@ def slab_matrix(a0, a0s, a1, n_layers: int) -> sparse.csc_matrix:
     return h.tocsc()
 
 
-def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2, shift: float = 0.0):
+def slab_modes(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray, n_layers: int, n_modes: int = 2,
+               shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Lowest modes of the free-top, clamped-bottom slab of :func:`slab_matrix`.
 
     Shift-invert Lanczos about omega^2 = ``shift`` (sparse LU of the banded matrix, O(N)
@@ -200,7 +202,7 @@ def tail_ratio(mode: np.ndarray) -> float:
     return float(amp[amp.size // 2:].max() / amp.max())
 
 
-def oriented_crystal(loading: Loading, potential: str | PairPotential, direction, d_over_d0,
+def oriented_crystal(loading: Loading, potential: str | PairPotential, direction: str | float, d_over_d0: float,
                      load_direction: str | None = None) -> tuple[Crystal, bool]:
     """The prestressed FCC crystal in the lab frame of any propagation direction in (001).
 
@@ -238,7 +240,7 @@ def oriented_crystal(loading: Loading, potential: str | PairPotential, direction
                                cell=crystal.cell @ rot.T), False
 
 
-def surface_mode(lattice: str, loading: Loading, potential: str | PairPotential, direction,
+def surface_mode(lattice: str, loading: Loading, potential: str | PairPotential, direction: str | float,
                  d_over_d0: float, k: float, tail_tol: float = 1e-6,
                  max_layers: int = 2**17, load_direction: str | None = None, shift: float = 0.0) -> dict:
     """The sagittal surface wave of the semi-infinite FCC (001) crystal at wavevector k.
@@ -313,7 +315,7 @@ def surface_mode(lattice: str, loading: Loading, potential: str | PairPotential,
 
 
 def surface_wave_speed(lattice: str, loading: Loading, potential: str | PairPotential,
-                       direction, d_over_d0: float, k: float) -> float:
+                       direction: str | float, d_over_d0: float, k: float) -> float:
     """(omega/k)^2 of the sagittal surface wave at wavevector k along x, K d0^2/m.
 
     See :func:`surface_mode` for the parameters and the method.
@@ -321,7 +323,7 @@ def surface_wave_speed(lattice: str, loading: Loading, potential: str | PairPote
     return float(surface_mode(lattice, loading, potential, direction, d_over_d0, k)["c2"])
 
 
-def long_wave_c2(lattice: str, loading: Loading, potential: str | PairPotential, direction,
+def long_wave_c2(lattice: str, loading: Loading, potential: str | PairPotential, direction: str | float,
                  d_over_d0: float, k: float = 0.4, levels: int = 5,
                  load_direction: str | None = None) -> dict:
     """Long-wave limit c_R^2 = lim_{k -> 0} omega^2/k^2 by Richardson extrapolation.
