@@ -34,9 +34,10 @@ import re
 import time
 import zipfile
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, TextIO
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
@@ -138,12 +139,12 @@ def _as_store(a) -> np.ndarray:
 def cached_points(
     kind: str,
     key: Mapping,
-    d_over_d0,
+    d_over_d0: ArrayLike,
     compute: Callable[[np.ndarray], Mapping[str, np.ndarray]],
     root: str | Path = DEFAULT_ROOT,
     chunk: int | None = None,
     label: str | None = None,
-    log=None,
+    log: TextIO | None = None,
 ) -> dict[str, np.ndarray]:
     """Per-point results for every d/d0, computing only the points not yet stored.
 
@@ -230,7 +231,7 @@ def code_version(*modules: str) -> str:
     return h.hexdigest()[:16]
 
 
-def job_key(job: Mapping, module: str, method: str, **point) -> dict:
+def job_key(job: Mapping, module: str, method: str, **point: Any) -> dict:
     """Cache key of a workflow job's points: the computing code, lattice, loading, method,
     plus ``point`` (potential, direction, accuracy knobs, ...); d/d0 is added per point.
 
