@@ -199,7 +199,7 @@ def table1_markdown(entries: list[dict], paper_values: dict | None = None,
     return "\n".join(lines) + "\n"
 
 
-def table1(elastic_path, rayleigh_path, out_md, out_csv,
+def table1(elastic_path: str | Path, rayleigh_path: str | Path, out_md: str | Path, out_csv: str | Path,
            paper_values_path: str | Path | None = None) -> list[dict]:
     """Write Table I (paper beside ours, difference, verdict) as Markdown and CSV.
 
