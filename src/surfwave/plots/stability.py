@@ -6,6 +6,8 @@ writing the map belong to the library and the workflow (rule ``figure_stability_
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import xarray as xr
 
@@ -22,7 +24,7 @@ def paper_max_compression() -> dict[str, float]:
     return {pot: 1.0 - float(strain) for pot, strain in claim.items()}
 
 
-def plot_stability_map(ds: xr.Dataset, path) -> None:
+def plot_stability_map(ds: xr.Dataset, path: str | Path) -> None:
     """One panel per potential; a coloured band per (loading, direction) over d/d0.
 
     Parameters
