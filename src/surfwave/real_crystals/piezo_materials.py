@@ -26,10 +26,11 @@ from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import yaml
+from numpy.typing import ArrayLike
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
@@ -163,7 +164,7 @@ class Cut:
         return euler_lab_axes(*self.euler)
 
 
-def check_piezo_record(voigt, e, eps_r, rho, name: str = "record") -> None:
+def check_piezo_record(voigt: ArrayLike, e: ArrayLike, eps_r: ArrayLike, rho: float, name: str = "record") -> None:
     """Refuse a constant set that cannot be right.
 
     Parameters
@@ -372,7 +373,8 @@ def get_cut(name: str) -> Cut:
     raise _unknown(name, lookup, available_cuts(), "cut")
 
 
-def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller") -> PiezoMaterial:
+def with_toec(material: PiezoMaterial, toec: Mapping[str, float] | ArrayLike,
+              source: str = "given by the caller") -> PiezoMaterial:
     """``material`` carrying a caller's third-order constants, checked for its class.
 
     Parameters
@@ -393,7 +395,7 @@ def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller"
     return replace(material, toec_voigt=toec_from_user(toec, cls), sources={**material.sources, "toec": source})
 
 
-def read_toec_file(path) -> tuple[dict, bytes]:
+def read_toec_file(path: str | Path) -> tuple[dict, bytes]:
     """Named third-order constants (GPa) from a YAML mapping ``name: value`` (``source:`` allowed).
 
     Parameters
@@ -428,7 +430,7 @@ def read_toec_file(path) -> tuple[dict, bytes]:
     return data, text
 
 
-def lab_tensors(material: str | PiezoMaterial, R) -> dict[str, Any]:
+def lab_tensors(material: str | PiezoMaterial, R: ArrayLike) -> dict[str, Any]:
     """A crystal's tensors in lab axes, SI units, ready for the piezoelectric Stroh solver.
 
     Parameters
