@@ -21,7 +21,7 @@ import difflib
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
-from typing import Literal
+from typing import Callable, Literal
 
 import numpy as np
 import yaml
@@ -34,7 +34,7 @@ from surfwave.solvers.tensors import cubic_voigt, hexagonal_voigt
 SECOND_ORDER = {"cubic": ("C11", "C12", "C44"), "hexagonal": ("C11", "C12", "C13", "C33", "C44")}
 #: The six independent third-order (Brugger) constants of a cubic crystal of the highest classes.
 CUBIC_TOEC = ("C111", "C112", "C123", "C144", "C155", "C456")
-_BUILDERS = {"cubic": cubic_voigt, "hexagonal": hexagonal_voigt}
+_BUILDERS: dict[str, Callable[..., np.ndarray]] = {"cubic": cubic_voigt, "hexagonal": hexagonal_voigt}
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,7 +90,7 @@ def _read() -> dict:
     return yaml.load(text, Loader=SAFE_LOADER)
 
 
-def read_constants(block: dict, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
+def read_constants(block: object, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
     """The constants ``names`` of one YAML block as floats, and the citation of its source.
 
     Shared by the elastic and the piezoelectric databases (``materials.yaml``,

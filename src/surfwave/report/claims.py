@@ -5,6 +5,7 @@ of the paper tested against the FCC and triangular cubes with the criterion stat
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -23,6 +24,9 @@ from surfwave.report.checks import (
     pick,
     sel_strain,
 )
+
+if TYPE_CHECKING:
+    from surfwave.report.reproduction import Cubes
 
 
 # --------------------------------------------------------------------------- FCC curves
@@ -106,7 +110,7 @@ def _softening(c: dict):
 
 
 # --------------------------------------------------------------------------- claims
-def claim_checks(name: str, spec: dict, cubes) -> list[Check]:
+def claim_checks(name: str, spec: dict, cubes: Cubes) -> list[Check]:
     """Checks of one qualitative claim (``claims:`` in paper_values.yaml)."""
     return _CLAIMS[name](name, spec, cubes)
 
@@ -284,7 +288,7 @@ def _eq15(name, spec, cubes):
         worst, n = 0.0, 0
         for s in d_over_d0(om):
             o, c = sel_strain(om, s), sel_strain(c2, s)
-            if c is None:
+            if o is None or c is None:  # o never is: s runs over om's own grid
                 continue
             model = np.sqrt(float(c.values)) / (s / 2.0) * np.sin(np.asarray(om["theta"].values, float))
             ok = np.isfinite(o.values) & (model > 0)

@@ -170,7 +170,8 @@ def table1_markdown(entries: list[dict], paper_values: dict | None = None,
         by_row.setdefault(e["d_over_d0"], {})[e["key"]] = e
     heads = [TABLE1_HEADS.get(c["key"], c["label"]) for c in cols]
     legend = "; ".join(f"{TABLE1_HEADS[c['key']]} = {c['label']}" for c in cols if c["key"] in TABLE1_HEADS)
-    flag = lambda d: {True: "yes", False: "NO"}.get(stable.get(d), "?")  # noqa: E731
+    flags: dict[bool | None, str] = {True: "yes", False: "NO"}
+    flag = lambda d: flags.get(stable.get(d), "?")  # noqa: E731
     ours_rows, diff_rows = [], []
     for d, row in by_row.items():
         ours, diffs = [], []
@@ -198,7 +199,7 @@ def table1_markdown(entries: list[dict], paper_values: dict | None = None,
     return "\n".join(lines) + "\n"
 
 
-def table1(elastic_path, rayleigh_path, out_md, out_csv,
+def table1(elastic_path: str | Path, rayleigh_path: str | Path, out_md: str | Path, out_csv: str | Path,
            paper_values_path: str | Path | None = None) -> list[dict]:
     """Write Table I (paper beside ours, difference, verdict) as Markdown and CSV.
 
