@@ -113,7 +113,7 @@ def test_names_are_case_insensitive_with_aliases_and_unknown_names_are_explained
     assert get_material("aluminum") is get_material("Aluminium")
     m = get_material("Si")
     assert isinstance(m, Material) and get_material(m) is m
-    with pytest.raises(InputError, match=r"did you mean Cu.*known materials: .*GaAs"):
+    with pytest.raises(InputError, match=r"did you mean copper \(Cu\).*known materials: .*GaAs"):
         get_material("coper")
     with pytest.raises(InputError, match="unknown material 'unobtainium'"):
         get_material("unobtainium")
