@@ -121,3 +121,32 @@ def test_negative_zero_is_never_printed():
 
     assert _f(-1e-9, "10.4f") == "    0.0000" and _f(-0.0, "10.2f") == "      0.00"
     assert _f(-0.5, "10.4f") == "   -0.5000" and _f(float("nan"), "10.4f") == "       nan"
+
+
+def _examples() -> list[tuple[str, str]]:
+    """(command, comment) of every ``surfwave material`` example in --help whose comment quotes numbers."""
+    from surfwave import cli, cli_piezo
+
+    out = []
+    for line in (cli.EPILOG_MATERIAL + cli_piezo.EPILOG).splitlines():
+        m = re.match(r"\s*(surfwave material .*?)\s+#\s*(.*\d.*)$", line)
+        if m:
+            out.append((m.group(1), m.group(2)))
+    return out
+
+
+def test_help_examples_print_the_numbers_they_quote(capsys):
+    """Issue 27: --help quoted "128Y-X # 3990 / 3878 m/s, K2 5.6 %" where the command printed
+    3994.2 / 3887.6, 5.34 %. Every number of an example's comment must be printed by that
+    command, to the comment's decimals."""
+    import shlex
+
+    examples = _examples()
+    assert len(examples) >= 2
+    for command, comment in examples:
+        code, out, err = _run(capsys, *shlex.split(command)[1:])
+        assert code == 0, (command, err)
+        printed = [float(x) for x in re.findall(r"-?\d+\.\d+|-?\d+", out)]
+        for quoted in re.findall(r"\d+\.?\d*", comment):
+            digits = len(quoted.split(".")[1]) if "." in quoted else 0
+            assert any(round(p, digits) == float(quoted) for p in printed), (command, quoted)

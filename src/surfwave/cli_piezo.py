@@ -27,7 +27,7 @@ constants (A = C + sigma delta); e and eps at their natural values.
 
 piezoelectric examples:
   surfwave material --list-cuts
-  surfwave material --material LiNbO3 --cut 128Y-X                        # 3990 / 3878 m/s, K2 5.6 %
+  surfwave material --material LiNbO3 --cut 128Y-X                  # 3994.2 / 3887.6 m/s, K2 5.34 %
   surfwave material --cut "ST-X quartz" --stress -0.1
   surfwave material --material LiNbO3 --euler 0 -90:90:10 0              # rotated Y cuts, X propagation
   surfwave material --material LiTaO3 --euler 0 -54 0 --electrical metallized --json
