@@ -18,8 +18,8 @@ Examples
 ['LiNbO3 (LiNbO3-Warner1967)']
 >>> suggest("coper")
 ['copper (Cu)']
->>> suggest("LiTaO3-Kovac")
-['LiTaO3 Kovacs (LiTaO3-Kovacs1990)', 'LiNbO3 Kovacs (LiNbO3-Kovacs1990)', 'LiTaO3 Warner (LiTaO3-Warner1967)']
+>>> suggest("LiTaO3-Kovac")[0]
+'LiTaO3 Kovacs (LiTaO3-Kovacs1990)'
 >>> [(e.name, e.database) for e in catalog() if e.name == "GaAs"]
 [('GaAs', 'elastic'), ('GaAs', 'piezoelectric')]
 """
