@@ -150,3 +150,20 @@ def test_help_examples_print_the_numbers_they_quote(capsys):
         for quoted in re.findall(r"\d+\.?\d*", comment):
             digits = len(quoted.split(".")[1]) if "." in quoted else 0
             assert any(round(p, digits) == float(quoted) for p in printed), (command, quoted)
+
+
+def test_readme_cli_examples_print_the_numbers_they_quote(capsys):
+    """The README's `surfwave material` lines: every number with decimals in the comment is printed."""
+    import shlex
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    lines = re.findall(r"^\.venv/bin/surfwave (material .*?)\s+#\s*(.*\d\.\d.*)$", readme, re.M)
+    assert len(lines) >= 3
+    for command, comment in lines:
+        code, out, err = _run(capsys, *shlex.split(command))
+        assert code == 0, (command, err)
+        printed = [float(x) for x in re.findall(r"-?\d+\.\d+", out)]
+        for quoted in re.findall(r"\d+\.\d+", comment):
+            digits = len(quoted.split(".")[1])
+            assert any(round(p, digits) == float(quoted) for p in printed), (command, quoted)

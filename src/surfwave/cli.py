@@ -460,12 +460,14 @@ def _cmd_material(args) -> int:
         for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
             val = row[key]
             unit = "deg" if key == "angle" else "m/s"
-            print(f"{key:>17} = " + (f"{val:10.2f} {unit}" if val is not None else "       nan"))
-        print(f"{'penetration_depth':>17} = " + (f"{row['penetration_depth']:10.3f} wavelengths"
+            print(f"{key:>17} = " + (f"{cli_piezo.cell(val, '10.2f')} {unit}" if val is not None else "       nan"))
+        print(f"{'penetration_depth':>17} = " + (f"{cli_piezo.cell(row['penetration_depth'], '10.3f')} wavelengths"
                                                   if row["penetration_depth"] is not None else "       nan"))
         print(f"{'wave_type':>17} = {row['wave_type']}   stable = {row['stable']}")
         pol = np.array(row["polarisation"]["re"], dtype=float) + 1j * np.array(row["polarisation"]["im"], dtype=float)
-        print(f"{'polarisation':>17} = " + "  ".join(f"{u.real:+.4f}{u.imag:+.4f}i" for u in pol))
+        print(f"{'polarisation':>17} = " + "  ".join(
+            f"{cli_piezo.cell(u.real, '+.4f').replace(' ', '+')}{cli_piezo.cell(u.imag, '+.4f').replace(' ', '+')}i"
+            for u in pol))
         if row["reason"]:
             print(f"             note: {row['reason']}")
         return 0
@@ -473,7 +475,7 @@ def _cmd_material(args) -> int:
     print("  ".join(f"{h:>10}" for h in header))
     for row in rows:
         vals = [row[k] for k in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
-        cells = [f"{v:10.2f}" if v is not None else f"{'nan':>10}" for v in vals]
+        cells = [cli_piezo.cell(v, "10.2f") for v in vals]
         print("  ".join(cells + [f"{row['wave_type']:>10}"]))
     return 0
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from surfwave.errors import InputError
 
-__all__ = ["EPILOG", "add_options", "list_cuts", "material_kwargs", "print_result"]
+__all__ = ["EPILOG", "add_options", "angle_text", "cell", "list_cuts", "material_kwargs", "print_result"]
 
 EPILOG = """\
 Piezoelectric crystals (quartz, LiNbO3, LiTaO3, AlN, ZnO, GaN, langasite, GaAs): a name of the
@@ -103,12 +103,15 @@ def material_kwargs(args) -> tuple[dict, int | None]:
     return kw, swept
 
 
-def _f(v, fmt: str, width: int = 10) -> str:
+def cell(v, fmt: str, width: int = 10) -> str:
     """``v`` in ``fmt``; ``nan`` for None/NaN; never a negative zero ("-0.0000" -> " 0.0000")."""
     if v is None or (isinstance(v, float) and np.isnan(v)):
         return f"{'nan':>{width}}"
     text = format(v, fmt)
     return re.sub(r"-(?=0*\.?0*$)", " ", text) if re.fullmatch(r"\s*-[0.]+", text) else text
+
+
+_f = cell
 
 
 def angle_text(a: float | None) -> str:
