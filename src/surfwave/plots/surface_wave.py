@@ -202,11 +202,11 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 ax.set_xlabel("applied stress (GPa)")
             if k == 0:
                 ax.set_ylabel(r"$c_R/c_R(0) - 1$ (%)")
-    handles = [Line2D([], [], color=LOADING_COLOURS.get(str(ld), cmap((li + 3) % 10)), lw=2,
-                      label=f"loading: {ld}") for li, ld in enumerate(ds.loading.values)]
+    handles: list = [Line2D([], [], color=LOADING_COLOURS.get(str(ld), cmap((li + 3) % 10)), lw=2,
+                            label=f"loading: {ld}") for li, ld in enumerate(ds.loading.values)]
     handles += [Line2D([], [], color="k", ls="-", label="stressed-state constants (TOEC)"),
                 Line2D([], [], color="k", ls="--", label="fixed second-order constants")]
-    labels = [h.get_label() for h in handles]
+    labels = [str(h.get_label()) for h in handles]
     pair = _coinciding_fixed(ds, "along", "biaxial")
     if pair:     # say so: one dashed line would otherwise seem missing
         handles.append(tuple(Line2D([], [], color=LOADING_COLOURS.get(ld, "k"), lw=1.4, ls="--") for ld in pair))
