@@ -300,17 +300,18 @@ def _list_materials(as_json: bool) -> int:
         print(json.dumps([{"name": e.name, "database": e.database, "symmetry": e.symmetry, "rho": e.rho,
                            "toec": e.toec, "aliases": list(e.aliases)} for e in rows], indent=2))
         return 0
-    heads = {"elastic": "elastic database (src/surfwave/real_crystals/materials.yaml): --surface with "
-                        "--direction or --angle, or --euler",
+    heads = {"elastic": "elastic database (materials.yaml): --surface with --direction or --angle, or --euler",
              "piezoelectric": "piezoelectric database (piezoelectric.yaml): --cut ('--list-cuts'), --euler, "
                               "or --surface/--direction"}
     print("# every crystal --material accepts (any name or alias, case-insensitive); class, density, "
           "third-order constants (TOEC), other names")
+    width = max(len(e.name) for e in rows)
     for db, head in heads.items():
         print(head)
         for e in (r for r in rows if r.database == db):
-            print(f"  {e.name:<20} {e.symmetry:<10} rho {e.rho:6.0f} kg/m^3  TOEC {'yes' if e.toec else 'no ':<3}  "
-                  f"{', '.join(e.aliases)}")
+            toec = "yes" if e.toec else "no "
+            print(f"  {e.name:<{width}}  {e.symmetry:<9} rho {e.rho:6.0f} kg/m^3  TOEC {toec}  "
+                  f"{', '.join(e.aliases)}".rstrip())
     both = sorted({e.name for e in rows if e.database == "elastic"} & {e.name for e in rows if e.database != "elastic"})
     if both:
         print(f"{', '.join(both)}: in both; by name alone the elastic solver, with --cut, --euler or --electrical "
