@@ -54,3 +54,16 @@ def test_single_panel_rotated_cut_figure_fits(drawn, tmp_path, thetas, full):
     lb = legend.get_window_extent(r)
     assert _inside(fig, legend)
     assert all(not lb.overlaps(ax.get_window_extent(r)) for ax in axes)
+
+
+def test_stress_figure_marks_the_third_order_model_with_dots(drawn, tmp_path):
+    """Free lines solid, metallized dashed; the third-order model's lines carry dots on the same
+    line style (the format "-." drew a dash-dot line instead)."""
+    ds = piezo_wave_sweep(["GaAs"], euler={"phi": 45, "theta": 0, "psi": 0}, stress=[-0.5, 0.0, 0.5],
+                          toec=[False, True])
+    piezo.speeds_vs_stress(ds, tmp_path / "s.png")
+    lines = {ln.get_label(): ln for ln in drawn[0].axes[0].get_lines() if not ln.get_label().startswith("_")}
+    assert len(lines) == 4
+    for label, ln in lines.items():
+        assert ln.get_linestyle() == ("-" if ", free," in label else "--"), label
+        assert ln.get_marker() == ("." if "third-order" in label else "None"), label

@@ -186,9 +186,10 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 v0 = np.interp(0.0, s, v)
                 lab = f"{label_o}, {_short(mat)}, {el}" if len(ds.material) > 1 else f"{label_o}, {el}"
                 lab += "" if t is None else ", third-order constants" if t else ", fixed constants"
-                style = STYLES.get(el, "-") + ("." if t else "")
-                av.plot(s, v, style, color=colour, label=lab)
-                ar.plot(s, 1e6 * (v / v0 - 1), style, color=colour, label=lab)
+                # the third-order model's lines carry dots ("-." would be a dash-dot line)
+                style = {"linestyle": STYLES.get(el, "-"), "marker": "." if t else None}
+                av.plot(s, v, color=colour, label=lab, **style)
+                ar.plot(s, 1e6 * (v / v0 - 1), color=colour, label=lab, **style)
     av.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     ar.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     av.set_ylabel("SAW phase velocity (m/s)")
