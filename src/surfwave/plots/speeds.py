@@ -248,8 +248,9 @@ def fig2(elastic: str | Path | xr.Dataset, rayleigh: str | Path | xr.Dataset | N
         raise FileNotFoundError(f"no elastic cube at {elastic}")
     pots = [str(p) for p in el["potential"].values]
     order = [p for p in ("harmonic", "lj") if p in pots] + [p for p in pots if p not in ("harmonic", "lj")]
-    fig, axes = plt.subplots(1, len(order), figsize=(6.2 * len(order), 5.0), squeeze=False,
-                             layout="constrained")
+    ncol = 5 if len(order) > 1 else 3     # the legend spans the figure: as wide as the panels allow
+    fig, axes = plt.subplots(1, len(order), figsize=(max(6.2 * len(order), 7.0), 5.0 if len(order) > 1 else 6.0),
+                             squeeze=False, layout="constrained")
     drawn: set = set()
     for k, (ax, pot) in enumerate(zip(axes[0], order)):
         drawn |= speeds_panel(ax, el, ra, pot, ymax=ymax)
@@ -259,7 +260,7 @@ def fig2(elastic: str | Path | xr.Dataset, rayleigh: str | Path | xr.Dataset | N
     labels = [h.get_label() if not isinstance(h, tuple) else h[2] for h in entries]
     from matplotlib.legend_handler import HandlerTuple
 
-    fig.legend(handles, labels, loc="outside lower center", ncol=5, frameon=False, fontsize=9,
+    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, frameon=False, fontsize=9,
                handler_map={tuple: HandlerTuple(ndivide=1, pad=0)})
     if title:
         fig.suptitle(title)

@@ -17,7 +17,6 @@ Examples
 """
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
@@ -171,7 +170,8 @@ def get_material(name: str | Material) -> Material:
     Raises
     ------
     InputError
-        For an unknown name; the message lists the known materials and the closest names.
+        For an unknown name: :func:`surfwave.real_crystals.catalog.unknown_name` (the database
+        that holds it, or the closest names and every known one, over both databases).
     """
     if isinstance(name, Material):
         return name
@@ -179,7 +179,6 @@ def get_material(name: str | Material) -> Material:
     key = str(name).strip().casefold()
     if key in lookup:
         return materials[lookup[key]]
-    close = difflib.get_close_matches(key, list(lookup), n=5, cutoff=0.7)
-    suggestions = list(dict.fromkeys(lookup[c] for c in close))
-    hint = f" (did you mean {' or '.join(suggestions)}?)" if suggestions else ""
-    raise InputError(f"unknown material {name!r}{hint}; known materials: {', '.join(available_materials())}")
+    from surfwave.real_crystals.catalog import unknown_name
+
+    raise unknown_name(name, "elastic")

@@ -21,7 +21,6 @@ Examples
 from __future__ import annotations
 
 import difflib
-import re
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from importlib import resources
@@ -34,6 +33,7 @@ from numpy.typing import ArrayLike
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
+from surfwave.real_crystals.catalog import name_key
 from surfwave.real_crystals.materials import read_constants
 from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named, toec_from_user
 from surfwave.solvers.euler import euler_lab_axes
@@ -280,8 +280,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
 
 def _key(text: str) -> str:
     """Lookup key: case-folded, without spaces, hyphens, underscores, degree signs or 'deg'."""
-    t = str(text).casefold().replace("°", "").replace("deg", "")
-    return re.sub(r"[\s\-_]+", "", t)
+    return name_key(text)
 
 
 def _lookup(items: dict, kind: str) -> dict[str, str]:
@@ -342,7 +341,8 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     Raises
     ------
     InputError
-        Unknown name; the message lists the known sets and the closest names.
+        Unknown name: :func:`surfwave.real_crystals.catalog.unknown_name` (the database that
+        holds it, or the closest names and every known one, over both databases).
     """
     if isinstance(name, PiezoMaterial):
         return name
@@ -350,7 +350,9 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     k = _key(name)
     if k in lookup:
         return mats[lookup[k]]
-    raise _unknown(name, lookup, available_piezo_materials(), "piezoelectric material")
+    from surfwave.real_crystals.catalog import unknown_name
+
+    raise unknown_name(name, "piezoelectric")
 
 
 def available_cuts() -> list[str]:

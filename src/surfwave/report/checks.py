@@ -18,6 +18,12 @@ if TYPE_CHECKING:
     from surfwave.report.reproduction import Cubes
 
 PASS, FAIL, INCONCLUSIVE, NOT_COMPUTED = "PASS", "FAIL", "INCONCLUSIVE", "not computed"
+#: Verdict of a claim that fails our full check but holds under the paper's own approximation
+#: (bulk stability judged by c_T,par alone), which our check shows to be off there: not a
+#: breakage of this code, a finding about the paper (README, "What we found").
+PAPER_APPROX = "PAPER-APPROX"
+#: Every verdict, in the order the report counts them.
+VERDICTS = (PASS, PAPER_APPROX, FAIL, INCONCLUSIVE, NOT_COMPUTED)
 STRAIN_MATCH = 1e-6  # |d/d0 - wanted| below which a grid point is "the" point
 FCC_DIRECTIONS = ("[100]", "[110]")
 
