@@ -30,6 +30,9 @@ import numpy as np
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, PIEZO_WAVE_COORDS
 from surfwave.errors import InputError
+from surfwave.real_crystals.stressed_wave import BULK_KEYS
+from surfwave.real_crystals.sweep import BULK_COMPONENT
+from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
 from surfwave.vocab import ELECTRICAL
 
 if TYPE_CHECKING:
@@ -52,7 +55,7 @@ COMPONENTS = ("u1", "u2", "u3", "phi")
 VARIABLES = CUBES["piezo_wave"]
 COORDS = PIEZO_WAVE_COORDS
 #: Per-point variables (material, orientation, [stress]) that do not depend on the electrical condition.
-NO_ELECTRICAL = ("K2", "c_limit", "rho")
+NO_ELECTRICAL = ("K2", "c_limit", "rho", "K2_leaky") + BULK_KEYS
 
 
 def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
@@ -162,7 +165,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     for key, arr in out.items():
         trailing = arr.shape[4:]
         arr = arr.reshape(grid + trailing)
-        vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay" else ())
+        vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay"
+                        else ("bulk_component",) if key in BULK_POLARISATIONS else ())
         if key in NO_ELECTRICAL:
             arr, vdims = arr[:, 0], tuple(d for d in vdims if d != "electrical")
         if arr.dtype == object:
@@ -175,7 +179,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
               "component": ("component", np.array(COMPONENTS), {"long_name": "u1 along the propagation, u2 "
                             "along the inward normal, u3 in plane; phi the electric potential"}),
               "partial_wave": ("partial_wave", np.arange(1, 5), {"long_name": "partial wave of the Stroh "
-                               "solution (1 = fastest decaying)", "units": "1"})}
+                               "solution (1 = fastest decaying)", "units": "1"}),
+              "bulk_component": ("bulk_component", np.array(COMPONENTS[:3]), BULK_COMPONENT)}
     coords.update(surface=("surface", np.asarray(oc["surface"], dtype=str), COORDS["surface"]),
                   angle=("angle", oc["angle"], COORDS["angle"]),
                   euler_phi=("surface", oc["euler_phi"], COORDS["euler_phi"]),
