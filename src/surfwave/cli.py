@@ -11,6 +11,7 @@ import json
 import os
 import re
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -280,6 +281,8 @@ def _material_rows(r: dict) -> list[dict]:
             elif key in ("polarisation", "decay"):
                 row[key] = {"re": [None if np.isnan(x) else float(x) for x in v.real],
                             "im": [None if np.isnan(x) else float(x) for x in v.imag]}
+            elif v.dtype.kind == "f" and v.ndim:        # a vector: the bulk waves' polarisations
+                row[key] = [None if np.isnan(x) else float(x) for x in v]
             elif v.dtype.kind == "f":
                 row[key] = None if np.isnan(v) else float(v)
             elif v.dtype.kind == "b":
@@ -496,6 +499,17 @@ def _cmd_cache(args) -> int:
     return 0
 
 
+def _show_note(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings as the command shows them: a :class:`surfwave.errors.ConstantsNote` is its own one
+    line on stderr; any other warning keeps Python's format."""
+    from surfwave.errors import ConstantsNote
+
+    if issubclass(category, ConstantsNote):
+        print(f"note: {message}", file=sys.stderr)
+    else:
+        sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``surfwave`` command."""
     parser = _parser()
@@ -505,7 +519,9 @@ def main(argv: list[str] | None = None) -> int:
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
                "scenes": _cmd_scenes, "cache": _cmd_cache}[args.command]
     try:
-        return handler(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_note
+            return handler(args)
     except SurfwaveError as exc:
         print(f"surfwave {args.command}: error: {exc}", file=sys.stderr)
         return 2

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["BULK_WAVE_VARIABLES", "CUBES", "MODEL_COORDS", "PIEZO_WAVE_COORDS", "SURFACE_WAVE_COORDS"]
+__all__ = ["CUBES", "MODEL_COORDS", "PIEZO_WAVE_COORDS", "SURFACE_WAVE_COORDS"]
 
 #: cube name -> variable name -> {"long_name", "units", "dims"}; the cube name is the file
 #: name under results/<scene>/ (``rayleigh_angles``: the rayleigh.nc of an FCC angle scene).
@@ -506,18 +506,18 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
 _ALONG = {"L_par": ("x1", "u1 (quasi-longitudinal)"), "T_par": ("x1", "u2 (sagittal quasi-shear)"),
           "SH": ("x1", "u3 (shear-horizontal quasi-shear)"), "T_perp": ("x2", "u1 (quasi-shear)"),
           "L_perp": ("x2", "u2 (quasi-longitudinal)"), "SH_perp": ("x2", "u3 (quasi-shear)")}
-BULK_WAVE_VARIABLES: dict[str, dict[str, Any]] = {}
+_BULK_WAVES: dict[str, dict[str, Any]] = {}
 for _name, (_axis, _pol) in _ALONG.items():
-    BULK_WAVE_VARIABLES[f"c_{_name}"] = {
+    _BULK_WAVES[f"c_{_name}"] = {
         "long_name": f"bulk wave along {_axis} polarised mostly along {_pol}: eigen-speed of the Christoffel "
                      "tensor of C + sigma0 delta (piezoelectrically stiffened in a piezoelectric crystal)",
         "units": "m s-1"}
-    BULK_WAVE_VARIABLES[f"polarisation_{_name}"] = {
+    _BULK_WAVES[f"polarisation_{_name}"] = {
         "long_name": f"unit displacement (u1, u2, u3), lab frame, of the bulk wave c_{_name}, largest "
                      "component positive",
         "units": "1"}
-CUBES["surface_wave"].update(BULK_WAVE_VARIABLES)
-CUBES["piezo_wave"].update(BULK_WAVE_VARIABLES)
+CUBES["surface_wave"].update(_BULK_WAVES)
+CUBES["piezo_wave"].update(_BULK_WAVES)
 CUBES["piezo_wave"]["K2_leaky"] = {
     "long_name": "electromechanical coupling of the leaky SAW, 2 (c_leaky_free - c_leaky_metallized) / "
                  "c_leaky_free (NaN where either leaky root is missing)",

@@ -23,7 +23,13 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
-from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_piezo_record, get_piezo_material
+from surfwave.real_crystals.piezo_materials import (
+    EPS0,
+    PiezoMaterial,
+    check_piezo_record,
+    get_piezo_material,
+    note_status,
+)
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
@@ -228,6 +234,7 @@ def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=EL
     """
     conditions = tuple(conditions)                                  # checked by surface_wave_conditions
     mat = resolve_piezo_material(material, voigt=voigt, e=e, eps_r=eps_r, rho=rho)
+    note_status(mat)                                                # one line for an unverified set
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)

@@ -26,7 +26,7 @@ Examples
 >>> C = voigt_to_tensor(cubic_voigt(168.4e9, 121.4e9, 75.4e9))      # Cu, Pa
 >>> r = axis_waves(C[None], np.array([8960.0]))
 >>> round(float(r["c_L_par"][0]), 1), round(float(r["c_T_par"][0]), 1)   # sqrt(C11/rho), sqrt(C44/rho)
-(4335.3, 2901.0)
+(4335.3, 2900.9)
 """
 from __future__ import annotations
 
