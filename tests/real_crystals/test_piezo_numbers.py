@@ -146,3 +146,40 @@ def test_unverified_constant_set_is_noted_once_per_place():
     assert "LiTaO3-Kovacs1990 is unverified" in notes[0] and "langasite is provisional" in notes[1]
     assert note_status(get_piezo_material("LiNbO3")) == ""
     assert seen[0].filename == __file__                  # points at the caller's line
+
+
+def test_deformed_surface_of_gaas_111_under_toec_stress():
+    """GaAs (111), propagation [1-10], -0.5 GPa along it, third-order constants: the strain
+    couples to the surface normal, which follows the material plane spanned by F m0 and F x3_0
+    (Nanson's relation, built here from two cross products, not from F^-T); the propagation is
+    F m0. With C*, rho* of the stressed state rotated into those axes, the SAW solved directly
+    (surfwave.solvers.piezo.coupling_coefficient) matches the one path's c_free and c_metallized
+    to 1e-6 m/s (a normal built with F instead of F^-T moves c_free by 0.12 m/s)."""
+    from surfwave.real_crystals import toec as toec_model
+    from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
+    from surfwave.solvers.orientation import lab_axes
+    from surfwave.solvers.piezo import coupling_coefficient
+    from surfwave.solvers.piezo_tensors import EPS0 as eps0
+    from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
+    from surfwave.solvers.stroh import wave_propagation_tensor
+    from surfwave.solvers.tensors import rotate2, rotate4
+
+    mat = get_piezo_material("GaAs")
+    k = Constants.from_piezo_material(mat)
+    R0 = lab_axes("(111)", "[1-10]")
+    sigma = stress_tensor("along", -0.5, R0)
+    st = toec_model.stressed_state(k.voigt, k.toec, sigma, k.rho)
+    F = st["F"]
+    x1 = F @ R0[0]
+    n = np.cross(F @ R0[2], F @ R0[0])                  # the deformed surface plane's normal, inward
+    x1, n = x1 / np.linalg.norm(x1), n / np.linalg.norm(n)
+    axes = np.stack([x1, n, np.cross(x1, n)])
+    assert np.linalg.norm(np.cross(F @ R0[1], n)) > 1e-5   # the normal tilts: F n0 is not along it
+    A = wave_propagation_tensor(rotate4(st["C_star"] * 1e9, axes)[None], rotate2(sigma * 1e9, axes)[None])
+    e = rotate3(piezo_voigt_to_tensor(mat.e), axes)[None]
+    eps = rotate2(mat.eps_r * eps0, axes)[None]
+    want = coupling_coefficient(A, e, eps, np.array([st["rho"]]))
+    r = piezo_wave(mat, R0, -0.5, toec=True, leaky=False)
+    np.testing.assert_allclose(r["axes"][0], axes, atol=1e-12)
+    assert r["c_free"][0] == pytest.approx(want["c_free"][0], abs=1e-6)
+    assert r["c_metallized"][0] == pytest.approx(want["c_metallized"][0], abs=1e-6)
