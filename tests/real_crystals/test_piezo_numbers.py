@@ -183,3 +183,17 @@ def test_deformed_surface_of_gaas_111_under_toec_stress():
     np.testing.assert_allclose(r["axes"][0], axes, atol=1e-12)
     assert r["c_free"][0] == pytest.approx(want["c_free"][0], abs=1e-6)
     assert r["c_metallized"][0] == pytest.approx(want["c_metallized"][0], abs=1e-6)
+
+
+def test_beside_the_gaas_110_mirror_the_wave_leaks():
+    """GaAs (001)[110]: on the mirror the sagittal wave is an exact supersonic wave (its leakage
+    vanishes by symmetry); 0.05 and 0.1 deg beside it the mirror is gone and the wave leaks, with
+    an attenuation even in the angle from the mirror, so ~ (angle)^2: the ratio of the two is 4
+    (2 %). Beside the mirror the wave must stay ``pseudo`` with no subsonic speed (an exactness
+    threshold loosened from 1e-10 to 1e-4 in |Im k / Re k| calls it exact there)."""
+    r = surfwave.material("GaAs", angle=[45.0, 45.05, 45.1], electrical="free")
+    assert r["wave_type"][0] == "supersonic_decoupled" and r["leaky_attenuation"][0] < 1e-9
+    assert r["wave_type"][1] == "pseudo" and np.isnan(r["c_R"][1]) and np.isnan(r["c_free"][1])
+    assert r["leaky_attenuation"][1] > 0 and np.isfinite(r["c_leaky"][1])
+    assert r["leaky_attenuation"][2] / r["leaky_attenuation"][1] == pytest.approx(4.0, rel=0.02)
+    assert r["c_leaky"][1] == pytest.approx(r["c_R"][0], rel=1e-6)          # continuous through the mirror
