@@ -205,7 +205,7 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     (3488, 3404)
     """
     if electrical not in ELECTRICAL:
-        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+        raise InputError(sw_path.electrical_error(electrical))
     return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 

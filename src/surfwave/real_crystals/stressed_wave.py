@@ -55,7 +55,7 @@ from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 from surfwave.vocab import STRESS_LOADINGS
 
-__all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
+__all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "electrical_error", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
            "REASON_LEAKY_OFF",
            "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
            "surface_wave", "surface_wave_conditions"]
@@ -164,6 +164,14 @@ class Constants:
     def is_piezo(self) -> bool:
         """True when piezoelectric constants (possibly all zero) are given."""
         return self.piezo is not None
+
+
+def electrical_error(value) -> str:
+    """The one refusal of an ``electrical`` value: one condition, and both come from every call."""
+    both = ("; both conditions come from every call: c_free, c_metallized, K2 for the SAW and c_leaky_free, "
+            "c_leaky_metallized, K2_leaky for the leaky SAW" if not isinstance(value, str) else "")
+    return (f"electrical must be 'free' or 'metallized' (the condition of c_R, the polarisation, the power "
+            f"flow and c_leaky), got {value!r}{both}")
 
 
 # --------------------------------------------------------------------------- loadings
@@ -338,7 +346,7 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
     if constants.is_piezo:
         electrical = "free" if electrical is None else electrical
         if electrical not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+            raise InputError(electrical_error(electrical))
     elif electrical is not None:
         raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
     return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,
