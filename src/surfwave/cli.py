@@ -366,7 +366,7 @@ def _cmd_material(args) -> int:
           f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, {model}")
     if np.ndim(direction) == 0:
         row = rows[0]
-        for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
+        for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH", "c_SH_perp"):
             val = row[key]
             unit = "deg" if key == "angle" else "m/s"
             print(f"{key:>17} = " + (f"{val:10.2f} {unit}" if val is not None else "       nan"))

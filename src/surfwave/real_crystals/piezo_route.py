@@ -81,7 +81,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     """:func:`surfwave.material` for piezoelectric crystals and Euler-angle cuts (same arguments).
 
     Returns the keys of :func:`surfwave.material` (``polarisation`` and ``decay`` with a fourth
-    component, the potential; bulk speeds are the mechanical, unstiffened ones; ``c_limit`` is
+    component, the potential; bulk speeds are piezoelectrically stiffened eigen-speeds; ``c_limit`` is
     the piezoelectrically stiffened limiting speed) plus those of
     :func:`surfwave.real_crystals.piezo_wave.piezo_wave`: ``c_free``, ``c_metallized``, ``K2``,
     ``c_leaky``, ``leaky_attenuation``, ``leaky_reason``, ``power_flow_angle``,

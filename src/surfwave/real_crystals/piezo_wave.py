@@ -170,7 +170,8 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
         the record (the database: GaAs only; else InputError naming what is missing; the API
         takes a caller's set, :func:`surfwave.material`).
     bulk : bool
-        Also the mechanical bulk speeds and ``stable`` (:func:`stressed_wave.surface_wave`).
+        Also ``stable`` (:func:`stressed_wave.surface_wave`); the stiffened bulk waves along x1
+        and x2 (``c_L_par``, ..., ``polarisation_SH_perp``) come either way.
 
     Returns
     -------

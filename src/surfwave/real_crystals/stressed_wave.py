@@ -55,10 +55,9 @@ from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 from surfwave.vocab import STRESS_LOADINGS
 
-__all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "electrical_error", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
-           "REASON_LEAKY_OFF",
-           "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
-           "surface_wave", "surface_wave_conditions"]
+__all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
+           "REASON_LEAKY_OFF", "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
+           "electrical_error", "stress_tensor", "surface_wave", "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
