@@ -5,7 +5,8 @@ Grid: materials x (named cuts | Euler angles phi x theta x psi) x electrical con
 ``surface``, ``angle``): a surface is a plate (a named cut, or one Euler pair (phi, theta)),
 the angle the propagation direction psi in it from the plate's reference psi0; coordinates
 ``cut``, ``euler_phi``, ``euler_theta`` (per surface) and ``euler_psi`` (surface, angle) say
-which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point
+which Euler angles each point has (:func:`surfwave.data.cube.open_cube` indexes ``euler_phi``,
+``euler_theta`` and ``cut``, so ``ds.sel(euler_theta=38.0)`` selects by them). Each point
 is :func:`surfwave.real_crystals.piezo_wave.piezo_wave`, i.e. the one real-crystal
 path :func:`surfwave.real_crystals.stressed_wave.surface_wave` (uniaxial stress along the
 propagation x1; prestress model per ``toec`` coordinate: fixed constants,
