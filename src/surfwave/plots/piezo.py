@@ -168,7 +168,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """
     s = ds.stress.values
     models = [bool(t) for t in ds.toec.values] if "toec" in ds.dims else [None]
-    stacked = ds.stack(orientation=("surface", "angle"))
+    stacked = ds.stack(orientation=("surface", "angle"), create_index=False)   # surface has the plate indexes
     fig, (av, ar) = plt.subplots(1, 2, figsize=(10.5, 4.2))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     k = 0
