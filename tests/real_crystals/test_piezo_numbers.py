@@ -197,3 +197,24 @@ def test_beside_the_gaas_110_mirror_the_wave_leaks():
     assert r["leaky_attenuation"][1] > 0 and np.isfinite(r["c_leaky"][1])
     assert r["leaky_attenuation"][2] / r["leaky_attenuation"][1] == pytest.approx(4.0, rel=0.02)
     assert r["c_leaky"][1] == pytest.approx(r["c_R"][0], rel=1e-6)          # continuous through the mirror
+
+
+def test_piezo_cube_carries_the_leaky_pair_and_selects_plates_by_euler_angle(tmp_path):
+    """The cube of a scene listing only the free condition still has K2_leaky and both leaky
+    speeds, equal to the API's; written and opened with open_cube, the plates are selected by
+    their Euler angle (no swap_dims), the surface labels still work, and the bulk waves carry
+    their polarisation on ``bulk_component``."""
+    from surfwave.data.cube import open_cube, write
+    from surfwave.real_crystals.piezo_sweep import piezo_wave_sweep
+
+    ds = piezo_wave_sweep(["LiNbO3-Warner1967"], euler={"phi": 0, "theta": [-26.0, -49.0], "psi": 0},
+                          electrical=["free"])
+    back = open_cube(write(ds, tmp_path / "surface_wave.nc"))
+    plate = back.sel(material="LiNbO3-Warner1967", euler_theta=-26.0).isel(angle=0)
+    api = surfwave.material("LiNbO3", cut="64Y-X")
+    for key in ("K2_leaky", "c_leaky_free", "c_leaky_metallized", "c_T_par", "c_SH"):
+        assert float(plate[key]) == pytest.approx(api[key], rel=1e-12), key
+    assert str(plate.surface.values) == "Euler (0, -26)"
+    assert float(back.sel(surface="Euler (0, -49)").K2_leaky.squeeze()) == pytest.approx(0.172, rel=0.01)
+    assert back.polarisation_L_par.dims[-1] == "bulk_component"
+    np.testing.assert_allclose(plate.polarisation_L_par.values, api["polarisation_L_par"], atol=1e-12)

@@ -522,6 +522,11 @@ CUBES["piezo_wave"]["K2_leaky"] = {
     "long_name": "electromechanical coupling of the leaky SAW, 2 (c_leaky_free - c_leaky_metallized) / "
                  "c_leaky_free (NaN where either leaky root is missing)",
     "units": "1"}
+for _el in ("free", "metallized"):
+    CUBES["piezo_wave"][f"c_leaky_{_el}"] = {
+        "long_name": f"leaky SAW phase speed omega / Re k with a {_el} surface, from the solve of both conditions "
+                     "(also when the scene lists one electrical condition); NaN where none",
+        "units": "m s-1"}
 CUBES["piezo_wave"]["grazing"] = {
     "long_name": "subsonic SAW that is a bulk-like grazing wave (penetration depth above "
                  "surfwave.real_crystals.stressed_wave.GRAZING_DEPTH wavelengths): not usable as a surface wave"}

@@ -56,7 +56,7 @@ COMPONENTS = ("u1", "u2", "u3", "phi")
 VARIABLES = CUBES["piezo_wave"]
 COORDS = PIEZO_WAVE_COORDS
 #: Per-point variables (material, orientation, [stress]) that do not depend on the electrical condition.
-NO_ELECTRICAL = ("K2", "c_limit", "rho", "K2_leaky") + BULK_KEYS
+NO_ELECTRICAL = ("K2", "c_limit", "rho", "K2_leaky", "c_leaky_free", "c_leaky_metallized") + BULK_KEYS
 
 
 def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
