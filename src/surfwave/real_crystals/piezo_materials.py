@@ -387,9 +387,11 @@ def note_status(material: PiezoMaterial) -> str:
 def _caller_level() -> int:
     """``stacklevel`` of the first frame outside the surfwave package (the caller's own line)."""
     import sys
+    from types import FrameType
 
     package = str(Path(__file__).resolve().parents[1])
-    frame, level = sys._getframe(1), 1
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
     while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
         frame, level = frame.f_back, level + 1
     return level

@@ -548,8 +548,9 @@ def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray, constants: Co
 
 def _lab_piezo(constants: Constants, lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """e (m, 3, 3, 3), C/m^2, and the clamped eps (m, 3, 3), F/m, at natural values rotated into ``lab``."""
-    return (rotate3(piezo_voigt_to_tensor(constants.piezo), lab),
-            rotate2(constants.permittivity * EPS0, lab))
+    e6, eps_r = constants.piezo, constants.permittivity
+    assert e6 is not None and eps_r is not None, "called for piezoelectric constants only"
+    return rotate3(piezo_voigt_to_tensor(e6), lab), rotate2(eps_r * EPS0, lab)
 
 
 def _long_wave_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
