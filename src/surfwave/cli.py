@@ -377,6 +377,8 @@ def _cmd_material(args) -> int:
         print(f"{'polarisation':>17} = " + "  ".join(f"{u.real:+.4f}{u.imag:+.4f}i" for u in pol))
         if row["reason"]:
             print(f"             note: {row['reason']}")
+        if row.get("grazing"):
+            print(f"             note: {cli_piezo.GRAZING_NOTE}")
         return 0
     header = ["angle", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
     print("  ".join(f"{h:>10}" for h in header))
