@@ -360,7 +360,8 @@ def note_status(material: PiezoMaterial) -> str:
     unverified or provisional constant set; returns the note ("" for a checked set).
 
     Python shows a warning once per distinct text and place, so a sweep over many points of
-    one set notes it once. ``python -W ignore::surfwave.errors.ConstantsNote`` silences it.
+    one set notes it once. ``python -W "ignore:constant set"`` (or
+    ``warnings.filterwarnings("ignore", category=ConstantsNote)``) silences it.
 
     Examples
     --------
