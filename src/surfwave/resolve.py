@@ -35,7 +35,13 @@ from surfwave import validate
 from surfwave.case import Case, make_case
 from surfwave.errors import InputError
 from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
-from surfwave.real_crystals.piezo_materials import PiezoMaterial, get_cut, get_piezo_material, with_toec
+from surfwave.real_crystals.piezo_materials import (
+    PiezoMaterial,
+    get_cut,
+    get_piezo_material,
+    note_status,
+    with_toec,
+)
 from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
 from surfwave.real_crystals.toec import cubic_toec
 from surfwave.solvers.euler import euler_lab_axes
@@ -169,6 +175,7 @@ def _constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, cut, cut_ma
             raise InputError(f"material {C11!r} given by name: do not also give C12, C44, voigt=, piezo= or "
                              "permittivity=")
         mat = piezo_rec
+        note_status(mat)                                            # one line for an unverified set
         if explicit_toec:                                           # the caller's set, checked for the class
             mat = with_toec(mat, toec)
         if cut_material is not None:

@@ -21,17 +21,19 @@ Examples
 from __future__ import annotations
 
 import difflib
-import re
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import yaml
+from numpy.typing import ArrayLike
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
+from surfwave.real_crystals.catalog import name_key
 from surfwave.real_crystals.materials import read_constants
 from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named, toec_from_user
 from surfwave.solvers.euler import euler_lab_axes
@@ -52,7 +54,8 @@ from surfwave.validate import MAX_CONSTANT_GPA
 
 #: Per crystal class: (independent C names or None for "from materials.yaml", e names, eps names,
 #: C builder, e builder).
-CLASSES = {
+CLASSES: dict[str, tuple[tuple[str, ...] | None, tuple[str, ...], tuple[str, ...],
+                        Callable[..., np.ndarray] | None, Callable[..., np.ndarray]]] = {
     "3m": (("C11", "C12", "C13", "C14", "C33", "C44"), ("e15", "e22", "e31", "e33"), ("eps11", "eps33"),
            trigonal_3m_voigt, trigonal_3m_piezo),
     "32": (("C11", "C12", "C13", "C14", "C33", "C44"), ("e11", "e14"), ("eps11", "eps33"),
@@ -92,6 +95,10 @@ class PiezoMaterial:
     note : str
         How the numbers were checked, and doubts.
     aliases : tuple of str
+    status : str
+        "" for a checked set; "unverified: ..." or "provisional: ..." (piezoelectric.yaml
+        ``status``) for one whose numbers were not checked against a second copy:
+        :func:`note_status` says so at run time.
     toec_voigt : ndarray, shape (6, 6, 6), or None
         Brugger third-order constants, GPa, crystal axes (``sources["toec"]`` names them); None
         where the database has none (every non-cubic crystal so far). GaAs takes the set of
@@ -111,6 +118,7 @@ class PiezoMaterial:
     note: str = ""
     aliases: tuple = field(default_factory=tuple)
     toec_voigt: np.ndarray | None = None
+    status: str = ""
 
     @property
     def C_tensor(self) -> np.ndarray:
@@ -162,7 +170,7 @@ class Cut:
         return euler_lab_axes(*self.euler)
 
 
-def check_piezo_record(voigt, e, eps_r, rho, name: str = "record") -> None:
+def check_piezo_record(voigt: ArrayLike, e: ArrayLike, eps_r: ArrayLike, rho: float, name: str = "record") -> None:
     """Refuse a constant set that cannot be right.
 
     Parameters
@@ -254,6 +262,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
         c_vals, c_src = _block(entry, "C", c_names, where, refs)
         (rho_vals, rho_src) = _block(entry, "rho", ("value",), where, refs)
         rho = rho_vals["value"]
+        assert c_builder is not None  # every class with its own C names has a builder
         voigt = c_builder(*(c_vals[k] for k in c_names))
         eps = uniaxial_eps(eps_vals["eps11"], eps_vals["eps33"])
         C3, toec_src = None, ""
@@ -272,13 +281,13 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
         note=" ".join(str(entry.get("note", "")).split()),
         aliases=tuple(str(a) for a in entry.get("aliases", ())),
         toec_voigt=C3,
+        status=" ".join(str(entry.get("status", "")).split()),
     )
 
 
 def _key(text: str) -> str:
     """Lookup key: case-folded, without spaces, hyphens, underscores, degree signs or 'deg'."""
-    t = str(text).casefold().replace("°", "").replace("deg", "")
-    return re.sub(r"[\s\-_]+", "", t)
+    return name_key(text)
 
 
 def _lookup(items: dict, kind: str) -> dict[str, str]:
@@ -339,7 +348,8 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     Raises
     ------
     InputError
-        Unknown name; the message lists the known sets and the closest names.
+        Unknown name: :func:`surfwave.real_crystals.catalog.unknown_name` (the database that
+        holds it, or the closest names and every known one, over both databases).
     """
     if isinstance(name, PiezoMaterial):
         return name
@@ -347,7 +357,52 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     k = _key(name)
     if k in lookup:
         return mats[lookup[k]]
-    raise _unknown(name, lookup, available_piezo_materials(), "piezoelectric material")
+    from surfwave.real_crystals.catalog import unknown_name
+
+    raise unknown_name(name, "piezoelectric")
+
+
+def note_status(material: PiezoMaterial) -> str:
+    """Say once (a :class:`surfwave.errors.ConstantsNote` warning, one line) that ``material`` is an
+    unverified or provisional constant set; returns the note ("" for a checked set).
+
+    Python shows a warning once per distinct text and place, so a sweep over many points of
+    one set notes it once. ``python -W "ignore:constant set"`` (or
+    ``warnings.filterwarnings("ignore", category=ConstantsNote)``) silences it.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as seen:
+    ...     warnings.simplefilter("always")
+    ...     text = note_status(get_piezo_material("LiTaO3"))
+    >>> text.startswith("constant set LiTaO3-Kovacs1990 is unverified")
+    True
+    """
+    import warnings
+
+    from surfwave.errors import ConstantsNote
+
+    if not material.status:
+        return ""
+    kind, _, why = material.status.partition(":")
+    text = (f"constant set {material.name} is {kind.strip()} ({why.strip()}); see "
+            "docs/piezoelectric-materials.md before relying on the last digits")
+    warnings.warn(text, ConstantsNote, stacklevel=_caller_level())
+    return text
+
+
+def _caller_level() -> int:
+    """``stacklevel`` of the first frame outside the surfwave package (the caller's own line)."""
+    import sys
+    from types import FrameType
+
+    package = str(Path(__file__).resolve().parents[1])
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
+    while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def available_cuts() -> list[str]:
@@ -370,7 +425,8 @@ def get_cut(name: str) -> Cut:
     raise _unknown(name, lookup, available_cuts(), "cut")
 
 
-def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller") -> PiezoMaterial:
+def with_toec(material: PiezoMaterial, toec: Mapping[str, float] | ArrayLike,
+              source: str = "given by the caller") -> PiezoMaterial:
     """``material`` carrying a caller's third-order constants, checked for its class.
 
     Parameters
@@ -407,7 +463,7 @@ class _UniqueKeyLoader(yaml.SafeLoader):
         return super().construct_mapping(node, deep=deep)
 
 
-def read_toec_file(path) -> tuple[dict, bytes]:
+def read_toec_file(path: str | Path) -> tuple[dict, bytes]:
     """Named third-order constants (GPa) from a YAML mapping ``name: value`` (``source:`` allowed).
 
     Parameters
@@ -443,7 +499,7 @@ def read_toec_file(path) -> tuple[dict, bytes]:
     return data, text
 
 
-def lab_tensors(material: str | PiezoMaterial, R) -> dict[str, np.ndarray]:
+def lab_tensors(material: str | PiezoMaterial, R: ArrayLike) -> dict[str, Any]:
     """A crystal's tensors in lab axes, SI units, ready for the piezoelectric Stroh solver.
 
     Parameters

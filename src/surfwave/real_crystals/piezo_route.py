@@ -28,7 +28,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction=None, stres
     """:func:`surfwave.material` with the piezoelectric part switched on (same arguments).
 
     Returns the keys of :func:`surfwave.material` (``polarisation`` and ``decay`` with a fourth
-    component, the potential; bulk speeds are the mechanical, unstiffened ones; ``c_limit`` is
+    component, the potential; bulk speeds are piezoelectrically stiffened eigen-speeds; ``c_limit`` is
     the piezoelectrically stiffened limiting speed) plus ``c_free``, ``c_metallized``, ``K2``,
     ``power_flow_angle``, ``potential_share``, ``electrical``, ``model`` and ``euler`` ((m, 3)
     degrees, or NaN for a surface/direction orientation), from the one path

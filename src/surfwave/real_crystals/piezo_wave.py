@@ -19,13 +19,22 @@ conditions and :func:`surfwave.solvers.leaky.leaky_wave`), shared with the elast
 """
 from __future__ import annotations
 
+from typing import Iterable, Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
-from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_piezo_record, get_piezo_material
-from surfwave.solvers.boundary import as_boundary
+from surfwave.real_crystals.piezo_materials import (
+    EPS0,
+    PiezoMaterial,
+    check_piezo_record,
+    get_piezo_material,
+    note_status,
+)
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
@@ -39,7 +48,7 @@ MODEL_TOEC = ("third-order constants: the stressed state (deformation F, C*, rho
               "e and clamped eps at their natural values, rotated with the crystal (no stress derivatives)")
 
 
-def stress_model(toec) -> str:
+def stress_model(toec: Iterable[bool]) -> str:
     """The prestress model text of a result or cube: :data:`MODEL` or :data:`MODEL_TOEC` for one
     model, ``"toec=false: ...; toec=true: ..."`` for both (``toec``: the models, a sequence of bool)."""
     models = [bool(t) for t in toec]
@@ -57,7 +66,9 @@ REASON_TRACTION = sw_path.REASON_TRACTION
 ELECTRICAL = sw_path.ELECTRICAL
 
 
-def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho=None) -> PiezoMaterial:
+def resolve_piezo_material(material: str | PiezoMaterial | None = None, *, voigt: ArrayLike | None = None,
+                           e: ArrayLike | None = None, eps_r: ArrayLike | None = None,
+                           rho: float | None = None) -> PiezoMaterial:
     """A :class:`PiezoMaterial` from a database name, a record, or explicit constants.
 
     Parameters
@@ -93,6 +104,7 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
         C6, e6, er = (np.asarray(x, dtype=float) for x in (voigt, e, eps_r))
     except (TypeError, ValueError) as exc:
         raise InputError(f"piezoelectric constants must be numeric arrays: {exc}") from None
+    assert rho is not None  # refused above when missing
     check_piezo_record(C6, e6, er, rho, name="constants")
     validate.piezo_constants(e, eps_r)                 # the bounds of every door: C/m^2, eps_r >= 1
     rho = validate.density(rho)
@@ -128,8 +140,9 @@ def _axes(axes) -> np.ndarray:
     return R
 
 
-def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free", leaky: bool = True,
-               tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None, toec: bool = False,
+def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | None = None, stress: ArrayLike = 0.0, *,
+               electrical: str = "free", leaky: bool = True, tol: float = 1e-12, voigt: ArrayLike | None = None,
+               e: ArrayLike | None = None, eps_r: ArrayLike | None = None, rho: float | None = None, toec: bool = False,
                bulk: bool = False) -> dict:
     """SAW of a piezoelectric crystal on m cuts: free and metallized speeds, K^2, leaky wave, power flow.
 
@@ -161,7 +174,8 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
         the record (the database: GaAs only; else InputError naming what is missing; the API
         takes a caller's set, :func:`surfwave.material`).
     bulk : bool
-        Also the mechanical bulk speeds and ``stable`` (:func:`stressed_wave.surface_wave`).
+        Also ``stable`` (:func:`stressed_wave.surface_wave`); the stiffened bulk waves along x1
+        and x2 (``c_L_par``, ..., ``polarisation_SH_perp``) come either way.
 
     Returns
     -------
@@ -195,13 +209,17 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
     >>> round(float(r["c_free"][0])), round(float(r["c_metallized"][0]))   # Slobodnik 1973: 3488 / 3404
     (3488, 3404)
     """
+    if not isinstance(electrical, Boundary) and electrical not in ELECTRICAL:
+        raise InputError(sw_path.electrical_error(electrical))
     electrical = as_boundary(electrical).name
     return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 
 
-def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=ELECTRICAL, leaky: bool = True,
-                          tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None, toec: bool = False,
+def piezo_wave_conditions(material: str | PiezoMaterial | None = None, axes: ArrayLike | None = None,
+                          stress: ArrayLike = 0.0, *, conditions: Sequence[str] = ELECTRICAL, leaky: bool = True,
+                          tol: float = 1e-12, voigt: ArrayLike | None = None, e: ArrayLike | None = None,
+                          eps_r: ArrayLike | None = None, rho: float | None = None, toec: bool = False,
                           bulk: bool = False) -> dict:
     """:func:`piezo_wave` for several electrical conditions from one solve (both cost what one costs).
 
@@ -224,6 +242,7 @@ def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=EL
     """
     conditions = tuple(conditions)                                  # checked by surface_wave_conditions
     mat = resolve_piezo_material(material, voigt=voigt, e=e, eps_r=eps_r, rho=rho)
+    note_status(mat)                                                # one line for an unverified set
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)

@@ -10,9 +10,11 @@ the elastic answer, supersonic waves included).
 """
 from __future__ import annotations
 
+from typing import Sequence
+
 import numpy as np
 
-from surfwave.solvers.boundary import BOUNDARIES, as_boundary
+from surfwave.solvers.boundary import BOUNDARIES, Boundary, as_boundary
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.piezo import piezo_surface_wave
 from surfwave.solvers.stroh import surface_wave
@@ -22,12 +24,13 @@ __all__ = ["DELTA_EXACT", "ELECTRICAL", "PIEZO_KEYS", "piezo_saw", "piezo_saw_co
 
 #: Extra per-point float outputs of a piezoelectric crystal.
 PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle",
-              "potential_share")
+              "potential_share", "c_leaky_free", "c_leaky_metallized", "K2_leaky")
 #: |delta| (Im k / Re k) of a leaky root at or below which it is an exact (non-radiating) supersonic wave.
 DELTA_EXACT = 1e-10
 
 
-def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, leaky: bool = True) -> dict:
+def piezo_saw(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *, electrical: str = "free",
+              tol: float = 1e-12, leaky: bool = True) -> dict:
     """Free and metallized SAW, K^2, leaky wave and power flow of m piezoelectric points (lab, SI).
 
     Parameters
@@ -52,7 +55,11 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     dict of ndarray, leading shape (m,)
         ``c``, ``c_imag``, ``c_limit`` (stiffened), ``penetration_depth``, ``wave_type``,
         ``reason``, ``method``, ``polarisation`` (m, 4), ``decay`` (m, 4), and :data:`PIEZO_KEYS`
-        plus ``leaky_reason``.
+        plus ``leaky_reason``. ``c_leaky_free``, ``c_leaky_metallized`` (m/s) and ``K2_leaky``
+        (2 (c_leaky_free - c_leaky_metallized) / c_leaky_free, a fraction) are the leaky wave's
+        pair and coupling, the same for either ``electrical`` (NaN where either root is missing,
+        and everywhere with ``leaky=False``); ``c_leaky`` is the member of the pair for
+        ``electrical``.
 
     Notes
     -----
@@ -65,7 +72,8 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     return piezo_saw_conditions(A, rho, e, eps, conditions=(electrical,), tol=tol, leaky=leaky)[electrical]
 
 
-def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 1e-12,
+def piezo_saw_conditions(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *,
+                         conditions: Sequence[str | Boundary] = ELECTRICAL, tol: float = 1e-12,
                          leaky: bool = True) -> dict[str, dict]:
     """:func:`piezo_saw` for several electrical conditions from one set of solves.
 
@@ -87,7 +95,7 @@ def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 
         Condition -> the dict :func:`piezo_saw` returns for it.
     """
     asked = {b.name: b for b in (as_boundary(c) for c in conditions)}    # name -> boundary object
-    conditions = tuple(asked)
+    names_asked = tuple(asked)
     # the batch: free and metallized always (K^2), then any other boundary asked, each once
     batch = tuple(BOUNDARIES[n] for n in ELECTRICAL) + tuple(b for n, b in asked.items() if n not in ELECTRICAL)
     m = A.shape[0]
@@ -95,7 +103,7 @@ def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 
         f, c = np.empty(0), np.empty((0, 4), dtype=complex)
         return {el: {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
                      **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
-                     "polarisation": c, "decay": c} for el in conditions}
+                     "polarisation": c, "decay": c} for el in names_asked}
     nb = len(batch)
     with np.errstate(invalid="ignore"):    # a point without a wave is NaN + reason, not a warning
         both = piezo_surface_wave(np.concatenate([A] * nb), np.concatenate([e] * nb), np.concatenate([eps] * nb),
@@ -108,7 +116,7 @@ def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 
             # every condition in one call: the scan's eigen-decompositions are shared
             lws = leaky_wave(A, rho, e, eps, electrical=batch if piezo else tuple(asked.values()))
     names = tuple(b.name for b in batch)
-    return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo, names) for el in conditions}
+    return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo, names) for el in names_asked}
 
 
 def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo, batch=ELECTRICAL) -> dict:
@@ -133,16 +141,22 @@ def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo, batch=ELEC
     depth = sw.get("penetration_depth", depth)
     c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
     leaky_reason = np.full(m, "not computed (leaky=False)", dtype=object)
+    pair = {el: np.full(m, np.nan) for el in ELECTRICAL}
     if lws:
         lw = lws[electrical]
         c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
+        # e = 0 solves one condition: the potential is decoupled, so the other has the same root
+        pair = {el: np.asarray(lws.get(el, lw)["c_leaky"], dtype=float) for el in ELECTRICAL}
         if piezo:
             sw, c_free, c_met, K2 = _supersonic(sw, c_free, c_met, lws, electrical)
+    with np.errstate(invalid="ignore"):
+        K2_leaky = 2 * (pair["free"] - pair["metallized"]) / pair["free"]
     return {"c": sw["c"], "c_imag": c_imag, "c_limit": sw["c_limit"], "wave_type": sw["wave_type"],
             "reason": sw["reason"], "method": sw["method"], "polarisation": sw["polarisation"],
             "decay": sw["decay"], "penetration_depth": depth, "c_free": c_free, "c_metallized": c_met,
             "K2": K2, "c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": leaky_reason,
-            "power_flow_angle": sw["power_flow_angle"], "potential_share": sw["potential_share"]}
+            "power_flow_angle": sw["power_flow_angle"], "potential_share": sw["potential_share"],
+            "c_leaky_free": pair["free"], "c_leaky_metallized": pair["metallized"], "K2_leaky": K2_leaky}
 
 
 def _elastic_piezo_keys(A, rho, eps, sw_piezo, tol) -> tuple:
