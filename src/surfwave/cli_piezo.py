@@ -7,10 +7,12 @@ of :func:`surfwave.material` (:func:`material_kwargs`) and prints a piezoelectri
 from __future__ import annotations
 
 import re
+import sys
 
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.validate import radians_note
 
 __all__ = ["EPILOG", "add_options", "list_cuts", "material_kwargs", "print_result"]
 
@@ -37,7 +39,8 @@ piezoelectric examples:
 def add_options(mt) -> None:
     """Add the piezoelectric options to the ``material`` sub-parser."""
     # let a sweep that starts negative ("-90:90:2") be a value, as argparse already does for "-54"
-    mt._negative_number_matcher = re.compile(r"^-\d+$|^-\d*\.\d+$|^-\d*\.?\d*:[-\d.:]*$")
+    # (also with an exponent, "-1e-3", and a sweep's "-inf"/"-nan", which the range parser refuses in one line)
+    mt._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+|inf|nan)([eE][-+]?\d+)?(:[-+\w.:]*)?$")
     g = mt.add_argument_group("piezoelectric crystals and Euler-angle cuts")
     g.add_argument("--cut", help='a named SAW cut: "128Y-X", "ST-X quartz", "Y-Z LiNbO3", ... (see --list-cuts)')
     g.add_argument("--euler", nargs=3, metavar=("PHI", "THETA", "PSI"),
@@ -61,17 +64,9 @@ def list_cuts() -> int:
 
 
 def _sweep(text: str) -> np.ndarray:
-    parts = str(text).split(":")
-    try:
-        values = [float(v) for v in parts]
-    except ValueError:
-        raise InputError(f"--euler angles must be numbers or START:STOP:STEP in degrees, got {text!r}") from None
-    if len(values) == 1:
-        return np.array(values)
-    if len(values) != 3 or values[2] <= 0 or values[1] < values[0]:
-        raise InputError(f"--euler sweep must be START:STOP:STEP with STEP > 0 and STOP >= START, got {text!r}")
-    start, stop, step = values
-    return start + step * np.arange(int(np.floor((stop - start) / step + 1e-9)) + 1)
+    from surfwave.cli_sweeps import sweep
+
+    return sweep(text, "--euler")
 
 
 def material_kwargs(args) -> tuple[dict, int | None]:
@@ -98,6 +93,9 @@ def material_kwargs(args) -> tuple[dict, int | None]:
             kw["euler"] = np.column_stack([np.broadcast_to(p, (n,)) for p in parts])
         else:
             kw["euler"] = np.array([p[0] for p in parts])
+        note = radians_note(kw["euler"], "--euler angles")
+        if note:
+            print(note, file=sys.stderr)
     if args.electrical is not None:
         kw["electrical"] = args.electrical
     return kw, swept
@@ -113,7 +111,7 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
     where = (f"cut {args.cut}" if args.cut else
              f"Euler {' '.join(args.euler)}" if args.euler else f"surface {args.surface}")
     print(f"# {args.material + ', ' if args.material else ''}{where}, stress "
-          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, "
+          f"{' '.join(args.stress)} GPa, "
           f"{'third-order constants' if np.any(r['toec']) else 'fixed constants'}; "
           f"leaky wave and PFA for a {electrical} surface")
     if np.ndim(r["c_R"]) == 0:

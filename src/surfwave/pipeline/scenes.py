@@ -385,6 +385,27 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
     return scenes
 
 
+def scene_notes(scenes: dict[str, dict]) -> list[str]:
+    """Notes (not errors) on validated scenes, one line each: Euler angles that all look like radians.
+
+    Examples
+    --------
+    >>> scene_notes({"s": {"kind": "piezo", "euler": {"phi": [0.0], "theta": [0.663], "psi": [0.0]}}})[0][:60]
+    "note: all Euler angles of scene 's' lie within 2 pi and 0.66"
+    """
+    from surfwave.validate import radians_note
+
+    notes = []
+    for name, scene in scenes.items():
+        euler = scene.get("euler") if scene.get("kind") == "piezo" else None
+        if isinstance(euler, dict):
+            note = radians_note([a for k in ("phi", "theta", "psi") for a in euler.get(k, [])],
+                                f"Euler angles of scene {name!r}")
+            if note:
+                notes.append(note)
+    return notes
+
+
 def selected(config: dict, scenes: dict[str, dict]) -> list[str]:
     """Names of the scenes rule ``all`` builds: ``config['run']``, or every scene if empty."""
     return list(config.get("run") or scenes)

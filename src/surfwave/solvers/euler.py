@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.validate import MAX_ANGLE
+from surfwave.validate import MAX_ANGLE, euler_angles
 
 
 def saw_euler_matrix(phi, theta, psi) -> np.ndarray:
@@ -82,9 +82,7 @@ def euler_lab_axes(phi, theta=None, psi=None) -> np.ndarray:
         is not three angles.
     """
     if theta is None and psi is None:
-        angles = np.asarray(phi, dtype=float)
-        if angles.shape[-1:] != (3,) or angles.ndim > 2:
-            raise InputError(f"Euler angles as one array must have shape (3,) or (m, 3), got {angles.shape}")
+        angles = euler_angles(phi, "Euler angles")
         phi, theta, psi = angles[..., 0], angles[..., 1], angles[..., 2]
     elif theta is None or psi is None:
         raise InputError("give all three Euler angles (phi, theta, psi) or one (m, 3) array")
