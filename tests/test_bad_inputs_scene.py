@@ -144,3 +144,15 @@ def test_good_scenes_still_pass():
     out = validate_config({"scenes": {"a": {**CRYSTAL, "stress": [0.0, 0.1]}, "b": {**PIEZO, "stress": [0.1]},
                                       "c": {**LATTICE, "d_over_d0": [0.9, 1.0, 1.2], "directions": ["[100]"]}}})
     assert out["a"]["stress"] == [0.0, 0.1] and out["c"]["d_over_d0"] == [0.9, 1.0, 1.2]
+
+
+def test_radians_note_for_a_scene(tmp_path, capsys):
+    """Issue 27: a scene whose Euler angles all look like radians (theta 0.663 = 38 deg) runs in
+    degrees, and ``surfwave scenes`` says so in one note line; degrees give no note."""
+    path = write(tmp_path, {**PIEZO, "euler": {"theta": [0.663, 0.7]}})
+    assert main(["scenes", "--configfile", path]) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Euler angles of scene 'bad'" in err and "0.7 rad = 40.11 deg" in err, err
+    path = write(tmp_path, PIEZO)
+    assert main(["scenes", "--configfile", path]) == 0
+    assert capsys.readouterr().err == ""
