@@ -41,6 +41,12 @@ TABLE = [
     ({**LATTICE, "d_over_d0": [1.0e6]}, ["key 'd_over_d0'", "d/d0 = 1e+06", "below 2"]),
     ({**LATTICE, "d_over_d0": [1.0e308]}, ["key 'd_over_d0'", "d/d0 = 1e+308"]),
     ({**CRYSTAL, "angles": {"symmetric": True, "step": "1"}}, ["key 'angles/step'", "'1' is text"]),
+    ({**CRYSTAL, "angles": None}, ["key 'angles'", "value None is null", "'symmetric'"]),
+    ({**CRYSTAL, "angles": "sym"}, ["key 'angles'", "value 'sym' is text", "'symmetric'"]),
+    # a step so small that the point count overflows (before: OverflowError from int(inf))
+    ({**LATTICE, "d_over_d0": {"start": 0.5, "stop": 1.9, "step": 5e-324}}, ["key 'd_over_d0'", "inf points exceed"]),
+    ({**LATTICE, "d_over_d0": {"start": 0.5, "stop": 1.9, "step": 1e-300}}, ["1.4e+300 points exceed"]),
+    ({**PIEZO, "euler": {"theta": True}}, ["key 'euler/theta'", "value True is true/false"]),
 ]
 
 

@@ -21,7 +21,9 @@ Piezoelectric crystals (quartz, LiNbO3, LiTaO3, AlN, ZnO, GaN, langasite, GaAs):
 piezoelectric database (--material LiNbO3), a named cut (--cut 128Y-X; 'surfwave material
 --list-cuts') or SAW Euler angles --euler PHI THETA PSI in degrees (ZXZ; x1 = propagation,
 x3 = outward normal); any one of the three may be a sweep START:STOP:STEP (STOP included),
-printed as a table. Output: free and metallized SAW speeds, K2 = 2 (v_free - v_met) / v_free,
+printed as a table (one sweep at a time: --stress, too, takes a list of values or a sweep).
+Angles are degrees; when all look like radians (within 2 pi, one not a whole number) a note says
+so. Output: free and metallized SAW speeds, K2 = 2 (v_free - v_met) / v_free,
 the leaky SAW (radiating into the slowest bulk sheet) with its attenuation in dB per
 wavelength for --electrical (default free), and the power-flow angle (degrees, from x1
 toward +x2 of the SAW frame). --euler works for any crystal (Cu: e = 0). Prestress: fixed
@@ -31,6 +33,7 @@ piezoelectric examples:
   surfwave material --list-cuts
   surfwave material --material LiNbO3 --cut 128Y-X                        # 3990 / 3878 m/s, K2 5.6 %
   surfwave material --cut "ST-X quartz" --stress -0.1
+  surfwave material --cut "ST-X quartz" --stress -0.2:0.2:0.05           # a stress sweep, as a table
   surfwave material --material LiNbO3 --euler 0 -90:90:10 0              # rotated Y cuts, X propagation
   surfwave material --material LiTaO3 --euler 0 -54 0 --electrical metallized --json
 """

@@ -177,9 +177,9 @@ def branch_error(err):
 
     A branch whose errors all lie inside the value (a key of the right kind of object, an
     item of a list) matched the value's shape: its deepest error (``{symmetric: true,
-    step: 0}`` -> the step, not "'symmetric' was expected"). Else the shallowest error that
-    is not a type mismatch. None when every branch refuses the value's type itself (then
-    no branch's error is the user's problem: the shape is).
+    step: 0}`` -> the step, not "'symmetric' was expected"). None when every branch refuses
+    the value itself by its type or its constant (then no branch's error is the user's
+    problem: the shape is). Else the shallowest error that is not a type mismatch.
     """
     depth = len(err.absolute_path)
     branches: dict = {}
@@ -189,6 +189,8 @@ def branch_error(err):
     if inside:
         errs = min(inside, key=len)
         return max(errs, key=lambda e: len(e.absolute_path))
+    if all(len(e.absolute_path) == depth and e.validator in ("type", "const", "enum") for e in err.context):
+        return None  # the value itself has none of the shapes ('sym', null): say which shapes there are
     for skip in (("type", "const", "enum"), ("type",)):
         deeper = [e for e in err.context if e.validator not in skip]
         if deeper:

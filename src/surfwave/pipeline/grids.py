@@ -83,14 +83,15 @@ def expand_grid(spec, where: str = "grid") -> np.ndarray:
             raise SceneError(f"{where}: step must be positive, got {step!r}")
         if stop < start:
             raise SceneError(f"{where}: stop {stop!r} lies before start {start!r}")
-        n = (stop - start) / step
+        with np.errstate(over="ignore"):
+            n = (stop - start) / step
+        if not n + 1 <= MAX_POINTS + 0.5:  # before int(): a step of 5e-324 makes n infinite
+            raise SceneError(f"{where}: {n + 1:.4g} points exceed the limit of {MAX_POINTS}")
         k = int(round(n))
         if abs(n - k) > 1e-9 * max(1.0, abs(n)):
             raise SceneError(
                 f"{where}: stop - start = {stop - start:.12g} is not a multiple of step {step!r}"
             )
-        if k + 1 > MAX_POINTS:
-            raise SceneError(f"{where}: {k + 1} points exceed the limit of {MAX_POINTS}")
         values = _rounded(start + step * np.arange(k + 1))
     else:
         values = _rounded(np.sort(np.asarray(spec, dtype=float)))
