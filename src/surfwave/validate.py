@@ -208,8 +208,8 @@ _RADIANS = 2 * np.pi + 1e-9
 def radians_note(euler, name: str = "Euler angles") -> str | None:
     """A one-line note when every Euler angle looks like radians, else None.
 
-    "Looks like radians": every non-zero angle lies within 2 pi in magnitude and at least one
-    of them is not a whole number of degrees (0.663 is 38 degrees in radians; whole degrees
+    "Looks like radians": every non-zero angle lies within 2 pi in magnitude (the largest at
+    least 0.01) and at least one of them is not a whole number of degrees (0.663 is 38 degrees in radians; whole degrees
     such as (0, 1, 0) and the Z cut (0, 0, 0) are taken at their word). The angles are used as
     given (degrees); the note only says what they would be in radians.
 
@@ -229,7 +229,7 @@ def radians_note(euler, name: str = "Euler angles") -> str | None:
     """  # noqa: E501 (a doctest's expected message)
     a = np.asarray(euler, dtype=float).ravel()
     a = a[np.isfinite(a) & (a != 0)]
-    if not a.size or np.abs(a).max() > _RADIANS:
+    if not a.size or not 0.01 <= np.abs(a).max() <= _RADIANS:
         return None
     frac = a[a != np.round(a)]
     if not frac.size:
