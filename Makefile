@@ -40,7 +40,7 @@ reproduce: $(STAMP)
 	$(BIN)/snakemake -j$(JOBS)
 
 # Static checks the house style assumes (pyproject.toml: [tool.ruff], [tool.mypy]): ruff with the
-# numpy docstring rules on the code and tests, mypy on the library's public modules.
+# numpy docstring rules on the code and tests, mypy on the whole library.
 check: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks workflow/scripts
 	$(BIN)/mypy

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from surfwave import __version__, cli_piezo
+from surfwave import __version__, cli_material, cli_piezo
 from surfwave.errors import SurfwaveError
 from surfwave.vocab import DIRECTIONS, LATTICES, LOADINGS
 
@@ -138,7 +138,8 @@ def _parser() -> argparse.ArgumentParser:
         epilog=EPILOG_MATERIAL + "\n" + cli_piezo.EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     mt.add_argument("--material", help="a crystal of the materials database by name (Cu, Si, GaAs, ...)")
-    mt.add_argument("--list", action="store_true", help="list the materials database and exit")
+    mt.add_argument("--list", action="store_true",
+                    help="list every crystal of the elastic and piezoelectric databases, with aliases, and exit")
     mt.add_argument("--C11", type=float, help="cubic elastic constant C11, GPa")
     mt.add_argument("--C12", type=float, help="cubic elastic constant C12, GPa")
     mt.add_argument("--C44", type=float, help="cubic elastic constant C44, GPa")
@@ -225,17 +226,6 @@ def _cmd_point(args) -> int:
     return 0
 
 
-def _toec_file(path: str) -> dict:
-    """Named third-order constants (GPa) from a YAML mapping, for ``--toec-file``."""
-    from surfwave.errors import InputError
-    from surfwave.real_crystals.piezo_materials import read_toec_file
-
-    try:
-        return read_toec_file(path)[0]
-    except InputError as err:
-        raise InputError(f"--toec-file: {err}") from None
-
-
 def _angles(text: str) -> np.ndarray | float:
     """One angle "15" or a sweep "0:90:5" (stop included) in degrees (:func:`surfwave.cli_sweeps.sweep`)."""
     from surfwave.cli_sweeps import sweep
@@ -274,12 +264,7 @@ def _cmd_material(args) -> int:
     from surfwave.errors import InputError
 
     if args.list:
-        from surfwave.real_crystals.materials import available_materials, get_material
-
-        for name in available_materials():
-            m = get_material(name)
-            print(f"{name:>8}  {m.symmetry:<10} rho {m.rho:7.0f} kg/m^3   TOEC: {'yes' if m.toec else 'no'}")
-        return 0
+        return cli_material.list_materials(args.json)
     if args.list_cuts:
         return cli_piezo.list_cuts()
     piezo_kw, swept = cli_piezo.material_kwargs(args)
@@ -302,19 +287,7 @@ def _cmd_material(args) -> int:
         constants = {"C11": args.C11, "C12": args.C12, "C44": args.C44}
     if args.rho is None and args.material is None and not (args.cut is not None and not given):
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
-    if args.toec_file is not None:
-        if args.toec is not None:
-            raise InputError("give --toec or --toec-file, not both")
-        toec = _toec_file(args.toec_file)
-    elif args.toec is None:
-        toec = None
-    elif len(args.toec) == 0:
-        toec = True
-    elif len(args.toec) == 6:
-        toec = tuple(args.toec)
-    else:
-        raise InputError(f"--toec takes no value (database) or six (C111 C112 C123 C144 C155 C456), "
-                         f"got {len(args.toec)}")
+    toec = cli_material.toec_arg(args)
     stress, stress_sweep = stress_values(args.stress)
     if args.angle is not None:
         direction = _angles(args.angle)
@@ -322,6 +295,13 @@ def _cmd_material(args) -> int:
         direction = args.direction
     else:
         direction = 0.0
+    def call(stress):
+        try:
+            return material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
+                            **constants, **piezo_kw)
+        except InputError as err:
+            raise InputError(cli_material.toec_words(str(err), args)) from None
+
     if stress_sweep is not None:
         if swept is not None or np.ndim(direction):
             raise InputError("one sweep at a time: a --stress sweep with one orientation (not with an --angle or "
@@ -329,11 +309,9 @@ def _cmd_material(args) -> int:
         where = (f"cut {args.cut}" if args.cut else f"Euler {' '.join(args.euler)}" if args.euler else
                  f"surface {args.surface}, " + (f"direction {direction}" if isinstance(direction, str)
                                                    else f"angle {direction:g} deg"))
-        return run_stress_sweep(lambda s: material(rho=args.rho, direction=direction, stress=s, surface=args.surface,
-                                                   toec=toec, **constants, **piezo_kw),
-                                stress_sweep, args.json, f"{args.material + ', ' if args.material else ''}{where}")
-    r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
-                 **constants, **piezo_kw)
+        name = f"{args.material}, " if args.material else ""
+        return run_stress_sweep(call, stress_sweep, args.json, name + where)
+    r = call(stress)
     rows = _material_rows(r)
     if args.json:
         print(json.dumps(rows if np.ndim(r["c_R"]) else rows[0], indent=2))
@@ -350,12 +328,14 @@ def _cmd_material(args) -> int:
         for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
             val = row[key]
             unit = "deg" if key == "angle" else "m/s"
-            print(f"{key:>17} = " + (f"{val:10.2f} {unit}" if val is not None else "       nan"))
-        print(f"{'penetration_depth':>17} = " + (f"{row['penetration_depth']:10.3f} wavelengths"
+            print(f"{key:>17} = " + (f"{cli_piezo.cell(val, '10.2f')} {unit}" if val is not None else "       nan"))
+        print(f"{'penetration_depth':>17} = " + (f"{cli_piezo.cell(row['penetration_depth'], '10.3f')} wavelengths"
                                                   if row["penetration_depth"] is not None else "       nan"))
         print(f"{'wave_type':>17} = {row['wave_type']}   stable = {row['stable']}")
         pol = np.array(row["polarisation"]["re"], dtype=float) + 1j * np.array(row["polarisation"]["im"], dtype=float)
-        print(f"{'polarisation':>17} = " + "  ".join(f"{u.real:+.4f}{u.imag:+.4f}i" for u in pol))
+        print(f"{'polarisation':>17} = " + "  ".join(
+            f"{cli_piezo.cell(u.real, '+.4f').replace(' ', '+')}{cli_piezo.cell(u.imag, '+.4f').replace(' ', '+')}i"
+            for u in pol))
         if row["reason"]:
             print(f"             note: {row['reason']}")
         return 0
@@ -363,7 +343,7 @@ def _cmd_material(args) -> int:
     print("  ".join(f"{h:>10}" for h in header))
     for row in rows:
         vals = [row[k] for k in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
-        cells = [f"{v:10.2f}" if v is not None else f"{'nan':>10}" for v in vals]
+        cells = [cli_piezo.cell(v, "10.2f") for v in vals]
         print("  ".join(cells + [f"{row['wave_type']:>10}"]))
     return 0
 

@@ -14,7 +14,7 @@ import numpy as np
 from surfwave.errors import InputError
 from surfwave.validate import radians_note
 
-__all__ = ["EPILOG", "add_options", "list_cuts", "material_kwargs", "print_result"]
+__all__ = ["EPILOG", "add_options", "angle_text", "cell", "list_cuts", "material_kwargs", "print_result"]
 
 EPILOG = """\
 Piezoelectric crystals (quartz, LiNbO3, LiTaO3, AlN, ZnO, GaN, langasite, GaAs): a name of the
@@ -31,7 +31,7 @@ constants (A = C + sigma delta); e and eps at their natural values.
 
 piezoelectric examples:
   surfwave material --list-cuts
-  surfwave material --material LiNbO3 --cut 128Y-X                        # 3990 / 3878 m/s, K2 5.6 %
+  surfwave material --material LiNbO3 --cut 128Y-X                  # 3994.2 / 3887.6 m/s, K2 5.34 %
   surfwave material --cut "ST-X quartz" --stress -0.1
   surfwave material --cut "ST-X quartz" --stress -0.2:0.2:0.05           # a stress sweep, as a table
   surfwave material --material LiNbO3 --euler 0 -90:90:10 0              # rotated Y cuts, X propagation
@@ -104,8 +104,36 @@ def material_kwargs(args) -> tuple[dict, int | None]:
     return kw, swept
 
 
-def _f(v, fmt: str, width: int = 10) -> str:
-    return f"{'nan':>{width}}" if v is None or (isinstance(v, float) and np.isnan(v)) else format(v, fmt)
+def cell(v, fmt: str, width: int = 10) -> str:
+    """``v`` in ``fmt``; ``nan`` for None/NaN; never a negative zero ("-0.0000" -> " 0.0000")."""
+    if v is None or (isinstance(v, float) and np.isnan(v)):
+        return f"{'nan':>{width}}"
+    text = format(v, fmt)
+    return re.sub(r"-(?=0*\.?0*$)", " ", text) if re.fullmatch(r"\s*-[0.]+", text) else text
+
+
+_f = cell
+
+
+def angle_text(a: float | None) -> str:
+    """An angle in degrees with every digit it has, up to 1e-6 (132.75 -> "132.75", -54 -> "-54", -0 -> "0").
+
+    >>> [angle_text(a) for a in (0.0, -0.0, 132.75, -54.0, 1e-05, 38.123456789)]
+    ['0', '0', '132.75', '-54', '0.00001', '38.123457']
+    """
+    if a is None or np.isnan(a):
+        return "nan"
+    text = f"{a:.6f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _leaky_expected(args, row: dict) -> bool:
+    """Whether a missing leaky wave is news: a named leaky cut, or no subsonic SAW to report."""
+    from surfwave.real_crystals.piezo_materials import get_cut
+
+    if args.cut is not None and get_cut(args.cut).wave == "leaky":
+        return True
+    return row["c_R"] is None
 
 
 def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
@@ -119,7 +147,12 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
           f"leaky wave and PFA for a {electrical} surface")
     if np.ndim(r["c_R"]) == 0:
         row = rows[0]
-        items = [("euler", " ".join(_f(a, ".4g", 0) for a in (row["euler"] or []))), ]
+        if row["euler"] is not None:
+            items = [("euler", " ".join(angle_text(a) for a in row["euler"]) + " deg (phi theta psi)")]
+        else:
+            toward = (f"direction {args.direction}" if args.direction else
+                      f"{angle_text(row['angle'])} deg from the reference direction")
+            items = [("surface", f"{args.surface}, {toward}")]
         for key, unit, fmt in (("c_free", "m/s", "10.2f"), ("c_metallized", "m/s", "10.2f"),
                                ("c_limit", "m/s", "10.2f"), ("c_leaky", "m/s", "10.2f"),
                                ("leaky_attenuation", "dB/wavelength", "10.5f"), ("power_flow_angle", "deg", "10.4f"),
@@ -129,9 +162,10 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
         items.append(("wave_type", f"{row['wave_type']}   stable = {row['stable']}"))
         for key, text in items:
             print(f"{key:>17} = {text}")
-        for key in ("reason", "leaky_reason"):
-            if row[key]:
-                print(f"{'note':>17}: {row[key]}")
+        if row["reason"]:
+            print(f"{'note':>17}: {row['reason']}")
+        if row["leaky_reason"] and (row["c_leaky"] is not None or _leaky_expected(args, row)):
+            print(f"{'note':>17}: {row['leaky_reason']}")
         return 0
     label = ("phi", "theta", "psi")[swept] if swept is not None else "angle"
     header = [label, "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "PFA (deg)", "wave_type"]
@@ -139,7 +173,7 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
     for row in rows:
         a = row["euler"][swept] if swept is not None else row["angle"]
         k2 = None if row["K2"] is None else 100 * row["K2"]
-        cells = [_f(a, "10.2f"), _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
+        cells = [f"{angle_text(a):>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
                  _f(row["c_leaky"], "10.2f"), _f(row["leaky_attenuation"], "10.5f"),
                  _f(row["power_flow_angle"], "10.4f"), f"{row['wave_type']:>10}"]
         print("  ".join(cells))

@@ -113,7 +113,7 @@ def test_names_are_case_insensitive_with_aliases_and_unknown_names_are_explained
     assert get_material("aluminum") is get_material("Aluminium")
     m = get_material("Si")
     assert isinstance(m, Material) and get_material(m) is m
-    with pytest.raises(InputError, match=r"did you mean Cu.*known materials: .*GaAs"):
+    with pytest.raises(InputError, match=r"did you mean copper \(Cu\).*known materials: .*GaAs"):
         get_material("coper")
     with pytest.raises(InputError, match="unknown material 'unobtainium'"):
         get_material("unobtainium")
@@ -131,3 +131,17 @@ def test_toec_voigt_is_the_cubic_expansion_of_the_printed_constants():
     assert (C3[0, 0, 0], C3[0, 0, 1], C3[0, 1, 2], C3[0, 3, 3], C3[0, 4, 4], C3[3, 4, 5]) == (
         t["C111"], t["C112"], t["C123"], t["C144"], t["C155"], t["C456"])
     assert get_material("W").toec_voigt is None
+
+
+def test_gaas_third_order_sets_are_attributed_as_the_secondary_source_tabulates():
+    """Zhang et al. (2021), Table 2 and refs. 13/14 (a secondary source, materials.yaml
+    zhang2021): McSkimin & Andreatch 1967 = {-622, -387, -57, 2, -269, -39} GPa (the set in use),
+    Drabble & Brammer 1966 = {-675, -402, -4, -70, -320, -69} (the documented alternative)."""
+    from surfwave.real_crystals import materials
+
+    g = get_material("GaAs")
+    assert [g.toec[k] for k in CUBIC_TOEC] == [-622, -387, -57, 2, -269, -39]
+    assert all("J. Appl. Phys. 38, 2610 (1967)" in g.sources[k] for k in CUBIC_TOEC)
+    alt = materials._read()["materials"]["GaAs"]["toec_alternatives"]["drabble1966"]
+    assert [alt[k] for k in CUBIC_TOEC] == [-675, -402, -4, -70, -320, -69]
+    assert "Solid State Commun. 4, 467 (1966)" in materials._read()["references"][alt["source"]]

@@ -149,3 +149,55 @@ def test_benchmark_table_rows_in_words(tmp_path):
     assert lines[3] == "| slab | n | 32 | 0.0001 1 | 1 s | meets 1e-4 |"
     assert lines[4] == "| c | | | | | not computed |"
     assert "_error" not in text and "theta_error_exact" not in text
+
+
+def test_fig2_single_panel_legend_fits_the_image(tmp_path, monkeypatch):
+    """One potential (table1's LJ): the legend of every drawn curve lies inside the image (it was
+    five columns wide on a one-panel figure, cut off on both sides)."""
+    el, ra = _fcc(tmp_path, coincide=True, unstable=True)
+    seen = {}
+
+    def keep(fig, path, dpi=150):
+        fig.canvas.draw()
+        r = fig.canvas.get_renderer()
+        w, h = fig.canvas.get_width_height()
+        seen["boxes"] = [leg.get_window_extent(r) for leg in fig.legends]
+        seen["size"] = (w, h)
+        plt.close(fig)
+        return path
+
+    monkeypatch.setattr(speeds, "savefig", keep)
+    speeds.fig2(el, ra, tmp_path / "f.png", title="one panel")
+    (box,) = seen["boxes"]
+    w, h = seen["size"]
+    assert box.x0 >= 0 and box.x1 <= w and box.y0 >= 0 and box.y1 <= h, (box, seen["size"])
+
+
+def _acoustoelastic(coincide: bool):
+    s = np.linspace(-0.5, 0.5, 5)
+    along = 2000 * (1 + 0.01 * s)
+    fixed = np.stack([along, 0 * s + 2000, along if coincide else 2000 * (1 + 0.02 * s)])   # along, across, biaxial
+    toec = np.stack([fixed, fixed * (1 + 0.001 * s)])                                      # toec False, True
+    c = toec.transpose(1, 0, 2)[None, None, None]                # (material, surface, angle, loading, toec, stress)
+    dims = ("material", "surface", "angle", "loading", "toec", "stress")
+    return xr.Dataset({"c_R": (dims, c), "wave_type": (dims, np.full(c.shape, "surface"))},
+                      coords={"material": ["Cu"], "surface": ["(001)"], "angle": [0.0],
+                              "loading": ["along", "across", "biaxial"], "toec": [False, True], "stress": s})
+
+
+@pytest.mark.parametrize("coincide", [True, False])
+def test_acoustoelastic_legend_says_when_along_and_biaxial_coincide(tmp_path, monkeypatch, coincide):
+    """Fixed constants: a stress across the propagation does not enter, so "along" and
+    "biaxial" are one curve; the legend says so (only when they do coincide in the cube)."""
+    from surfwave.plots import surface_wave
+
+    seen = {}
+
+    def keep(fig, path, dpi=150):
+        seen["labels"] = " ".join(t.get_text() for leg in fig.legends for t in leg.get_texts())
+        plt.close(fig)
+        return path
+
+    monkeypatch.setattr(surface_wave, "savefig", keep)
+    surface_wave.speeds_vs_stress(_acoustoelastic(coincide), tmp_path / "a.png")
+    assert ("along = biaxial" in seen["labels"]) == coincide

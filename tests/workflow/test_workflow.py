@@ -229,7 +229,7 @@ def test_figures_and_report_exist_without_unexpected_fail(built):
     the tiny cubes, the report can judge none of the paper's checks: every printed value and
     claim of paper_values.yaml must still be listed (a check that silently vanishes fails
     here), none may be FAIL, and the bulk section must show the phonopy stage of tiny_fcc.
-    (The paper scenes' known FAILs: tests/report/test_report_verdicts.py.)"""
+    (The paper scenes' known PAPER-APPROX verdicts: tests/report/test_report_verdicts.py.)"""
     from surfwave.pipeline.targets import presentation_targets
     from surfwave.report.reproduction import load_paper_values, write_report
 

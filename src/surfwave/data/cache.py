@@ -34,9 +34,10 @@ import re
 import time
 import zipfile
 from pathlib import Path
-from typing import Callable, Mapping
+from typing import Any, Callable, Mapping, TextIO
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
@@ -111,7 +112,8 @@ def _atomic_write(path: Path, arrays: Mapping[str, np.ndarray], text: str) -> No
     """Store one entry (its key text beside the arrays) atomically and durably."""
     def savez(tmp: Path) -> None:
         with open(tmp, "wb") as fh:
-            np.savez(fh, __key__=np.array(text), **arrays)
+            payload: dict[str, Any] = {"__key__": np.array(text), **arrays}
+            np.savez(fh, **payload)
 
     atomic_write(path, savez, prefix=".tmp-", suffix=".npz", fsync=True)
 
@@ -137,12 +139,12 @@ def _as_store(a) -> np.ndarray:
 def cached_points(
     kind: str,
     key: Mapping,
-    d_over_d0,
+    d_over_d0: ArrayLike,
     compute: Callable[[np.ndarray], Mapping[str, np.ndarray]],
     root: str | Path = DEFAULT_ROOT,
     chunk: int | None = None,
     label: str | None = None,
-    log=None,
+    log: TextIO | None = None,
 ) -> dict[str, np.ndarray]:
     """Per-point results for every d/d0, computing only the points not yet stored.
 
@@ -229,7 +231,7 @@ def code_version(*modules: str) -> str:
     return h.hexdigest()[:16]
 
 
-def job_key(job: Mapping, module: str, method: str, **point) -> dict:
+def job_key(job: Mapping, module: str, method: str, **point: Any) -> dict:
     """Cache key of a workflow job's points: the computing code, lattice, loading, method,
     plus ``point`` (potential, direction, accuracy knobs, ...); d/d0 is added per point.
 
@@ -252,7 +254,7 @@ def start_run(root: str | Path = DEFAULT_ROOT) -> None:
     _atomic_write_text(stats / _RUN_MARKER, json.dumps({"time": time.time()}))
 
 
-def info(root: str | Path = DEFAULT_ROOT) -> dict:
+def info(root: str | Path = DEFAULT_ROOT) -> dict[str, Any]:
     """Summary of the store.
 
     Returns
@@ -264,7 +266,7 @@ def info(root: str | Path = DEFAULT_ROOT) -> dict:
         left by killed jobs), ``root``.
     """
     root = Path(root)
-    out = {"root": str(root), "entries": 0, "size": 0, "kinds": {}, "hits": 0, "misses": 0,
+    out: dict[str, Any] = {"root": str(root), "entries": 0, "size": 0, "kinds": {}, "hits": 0, "misses": 0,
            "stale_temporary": 0}
     if not root.is_dir():
         return out

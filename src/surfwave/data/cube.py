@@ -28,10 +28,11 @@ import hashlib
 import json
 import subprocess
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Final, Mapping, TextIO
 
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 from surfwave import __version__
 from surfwave.data.atomic import atomic_write
@@ -41,7 +42,7 @@ from surfwave.errors import DamagedCubeError, InputError
 
 #: netCDF engine used on write and read: the netCDF-C library (netCDF4-python); on this
 #: machine it writes a cube 4-5x and opens one 7x faster than h5netcdf.
-ENGINE = "netcdf4"
+ENGINE: Final = "netcdf4"
 CONVENTIONS = "CF-1.10"
 #: Trailing dimension holding the real and imaginary parts of a complex variable.
 COMPLEX_DIM = "complex"
@@ -52,7 +53,7 @@ COMPLEX_ATTR = "complex_dimension"
 COORDS = MODEL_COORDS
 
 
-def strain_coords(d_over_d0) -> dict[str, Any]:
+def strain_coords(d_over_d0: ArrayLike) -> dict[str, Any]:
     """Coordinates ``strain`` (index, = d/d0 - 1, rounded to 12 decimals) and ``d_over_d0``."""
     d = np.asarray(d_over_d0, dtype=float)
     strain = np.round(d - 1.0, 12)
@@ -72,7 +73,7 @@ def _as_var(values: np.ndarray):
 def build(
     blocks: Mapping[tuple, Mapping[str, np.ndarray]],
     outer: Mapping[str, list],
-    d_over_d0,
+    d_over_d0: ArrayLike,
     variables: Mapping[str, Mapping[str, Any]],
     coords: Mapping[str, Any] | None = None,
     skip: tuple[str, ...] = (),
@@ -181,7 +182,7 @@ def params_hash(params: Mapping[str, Any]) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def documented(result: Mapping[str, np.ndarray], variables: Mapping[str, Any], log=None) -> dict:
+def documented(result: Mapping[str, np.ndarray], variables: Mapping[str, Any], log: TextIO | None = None) -> dict:
     """The arrays of ``result`` that have metadata in ``variables``; the others are reported to ``log``."""
     dropped = sorted(k for k in result if k not in variables)
     if dropped and log is not None:
@@ -242,7 +243,7 @@ def provenance(
     return ds
 
 
-def finish(ds: xr.Dataset, job_context, *, what: str, method: str,
+def finish(ds: xr.Dataset, job_context: Any, *, what: str, method: str,
            crystal: str | Path | None = None) -> Path:
     """The common end of every stage script: space groups, provenance, atomic write.
 

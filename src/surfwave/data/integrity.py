@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Iterable
 
 
 def check_readable(path: str | Path) -> str | None:
@@ -35,7 +36,7 @@ def rebuild_hint(path: str | Path) -> str:
     return f"rm {path} && snakemake -j2 {path}"
 
 
-def set_aside_damaged(paths) -> list[str]:
+def set_aside_damaged(paths: Iterable[str | Path]) -> list[str]:
     """Rename every damaged file among ``paths`` to ``<file>.damaged``.
 
     Parameters

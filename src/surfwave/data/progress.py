@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Any, Callable, TextIO
 
 
 def summary_line(label: str, total: int, cached: int, computed: int, seconds: float) -> str:
@@ -40,7 +41,7 @@ class Progress:
         Seconds before the first terminal bar, and between two log lines.
     """
 
-    def __init__(self, label: str, total: int, stream=None, bar_after: float = 2.0,
+    def __init__(self, label: str, total: int, stream: TextIO | None = None, bar_after: float = 2.0,
                  log_every: float = 10.0):
         self.label, self.total = label, int(total)
         self.stream = stream if stream is not None else sys.stderr
@@ -99,7 +100,8 @@ class Progress:
 CHUNK = 2048
 
 
-def solve_in_chunks(solve, n: int, label: str, *, chunk: int | None = None, stream=None):
+def solve_in_chunks(solve: Callable[[int, int], dict[str, Any]], n: int, label: str, *, chunk: int | None = None,
+                    stream: TextIO | None = None) -> dict[str, Any]:
     """Run ``solve`` over consecutive slices of ``n`` points and join the results, showing progress.
 
     Parameters

@@ -26,6 +26,7 @@ checks this independently. Units: m = K = d0 = 1; frequencies in (K/m)^(1/2).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.dynamics.surface_green import inv2, null_vector2
 from surfwave.dynamics.triangular import bond_force_constants, row_matrices
@@ -51,7 +52,7 @@ def _fold(th):
     return far, np.where(far, (np.pi - th) + _PI_LO, th)
 
 
-def lattice_constants(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray]:
+def lattice_constants(potential: str | PairPotential, d_over_d0: ArrayLike) -> dict[str, np.ndarray]:
     """Geometry and force constants entering the analytic solution, each shape (n,).
 
     Returns dx, dy (d0), a, b, c (inclined bond, K), p, t (in-row bond, K), k = a + c,
@@ -240,7 +241,7 @@ def _amplitude_ratio(th, w1, w2, R1, R2):
     return ratio, resid
 
 
-def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndarray]:
+def solve(potential: str | PairPotential, d_over_d0: ArrayLike, theta: ArrayLike) -> dict[str, np.ndarray]:
     """Analytic surface-wave solution of the triangular lattice on a (strain, theta) grid.
 
     Parameters
@@ -313,7 +314,7 @@ def solve(potential: str | PairPotential, d_over_d0, theta) -> dict[str, np.ndar
     return out
 
 
-def decay_solvent(A0, A1, omega2, q1, q2) -> np.ndarray:
+def decay_solvent(A0: np.ndarray, A1: np.ndarray, omega2: np.ndarray, q1: np.ndarray, q2: np.ndarray) -> np.ndarray:
     """Row-to-row propagator Lambda (U_{I+1} = Lambda U_I) of the decaying solutions.
 
     From Cayley-Hamilton, Lambda^2 = sigma Lambda - pi with sigma = e^-q1 + e^-q2 and
@@ -337,7 +338,7 @@ def decay_solvent(A0, A1, omega2, q1, q2) -> np.ndarray:
     return inv2(lhs) @ (pro * A1 - np.conj(np.swapaxes(A1, -1, -2)))
 
 
-def default_rows(q1, q2, floor: float = 1e-3, minimum: int = 10, maximum: int = 400) -> int:
+def default_rows(q1: np.ndarray, q2: np.ndarray, floor: float = 1e-3, minimum: int = 10, maximum: int = 400) -> int:
     """Rows needed for the slowest wave to decay to ``floor``: ln(1/floor)/min Re q, clipped."""
     qmin = np.nanmin(np.minimum(np.real(q1), np.real(q2)), initial=np.inf)
     if not np.isfinite(qmin) or qmin <= 0:
@@ -345,7 +346,8 @@ def default_rows(q1, q2, floor: float = 1e-3, minimum: int = 10, maximum: int = 
     return int(np.clip(np.ceil(np.log(1.0 / floor) / qmin) + 1, minimum, maximum))
 
 
-def displacements(potential: str | PairPotential, d_over_d0, theta, n_rows: int | None = None) -> dict:
+def displacements(potential: str | PairPotential, d_over_d0: ArrayLike, theta: ArrayLike,
+                  n_rows: int | None = None) -> dict:
     """Surface-wave displacement amplitudes of rows 0..n_rows-1 (Fig. 3).
 
     The surface row U_0 is the null vector of omega^2 - A0_surface - A1 Lambda and

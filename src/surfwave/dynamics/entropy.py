@@ -44,8 +44,10 @@ Examples
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.dynamics.surface_green import positive_definite2, theta_log_dets
 from surfwave.dynamics.triangular import bond_force_constants, long_wave, row_matrices
@@ -139,7 +141,7 @@ def rayleigh_c2(potential: str | PairPotential, d_over_d0: float) -> float:
     return root if np.isfinite(root) and 0.0 < root < c2_t else np.nan
 
 
-def band_edge_coefficients(potential: str | PairPotential, d_over_d0) -> tuple[np.ndarray, np.ndarray]:
+def band_edge_coefficients(potential: str | PairPotential, d_over_d0: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """omega_j^2(theta) = (1 - cos theta)(a_j + b_j cos theta), j = L (u), T (v); Eq. (4a).
 
     A0 + A1 + A1^H = 2 Phi_row (1 - cos 2 theta) + 2 (Phi_up + Phi_um)(1 - cos theta) is
@@ -223,8 +225,8 @@ def stability(potential: str | PairPotential, d_over_d0: float, n_grid: int = ZO
     return "", "; ".join(reasons)
 
 
-def _one_strain(pot: PairPotential, d: float, tol: float, n_start: int, n_max: int) -> dict:
-    out = dict.fromkeys(
+def _one_strain(pot: PairPotential, d: float, tol: float, n_start: int, n_max: int) -> dict[str, Any]:
+    out: dict[str, Any] = dict.fromkeys(
         ["S_surface_estimate", "S_surface_estimate_error", "bulk_mean_log_omega",
          "bulk_mean_log_omega_error", "S_surface_exact", "S_surface_exact_error"], np.nan)
     out["n_theta"] = 0
@@ -275,7 +277,7 @@ def _one_strain(pot: PairPotential, d: float, tol: float, n_start: int, n_max: i
 
 def surface_entropy(
     potential: str | PairPotential,
-    d_over_d0,
+    d_over_d0: ArrayLike,
     tol: float = 1e-8,
     n_theta_start: int = N_THETA_START,
     n_theta_max: int = N_THETA_MAX,

@@ -44,6 +44,7 @@ Units: m = K = d0 = 1; k in 1/d0, omega^2 in K/m, speeds squared in K d0^2/m.
 from __future__ import annotations
 
 import dataclasses
+from typing import Any, cast
 
 import numpy as np
 from scipy import sparse
@@ -54,6 +55,7 @@ from surfwave.errors import InputError, SurfwaveError
 from surfwave.model_crystals.lattices import Crystal, build
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.solvers.orientation import lab_axes
+from surfwave.vocab import Direction, Loading
 
 #: Largest |xz|, |yz| entry of the layer blocks (relative to the largest entry) accepted as
 #: "the sagittal motion decouples".
@@ -86,7 +88,8 @@ def bond_force_constants(crystal: Crystal, potential: str | PairPotential) -> np
     return k_par * outer + k_perp * (np.eye(r.shape[-1]) - outer)
 
 
-def layer_matrices(crystal: Crystal, potential: str | PairPotential, k: float):
+def layer_matrices(crystal: Crystal, potential: str | PairPotential,
+                   k: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Layer blocks A0, A0_surface, A1 of the (001)-layered crystal at wavevector k along x.
 
     Parameters
@@ -119,7 +122,7 @@ def layer_matrices(crystal: Crystal, potential: str | PairPotential, k: float):
     return a0, a0s, a1, h
 
 
-def sagittal_blocks(a0, a0s, a1):
+def sagittal_blocks(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The (x, y) sub-blocks, after checking the z motion decouples (mirror z -> -z).
 
     Parameters
@@ -143,7 +146,7 @@ def sagittal_blocks(a0, a0s, a1):
     return a0[..., :2, :2], a0s[..., :2, :2], a1[..., :2, :2]
 
 
-def slab_matrix(a0, a0s, a1, n_layers: int) -> sparse.csc_matrix:
+def slab_matrix(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray, n_layers: int) -> sparse.csc_matrix:
     """Hermitian matrix of a slab with a free top layer and a clamped bottom (U_N = 0).
 
     Parameters
@@ -165,7 +168,8 @@ def slab_matrix(a0, a0s, a1, n_layers: int) -> sparse.csc_matrix:
     return h.tocsc()
 
 
-def slab_modes(a0, a0s, a1, n_layers: int, n_modes: int = 2, shift: float = 0.0):
+def slab_modes(a0: np.ndarray, a0s: np.ndarray, a1: np.ndarray, n_layers: int, n_modes: int = 2,
+               shift: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Lowest modes of the free-top, clamped-bottom slab of :func:`slab_matrix`.
 
     Shift-invert Lanczos about omega^2 = ``shift`` (sparse LU of the banded matrix, O(N)
@@ -198,7 +202,7 @@ def tail_ratio(mode: np.ndarray) -> float:
     return float(amp[amp.size // 2:].max() / amp.max())
 
 
-def oriented_crystal(loading: str, potential: str | PairPotential, direction, d_over_d0,
+def oriented_crystal(loading: Loading, potential: str | PairPotential, direction: str | float, d_over_d0: float,
                      load_direction: str | None = None) -> tuple[Crystal, bool]:
     """The prestressed FCC crystal in the lab frame of any propagation direction in (001).
 
@@ -222,7 +226,7 @@ def oriented_crystal(loading: str, potential: str | PairPotential, direction, d_
         Whether the direction was built as a mirror direction (sagittal motion decouples).
     """
     if isinstance(direction, str) and direction in ("[100]", "[110]") and load_direction in (None, direction):
-        return build("fcc", loading, potential, direction, d_over_d0), True
+        return build("fcc", loading, potential, cast(Direction, direction), d_over_d0), True
     if loading == "in_plane_hydrostatic":
         load = "[100]"
     elif load_direction in ("[100]", "[110]"):
@@ -230,13 +234,13 @@ def oriented_crystal(loading: str, potential: str | PairPotential, direction, d_
     else:
         raise InputError(f"uniaxial loading with propagation {direction!r} needs load_direction "
                          f"'[100]' or '[110]', got {load_direction!r}")
-    crystal = build("fcc", loading, potential, load, d_over_d0)
+    crystal = build("fcc", loading, potential, cast(Direction, load), d_over_d0)
     rot = lab_axes("(001)", direction) @ lab_axes("(001)", load).T
     return dataclasses.replace(crystal, direction=str(direction), bonds=crystal.bonds @ rot.T,
                                cell=crystal.cell @ rot.T), False
 
 
-def surface_mode(lattice: str, loading: str, potential: str | PairPotential, direction,
+def surface_mode(lattice: str, loading: Loading, potential: str | PairPotential, direction: str | float,
                  d_over_d0: float, k: float, tail_tol: float = 1e-6,
                  max_layers: int = 2**17, load_direction: str | None = None, shift: float = 0.0) -> dict:
     """The sagittal surface wave of the semi-infinite FCC (001) crystal at wavevector k.
@@ -310,8 +314,8 @@ def surface_mode(lattice: str, loading: str, potential: str | PairPotential, dir
                         f"with up to {max_layers} layers")
 
 
-def surface_wave_speed(lattice: str, loading: str, potential: str | PairPotential,
-                       direction, d_over_d0: float, k: float) -> float:
+def surface_wave_speed(lattice: str, loading: Loading, potential: str | PairPotential,
+                       direction: str | float, d_over_d0: float, k: float) -> float:
     """(omega/k)^2 of the sagittal surface wave at wavevector k along x, K d0^2/m.
 
     See :func:`surface_mode` for the parameters and the method.
@@ -319,7 +323,7 @@ def surface_wave_speed(lattice: str, loading: str, potential: str | PairPotentia
     return float(surface_mode(lattice, loading, potential, direction, d_over_d0, k)["c2"])
 
 
-def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, direction,
+def long_wave_c2(lattice: str, loading: Loading, potential: str | PairPotential, direction: str | float,
                  d_over_d0: float, k: float = 0.4, levels: int = 5,
                  load_direction: str | None = None) -> dict:
     """Long-wave limit c_R^2 = lim_{k -> 0} omega^2/k^2 by Richardson extrapolation.
@@ -344,7 +348,7 @@ def long_wave_c2(lattice: str, loading: str, potential: str | PairPotential, dir
         and ``c2_k`` (levels,) the raw data; ``n_layers`` (levels,) the slab thicknesses.
     """
     ks = k / 2.0 ** np.arange(levels)
-    runs = []
+    runs: list[dict[str, Any]] = []
     for kj in ks:  # each solve shifted just below the previous level's c^2 k^2 (faster Lanczos)
         shift = 0.0 if not runs else 0.98 * runs[-1]["c2"] * kj**2
         runs.append(surface_mode(lattice, loading, potential, direction, d_over_d0, kj,

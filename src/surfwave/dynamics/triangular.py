@@ -25,6 +25,7 @@ sums of :mod:`surfwave.model_crystals.elastic` (Eqs. A11, A12).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.model_crystals import elastic
 from surfwave.model_crystals.lattices import build
@@ -33,7 +34,7 @@ from surfwave.solvers import rayleigh
 from surfwave.validate import as_1d
 
 
-def bond_force_constants(potential: str | PairPotential, d_over_d0) -> np.ndarray:
+def bond_force_constants(potential: str | PairPotential, d_over_d0: ArrayLike) -> np.ndarray:
     """Force-constant matrices of the three bond types.
 
     Parameters
@@ -60,7 +61,7 @@ def bond_force_constants(potential: str | PairPotential, d_over_d0) -> np.ndarra
 
 
 def row_matrices(
-    potential: str | PairPotential, d_over_d0, theta
+    potential: str | PairPotential, d_over_d0: ArrayLike, theta: ArrayLike
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Row matrices A0 (bulk), A0_surface and A1 of the row equations (module docstring).
 
@@ -86,7 +87,7 @@ def row_matrices(
     return a0, a0_surface, a1
 
 
-def long_wave(potential: str | PairPotential, d_over_d0) -> dict[str, np.ndarray]:
+def long_wave(potential: str | PairPotential, d_over_d0: ArrayLike) -> dict[str, np.ndarray]:
     """Long-wave bulk speeds, stability and the Eq. (20) Rayleigh root of the triangular lattice.
 
     Parameters

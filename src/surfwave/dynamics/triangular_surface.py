@@ -19,6 +19,7 @@ Units: m = K = d0 = 1; omega in (K/m)^(1/2), omega^2 in K/m.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.dynamics.surface_green import det2, inv2, null_vector2
 from surfwave.dynamics.triangular import long_wave, row_matrices
@@ -70,8 +71,9 @@ def bulk_band_bottom(A0: np.ndarray, A1: np.ndarray, n_grid: int = 129, n_golden
     return np.minimum(best, vals.min(axis=-1))
 
 
-def surface_matrix(E, A0r, A0sr, A1r, tol: float = 1e-10, n_steps: int | None = None,
-                   max_steps: int = 64, active=None):
+def surface_matrix(E: np.ndarray, A0r: np.ndarray, A0sr: np.ndarray, A1r: np.ndarray, tol: float = 1e-10,
+                   n_steps: int | None = None, max_steps: int = 64,
+                   active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, np.ndarray]:
     """Effective surface matrix E_s(E) of the semi-infinite crystal by decimation.
 
     Parameters
@@ -120,7 +122,7 @@ def surface_matrix(E, A0r, A0sr, A1r, tol: float = 1e-10, n_steps: int | None = 
     return eps_s, prev, prev2, steps, contraction
 
 
-def surface_mode(potential: str | PairPotential, d_over_d0, theta, tol: float = 1e-10,
+def surface_mode(potential: str | PairPotential, d_over_d0: ArrayLike, theta: ArrayLike, tol: float = 1e-10,
                  n_steps: int | None = None, n_scan: int = 24, rtol_root: float = 1e-15) -> dict:
     """Surface-wave frequency of the triangular lattice by a numerical semi-infinite solve.
 
@@ -282,7 +284,7 @@ REASON_NOT_CHECKED = "not checked (sample): the lattice-dynamics check ran on a 
 CHECK_SPAN = 0.2
 
 
-def check_sample(d_over_d0, check_points: int = DEFAULT_CHECK_POINTS) -> np.ndarray:
+def check_sample(d_over_d0: ArrayLike, check_points: int = DEFAULT_CHECK_POINTS) -> np.ndarray:
     """Indices of the strains the lattice-dynamics check runs on, shape (k,), sorted.
 
     The rule looks at the strain values, not at their number or position in the grid, so a

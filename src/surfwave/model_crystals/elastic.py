@@ -17,6 +17,7 @@ Pair sums over each bond once (Appendix, Eq. A12):
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.model_crystals.lattices import build
@@ -122,7 +123,7 @@ def stress_derivatives(sigma: np.ndarray, C: np.ndarray) -> np.ndarray:
     return S
 
 
-def sound_speeds(S: np.ndarray, rho=1.0) -> dict[str, np.ndarray]:
+def sound_speeds(S: np.ndarray, rho: ArrayLike = 1.0) -> dict[str, np.ndarray]:
     """Long-wave bulk sound speeds squared along and normal to the surface (Eq. A7).
 
     Parameters
@@ -170,7 +171,7 @@ def _properties(lattice, loading, potential, direction, d_over_d0, min_eig: bool
     return out, sigma
 
 
-def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0,
+def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0: ArrayLike,
                *, min_eig: bool = True) -> dict:
     """Stress, C, S, bulk sound speeds and long-wave stability of a prestressed crystal.
 

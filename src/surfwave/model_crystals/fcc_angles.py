@@ -22,6 +22,7 @@ Examples
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
@@ -34,7 +35,7 @@ from surfwave.vocab import WAVE_TYPES  # noqa: F401 (the wave types the rayleigh
 LOADING = "in_plane_hydrostatic"
 
 
-def lab_rotation(angles) -> np.ndarray:
+def lab_rotation(angles: ArrayLike) -> np.ndarray:
     """Rotations about the surface normal from the [100] lab frame to the frame at each angle.
 
     Parameters
@@ -52,13 +53,13 @@ def lab_rotation(angles) -> np.ndarray:
     return np.stack([np.stack([c, z, -s], -1), np.stack([z, o, z], -1), np.stack([s, z, c], -1)], -2)
 
 
-def is_mirror(angles) -> np.ndarray:
+def is_mirror(angles: ArrayLike) -> np.ndarray:
     """True where the sagittal plane is a mirror of the tetragonal crystal (multiples of 45 degrees)."""
     a = np.asarray(angles, dtype=float)
     return np.isclose(np.mod(a + 1e-9, 45.0), 0.0, atol=1e-6)
 
 
-def properties_at_angles(potential: str, angles, d_over_d0, loading: str = LOADING) -> dict:
+def properties_at_angles(potential: str, angles: ArrayLike, d_over_d0: ArrayLike, loading: str = LOADING) -> dict:
     """:func:`surfwave.model_crystals.elastic.properties` at every angle.
 
     Parameters
@@ -95,7 +96,7 @@ def properties_at_angles(potential: str, angles, d_over_d0, loading: str = LOADI
     return out
 
 
-def rayleigh_at_angles(C, stress, S, angles) -> dict:
+def rayleigh_at_angles(C: ArrayLike, stress: ArrayLike, S: ArrayLike, angles: ArrayLike) -> dict:
     """Rayleigh speed at every angle: Eq. (17) on mirrors, the general solver elsewhere.
 
     Parameters

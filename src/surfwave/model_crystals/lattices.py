@@ -28,6 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import GeometryError, InputError
 from surfwave.model_crystals.potentials import PairPotential, get_potential
@@ -145,7 +146,7 @@ def d_over_d0_range(lattice: str, loading: str) -> tuple[float, float]:
     return (0.0, MAX_UNIAXIAL_STRETCH)  # uniaxial FCC: bonds at twice their length
 
 
-def check_d_over_d0(lattice: str, loading: str, d_over_d0) -> np.ndarray:
+def check_d_over_d0(lattice: str, loading: str, d_over_d0: ArrayLike) -> np.ndarray:
     """Return d_over_d0 as a 1-D array, or raise :class:`GeometryError` naming the bad value."""
     s = as_1d(d_over_d0)
     lo, hi = d_over_d0_range(lattice, loading)
@@ -338,7 +339,7 @@ def build(
     loading: Loading,
     potential: str | PairPotential | None,
     direction: Direction,
-    d_over_d0,
+    d_over_d0: ArrayLike,
 ) -> Crystal:
     """Build the prestressed crystal at one or several stretches.
 
@@ -407,7 +408,7 @@ def build_checked(
     loading: Loading,
     potential: str | PairPotential | None,
     direction: Direction,
-    d_over_d0,
+    d_over_d0: ArrayLike,
 ) -> Crystal:
     """:func:`build`, and a :class:`GeometryError` where the crystal has collapsed.
 

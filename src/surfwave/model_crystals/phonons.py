@@ -31,21 +31,27 @@ Stability scans and instability limits built on this module: :mod:`surfwave.mode
 from __future__ import annotations
 
 import itertools
-from typing import Literal
+from typing import TYPE_CHECKING, Final, Literal, cast
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError, PhonopyPointError, SurfwaveError
-from surfwave.model_crystals.lattices import build_checked, check_combination
+from surfwave.model_crystals.lattices import Crystal, build_checked, check_combination
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.solvers.long_wave import STABILITY_DIRECTIONS, long_wave_stability
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Lattice, Loading
+
+if TYPE_CHECKING:
+    from phonopy import Phonopy
+    from phonopy.phonon.mesh import Mesh
 
 #: Default accuracy knobs (see benchmarks/bench_phonons.py for the measured trade).
 DEFAULT_SUPERCELL = 2
 DEFAULT_DISPLACEMENT = 3e-5
 DEFAULT_ZONE_MESH = 8
-DEFAULT_LONG_WAVE = "curvature"
+DEFAULT_LONG_WAVE: Final = "curvature"
 DEFAULT_SECANT_EPS = 1e-3
 #: omega^2 (K/m) or c^2 (K d0^2/m) below -TOLERANCE counts as unstable.
 TOLERANCE = 1e-7
@@ -116,7 +122,8 @@ def pair_forces(
 
 
 # --------------------------------------------------------------------------- phonopy
-def make_phonopy(crystal, index: int, potential: PairPotential, supercell: int, displacement: float):
+def make_phonopy(crystal: Crystal, index: int, potential: PairPotential, supercell: int,
+                 displacement: float) -> tuple[Phonopy, np.ndarray]:
     """Phonopy object with force constants for strain point ``index`` of ``crystal``.
 
     Parameters
@@ -156,7 +163,9 @@ def make_phonopy(crystal, index: int, potential: PairPotential, supercell: int, 
     table = neighbour_table(sc.scaled_positions, sc.cell, bonds)
     ref = sc.positions
     forces = []
-    for disp_cell in phonon.supercells_with_displacements:
+    displaced = phonon.supercells_with_displacements
+    assert displaced is not None  # set by generate_displacements
+    for disp_cell in displaced:
         u = disp_cell.positions - ref
         u -= np.round(u @ np.linalg.inv(sc.cell)) @ sc.cell  # undo wrapping into the cell
         forces.append(pair_forces(u, bonds, table, potential))
@@ -185,7 +194,7 @@ def _image_terms(phonon) -> tuple[np.ndarray, np.ndarray]:
     return np.array(phis), np.array(vecs)
 
 
-def check_images(phonon, bonds: np.ndarray, tol: float = 1e-8) -> None:
+def check_images(phonon: Phonopy, bonds: np.ndarray, tol: float = 1e-8) -> None:
     """Raise :class:`PhonopyPointError` unless phonopy's images are exactly the bonds.
 
     Phonopy pairs each supercell atom with its shortest image(s); under strong strain a
@@ -205,7 +214,7 @@ def check_images(phonon, bonds: np.ndarray, tol: float = 1e-8) -> None:
             )
 
 
-def long_wave_tensor(phonon) -> np.ndarray:
+def long_wave_tensor(phonon: Phonopy) -> np.ndarray:
     """W_ikjl = -1/2 sum_t Phi_t,ik R_t,j R_t,l, the exact curvature of D(k) at Gamma.
 
     Returns
@@ -218,13 +227,15 @@ def long_wave_tensor(phonon) -> np.ndarray:
     return -0.5 * np.einsum("tik,tj,tl->ikjl", phis, vecs, vecs)
 
 
-def dynamical_matrix(phonon, k: np.ndarray, cell: np.ndarray) -> np.ndarray:
+def dynamical_matrix(phonon: Phonopy, k: np.ndarray, cell: np.ndarray) -> np.ndarray:
     """Phonopy's dynamical matrix at Cartesian wave vector k (rad / d0), shape (3, 3), K/m."""
-    phonon.dynamical_matrix.run(cell @ np.asarray(k, float) / (2 * np.pi))
-    return np.array(phonon.dynamical_matrix.dynamical_matrix)
+    dm = phonon.dynamical_matrix
+    assert dm is not None  # set with the force constants (make_phonopy)
+    dm.run(cell @ np.asarray(k, float) / (2 * np.pi))
+    return np.array(dm.dynamical_matrix)
 
 
-def secant_tensor(phonon, cell: np.ndarray, n: np.ndarray, eps: float) -> np.ndarray:
+def secant_tensor(phonon: Phonopy, cell: np.ndarray, n: ArrayLike, eps: float) -> np.ndarray:
     """A(n) = [D(eps n) - D(0)] / eps^2 from phonopy's dynamical matrix, shape (3, 3), K d0^2/m."""
     d0 = dynamical_matrix(phonon, np.zeros(3), cell)
     return (dynamical_matrix(phonon, eps * np.asarray(n, float), cell) - d0).real / eps**2
@@ -277,7 +288,7 @@ def min_acoustic(w: np.ndarray, dim: int) -> tuple[float, np.ndarray]:
     return float(e_min[0]), n
 
 
-def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.ndarray]:
+def zone_scan(phonon: Phonopy, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.ndarray]:
     """Lowest omega^2 (K/m) on a Gamma-centred mesh x mesh (x mesh) grid, Gamma excluded.
 
     Uses phonopy's mesh sampler. In 2D, modes polarised mostly along z are dropped. A
@@ -296,7 +307,7 @@ def zone_scan(phonon, cell: np.ndarray, dim: int, mesh: int) -> tuple[float, np.
     phonon.run_mesh(
         [mesh, mesh, nz], is_gamma_center=True, is_mesh_symmetry=False, with_eigenvectors=(dim == 2)
     )
-    res = phonon.mesh
+    res = cast("Mesh", phonon.mesh)  # run_mesh above, without an iterator mesh
     q = np.asarray(res.qpoints)
     f = np.asarray(res.frequencies)
     w2 = np.sign(f) * f**2
@@ -366,11 +377,11 @@ def _point(crystal, index, pot, supercell, displacement, zone_mesh, long_wave, s
 
 
 def bulk_speeds(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential,
-    direction: str,
-    d_over_d0,
+    direction: Direction,
+    d_over_d0: ArrayLike,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
     zone_mesh: int = DEFAULT_ZONE_MESH,

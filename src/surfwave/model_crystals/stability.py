@@ -11,9 +11,10 @@ collapsed) ends a stable range here; any other exception is a bug and propagates
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import GeometryError, InputError
 from surfwave.model_crystals.elastic import properties
@@ -26,6 +27,7 @@ from surfwave.model_crystals.phonons import (
 )
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Lattice, Loading
 
 
 def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> np.ndarray:
@@ -52,11 +54,11 @@ def _long_wave_flags(lattice, loading, potential, direction, s: np.ndarray) -> n
 
 
 def stability_scan(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential,
-    direction: str,
-    d_over_d0,
+    direction: Direction,
+    d_over_d0: ArrayLike,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
     zone_mesh: int = DEFAULT_ZONE_MESH,
@@ -114,15 +116,15 @@ def _flag(lattice, loading, potential, direction, kind, d, knobs) -> bool | None
 
 
 def instability_limits(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential,
-    direction: str,
+    direction: Direction,
     kind: Literal["long_wave", "full_zone"] = "long_wave",
     step: float = 0.01,
     tol: float = 1e-4,
     search: tuple[float, float] = (0.3, 2.0),
-    **knobs,
+    **knobs: Any,
 ) -> tuple[float, float]:
     """First unstable d/d0 in compression and in tension, walking out from d/d0 = 1.
 
@@ -183,10 +185,10 @@ def _walk_and_bisect(flag, step: float, tol: float, search: tuple[float, float])
 
 
 def geometry_limit(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential,
-    direction: str,
+    direction: Direction,
     step: float = 0.01,
     tol: float = 1e-4,
     search: tuple[float, float] = (0.3, 2.0),

@@ -10,23 +10,30 @@ with :func:`surfwave.data.cube.write` and :mod:`surfwave.plots.stability` draws 
 
 from __future__ import annotations
 
+from typing import Any, Literal, Sequence
+
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 from surfwave.model_crystals.phonons import DEFAULT_DISPLACEMENT, DEFAULT_SUPERCELL, DEFAULT_ZONE_MESH, TOLERANCE
+from surfwave.model_crystals.potentials import PairPotential
 from surfwave.model_crystals.stability import geometry_limit, instability_limits, stability_scan
+from surfwave.vocab import Direction, Loading
 
 #: Values of the ``state`` variable.
 STATES = {-1: "no_geometry", 0: "long_wave_unstable", 1: "short_wave_unstable", 2: "stable"}
 #: Default strain grid: covers every first instability found.
 DEFAULT_GRID = np.round(np.arange(0.50, 1.4101, 0.01), 4)
+#: The two stability criteria of the limits (dimension ``kind``), in this order.
+_KINDS: tuple[Literal["long_wave", "full_zone"], ...] = ("long_wave", "full_zone")
 
 
 def stability_map(
-    potentials=("harmonic", "lj"),
-    loadings=("in_plane_hydrostatic", "uniaxial"),
-    directions=("[100]", "[110]"),
-    d_over_d0=None,
+    potentials: Sequence[str | PairPotential] = ("harmonic", "lj"),
+    loadings: Sequence[Loading] = ("in_plane_hydrostatic", "uniaxial"),
+    directions: Sequence[Direction] = ("[100]", "[110]"),
+    d_over_d0: ArrayLike | None = None,
     supercell: int = DEFAULT_SUPERCELL,
     displacement: float = DEFAULT_DISPLACEMENT,
     zone_mesh: int = DEFAULT_ZONE_MESH,
@@ -55,7 +62,7 @@ def stability_map(
         ``d_geometry_limit``.
     """
     grid = DEFAULT_GRID if d_over_d0 is None else np.asarray(d_over_d0, float)
-    knobs = dict(supercell=supercell, displacement=displacement, zone_mesh=zone_mesh)
+    knobs: dict[str, Any] = dict(supercell=supercell, displacement=displacement, zone_mesh=zone_mesh)
     shape = (len(potentials), len(loadings), len(directions))
     state = np.full(shape + (grid.size,), -1, np.int8)
     fields = {k: np.full(shape + (grid.size,), np.nan) for k in ("min_omega2", "min_c2_phonopy")}
@@ -79,7 +86,7 @@ def stability_map(
         state[idx] = np.where(
             ~built, -1, np.where(~scan["stable_long_wave"], 0, np.where(~scan["stable_full_zone"], 1, 2))
         )
-        for k, kind in enumerate(("long_wave", "full_zone")):
+        for k, kind in enumerate(_KINDS):
             limits[idx + (k,)] = instability_limits(
                 "fcc", load, pot, d, kind, tol=tol, **(knobs if k else {})
             )

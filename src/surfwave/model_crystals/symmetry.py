@@ -32,11 +32,13 @@ import itertools
 import numpy as np
 import spglib
 import spglib.error
+from numpy.typing import ArrayLike
 
 from surfwave.errors import SymmetryError
 from surfwave.model_crystals.lattices import build
 from surfwave.model_crystals.potentials import PairPotential
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Lattice, Loading
 
 spglib.error.OLD_ERROR_HANDLING = False
 
@@ -185,7 +187,8 @@ def _spglib(cell: np.ndarray, symprec: float, i: int) -> tuple[str, int, np.ndar
     if key in _SEEN:
         return _SEEN[key]
     try:
-        ds = spglib.get_symmetry_dataset((cell, [[0.0, 0.0, 0.0]], [1]), symprec=symprec)
+        # spglib's hints ask for nested sequences; it takes the (3, 3) array as well
+        ds = spglib.get_symmetry_dataset((cell, [[0.0, 0.0, 0.0]], [1]), symprec=symprec)  # type: ignore[arg-type]
     except spglib.error.SpglibError as exc:
         raise SymmetryError(f"spglib failed on cell {i} ({cell.tolist()}): {exc}") from None
     if ds is None:
@@ -248,7 +251,7 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5, reference: np.ndarray | No
     cells = np.asarray(cells, dtype=float).reshape(-1, 3, 3)
     n = cells.shape[0]
     res = lattice_residual(cells, np.stack(list(MIRRORS.values())))
-    out = {name: res[:, j] <= min(MIRROR_TOL, symprec) for j, name in enumerate(MIRRORS)}
+    out: dict[str, np.ndarray] = {name: res[:, j] <= min(MIRROR_TOL, symprec) for j, name in enumerate(MIRRORS)}
     symbol = np.empty(n, dtype=object)
     number = np.zeros(n, dtype=np.int64)
     calls, n_classes, doubt = 0, 0, np.zeros(n, dtype=bool)
@@ -258,7 +261,7 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5, reference: np.ndarray | No
         res0 = lattice_residual(cells, ops0)
         mult, doubt = shell_multiplicities(cells, symprec)
         doubt |= np.any((res0 > CLEAR * symprec) & (res0 < FAR * symprec), axis=1)
-        key = np.ascontiguousarray(np.concatenate([res0 <= CLEAR * symprec, mult], axis=1),
+        key: np.ndarray = np.ascontiguousarray(np.concatenate([res0 <= CLEAR * symprec, mult], axis=1),
                                    dtype=np.int16)
         key = key.view(np.dtype((np.void, key.itemsize * key.shape[1]))).ravel()  # one row, one value
         sure = np.flatnonzero(~doubt)
@@ -290,11 +293,11 @@ def analyse(cells: np.ndarray, symprec: float = 1e-5, reference: np.ndarray | No
 
 
 def crystal_symmetry(
-    lattice: str,
-    loading: str,
+    lattice: Lattice,
+    loading: Loading,
     potential: str | PairPotential | None,
-    direction: str,
-    d_over_d0,
+    direction: Direction,
+    d_over_d0: ArrayLike,
     symprec: float = 1e-5,
     stats: dict | None = None,
 ) -> dict[str, np.ndarray]:
@@ -317,7 +320,7 @@ def crystal_symmetry(
     return out
 
 
-def require_mirrors(result: dict, d_over_d0, what: str = "") -> None:
+def require_mirrors(result: dict, d_over_d0: ArrayLike, what: str = "") -> None:
     """Raise :class:`SymmetryError` naming the first d/d0 whose lattice lacks a needed mirror."""
     d = as_1d(d_over_d0)
     for name in MIRRORS:

@@ -5,6 +5,8 @@ real-crystal scenes (:mod:`surfwave.pipeline.crystal_scenes`).
 """
 from __future__ import annotations
 
+from typing import Any, Sequence
+
 import numpy as np
 
 from surfwave.errors import SceneError
@@ -61,7 +63,7 @@ def _rounded(values: np.ndarray) -> np.ndarray:
         return np.where(np.abs(values) < 1e15, np.round(values, DECIMALS), values)
 
 
-def expand_grid(spec, where: str = "grid") -> np.ndarray:
+def expand_grid(spec: Sequence[float] | dict[str, Any], where: str = "grid") -> np.ndarray:
     """Values of a grid: a list (sorted, rounded), or {start, stop, step} with stop included.
 
     The values are start + i * step rounded to :data:`DECIMALS` decimals, so a grid from
@@ -105,7 +107,7 @@ def expand_grid(spec, where: str = "grid") -> np.ndarray:
     return values
 
 
-def theta_grid(spec, where: str = "theta") -> np.ndarray:
+def theta_grid(spec: Sequence[float] | dict[str, Any], where: str = "theta") -> np.ndarray:
     """theta values in radians: a list, or {n: N} = N midpoints (i + 1/2) pi / N inside (0, pi),
     optionally with ``pi_fractions: [f, ...]`` adding the exact values f * pi (e.g. 0.125 for pi/8)."""
     if isinstance(spec, dict):

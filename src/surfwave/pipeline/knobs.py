@@ -17,6 +17,7 @@ from __future__ import annotations
 import copy
 import inspect
 from dataclasses import dataclass
+from typing import Iterable, cast
 
 from surfwave.model_crystals import phonons
 
@@ -154,7 +155,7 @@ def estimated_cost(block: str, settings: dict, seconds_at_default: float) -> flo
     for name, knob in knobs().get(block, {}).items():
         if knob.cost_power:
             value = settings.get(name, knob.default)
-            terms.append(knob.cost_seconds * (float(value) / float(knob.default)) ** knob.cost_power)
+            terms.append(knob.cost_seconds * (float(value) / float(cast(float, knob.default))) ** knob.cost_power)
     return sum(terms) if terms else seconds_at_default
 
 
@@ -167,7 +168,7 @@ SECONDS_PER_POINT = {"bulk": 0.017, "dispersion": 0.7 / (8 * 40), "entropy": 0.0
 ANNOUNCE_SECONDS = 10.0
 
 
-def expected_cost(scenes: dict, names, announce: float = ANNOUNCE_SECONDS) -> list[str]:
+def expected_cost(scenes: dict, names: Iterable[str], announce: float = ANNOUNCE_SECONDS) -> list[str]:
     """Lines stating the expected time of each costly stage of the named scenes (before any job).
 
     Parameters

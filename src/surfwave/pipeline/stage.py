@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import itertools
 import sys
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, TextIO
 
 import numpy as np
 import xarray as xr
@@ -19,7 +19,7 @@ from surfwave.data import cube
 _LABELS = {"potential": "potentials", "direction": "directions"}
 
 
-def open_log(job_context) -> None:
+def open_log(job_context: Any) -> None:
     """Send this process's stderr to the rule's log file (``job_context.log[0]``)."""
     sys.stderr = open(job_context.log[0], "w")
 
@@ -29,9 +29,9 @@ def block_cube(
     compute: Callable[..., Mapping[str, Any]],
     variables: Mapping[str, Any],
     by: tuple[str, ...] = ("potential", "direction"),
-    log=None,
+    log: TextIO | None = None,
     ragged: tuple[str, tuple[str, ...]] | None = None,
-    **build_kwargs,
+    **build_kwargs: Any,
 ) -> xr.Dataset:
     """Run ``compute`` for every block of a scene and assemble the cube.
 
@@ -63,8 +63,8 @@ def block_cube(
     """
     log = sys.stderr if log is None else log
     labels = {b: list(job[_LABELS[b]]) for b in by}
-    blocks = _Blocks(list(itertools.product(*labels.values())),
-                     lambda key: cube.documented(compute(*key), variables, log))
+    blocks: Mapping[tuple, Any] = _Blocks(list(itertools.product(*labels.values())),
+                                          lambda key: cube.documented(compute(*key), variables, log))
     if ragged is not None:  # every block is needed to know the longest axis: computed now
         dim, names = ragged
         blocks = {key: dict(blocks[key]) for key in blocks}

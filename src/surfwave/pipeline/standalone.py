@@ -12,6 +12,7 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 from types import SimpleNamespace
+from typing import Sequence
 
 DEFAULT_CONFIG = "config/config.yaml"
 
@@ -43,7 +44,7 @@ def _workflow(snakefile: Path, configfiles: tuple[Path, ...]):
                             snakefile=snakefile)._workflow
 
 
-def standalone(rule: str, argv=None, snakefile: str | Path = "Snakefile") -> SimpleNamespace:
+def standalone(rule: str, argv: Sequence[str] | None = None, snakefile: str | Path = "Snakefile") -> SimpleNamespace:
     """A stand-in for Snakemake's ``snakemake`` object, built from the rule itself.
 
     Parameters

@@ -4,6 +4,8 @@ Kept free of matplotlib and xarray so that parsing the workflow stays fast.
 """
 from __future__ import annotations
 
+from typing import Collection, Iterable
+
 from surfwave.data.paper import load_paper_values
 from surfwave.pipeline.scenes import CUBES
 
@@ -13,7 +15,7 @@ REPORT_CUBES = ("elastic", "rayleigh", "dispersion", "displacements", "entropy")
 CUBE_NAMES = (*REPORT_CUBES, "bulk")
 
 
-def speeds_scenes(scenes: dict, names) -> list[str]:
+def speeds_scenes(scenes: dict, names: Iterable[str]) -> list[str]:
     """Names (of ``names``) of the FCC scenes that make elastic and rayleigh cubes (Fig. 2)."""
     return [n for n in names if scenes[n].get("lattice") == "fcc" and scenes[n].get("angles") is None
             and {"elastic", "rayleigh"} <= set(scenes[n]["quantities"])]
@@ -73,7 +75,7 @@ def report_entry(key: str) -> tuple[str, str] | None:
     return _kind(key, REPORT_ENTRIES)
 
 
-def figure_group(cubes) -> str:
+def figure_group(cubes: Collection[str]) -> str:
     """SLURM group of a figures job that reads ``cubes`` (FIGURE_GROUPS, else the light chain)."""
     return next((g for q, g in FIGURE_GROUPS.items() if q in cubes), "scene_light")
 
@@ -163,7 +165,7 @@ def scene_output_inputs(scenes: dict, name: str) -> tuple[dict[str, str], list[s
     return cubes, modules
 
 
-def presentation_targets(scenes: dict, names, results: str = "results") -> list[str]:
+def presentation_targets(scenes: dict, names: Iterable[str], results: str = "results") -> list[str]:
     """Every figure and table (``scene_outputs``) of the named scenes, as paths."""
     return [f"{results}/{n}/{f}" for n in names for f in scene_outputs(scenes, n).values()]
 

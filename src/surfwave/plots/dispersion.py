@@ -9,6 +9,7 @@ plus the output path. They return the path written.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Sequence
 
 import matplotlib
 
@@ -16,11 +17,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
+from numpy.typing import ArrayLike  # noqa: E402
 
 from surfwave.errors import InputError  # noqa: E402
 from surfwave.plots.labels import OMEGA, THETA_OVER_PI, potential_label  # noqa: E402
 from surfwave.plots.output import savefig  # noqa: E402
 from surfwave.validate import as_1d  # noqa: E402
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
 def _get(data, name: str):
@@ -54,8 +59,9 @@ def _save(fig, path) -> Path:
     return savefig(fig, path, dpi=130)
 
 
-def plot_dispersion(data, path, *, d_over_d0=None, theta=None, numerical=None, max_curves: int = 5,
-                    title: str = "") -> Path:
+def plot_dispersion(data: xr.Dataset | dict[str, Any], path: str | Path, *, d_over_d0: ArrayLike | None = None,
+                    theta: ArrayLike | None = None, numerical: xr.Dataset | dict[str, Any] | None = None,
+                    max_curves: int = 5, title: str = "") -> Path:
     """omega(theta) of the surface wave at several strains with the bulk band edges.
 
     Parameters
@@ -124,9 +130,9 @@ def _identical_potentials(data, potential, i) -> list[str]:
     return same
 
 
-def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: int | None = None,
-                       n_columns: int = 6, scale: float = 0.35, title: str = "",
-                       potential: str | None = None) -> Path:
+def plot_displacements(data: xr.Dataset | dict[str, Any], path: str | Path, *, d_over_d0: ArrayLike | None = None,
+                       theta: ArrayLike | None = None, strain_index: int | None = None, n_columns: int = 6,
+                       scale: float = 0.35, title: str = "", potential: str | None = None) -> Path:
     """Fig. 3 of the paper: displacement patterns of the surface wave, one panel per theta.
 
     Atoms of rows I = 0 (surface, top) downwards sit at x = (I + 2J) d_x, y = I d_y (grey
@@ -186,7 +192,9 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
         tx = x[:, None] + scale * (cu[:, None] * np.exp(-1j * t)).real
         ty = -y[:, None] - scale * (cv[:, None] * np.exp(-1j * t)).real
         ax.plot(x, -y, "+", color="0.55", ms=4, mew=0.8, label="equilibrium site")
-        ax.add_collection(LineCollection(np.stack([tx, ty], axis=-1), colors="C0", linewidths=0.8,
+        # one segment per site, shape (sites, times, 2); the stubs want a sequence, the array is one
+        ax.add_collection(LineCollection(np.stack([tx, ty], axis=-1),  # type: ignore[arg-type]
+                                         colors="C0", linewidths=0.8,
                                          label=f"trajectory over one period (amplitude 1 drawn as {scale:g} $d_0$)"))
         ax.plot(tx[:, 0], ty[:, 0], "o", color="C3", ms=2.5, label="position at $t = 0$")
         ax.set_title(rf"$\theta = k d_x = {th[k] / np.pi:.3g}\,\pi$", fontsize=10)
@@ -217,7 +225,9 @@ def plot_displacements(data, path, *, d_over_d0=None, theta=None, strain_index: 
     return _save(fig, path)
 
 
-def plot_theta_c(data, path, *, d_over_d0=None, title: str = "", potential_labels=None) -> Path:
+def plot_theta_c(data: xr.Dataset | dict[str, Any] | Sequence[xr.Dataset | dict[str, Any]], path: str | Path, *,
+                 d_over_d0: ArrayLike | None = None, title: str = "",
+                 potential_labels: Sequence[str | None] | None = None) -> Path:
     """Crossover theta_c (q complex above it) against d/d0.
 
     Parameters

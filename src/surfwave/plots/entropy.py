@@ -14,6 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from numpy.typing import ArrayLike  # noqa: E402
 
 from surfwave.data.paper import load_paper_values  # noqa: E402
 from surfwave.data.variables import CUBES  # noqa: E402
@@ -42,7 +43,7 @@ KNOBS = (
 )
 
 
-def to_dataset(result: Mapping[str, np.ndarray], d_over_d0, potential: str) -> xr.Dataset:
+def to_dataset(result: Mapping[str, np.ndarray], d_over_d0: ArrayLike, potential: str) -> xr.Dataset:
     """Wrap one :func:`surfwave.dynamics.entropy.surface_entropy` result as a (potential, strain) cube.
 
     Parameters

@@ -2,14 +2,18 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
-def savefig(fig, path: str | Path, dpi: int = 150) -> Path:
+
+def savefig(fig: Figure, path: str | Path, dpi: int = 150) -> Path:
     """Save ``fig`` as PNG (parent directories created) and close it.
 
     A figure made with a layout engine (``layout="constrained"``) is already fitted to its

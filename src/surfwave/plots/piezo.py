@@ -13,6 +13,7 @@ Examples
 """
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -93,8 +94,10 @@ def speeds_vs_euler(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
               else f"Euler {dim.split('_')[1]} (deg); " + ", ".join(f"{d.split('_')[1]} = {v:g}"
                                                                     for d, v in fixed.items()))
     mats = [str(m) for m in ds.material.values]
-    fig, axes = plt.subplots(3, len(mats), figsize=(5.2 * len(mats), 9.0), sharex=True, squeeze=False,
+    width = max(5.2 * len(mats), 7.0)                 # one panel: room for its title and x label
+    fig, axes = plt.subplots(3, len(mats), figsize=(width, 9.6), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": [2.2, 1, 1]})
+    chars = int(12 * width / len(mats))               # characters of a 10-pt line across one panel
     for j, mat in enumerate(mats):
         d = ds.sel(material=mat)
         av, aa, ak = axes[:, j]
@@ -118,26 +121,30 @@ def speeds_vs_euler(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 av.annotate(label, (xm, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 2),
                             textcoords="offset points", fontsize=7, color="0.3", rotation=90, ha="center",
                             va="bottom")
-        av.set_title(f"{_short(mat)} ({mat}); grey lines: named cuts", fontsize=10, pad=34)
+        av.set_title(textwrap.fill(f"{_short(mat)} ({mat}); grey lines: named cuts", chars), fontsize=10, pad=34)
         av.set_ylabel("phase velocity (m/s)")
         aa.set_ylabel("leaky attenuation (dB/$\\lambda$)")
         aa.set_ylim(bottom=0)
         ak.set_ylabel("$K^2$ = 2 (v$_f$ - v$_m$)/v$_f$ (%)")
         ak.set_ylim(bottom=0)
-        ak.set_xlabel(xlabel if len(mats) == 1 or j == 0 else "rotation angle (deg)" if rotated_y else xlabel)
+        ak.set_xlabel(textwrap.fill(xlabel if len(mats) == 1 or j == 0 else
+                                    "rotation angle (deg)" if rotated_y else xlabel, chars))
         for ax in (av, aa, ak):
             ax.grid(alpha=0.3)
-        if j == 0:
-            h, lab = av.get_legend_handles_labels()
-            aa.legend(h, lab, fontsize=7, loc="upper left", ncol=2)
-            ak.legend(fontsize=7, loc="upper left")
-    if rotated_y:
-        axes[-1, 0].set_xlim(x.min(), x.max())
+    # one legend for every panel, below them (inside, it hid curves): the K^2 panel uses the
+    # same colours (blue SAW, red leaky SAW)
+    h, lab = axes[0, 0].get_legend_handles_labels()
+    fig.legend(h, lab, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    span = float(np.ptp(x)) if x.size else 0.0
+    if rotated_y and span >= 120:                     # the classic full 0-180 degree picture
+        axes[-1, 0].set_xlim(0, 180)
         axes[-1, 0].set_xticks(np.arange(0, 181, 30))
-    fig.suptitle(("Rotated Y-cut, X-propagating SAW: velocity, leaky attenuation and coupling $K^2$"
-                  if rotated_y else "SAW against the Euler angle") + (f" ({title})" if title else ""),
-                 fontsize=10)
-    fig.tight_layout()
+    elif span > 0:                                    # a user's range fills the width
+        axes[-1, 0].set_xlim(x.min(), x.max())
+    head = (("Rotated Y-cut, X-propagating SAW: velocity, leaky attenuation and coupling $K^2$"
+             if rotated_y else "SAW against the Euler angle") + (f" ({title})" if title else ""))
+    fig.suptitle(textwrap.fill(head, int(12 * width)), fontsize=10)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
     return savefig(fig, path)
 
 
@@ -179,9 +186,10 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 v0 = np.interp(0.0, s, v)
                 lab = f"{label_o}, {_short(mat)}, {el}" if len(ds.material) > 1 else f"{label_o}, {el}"
                 lab += "" if t is None else ", third-order constants" if t else ", fixed constants"
-                style = STYLES.get(el, "-") + ("." if t else "")
-                av.plot(s, v, style, color=colour, label=lab)
-                ar.plot(s, 1e6 * (v / v0 - 1), style, color=colour, label=lab)
+                # the third-order model's lines carry dots ("-." would be a dash-dot line)
+                style = {"linestyle": STYLES.get(el, "-"), "marker": "." if t else None}
+                av.plot(s, v, color=colour, label=lab, **style)
+                ar.plot(s, 1e6 * (v / v0 - 1), color=colour, label=lab, **style)
     av.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     ar.set_xlabel("uniaxial stress along the propagation (GPa, < 0 compression)")
     av.set_ylabel("SAW phase velocity (m/s)")
@@ -189,7 +197,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     for ax in (av, ar):
         ax.grid(alpha=0.3)
         ax.axvline(0, color="0.7", lw=0.8)
-    av.legend(fontsize=8)
+    av.legend(fontsize=8, loc="best")
     model = ("third-order constants where marked" if any(models) and len(models) > 1 else
              "third-order constants" if models == [True] else "fixed constants: A = C + $\\sigma$")
     fig.suptitle(f"SAW velocity under prestress ({model}; e, $\\varepsilon$ at natural values)"

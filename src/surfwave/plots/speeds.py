@@ -12,6 +12,7 @@ Examples
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable
 
 import matplotlib
 
@@ -20,6 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
+from numpy.typing import ArrayLike  # noqa: E402
 
 from surfwave.data.cube import open_cube  # noqa: E402
 from surfwave.plots.output import savefig  # noqa: E402
@@ -27,6 +29,9 @@ from surfwave.plots.output import savefig  # noqa: E402
 SPEED_UNITS = r"$K d_0^2/m$"
 STRESS_LABEL = r"applied stress $\sigma^0_{xx} V/(K d_0^2)$"
 from surfwave.plots.labels import POTENTIAL_NAMES, potential_label  # noqa: E402,F401
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 # quantity -> (legend label, colour, line width)
 CURVES = {
@@ -114,7 +119,7 @@ def _unstable_spans(x: np.ndarray, stable: np.ndarray) -> list[tuple[float, floa
 COINCIDE = 1e-9
 
 
-def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential: str,
+def speeds_panel(ax: Axes, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential: str,
                  ymax: float = 1.6) -> set:
     """Draw sound speeds squared and c_R^2 versus stress for one potential on ``ax``.
 
@@ -172,7 +177,7 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
                 ax.plot(xs, y[idx], ls=ls, color=colour, lw=lw)
             done[name] = y[idx]
             drawn.add(name)
-            if name == "c2_R" and "wave_type" in ra:
+            if name == "c2_R" and ra is not None and "wave_type" in ra:
                 wt = np.asarray(ra.sel(direction=direction)["wave_type"].values).astype(str)[idx]
                 m = np.flatnonzero(wt == "supersonic_decoupled")[::3]
                 if m.size:
@@ -199,7 +204,8 @@ def speeds_panel(ax, elastic: xr.Dataset, rayleigh: xr.Dataset | None, potential
 
 def _legend_handles(drawn: set) -> list:
     """Legend entries for exactly what :func:`speeds_panel` drew (union over the panels)."""
-    handles = [Line2D([], [], color=c, lw=lw, label=lab) for name, (lab, c, lw) in CURVES.items()
+    # artists, and (artist, artist, label) triples of coinciding curves (drawn by HandlerTuple)
+    handles: list[Any] = [Line2D([], [], color=c, lw=lw, label=lab) for name, (lab, c, lw) in CURVES.items()
                if name in drawn]
     for _, a, b in sorted(x for x in drawn if isinstance(x, tuple)):
         (la, ca, wa), (lb, cb, wb) = CURVES[a], CURVES[b]
@@ -218,8 +224,8 @@ def _legend_handles(drawn: set) -> list:
     return handles
 
 
-def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
-         ymax: float = 1.6) -> Path:
+def fig2(elastic: str | Path | xr.Dataset, rayleigh: str | Path | xr.Dataset | None, out_png: str | Path,
+         title: str | None = None, ymax: float = 1.6) -> Path:
     """Fig. 2: sound speeds squared and c_R^2 versus in-plane stress, one panel per potential.
 
     Parameters
@@ -242,18 +248,19 @@ def fig2(elastic, rayleigh, out_png: str | Path, title: str | None = None,
         raise FileNotFoundError(f"no elastic cube at {elastic}")
     pots = [str(p) for p in el["potential"].values]
     order = [p for p in ("harmonic", "lj") if p in pots] + [p for p in pots if p not in ("harmonic", "lj")]
-    fig, axes = plt.subplots(1, len(order), figsize=(6.2 * len(order), 5.0), squeeze=False,
-                             layout="constrained")
+    ncol = 5 if len(order) > 1 else 3     # the legend spans the figure: as wide as the panels allow
+    fig, axes = plt.subplots(1, len(order), figsize=(max(6.2 * len(order), 7.0), 5.0 if len(order) > 1 else 6.0),
+                             squeeze=False, layout="constrained")
     drawn: set = set()
     for k, (ax, pot) in enumerate(zip(axes[0], order)):
         drawn |= speeds_panel(ax, el, ra, pot, ymax=ymax)
         ax.set_title(f"({chr(ord('a') + k)}) {ax.get_title()}")
     entries = _legend_handles(drawn)
-    handles = [h if not isinstance(h, tuple) else h[:2] for h in entries]
+    handles: list[Any] = [h if not isinstance(h, tuple) else h[:2] for h in entries]
     labels = [h.get_label() if not isinstance(h, tuple) else h[2] for h in entries]
     from matplotlib.legend_handler import HandlerTuple
 
-    fig.legend(handles, labels, loc="outside lower center", ncol=5, frameon=False, fontsize=9,
+    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, frameon=False, fontsize=9,
                handler_map={tuple: HandlerTuple(ndivide=1, pad=0)})
     if title:
         fig.suptitle(title)
@@ -291,7 +298,7 @@ FIG3_THETA = (np.pi / 20, np.pi / 8, np.pi / 4, np.pi / 2)  # the paper's Fig. 3
 FIG3_ROWS = 14
 
 
-def nearest_indices(grid, wanted) -> list[int]:
+def nearest_indices(grid: ArrayLike, wanted: Iterable[float]) -> list[int]:
     """Sorted unique indices of the grid points nearest to each wanted value."""
     grid = np.asarray(grid, float)
     return sorted({int(np.argmin(np.abs(grid - w))) for w in wanted})

@@ -6,6 +6,8 @@ writing the map belong to the library and the workflow (rule ``figure_stability_
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import xarray as xr
 
@@ -22,7 +24,7 @@ def paper_max_compression() -> dict[str, float]:
     return {pot: 1.0 - float(strain) for pot, strain in claim.items()}
 
 
-def plot_stability_map(ds: xr.Dataset, path) -> None:
+def plot_stability_map(ds: xr.Dataset, path: str | Path) -> None:
     """One panel per potential; a coloured band per (loading, direction) over d/d0.
 
     Parameters
@@ -34,6 +36,7 @@ def plot_stability_map(ds: xr.Dataset, path) -> None:
         PNG file to write.
     """
     import matplotlib.pyplot as plt
+    from matplotlib.artist import Artist
     from matplotlib.colors import ListedColormap
     from matplotlib.lines import Line2D
 
@@ -69,7 +72,7 @@ def plot_stability_map(ds: xr.Dataset, path) -> None:
         ax.set_yticks(range(len(cases)), [f"{load} {d}" for load, d in cases], fontsize=8)
         ax.set_title(f"FCC, {pot}", fontsize=10)
     axes[-1, 0].set_xlabel("d/d0 (stretch along propagation direction x)")
-    handles = [plt.Rectangle((0, 0), 1, 1, color=cmap(k)) for k in range(4)]
+    handles: list[Artist] = [plt.Rectangle((0, 0), 1, 1, color=cmap(k)) for k in range(4)]
     labels = ["no geometry", "long-wave unstable", "short-wave only unstable", "stable"]
     for mk, _, label in _MARKERS.values():
         handles.append(Line2D([], [], ls="", marker=mk, color="k", ms=8, mew=1.5))

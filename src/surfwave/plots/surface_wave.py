@@ -20,6 +20,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from matplotlib.legend_handler import HandlerTuple  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from surfwave.plots.output import savefig  # noqa: E402
@@ -140,6 +141,18 @@ def _direction_labels(ds: xr.Dataset) -> list[str]:
     return [f"{float(a):g} deg" for a in ds.angle.values]
 
 
+def _coinciding_fixed(ds: xr.Dataset, a: str, b: str, rtol: float = 1e-9) -> tuple[str, str] | None:
+    """(a, b) when the fixed-constants curves of loadings a and b agree everywhere (to ``rtol``), else None."""
+    if "toec" not in ds.dims or False not in ds.toec.values or not {a, b} <= {str(v) for v in ds.loading.values}:
+        return None
+    fixed = ds.c_R.sel(toec=False)
+    ca, cb = fixed.sel(loading=a).values, fixed.sel(loading=b).values
+    both = np.isfinite(ca) & np.isfinite(cb)
+    same = bool(both.any()) and np.array_equal(np.isfinite(ca), np.isfinite(cb)) and bool(
+        np.all(np.abs(ca[both] - cb[both]) <= rtol * np.abs(ca[both])))
+    return (a, b) if same else None
+
+
 def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """Relative change of c_R against the applied stress, one panel per material and direction.
 
@@ -189,11 +202,18 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
                 ax.set_xlabel("applied stress (GPa)")
             if k == 0:
                 ax.set_ylabel(r"$c_R/c_R(0) - 1$ (%)")
-    handles = [Line2D([], [], color=LOADING_COLOURS.get(str(ld), cmap((li + 3) % 10)), lw=2,
-                      label=f"loading: {ld}") for li, ld in enumerate(ds.loading.values)]
+    handles: list = [Line2D([], [], color=LOADING_COLOURS.get(str(ld), cmap((li + 3) % 10)), lw=2,
+                            label=f"loading: {ld}") for li, ld in enumerate(ds.loading.values)]
     handles += [Line2D([], [], color="k", ls="-", label="stressed-state constants (TOEC)"),
                 Line2D([], [], color="k", ls="--", label="fixed second-order constants")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
+    labels = [str(h.get_label()) for h in handles]
+    pair = _coinciding_fixed(ds, "along", "biaxial")
+    if pair:     # say so: one dashed line would otherwise seem missing
+        handles.append(tuple(Line2D([], [], color=LOADING_COLOURS.get(ld, "k"), lw=1.4, ls="--") for ld in pair))
+        labels.append("fixed constants: along = biaxial, the curves\ncoincide (a stress across x1 does not enter)")
+    fig.legend(handles, labels, loc="outside lower center", ncol=3 if len(cols) > 2 else 2, fontsize=8,
+               frameon=False,
+               handler_map={tuple: HandlerTuple(ndivide=None, pad=0)})
     fig.suptitle("Surface-wave speed against in-plane stress" + (f" ({title})" if title else ""),
                  fontsize=10)
     return savefig(fig, path)

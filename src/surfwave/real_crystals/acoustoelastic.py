@@ -22,7 +22,10 @@ relative error falls as h^2 from 1e-2 at h = 0.1 GPa to 2e-6 at 1e-3 GPa and 8e-
 """
 from __future__ import annotations
 
+from typing import Any, Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec
@@ -31,6 +34,11 @@ from surfwave.real_crystals.toec import DEFAULT_TOL
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import rotate2
 from surfwave.vocab import STRESS_LOADINGS
+
+#: A surface ("(hkl)" or its Miller indices) and a propagation direction in it ("[uvw]", an
+#: angle in degrees from the reference direction, or a crystal vector).
+_Surface = str | Sequence[float] | np.ndarray
+_Direction = str | float | Sequence[float] | np.ndarray
 
 __all__ = ["DEFAULT_STEP", "LOADINGS", "REASON_TRACTION", "TRACTION_TOL", "acoustoelastic_coefficients",
            "check_in_plane", "deformed_axes", "loading_stress", "surface_wave_speed"]
@@ -49,7 +57,8 @@ def _axes(surface, direction) -> np.ndarray:
     return R
 
 
-def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axis=None) -> np.ndarray:
+def loading_stress(kind: str, magnitude: ArrayLike, surface: _Surface = "(001)", direction: _Direction = "[100]",
+                   axis: str | Sequence[float] | np.ndarray | None = None) -> np.ndarray:
     """Cauchy stress tensors of a loading, crystal axes, GPa.
 
     Parameters
@@ -71,7 +80,8 @@ def loading_stress(kind: str, magnitude, surface="(001)", direction="[100]", axi
     return stress_tensor(kind, magnitude, _axes(surface, direction), axis=axis)
 
 
-def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float | None = None) -> None:
+def check_in_plane(sigma: ArrayLike, surface: _Surface = "(001)", direction: _Direction = "[100]",
+                   tol: float | None = None) -> None:
     """Raise :class:`InputError` naming the first out-of-plane component of sigma.
 
     The free surface is in equilibrium only if sigma . n = 0; in the natural laboratory
@@ -90,7 +100,7 @@ def check_in_plane(sigma, surface="(001)", direction="[100]", tol: float | None 
                              f"{direction}, y normal to {surface}); only in-plane stress is allowed")
 
 
-def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
+def deformed_axes(F: ArrayLike, surface: _Surface = "(001)", direction: _Direction = "[100]") -> np.ndarray:
     """Laboratory axes of the deformed crystal for a surface and direction given by name
     (:func:`surfwave.real_crystals.toec.deformed_axes`): rows x = F m0, y = F^-T n0, z = x cross y.
 
@@ -105,7 +115,9 @@ def deformed_axes(F, surface="(001)", direction="[100]") -> np.ndarray:
     return toec.deformed_axes(F, _axes(surface, direction))
 
 
-def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", *, tol: float = DEFAULT_TOL) -> dict:
+def surface_wave_speed(C2: np.ndarray, C3: np.ndarray | None, rho0: float, sigma: ArrayLike,
+                       surface: _Surface = "(001)", direction: _Direction = "[100]", *,
+                       tol: float = DEFAULT_TOL) -> dict:
     """Surface-wave speed of a real crystal under in-plane stress (general solver).
 
     Parameters
@@ -142,8 +154,9 @@ def surface_wave_speed(C2, C3, rho0, sigma, surface="(001)", direction="[100]", 
             "reason": r["reason"].astype(str), "ok": r["ok"], "rho": r["rho"], "F": r["F"], "axes": r["axes"]}
 
 
-def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]", *,
-                                step: float = DEFAULT_STEP, tol: float = DEFAULT_TOL) -> dict:
+def acoustoelastic_coefficients(C2: np.ndarray, C3: np.ndarray | None, rho0: float, surface: _Surface = "(001)",
+                                direction: _Direction = "[100]", *, step: float = DEFAULT_STEP,
+                                tol: float = DEFAULT_TOL) -> dict:
     """(1/v) dv/dsigma of the surface wave at zero stress, with and without third-order constants.
 
     Central difference (v(+h) - v(-h)) / (2 h v(0)) for uniaxial stress along and across the
@@ -170,7 +183,7 @@ def acoustoelastic_coefficients(C2, C3, rho0, surface="(001)", direction="[100]"
     h = np.array([-step, step])
     sig = np.stack([loading_stress(k, h, surface, direction) for k in kinds])  # (3, 2, 3, 3)
     sig0 = np.zeros((1, 3, 3))
-    out = {"step": float(step)}
+    out: dict[str, Any] = {"step": float(step)}
     for model, c3 in (("toec", C3), ("fixed_C", None)):
         if model == "toec" and C3 is None:
             out[model] = {k: float("nan") for k in kinds}

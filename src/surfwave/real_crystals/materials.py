@@ -17,11 +17,10 @@ Examples
 """
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
-from typing import Literal
+from typing import Callable, Literal
 
 import numpy as np
 import yaml
@@ -34,7 +33,7 @@ from surfwave.solvers.tensors import cubic_voigt, hexagonal_voigt
 SECOND_ORDER = {"cubic": ("C11", "C12", "C44"), "hexagonal": ("C11", "C12", "C13", "C33", "C44")}
 #: The six independent third-order (Brugger) constants of a cubic crystal of the highest classes.
 CUBIC_TOEC = ("C111", "C112", "C123", "C144", "C155", "C456")
-_BUILDERS = {"cubic": cubic_voigt, "hexagonal": hexagonal_voigt}
+_BUILDERS: dict[str, Callable[..., np.ndarray]] = {"cubic": cubic_voigt, "hexagonal": hexagonal_voigt}
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,7 +89,7 @@ def _read() -> dict:
     return yaml.load(text, Loader=SAFE_LOADER)
 
 
-def read_constants(block: dict, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
+def read_constants(block: object, names: tuple, where: str, refs: dict) -> tuple[dict, str]:
     """The constants ``names`` of one YAML block as floats, and the citation of its source.
 
     Shared by the elastic and the piezoelectric databases (``materials.yaml``,
@@ -171,7 +170,8 @@ def get_material(name: str | Material) -> Material:
     Raises
     ------
     InputError
-        For an unknown name; the message lists the known materials and the closest names.
+        For an unknown name: :func:`surfwave.real_crystals.catalog.unknown_name` (the database
+        that holds it, or the closest names and every known one, over both databases).
     """
     if isinstance(name, Material):
         return name
@@ -179,7 +179,6 @@ def get_material(name: str | Material) -> Material:
     key = str(name).strip().casefold()
     if key in lookup:
         return materials[lookup[key]]
-    close = difflib.get_close_matches(key, list(lookup), n=5, cutoff=0.7)
-    suggestions = list(dict.fromkeys(lookup[c] for c in close))
-    hint = f" (did you mean {' or '.join(suggestions)}?)" if suggestions else ""
-    raise InputError(f"unknown material {name!r}{hint}; known materials: {', '.join(available_materials())}")
+    from surfwave.real_crystals.catalog import unknown_name
+
+    raise unknown_name(name, "elastic")

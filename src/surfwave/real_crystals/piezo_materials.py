@@ -21,17 +21,19 @@ Examples
 from __future__ import annotations
 
 import difflib
-import re
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import yaml
+from numpy.typing import ArrayLike
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
+from surfwave.real_crystals.catalog import name_key
 from surfwave.real_crystals.materials import read_constants
 from surfwave.real_crystals.toec_classes import TOEC_NAMES, toec_from_named, toec_from_user
 from surfwave.solvers.euler import euler_lab_axes
@@ -51,7 +53,8 @@ from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
 #: Per crystal class: (independent C names or None for "from materials.yaml", e names, eps names,
 #: C builder, e builder).
-CLASSES = {
+CLASSES: dict[str, tuple[tuple[str, ...] | None, tuple[str, ...], tuple[str, ...],
+                        Callable[..., np.ndarray] | None, Callable[..., np.ndarray]]] = {
     "3m": (("C11", "C12", "C13", "C14", "C33", "C44"), ("e15", "e22", "e31", "e33"), ("eps11", "eps33"),
            trigonal_3m_voigt, trigonal_3m_piezo),
     "32": (("C11", "C12", "C13", "C14", "C33", "C44"), ("e11", "e14"), ("eps11", "eps33"),
@@ -161,7 +164,7 @@ class Cut:
         return euler_lab_axes(*self.euler)
 
 
-def check_piezo_record(voigt, e, eps_r, rho, name: str = "record") -> None:
+def check_piezo_record(voigt: ArrayLike, e: ArrayLike, eps_r: ArrayLike, rho: float, name: str = "record") -> None:
     """Refuse a constant set that cannot be right.
 
     Parameters
@@ -253,6 +256,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
         c_vals, c_src = _block(entry, "C", c_names, where, refs)
         (rho_vals, rho_src) = _block(entry, "rho", ("value",), where, refs)
         rho = rho_vals["value"]
+        assert c_builder is not None  # every class with its own C names has a builder
         voigt = c_builder(*(c_vals[k] for k in c_names))
         eps = uniaxial_eps(eps_vals["eps11"], eps_vals["eps33"])
         C3, toec_src = None, ""
@@ -276,8 +280,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
 
 def _key(text: str) -> str:
     """Lookup key: case-folded, without spaces, hyphens, underscores, degree signs or 'deg'."""
-    t = str(text).casefold().replace("°", "").replace("deg", "")
-    return re.sub(r"[\s\-_]+", "", t)
+    return name_key(text)
 
 
 def _lookup(items: dict, kind: str) -> dict[str, str]:
@@ -338,7 +341,8 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     Raises
     ------
     InputError
-        Unknown name; the message lists the known sets and the closest names.
+        Unknown name: :func:`surfwave.real_crystals.catalog.unknown_name` (the database that
+        holds it, or the closest names and every known one, over both databases).
     """
     if isinstance(name, PiezoMaterial):
         return name
@@ -346,7 +350,9 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     k = _key(name)
     if k in lookup:
         return mats[lookup[k]]
-    raise _unknown(name, lookup, available_piezo_materials(), "piezoelectric material")
+    from surfwave.real_crystals.catalog import unknown_name
+
+    raise unknown_name(name, "piezoelectric")
 
 
 def available_cuts() -> list[str]:
@@ -369,7 +375,8 @@ def get_cut(name: str) -> Cut:
     raise _unknown(name, lookup, available_cuts(), "cut")
 
 
-def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller") -> PiezoMaterial:
+def with_toec(material: PiezoMaterial, toec: Mapping[str, float] | ArrayLike,
+              source: str = "given by the caller") -> PiezoMaterial:
     """``material`` carrying a caller's third-order constants, checked for its class.
 
     Parameters
@@ -390,7 +397,7 @@ def with_toec(material: PiezoMaterial, toec, source: str = "given by the caller"
     return replace(material, toec_voigt=toec_from_user(toec, cls), sources={**material.sources, "toec": source})
 
 
-def read_toec_file(path) -> tuple[dict, bytes]:
+def read_toec_file(path: str | Path) -> tuple[dict, bytes]:
     """Named third-order constants (GPa) from a YAML mapping ``name: value`` (``source:`` allowed).
 
     Parameters
@@ -425,7 +432,7 @@ def read_toec_file(path) -> tuple[dict, bytes]:
     return data, text
 
 
-def lab_tensors(material: str | PiezoMaterial, R) -> dict[str, np.ndarray]:
+def lab_tensors(material: str | PiezoMaterial, R: ArrayLike) -> dict[str, Any]:
     """A crystal's tensors in lab axes, SI units, ready for the piezoelectric Stroh solver.
 
     Parameters

@@ -19,7 +19,10 @@ conditions and :func:`surfwave.solvers.leaky.leaky_wave`), shared with the elast
 """
 from __future__ import annotations
 
+from typing import Iterable, Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
@@ -37,7 +40,7 @@ MODEL_TOEC = ("third-order constants: the stressed state (deformation F, C*, rho
               "e and clamped eps at their natural values, rotated with the crystal (no stress derivatives)")
 
 
-def stress_model(toec) -> str:
+def stress_model(toec: Iterable[bool]) -> str:
     """The prestress model text of a result or cube: :data:`MODEL` or :data:`MODEL_TOEC` for one
     model, ``"toec=false: ...; toec=true: ..."`` for both (``toec``: the models, a sequence of bool)."""
     models = [bool(t) for t in toec]
@@ -54,7 +57,9 @@ REASON_TRACTION = sw_path.REASON_TRACTION
 ELECTRICAL = sw_path.ELECTRICAL
 
 
-def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho=None) -> PiezoMaterial:
+def resolve_piezo_material(material: str | PiezoMaterial | None = None, *, voigt: ArrayLike | None = None,
+                           e: ArrayLike | None = None, eps_r: ArrayLike | None = None,
+                           rho: float | None = None) -> PiezoMaterial:
     """A :class:`PiezoMaterial` from a database name, a record, or explicit constants.
 
     Parameters
@@ -90,6 +95,7 @@ def resolve_piezo_material(material=None, *, voigt=None, e=None, eps_r=None, rho
         C6, e6, er = (np.asarray(x, dtype=float) for x in (voigt, e, eps_r))
     except (TypeError, ValueError) as exc:
         raise InputError(f"piezoelectric constants must be numeric arrays: {exc}") from None
+    assert rho is not None  # refused above when missing
     check_piezo_record(C6, e6, er, rho, name="constants")
     return PiezoMaterial(name="user", formula="", crystal_class="", rho=float(rho), voigt=C6, e=e6, eps_r=er,
                          constants={}, setting="user-supplied, crystal axes", sources={})
@@ -131,8 +137,9 @@ def _axes(axes) -> np.ndarray:
     return R
 
 
-def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free", leaky: bool = True,
-               tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None, toec: bool = False,
+def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | None = None, stress: ArrayLike = 0.0, *,
+               electrical: str = "free", leaky: bool = True, tol: float = 1e-12, voigt: ArrayLike | None = None,
+               e: ArrayLike | None = None, eps_r: ArrayLike | None = None, rho: float | None = None, toec: bool = False,
                bulk: bool = False) -> dict:
     """SAW of a piezoelectric crystal on m cuts: free and metallized speeds, K^2, leaky wave, power flow.
 
@@ -204,8 +211,10 @@ def piezo_wave(material=None, axes=None, stress=0.0, *, electrical: str = "free"
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 
 
-def piezo_wave_conditions(material=None, axes=None, stress=0.0, *, conditions=ELECTRICAL, leaky: bool = True,
-                          tol: float = 1e-12, voigt=None, e=None, eps_r=None, rho=None, toec: bool = False,
+def piezo_wave_conditions(material: str | PiezoMaterial | None = None, axes: ArrayLike | None = None,
+                          stress: ArrayLike = 0.0, *, conditions: Sequence[str] = ELECTRICAL, leaky: bool = True,
+                          tol: float = 1e-12, voigt: ArrayLike | None = None, e: ArrayLike | None = None,
+                          eps_r: ArrayLike | None = None, rho: float | None = None, toec: bool = False,
                           bulk: bool = False) -> dict:
     """:func:`piezo_wave` for several electrical conditions from one solve (both cost what one costs).
 

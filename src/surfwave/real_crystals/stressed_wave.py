@@ -39,8 +39,10 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
@@ -51,6 +53,9 @@ from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw_conditi
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
 from surfwave.vocab import STRESS_LOADINGS
+
+if TYPE_CHECKING:
+    from surfwave.real_crystals.piezo_materials import PiezoMaterial
 
 __all__ = ["Constants", "ELECTRICAL", "GPA", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS", "REASON_LEAKY_OFF",
            "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
@@ -135,14 +140,14 @@ class Constants:
             object.__setattr__(self, "permittivity", er)
 
     @classmethod
-    def from_material(cls, material) -> Constants:
+    def from_material(cls, material: Any) -> Constants:
         """The record of a :class:`surfwave.real_crystals.materials.Material` (or any object
         with ``voigt``, ``rho`` and ``toec``: None or the six cubic constants)."""
         return cls(np.asarray(material.voigt, dtype=float), material.rho,
                    None if material.toec is None else material.toec_voigt)
 
     @classmethod
-    def from_piezo_material(cls, material) -> Constants:
+    def from_piezo_material(cls, material: PiezoMaterial) -> Constants:
         """The record of a :class:`surfwave.real_crystals.piezo_materials.PiezoMaterial` (C, rho,
         e, eps_r; ``toec_voigt`` when the record carries third-order constants)."""
         C3 = getattr(material, "toec_voigt", None)
@@ -177,7 +182,8 @@ def axis_of_loading(loading: str) -> np.ndarray | None:
     return d / np.linalg.norm(d)
 
 
-def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
+def stress_tensor(loading: str, magnitude: ArrayLike, axes: ArrayLike, *,
+                  axis: str | ArrayLike | None = None) -> np.ndarray:
     """Cauchy stress of a loading in crystal axes, GPa: the one load-to-stress function.
 
     Parameters
@@ -212,6 +218,7 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
     if not np.all(np.isfinite(s)):
         raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
     x1, n, x3 = axes[..., 0, :], axes[..., 1, :], axes[..., 2, :]
+    d: np.ndarray | None
     if loading == "axis":
         if axis is None:
             raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
@@ -228,6 +235,7 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
     elif loading == "biaxial":
         unit = np.einsum("...i,...j->...ij", x1, x1) + np.einsum("...i,...j->...ij", x3, x3)
     else:
+        assert d is not None  # an axis loading: axis_of_loading refused every other name
         if np.any(np.abs(n @ d) > TRACTION_TOL):
             raise InputError(f"{name} is not in the surface plane (a stress with a normal component "
                              "cannot act on a free surface)")
@@ -239,9 +247,9 @@ def stress_tensor(loading: str, magnitude, axes, *, axis=None) -> np.ndarray:
 # --------------------------------------------------------------------------- the surface wave
 
 
-def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol: float | None = None,
-                 state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True, electrical: str | None = None,
-                 leaky: bool | None = None) -> dict:
+def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, toec: bool = False,
+                 tol: float | None = None, state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
+                 electrical: str | None = None, leaky: bool | None = None) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
     Parameters
@@ -327,8 +335,9 @@ def surface_wave(constants: Constants, axes, stress, *, toec: bool = False, tol:
                                    state_tol=state_tol, bulk=bulk, leaky=leaky)[electrical]
 
 
-def surface_wave_conditions(constants: Constants, axes, stress, *, conditions=ELECTRICAL, toec: bool = False,
-                            tol: float | None = None, state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
+def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: ArrayLike, *,
+                            conditions: Sequence[str | None] = ELECTRICAL, toec: bool = False, tol: float | None = None,
+                            state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
                             leaky: bool | None = None) -> dict:
     """:func:`surface_wave` for several electrical conditions from one stressed state and one solve.
 
@@ -455,6 +464,7 @@ def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray
         sw = stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
         return {None: {**sw, **_elastic_leaky(A, rho, sw, leaky)}}
     leaky = True if leaky is None else leaky
+    assert constants.piezo is not None and constants.permittivity is not None  # is_piezo: both given
     e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
     eps = rotate2(constants.permittivity * EPS0, lab)
     return piezo_saw_conditions(A, rho, e, eps, conditions=conditions, tol=PIEZO_TOL if tol is None else tol,

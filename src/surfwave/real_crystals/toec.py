@@ -35,6 +35,7 @@ Examples
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
@@ -50,7 +51,8 @@ for _a, (_i, _j) in enumerate(VOIGT_PAIRS):
     _BASIS[_a, _i, _j] = _BASIS[_a, _j, _i] = 1.0
 
 
-def cubic_toec(C111, C112, C123, C144, C155, C456) -> np.ndarray:
+def cubic_toec(C111: ArrayLike, C112: ArrayLike, C123: ArrayLike, C144: ArrayLike, C155: ArrayLike,
+               C456: ArrayLike) -> np.ndarray:
     """Voigt third-order stiffness of a cubic crystal (classes 432, -43m, m-3m), cube axes.
 
     C144 pairs a normal strain with the shear in the plane perpendicular to it (C144 = C255
@@ -87,7 +89,7 @@ def cubic_toec(C111, C112, C123, C144, C155, C456) -> np.ndarray:
     return out
 
 
-def toec_tensor(C3_voigt) -> np.ndarray:
+def toec_tensor(C3_voigt: ArrayLike) -> np.ndarray:
     """Full sixth-rank tensor C3_ijklmn from its Voigt form, shape (..., 6, 6, 6) -> (..., 3, 3, 3, 3, 3, 3)."""
     C3 = np.asarray(C3_voigt, dtype=float)
     if C3.shape[-3:] != (6, 6, 6):
@@ -114,7 +116,7 @@ def _as_c3(C3) -> np.ndarray:
     return C3
 
 
-def lagrangian_strain(F) -> np.ndarray:
+def lagrangian_strain(F: ArrayLike) -> np.ndarray:
     """Lagrangian (Green) strain eta = (F^T F - I)/2, shape (..., 3, 3) -> (..., 3, 3)."""
     F = np.asarray(F, dtype=float)
     return 0.5 * (np.einsum("...ki,...kj->...ij", F, F) - np.eye(3))
@@ -132,7 +134,7 @@ def _pk2(C2, C3, eta) -> np.ndarray:
     return np.einsum("...ijkl,...kl->...ij", 0.5 * (C2 + _tangent(C2, C3, eta)), eta)
 
 
-def cauchy_stress(F, C2, C3) -> np.ndarray:
+def cauchy_stress(F: ArrayLike, C2: ArrayLike, C3: ArrayLike | None) -> np.ndarray:
     """Cauchy stress of the hyperelastic model at deformation F: sigma = F T F^T / J.
 
     Parameters
@@ -156,7 +158,7 @@ def cauchy_stress(F, C2, C3) -> np.ndarray:
     return np.einsum("...ip,...pq,...jq->...ij", F, T, F) / np.linalg.det(F)[..., None, None]
 
 
-def deformed_axes(F, axes) -> np.ndarray:
+def deformed_axes(F: ArrayLike, axes: ArrayLike) -> np.ndarray:
     """Lab axes carried by the deformation: rows x1 = F m0, x2 = F^-T n0, x3 = x1 x x2.
 
     The propagation direction is a material line (it follows F); the surface normal is a
@@ -184,7 +186,7 @@ def deformed_axes(F, axes) -> np.ndarray:
     return np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
 
 
-def stressed_constants(C2, C3, F) -> np.ndarray:
+def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.ndarray:
     """Constants of the stressed state C*_ijkl = F_ip F_jq F_kr F_ls (C2 + C3 : eta)_pqrs / J.
 
     Parameters
@@ -212,7 +214,7 @@ def stressed_constants(C2, C3, F) -> np.ndarray:
     return out / np.linalg.det(F)[..., None, None, None, None]
 
 
-def wallace_tensor(C, sigma) -> np.ndarray:
+def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     """Wallace's stability tensor of a stressed crystal, Voigt form, symmetrised.
 
     B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2
@@ -238,7 +240,7 @@ def wallace_tensor(C, sigma) -> np.ndarray:
     return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
 
 
-def born_lowest(C, sigma) -> np.ndarray:
+def born_lowest(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     """Lowest eigenvalue of Wallace's stability tensor (:func:`wallace_tensor`), GPa.
 
     Parameters
@@ -255,7 +257,7 @@ def born_lowest(C, sigma) -> np.ndarray:
     return np.linalg.eigvalsh(wallace_tensor(C, sigma))[..., 0]
 
 
-def born_stable(C, sigma) -> np.ndarray:
+def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """Born (Wallace) stability of a prestressed crystal: the stability tensor is positive definite.
 
     B_ijkl = C_ijkl + (d_ik s_jl + d_jk s_il + d_il s_jk + d_jl s_ik - 2 d_kl s_ij)/2 (Wallace;
@@ -309,7 +311,8 @@ def _voigt_vec(s) -> np.ndarray:
     return s[..., i, j]
 
 
-def deformation_for_stress(sigma, C2, C3, *, tol: float = DEFAULT_TOL, max_iterations: int = MAX_ITERATIONS) -> dict:
+def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None, *, tol: float = DEFAULT_TOL,
+                           max_iterations: int = MAX_ITERATIONS) -> dict:
     """The symmetric deformation F that carries a given Cauchy stress, by damped Newton.
 
     Solves sigma(F) = F T(eta) F^T / J = sigma for F = F^T (pure stretch, no rotation: the
@@ -407,7 +410,8 @@ def deformation_for_stress(sigma, C2, C3, *, tol: float = DEFAULT_TOL, max_itera
             "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}
 
 
-def stressed_state(C2, C3, sigma, rho0, *, tol: float = DEFAULT_TOL) -> dict:
+def stressed_state(C2: ArrayLike, C3: ArrayLike | None, sigma: ArrayLike, rho0: float, *,
+                   tol: float = DEFAULT_TOL) -> dict:
     """Deformation, constants and density of a crystal carrying the Cauchy stress sigma.
 
     Parameters
@@ -469,7 +473,7 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
             "reason": np.asarray(reason).astype(str)}
 
 
-def pressure_derivatives(C2, C3, *, h: float = 1e-3, tol: float = 1e-12) -> np.ndarray:
+def pressure_derivatives(C2: ArrayLike, C3: ArrayLike, *, h: float = 1e-3, tol: float = 1e-12) -> np.ndarray:
     """Initial pressure derivatives dB_IJ/dP of the effective constants a crystal shows under pressure.
 
     Under hydrostatic pressure P (sigma = -P I) ultrasonic velocities measure Wallace's

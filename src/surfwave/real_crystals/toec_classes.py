@@ -35,6 +35,7 @@ from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.real_crystals.toec import toec_tensor
@@ -60,7 +61,7 @@ MAX_TOEC_GPA = 1e5
 INVARIANCE_TOL = 1e-6
 _PAIRS = np.array(VOIGT_PAIRS)
 # the 56 independent Voigt components I <= J <= K
-_TRIPLES = [(i, j, k) for i in range(6) for j in range(i, 6) for k in range(j, 6)]
+_TRIPLES: list[tuple[int, ...]] = [(i, j, k) for i in range(6) for j in range(i, 6) for k in range(j, 6)]
 
 
 def _from_triples(x) -> np.ndarray:
@@ -72,7 +73,7 @@ def _from_triples(x) -> np.ndarray:
     return out
 
 
-def rotate_toec(C3, R) -> np.ndarray:
+def rotate_toec(C3: ArrayLike, R: ArrayLike) -> np.ndarray:
     """Voigt third-order stiffness in rotated axes: C'_ijklmn = R_ia R_jb ... C_abcdef.
 
     Parameters
@@ -161,7 +162,7 @@ def toec_from_named(crystal_class: str, constants: Mapping[str, float]) -> np.nd
     return _from_triples(y @ B)
 
 
-def trigonal_32_toec(**constants) -> np.ndarray:
+def trigonal_32_toec(**constants: float) -> np.ndarray:
     """Voigt third-order stiffness of a class-32 crystal (alpha-quartz) from its 14 constants.
 
     Parameters
@@ -183,7 +184,7 @@ def trigonal_32_toec(**constants) -> np.ndarray:
     return toec_from_named("32", constants)
 
 
-def checked_toec(C3, crystal_class: str | None = None) -> np.ndarray:
+def checked_toec(C3: ArrayLike, crystal_class: str | None = None) -> np.ndarray:
     """A user's Voigt third-order stiffness, checked: shape, finite, fully symmetric, invariant.
 
     Parameters
@@ -232,7 +233,7 @@ def checked_toec(C3, crystal_class: str | None = None) -> np.ndarray:
     return C3
 
 
-def toec_from_user(toec, crystal_class: str | None) -> np.ndarray:
+def toec_from_user(toec: Mapping[str, float] | ArrayLike, crystal_class: str | None) -> np.ndarray:
     """A caller's third-order constants (GPa) as a checked Voigt (6, 6, 6) array.
 
     Parameters

@@ -29,10 +29,10 @@ PER_TPA = 1.0e3
 
 def _stencil(stress: np.ndarray, k: int) -> tuple[int, int, float] | None:
     """Indices of -k h and +k h around zero on a grid that holds 0 and those points, and h."""
-    i0 = np.flatnonzero(stress == 0.0)
-    if i0.size == 0:
+    zeros = np.flatnonzero(stress == 0.0)
+    if zeros.size == 0:
         return None
-    i0 = int(i0[0])
+    i0 = int(zeros[0])
     if i0 - k < 0 or i0 + k >= stress.size:
         return None
     lo, hi = stress[i0 - k], stress[i0 + k]

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Callable, Iterable, SupportsFloat
 
 import numpy as np
 import xarray as xr
@@ -27,7 +27,7 @@ from surfwave.errors import InputError
 HEAD = ["Method", "Knob", "Default", "Error at the default", "Time at the default", "Why this default"]
 
 
-def _g(x: float) -> str:
+def _g(x: SupportsFloat) -> str:
     """A number for a reader: 3 significant digits, no trailing zeros."""
     x = float(x)
     if not np.isfinite(x):
@@ -35,7 +35,7 @@ def _g(x: float) -> str:
     return f"{x:.2g}" if abs(x) < 1e-3 or abs(x) >= 1e4 else f"{x:.3g}"
 
 
-def _ms(seconds: float) -> str:
+def _ms(seconds: SupportsFloat) -> str:
     s = float(seconds)
     return f"{s * 1e3:.3g} ms" if s < 1 else f"{s:.3g} s"
 

@@ -9,11 +9,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, SupportsFloat
 
 import numpy as np
 import xarray as xr
 
+if TYPE_CHECKING:
+    from surfwave.report.reproduction import Cubes
+
 PASS, FAIL, INCONCLUSIVE, NOT_COMPUTED = "PASS", "FAIL", "INCONCLUSIVE", "not computed"
+#: Verdict of a claim that fails our full check but holds under the paper's own approximation
+#: (bulk stability judged by c_T,par alone), which our check shows to be off there: not a
+#: breakage of this code, a finding about the paper (README, "What we found").
+PAPER_APPROX = "PAPER-APPROX"
+#: Every verdict, in the order the report counts them.
+VERDICTS = (PASS, PAPER_APPROX, FAIL, INCONCLUSIVE, NOT_COMPUTED)
 STRAIN_MATCH = 1e-6  # |d/d0 - wanted| below which a grid point is "the" point
 FCC_DIRECTIONS = ("[100]", "[110]")
 
@@ -33,7 +43,7 @@ class Check:
     label: str = ""
 
 
-def fmt(x, digits: int = 6) -> str:
+def fmt(x: SupportsFloat | None, digits: int = 6) -> str:
     """Format a number for the report ("n/a" for None/NaN)."""
     if x is None or (isinstance(x, float) and math.isnan(x)):
         return "n/a"
@@ -99,7 +109,7 @@ def _theta_c(ds: xr.Dataset) -> xr.DataArray | None:
     return theta.where(cplx).min("theta")
 
 
-def value_checks(name: str, spec: dict, cubes) -> list[Check]:
+def value_checks(name: str, spec: dict, cubes: Cubes) -> list[Check]:
     """Checks of one printed value (``values:`` in paper_values.yaml), one per potential."""
     ds = cubes.get(spec["scene"], spec["cube"])
     if ds is None:
@@ -130,9 +140,9 @@ def _plain_value(ds: xr.Dataset, spec: dict):
     err = f"{spec['variable']}_error"
     if err in ds:
         e = ds[err]
-        e = sel_strain(e, 1.0 + float(spec.get("select", {}).get("strain", 0.0))) if "strain" in e.dims else e
-        if e is not None:
-            ev = f"our error estimate {fmt(float(e.values))}"
+        at = sel_strain(e, 1.0 + float(spec.get("select", {}).get("strain", 0.0))) if "strain" in e.dims else e
+        if at is not None:
+            ev = f"our error estimate {fmt(float(at.values))}"
     return float(var.values), ev
 
 

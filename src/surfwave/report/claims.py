@@ -5,6 +5,7 @@ of the paper tested against the FCC and triangular cubes with the criterion stat
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,7 @@ from surfwave.report.checks import (
     FCC_DIRECTIONS,
     INCONCLUSIVE,
     NOT_COMPUTED,
+    PAPER_APPROX,
     PASS,
     STRAIN_MATCH,
     Check,
@@ -23,6 +25,9 @@ from surfwave.report.checks import (
     pick,
     sel_strain,
 )
+
+if TYPE_CHECKING:
+    from surfwave.report.reproduction import Cubes
 
 
 # --------------------------------------------------------------------------- FCC curves
@@ -106,7 +111,7 @@ def _softening(c: dict):
 
 
 # --------------------------------------------------------------------------- claims
-def claim_checks(name: str, spec: dict, cubes) -> list[Check]:
+def claim_checks(name: str, spec: dict, cubes: Cubes) -> list[Check]:
     """Checks of one qualitative claim (``claims:`` in paper_values.yaml)."""
     return _CLAIMS[name](name, spec, cubes)
 
@@ -145,9 +150,15 @@ def _vanish(name, spec, cubes):
             continue
         gap = s_r - s_t
         ok = gap >= -1e-6 and gap <= spec["max_relative_gap"] * abs(s_t)
-        out.append(_claim(name, spec, PASS if ok else FAIL,
+        # c_R^2 does vanish before c_T,par^2, but further ahead than "just": where the whole
+        # stretch lies beyond our full bulk stability limit the statement is about states
+        # only the paper's c_T,par-only stability admits
+        approx = not ok and gap >= -1e-6 and s_b is not None and s_b > s_r
+        out.append(_claim(name, spec, PASS if ok else (PAPER_APPROX if approx else FAIL),
                           f"c_R^2 = 0 at strain {s_r:+.4f}, c_T,par^2 = 0 at {s_t:+.4f}: gap "
-                          f"{gap:.4f} = {abs(gap / s_t):.0%} of the instability strain" + bulk,
+                          f"{gap:.4f} = {abs(gap / s_t):.0%} of the instability strain" + bulk
+                          + (" -- so the statement concerns strains that only the paper's c_T,par-only "
+                             "stability admits" if approx else ""),
                           f"{pot} {d}"))
     return out
 
@@ -171,7 +182,7 @@ def _max_strain(name, spec, cubes):
         note = ("" if ok or s_r is None or abs(abs(s_r) - paper) > float(spec["tolerance"]) else
                 " -- the paper's number matches where c_R^2 vanishes, not our stability limit "
                 "(the paper checks only c_T,par)")
-        out.append(_claim(name, spec, PASS if ok else FAIL,
+        out.append(_claim(name, spec, PASS if ok else (PAPER_APPROX if note else FAIL),
                           f"paper about {paper:.0%}; ours {abs(lim):.1%} ({words}){extra}{note}",
                           f"{pot} {d}"))
     return out
@@ -284,7 +295,7 @@ def _eq15(name, spec, cubes):
         worst, n = 0.0, 0
         for s in d_over_d0(om):
             o, c = sel_strain(om, s), sel_strain(c2, s)
-            if c is None:
+            if o is None or c is None:  # o never is: s runs over om's own grid
                 continue
             model = np.sqrt(float(c.values)) / (s / 2.0) * np.sin(np.asarray(om["theta"].values, float))
             ok = np.isfinite(o.values) & (model > 0)

@@ -8,13 +8,15 @@ Cubics whose leading coefficient is small against the others go through numpy.ro
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 _HALF_SQRT3 = 0.5 * np.sqrt(3.0)
 #: |c3| / max|c| at or below which a cubic goes through numpy.roots (:func:`real_roots_closed_form`).
 _SMALL_LEAD = 1e-4
 
 
-def real_roots_closed_form(c3, c2, c1, c0, coef_bound: float | None = None) -> tuple[np.ndarray, ...]:
+def real_roots_closed_form(c3: np.ndarray, c2: np.ndarray, c1: np.ndarray, c0: np.ndarray,
+                           coef_bound: float | None = None) -> tuple[np.ndarray, ...]:
     """Real roots of c3 x^3 + c2 x^2 + c1 x + c0 before polishing, and the monic coefficients.
 
     Parameters
@@ -96,7 +98,8 @@ def real_roots_closed_form(c3, c2, c1, c0, coef_bound: float | None = None) -> t
     return x, B, C, D
 
 
-def newton_polish(x, B, C, D, steps: int = 2, lim: float | None = None) -> np.ndarray:
+def newton_polish(x: np.ndarray, B: np.ndarray, C: np.ndarray, D: np.ndarray, steps: int = 2,
+                  lim: float | None = None) -> np.ndarray:
     """Newton steps on x^3 + B x^2 + C x + D = 0, elementwise; 1-D arrays of one length (n,).
 
     A correction larger than ``lim`` (default 1e-6 (|x| + |B|)) is refused: the closed forms
@@ -126,7 +129,7 @@ def newton_polish(x, B, C, D, steps: int = 2, lim: float | None = None) -> np.nd
     return x
 
 
-def real_cubic_roots(c3, c2, c1, c0) -> np.ndarray:
+def real_cubic_roots(c3: ArrayLike, c2: ArrayLike, c1: ArrayLike, c0: ArrayLike) -> np.ndarray:
     """Real roots of c3 x^3 + c2 x^2 + c1 x + c0, vectorised; shape (..., 3), NaN-padded.
 
     The closed forms of :func:`real_roots_closed_form`, then :func:`newton_polish` on every

@@ -27,12 +27,13 @@ array([[ 1.,  0.,  0.],
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.validate import MAX_ANGLE, euler_angles
 
 
-def saw_euler_matrix(phi, theta, psi) -> np.ndarray:
+def saw_euler_matrix(phi: ArrayLike, theta: ArrayLike, psi: ArrayLike) -> np.ndarray:
     """The SAW-convention axes matrix a = Rz(psi) Rx(theta) Rz(phi) (rows: x1, x2, x3 of SAW frame).
 
     Parameters
@@ -60,7 +61,7 @@ def saw_euler_matrix(phi, theta, psi) -> np.ndarray:
     return a
 
 
-def euler_lab_axes(phi, theta=None, psi=None) -> np.ndarray:
+def euler_lab_axes(phi: ArrayLike, theta: ArrayLike | None = None, psi: ArrayLike | None = None) -> np.ndarray:
     """Our lab axes (x1 propagation, x2 INWARD normal, x3 = x1 x x2) of a cut given by Euler angles.
 
     Parameters

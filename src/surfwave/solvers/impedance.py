@@ -39,7 +39,7 @@ def stroh_blocks(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return A[..., :, 0, :, 0], A[..., :, 0, :, 1], A[..., :, 1, :, 1]
 
 
-def acoustic(Q, R, T, phi) -> np.ndarray:
+def acoustic(Q: np.ndarray, R: np.ndarray, T: np.ndarray, phi: np.ndarray) -> np.ndarray:
     """Acoustic tensor Gamma(n) for the wave normal n = (cos phi, sin phi) in the sagittal plane.
 
     Parameters
@@ -96,7 +96,7 @@ def _trace_x(Q, R, T, phi, exact: bool = True) -> np.ndarray:
     return lam / np.cos(phi) ** 2
 
 
-def limiting_x(Q, R, T) -> tuple[np.ndarray, np.ndarray]:
+def limiting_x(Q: np.ndarray, R: np.ndarray, T: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Limiting X_L = rho v_L^2 = min over real p of the lowest eigenvalue of Q + p(R+R^T) + p^2 T.
 
     With p = tan phi (phi the angle of the bulk wave normal from x1 in the sagittal plane)
@@ -177,7 +177,8 @@ def _refine(Q, R, T, phi0, h):
     return best, np.arctan(best_p)
 
 
-def lowest_eigenvalue_step(w, V, S1a, d2, trust) -> tuple[np.ndarray, np.ndarray]:
+def lowest_eigenvalue_step(w: np.ndarray, V: np.ndarray, S1a: np.ndarray, d2: np.ndarray,
+                           trust: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Newton step on the lowest eigenvalue lam(p) of a symmetric matrix S(p), kept in a trust range.
 
     Shared by the elastic and the piezoelectric limiting-speed refinements.
@@ -213,7 +214,7 @@ def lowest_eigenvalue_step(w, V, S1a, d2, trust) -> tuple[np.ndarray, np.ndarray
     return step, (d2 > 0) & (0.5 * d2 * step * step <= 1e-16 * scale)
 
 
-def stroh_matrix(Q, R, T, X) -> np.ndarray:
+def stroh_matrix(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray) -> np.ndarray:
     """Real Stroh matrix N(X), shape (m, 2d, 2d), for X shape (m,)."""
     d = Q.shape[-1]
     Ti = np.linalg.inv(T)
@@ -239,7 +240,7 @@ def _pmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def stroh_polynomial_parts(Q, R, T) -> np.ndarray:
+def stroh_polynomial_parts(Q: np.ndarray, R: np.ndarray, T: np.ndarray) -> np.ndarray:
     """Coefficients of det(G(p) - X I), G(p) = Q + p (R + R^T) + p^2 T, by powers of X and p.
 
     Returns
@@ -267,7 +268,8 @@ def stroh_polynomial_parts(Q, R, T) -> np.ndarray:
     return parts
 
 
-def stroh_polynomial(Q, R, T, X, parts=None) -> np.ndarray:
+def stroh_polynomial(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray,
+                     parts: np.ndarray | None = None) -> np.ndarray:
     """Coefficients of det(Q - X I + p (R + R^T) + p^2 T), ascending in p, shape (m, 2d + 1).
 
     Its roots are the Stroh eigenvalues p (the eigenvalues of N(X)): a partial wave
@@ -378,7 +380,8 @@ def _monic(roots: np.ndarray) -> np.ndarray:
     return c[..., ::-1]
 
 
-def impedance(Q, R, T, X, derivative: bool = False, N0=None, p_guess=None, parts=None) -> dict:
+def impedance(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, derivative: bool = False,
+              N0: np.ndarray | None = None, p_guess: np.ndarray | None = None, parts: np.ndarray | None = None) -> dict:
     """Surface impedance Z(X) and the decaying Stroh eigenvalues, vectorised.
 
     Parameters

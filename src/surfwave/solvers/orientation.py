@@ -29,8 +29,10 @@ array([ 0.4082,  0.4082, -0.8165])
 from __future__ import annotations
 
 import re
+from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 
@@ -100,12 +102,12 @@ def _normal(surface) -> np.ndarray:
     return hkl / np.linalg.norm(hkl)
 
 
-def surface_normal(surface) -> np.ndarray:
+def surface_normal(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
     """Unit inward normal x2 = (h, k, l)/|(h, k, l)| of "(hkl)", crystal axes, shape (3,)."""
     return _normal(surface)
 
 
-def reference_direction(surface) -> np.ndarray:
+def reference_direction(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
     """Unit reference direction (angle 0) of a surface, crystal axes, shape (3,).
 
     (001): [100]; (110): [001]; (111): [1-10]; rule for any (hkl) in the module docstring.
@@ -125,7 +127,7 @@ def _frames(x1: np.ndarray, n: np.ndarray) -> np.ndarray:
     return np.stack([x1, np.broadcast_to(n, x1.shape), x3], axis=-2)
 
 
-def direction_angle(surface, direction: str) -> float:
+def direction_angle(surface: str | Sequence[float] | np.ndarray, direction: str) -> float:
     """Angle (degrees, in (-180, 180]) of a Miller direction in the surface from the reference."""
     R = lab_axes(surface, direction)
     n = _normal(surface)
@@ -133,7 +135,7 @@ def direction_angle(surface, direction: str) -> float:
     return float(np.degrees(np.arctan2(R[0] @ np.cross(n, r), R[0] @ r)))
 
 
-def lab_axes(surface, direction) -> np.ndarray:
+def lab_axes(surface: str | Sequence[float] | np.ndarray, direction: str | ArrayLike) -> np.ndarray:
     """Lab axes (rows x1, x2, x3) in crystal axes for a surface and a propagation direction.
 
     Parameters

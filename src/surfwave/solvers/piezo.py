@@ -29,7 +29,10 @@ Computations run in scaled units: A / max|A|, eps / max|eps|, e / sqrt(max|A| ma
 """
 from __future__ import annotations
 
+from typing import Sequence
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
@@ -99,7 +102,7 @@ def _flux(Q, R, E, r, a0, free, eps0, p) -> np.ndarray:
     return np.stack(out, axis=-1)
 
 
-def _check(A, e, eps, rho, electrical):
+def _check(A, e, eps, rho, electrical) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
     if A.ndim == 4:
         A, e, eps = A[None], e[None] if e.ndim == 3 else e, eps[None] if eps.ndim == 2 else eps
@@ -129,7 +132,8 @@ def _check(A, e, eps, rho, electrical):
     return A, e, eps, rho, el == "free"
 
 
-def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12) -> dict:
+def piezo_surface_wave(A: ArrayLike, e: ArrayLike, eps: ArrayLike, rho: ArrayLike, *,
+                       electrical: str | Sequence[str] | np.ndarray = "free", tol: float = 1e-12) -> dict:
     """Subsonic surface acoustic wave of a piezoelectric half space, vectorised over m points.
 
     Parameters
@@ -183,7 +187,7 @@ def piezo_surface_wave(A, e, eps, rho, *, electrical="free", tol: float = 1e-12)
     return _solve(_prepare(A, e, eps, rho), free, np.arange(m), tol)
 
 
-def coupling_coefficient(A, e, eps, rho, *, tol: float = 1e-12) -> dict:
+def coupling_coefficient(A: ArrayLike, e: ArrayLike, eps: ArrayLike, rho: ArrayLike, *, tol: float = 1e-12) -> dict:
     """K^2 = 2 (c_free - c_metallized) / c_free with both speeds; dict of (m,) arrays.
 
     One call solving both conditions: the blocks, the limiting speed, the Stroh polynomial and

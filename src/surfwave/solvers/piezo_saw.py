@@ -10,6 +10,8 @@ the elastic answer, supersonic waves included).
 """
 from __future__ import annotations
 
+from typing import Sequence
+
 import numpy as np
 
 from surfwave.solvers.leaky import leaky_wave
@@ -26,7 +28,8 @@ PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "p
 DELTA_EXACT = 1e-10
 
 
-def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, leaky: bool = True) -> dict:
+def piezo_saw(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *, electrical: str = "free",
+              tol: float = 1e-12, leaky: bool = True) -> dict:
     """Free and metallized SAW, K^2, leaky wave and power flow of m piezoelectric points (lab, SI).
 
     Parameters
@@ -64,8 +67,9 @@ def piezo_saw(A, rho, e, eps, *, electrical: str = "free", tol: float = 1e-12, l
     return piezo_saw_conditions(A, rho, e, eps, conditions=(electrical,), tol=tol, leaky=leaky)[electrical]
 
 
-def piezo_saw_conditions(A, rho, e, eps, *, conditions=ELECTRICAL, tol: float = 1e-12,
-                         leaky: bool = True) -> dict[str, dict]:
+def piezo_saw_conditions(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *,
+                         conditions: Sequence[str | None] = ELECTRICAL, tol: float = 1e-12,
+                         leaky: bool = True) -> dict[str | None, dict]:
     """:func:`piezo_saw` for several electrical conditions from one set of solves.
 
     The subsonic search always solves both conditions (K^2 needs both) and, for a piezoelectric

@@ -20,6 +20,8 @@ sub-problem's surface wave above the full X_L is ``supersonic_decoupled``.
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from surfwave.solvers.impedance import lowest_eigenpair
@@ -39,7 +41,7 @@ SYMMETRY_TOL = 1e-10
 PARTITIONS = {"sagittal+phi": ([0, 1, 3], [2]), "sagittal": ([0, 1], [2, 3])}
 
 
-def mirror_partition(Q, R, T, tol: float = SYMMETRY_TOL) -> np.ndarray:
+def mirror_partition(Q: np.ndarray, R: np.ndarray, T: np.ndarray, tol: float = SYMMETRY_TOL) -> np.ndarray:
     """Which split of (u1, u2, u3, phi) the generalised blocks allow, (m,) object.
 
     A split S | S' holds where every coupling entry Q_JK, R_JK, R_KJ, T_JK with J in S, K in S'
@@ -61,7 +63,7 @@ def mirror_partition(Q, R, T, tol: float = SYMMETRY_TOL) -> np.ndarray:
     return out
 
 
-def effective(Z, free, eps0, nm: int) -> np.ndarray:
+def effective(Z: np.ndarray, free: np.ndarray, eps0: np.ndarray, nm: int) -> np.ndarray:
     """Mechanical nm x nm impedance with the electrical condition applied (Hermitian), (m, nm, nm).
 
     free: Z_mm - Z_me (Z_ee - eps0)^-1 Z_em (open circuit, b_e = i eps0 a_e); else Z_mm (phi = 0).
@@ -76,7 +78,7 @@ def effective(Z, free, eps0, nm: int) -> np.ndarray:
     return 0.5 * (Zf + np.conj(np.swapaxes(Zf, -1, -2)))
 
 
-def lowest(Z, free, eps0, nm: int) -> tuple[np.ndarray, np.ndarray]:
+def lowest(Z: np.ndarray, free: np.ndarray, eps0: np.ndarray, nm: int) -> tuple[np.ndarray, np.ndarray]:
     """Lowest eigenvalue (m,) of the effective impedance and the extended vector a = (u, phi) (m, n).
 
     u: unit eigenvector; phi = -Z_em u / (Z_ee - eps0) (free) or 0 (metallized). NaN rows of Z
@@ -94,7 +96,9 @@ def lowest(Z, free, eps0, nm: int) -> tuple[np.ndarray, np.ndarray]:
     return lam, np.concatenate([u, ph[:, None]], axis=-1)
 
 
-def root_search(Q, R, T, XL, free, eps0, tol, parts, nm: int, first=None):
+def root_search(Q: np.ndarray, R: np.ndarray, T: np.ndarray, XL: np.ndarray, free: np.ndarray, eps0: np.ndarray,
+                tol: float, parts: np.ndarray, nm: int, first: dict[str, Any] | None = None
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]]:
     """Subsonic root X in (0, XL) of the lowest eigenvalue lam of the effective impedance.
 
     Safeguarded Newton / inverse-Hermite iteration in t = sqrt(1 - X/XL) from ``T_START``,

@@ -11,6 +11,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.solvers.impedance import _monic, _pmul, lowest_eigenvalue_step, track_roots
 
@@ -23,7 +24,7 @@ LIMIT_WINDOW = 0.1
 LIMIT_STEPS = 12
 
 
-def generalised_blocks(A, e, eps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def generalised_blocks(A: np.ndarray, e: np.ndarray, eps: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Generalised Stroh blocks Q_JK = E_J1K1, R_JK = E_J1K2, T_JK = E_J2K2 (index 3 electric).
 
     Parameters
@@ -43,7 +44,7 @@ def generalised_blocks(A, e, eps) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return E[:, :, 0, :, 0], E[:, :, 0, :, 1], E[:, :, 1, :, 1]
 
 
-def generalised_tensor(A, e, eps) -> np.ndarray:
+def generalised_tensor(A: np.ndarray, e: np.ndarray, eps: np.ndarray) -> np.ndarray:
     """E_IjKl, shape (m, 4, 3, 4, 3): E_ijkl = A_ijkl, E_ij3l = e_lij, E_3jkl = e_jkl, E_3j3l = -eps_jl."""
     A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
     m = A.shape[0]
@@ -55,7 +56,7 @@ def generalised_tensor(A, e, eps) -> np.ndarray:
     return E
 
 
-def piezo_bulk_speeds(A, e, eps, rho, n) -> np.ndarray:
+def piezo_bulk_speeds(A: np.ndarray, e: np.ndarray, eps: np.ndarray, rho: ArrayLike, n: ArrayLike) -> np.ndarray:
     """Speeds of the three piezoelectrically stiffened bulk waves along unit wave normals n.
 
     Eigenvalues of Gamma_ik + gamma_i gamma_k / epsilon(n), Gamma_ik = A_ijkl n_j n_l,
@@ -72,11 +73,11 @@ def piezo_bulk_speeds(A, e, eps, rho, n) -> np.ndarray:
     ndarray, shape (m, 3), m/s, ascending (NaN where rho v^2 < 0).
     """
     A, e, eps = (np.asarray(x, dtype=float) for x in (A, e, eps))
-    n = np.broadcast_to(np.asarray(n, dtype=float), (A.shape[0], 3))
-    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
-    G = np.einsum("mijkl,mj,ml->mik", A, n, n)
-    g = np.einsum("mkij,mk,mj->mi", e, n, n)
-    en = np.einsum("mkl,mk,ml->m", eps, n, n)
+    u = np.broadcast_to(np.asarray(n, dtype=float), (A.shape[0], 3))
+    u = u / np.linalg.norm(u, axis=-1, keepdims=True)
+    G = np.einsum("mijkl,mj,ml->mik", A, u, u)
+    g = np.einsum("mkij,mk,mj->mi", e, u, u)
+    en = np.einsum("mkl,mk,ml->m", eps, u, u)
     w = np.linalg.eigvalsh(G + g[:, :, None] * g[:, None, :] / en[:, None, None])
     with np.errstate(invalid="ignore"):
         return np.sqrt(w / np.broadcast_to(np.asarray(rho, dtype=float), (A.shape[0],))[:, None])
@@ -152,7 +153,7 @@ def _lowest_sym3_parts(s00, s11, s22, d, e, f) -> np.ndarray:
     return q + 2.0 * p * np.cos(np.arccos(np.clip(r, -1.0, 1.0)) / 3.0 + 2.0 * np.pi / 3.0)
 
 
-def limiting_x(Q, R, T, nm=None) -> np.ndarray:
+def limiting_x(Q: np.ndarray, R: np.ndarray, T: np.ndarray, nm: int | None = None) -> np.ndarray:
     """Limiting X_L = min over sagittal wave normals of the stiffened trace rho v^2, shape (m,).
 
     A grid of ``LIMIT_GRID`` angles (closed-form eigenvalues) finds the local minima; the
@@ -223,7 +224,7 @@ def _refine(Q, R, T, nm: int, phi0, h) -> np.ndarray:
     return best
 
 
-def stroh_matrix(Q, R, T, X, nm=None) -> np.ndarray:
+def stroh_matrix(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, nm: int | None = None) -> np.ndarray:
     """Generalised Stroh matrix N(X), (m, 2n, 2n): mass X on the first ``nm`` (mechanical) components."""
     n = Q.shape[-1]
     D = np.diag((np.arange(n) < _nm(Q, nm)).astype(float))
@@ -253,7 +254,7 @@ def _minor(G: np.ndarray, rows: tuple, cols: tuple, cache: dict) -> np.ndarray:
     return cache[key]
 
 
-def stroh_polynomial_parts(Q, R, T, nm=None) -> np.ndarray:
+def stroh_polynomial_parts(Q: np.ndarray, R: np.ndarray, T: np.ndarray, nm: int | None = None) -> np.ndarray:
     """Coefficients of P(p, X) = det(Q + p (R + R^T) + p^2 T - X D) by powers of X and p, (m, nm + 1, 2n + 1).
 
     D = diag(1, .., 1, 0) (mass on the ``nm`` mechanical components, default n - 1); by
@@ -273,7 +274,8 @@ def stroh_polynomial_parts(Q, R, T, nm=None) -> np.ndarray:
     return parts
 
 
-def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None, N0=None) -> dict:
+def impedance(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, p_guess: np.ndarray | None = None,
+              parts: np.ndarray | None = None, nm: int | None = None, N0: np.ndarray | None = None) -> dict:
     """Generalised surface impedance Z = -i B A^-1 (n x n Hermitian) at real X, vectorised.
 
     The decaying subspace is the column space of W = f(N), f(z) = prod_j (z - conj(p_j)) over the
@@ -303,6 +305,7 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None, N0=None) -> dict:
     ok = np.zeros(m, dtype=bool)
     subsonic = np.ones(m, dtype=bool)
     if p_guess is not None:
+        assert parts is not None  # given with p_guess (docstring)
         c = parts[:, -1]
         for k in range(parts.shape[1] - 2, -1, -1):
             c = c * X[:, None] + parts[:, k]
@@ -341,7 +344,7 @@ def impedance(Q, R, T, X, p_guess=None, parts=None, nm=None, N0=None) -> dict:
     return {"Z": Z, "M": M, "N": N, "W1": W1, "c": c, "p": up, "subsonic": subsonic}
 
 
-def impedance_slope(r: dict, a: np.ndarray, nm=None) -> np.ndarray:
+def impedance_slope(r: dict, a: np.ndarray, nm: int | None = None) -> np.ndarray:
     """a^H (dZ/dX) a for the impedance ``r`` of :func:`impedance` and vectors a (m, n); (m,) real.
 
     M = B A^-1 solves the Riccati equation M N1 + M N2 M = N3 + N4 M; dN3/dX = D (the mass

@@ -27,7 +27,10 @@ True
 """
 from __future__ import annotations
 
+from typing import Iterable
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexagonal_voigt
@@ -36,11 +39,12 @@ from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cubic_voigt, hexa
 EPS0 = 8.8541878128e-12
 
 
-def _arrays(*values):
+def _arrays(*values: ArrayLike) -> tuple[np.ndarray, ...]:
     return np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
 
 
-def trigonal_3m_voigt(C11, C12, C13, C14, C33, C44) -> np.ndarray:
+def trigonal_3m_voigt(C11: ArrayLike, C12: ArrayLike, C13: ArrayLike, C14: ArrayLike, C33: ArrayLike,
+                      C44: ArrayLike) -> np.ndarray:
     """Voigt stiffness of a trigonal crystal of class 3m (or 32, -3m), standard setting.
 
     Parameters
@@ -71,17 +75,17 @@ def trigonal_3m_voigt(C11, C12, C13, C14, C33, C44) -> np.ndarray:
 trigonal_32_voigt = trigonal_3m_voigt
 
 
-def hexagonal_6mm_voigt(C11, C12, C13, C33, C44) -> np.ndarray:
+def hexagonal_6mm_voigt(C11: ArrayLike, C12: ArrayLike, C13: ArrayLike, C33: ArrayLike, C44: ArrayLike) -> np.ndarray:
     """Voigt stiffness of a hexagonal crystal (6mm and every hexagonal class), c along x3."""
     return hexagonal_voigt(C11, C12, C13, C33, C44)
 
 
-def cubic_43m_voigt(C11, C12, C44) -> np.ndarray:
+def cubic_43m_voigt(C11: ArrayLike, C12: ArrayLike, C44: ArrayLike) -> np.ndarray:
     """Voigt stiffness of a cubic crystal (-43m and every cubic class), cube axes."""
     return cubic_voigt(C11, C12, C44)
 
 
-def trigonal_3m_piezo(e15, e22, e31, e33) -> np.ndarray:
+def trigonal_3m_piezo(e15: ArrayLike, e22: ArrayLike, e31: ArrayLike, e33: ArrayLike) -> np.ndarray:
     """Piezoelectric stress constants of class 3m, mirror perpendicular to X (IEEE setting).
 
     Returns
@@ -101,7 +105,7 @@ def trigonal_3m_piezo(e15, e22, e31, e33) -> np.ndarray:
     return e
 
 
-def trigonal_32_piezo(e11, e14) -> np.ndarray:
+def trigonal_32_piezo(e11: ArrayLike, e14: ArrayLike) -> np.ndarray:
     """Piezoelectric stress constants of class 32, X along a 2-fold axis (IEEE setting).
 
     Returns
@@ -119,7 +123,7 @@ def trigonal_32_piezo(e11, e14) -> np.ndarray:
     return e
 
 
-def hexagonal_6mm_piezo(e15, e31, e33) -> np.ndarray:
+def hexagonal_6mm_piezo(e15: ArrayLike, e31: ArrayLike, e33: ArrayLike) -> np.ndarray:
     """Piezoelectric stress constants of class 6mm (wurtzite), c along x3; shape (..., 3, 6)."""
     e15, e31, e33 = _arrays(e15, e31, e33)
     e = np.zeros(e15.shape + (3, 6))
@@ -129,7 +133,7 @@ def hexagonal_6mm_piezo(e15, e31, e33) -> np.ndarray:
     return e
 
 
-def cubic_43m_piezo(e14) -> np.ndarray:
+def cubic_43m_piezo(e14: ArrayLike) -> np.ndarray:
     """Piezoelectric stress constants of class -43m (zinc blende), cube axes; shape (..., 3, 6)."""
     (e14,) = _arrays(e14)
     e = np.zeros(e14.shape + (3, 6))
@@ -137,7 +141,7 @@ def cubic_43m_piezo(e14) -> np.ndarray:
     return e
 
 
-def uniaxial_eps(eps11, eps33) -> np.ndarray:
+def uniaxial_eps(eps11: ArrayLike, eps33: ArrayLike) -> np.ndarray:
     """Permittivity of a uniaxial crystal (trigonal, hexagonal), optic axis x3; shape (..., 3, 3)."""
     eps11, eps33 = _arrays(eps11, eps33)
     eps = np.zeros(eps11.shape + (3, 3))
@@ -146,7 +150,7 @@ def uniaxial_eps(eps11, eps33) -> np.ndarray:
     return eps
 
 
-def piezo_voigt_to_tensor(e6) -> np.ndarray:
+def piezo_voigt_to_tensor(e6: ArrayLike) -> np.ndarray:
     """e_kij from the Voigt e_kI (e_k(ij) = e_kI, no factors 2); (..., 3, 6) -> (..., 3, 3, 3)."""
     e6 = np.asarray(e6, dtype=float)
     if e6.shape[-2:] != (3, 6):
@@ -154,7 +158,7 @@ def piezo_voigt_to_tensor(e6) -> np.ndarray:
     return e6[..., :, VOIGT_INDEX]
 
 
-def piezo_tensor_to_voigt(e) -> np.ndarray:
+def piezo_tensor_to_voigt(e: ArrayLike) -> np.ndarray:
     """Voigt e_kI of a piezoelectric tensor e_kij; (..., 3, 3, 3) -> (..., 3, 6)."""
     e = np.asarray(e, dtype=float)
     i = np.array([p[0] for p in VOIGT_PAIRS])
@@ -162,7 +166,7 @@ def piezo_tensor_to_voigt(e) -> np.ndarray:
     return e[..., :, i, j]
 
 
-def rotate3(e, R) -> np.ndarray:
+def rotate3(e: ArrayLike, R: ArrayLike) -> np.ndarray:
     """A third-rank tensor in rotated axes: e'_abc = R_ai R_bj R_ck e_ijk.
 
     Parameters
@@ -214,7 +218,7 @@ def point_group_generators(crystal_class: str) -> list[np.ndarray]:
     return gens[crystal_class]
 
 
-def invariance_residual(tensor, generators) -> float:
+def invariance_residual(tensor: ArrayLike, generators: Iterable[np.ndarray]) -> float:
     """Largest |T' - T| over the generators, for a tensor of rank 2, 3 or 4 (shape (3,)*rank)."""
     T = np.asarray(tensor, dtype=float)
     worst = 0.0
@@ -231,13 +235,14 @@ def invariance_residual(tensor, generators) -> float:
     return worst
 
 
-def is_invariant(tensor, generators, rtol: float = 1e-12) -> bool:
+def is_invariant(tensor: ArrayLike, generators: Iterable[np.ndarray], rtol: float = 1e-12) -> bool:
     """Whether a tensor is unchanged by every generator, to ``rtol`` of its largest entry."""
     T = np.asarray(tensor, dtype=float)
     return invariance_residual(T, generators) <= rtol * max(float(np.max(np.abs(T))), 1e-300)
 
 
-def stiffened_bulk_speeds(C, e, eps, rho, n) -> tuple[np.ndarray, np.ndarray]:
+def stiffened_bulk_speeds(C: ArrayLike, e: ArrayLike, eps: ArrayLike, rho: ArrayLike,
+                          n: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Bulk (plane) wave speeds of a piezoelectric crystal along ``n``, quasi-static field.
 
     Christoffel tensor with piezoelectric stiffening:
@@ -263,12 +268,12 @@ def stiffened_bulk_speeds(C, e, eps, rho, n) -> tuple[np.ndarray, np.ndarray]:
     polarisations : ndarray, shape (..., 3, 3)
         Column k is the displacement of speed k.
     """
-    n = np.asarray(n, dtype=float)
-    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    u = np.asarray(n, dtype=float)
+    u = u / np.linalg.norm(u, axis=-1, keepdims=True)
     C, e, eps = (np.asarray(a, dtype=float) for a in (C, e, eps))
-    G = np.einsum("...ijkl,...j,...l->...ik", C, n, n)
-    g = np.einsum("...pij,...p,...j->...i", e, n, n)
-    en = np.einsum("...p,...pq,...q->...", n, eps, n)
+    G = np.einsum("...ijkl,...j,...l->...ik", C, u, u)
+    g = np.einsum("...pij,...p,...j->...i", e, u, u)
+    en = np.einsum("...p,...pq,...q->...", u, eps, u)
     G = G + g[..., :, None] * g[..., None, :] / en[..., None, None]
     w, v = np.linalg.eigh(G)
     return np.sqrt(w / np.asarray(rho, dtype=float)[..., None]), v

@@ -32,8 +32,10 @@ equals S_iykl when sigma_yy = sigma_xy = 0 (free surface in equilibrium, docs/ph
 from __future__ import annotations
 
 import itertools
+from typing import Literal, overload
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError, SymmetryError
 from surfwave.solvers.cubic import newton_polish as _polish
@@ -65,7 +67,8 @@ POLISH_STEPS = 2
 BLOCK = 8192
 
 
-def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
+def secular_coefficients(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray,
+                         f: np.ndarray) -> tuple[np.ndarray, ...]:
     """Coefficients (c3, c2, c1, c0) of Eq. (17) as a cubic polynomial in X = rho c_R^2.
 
     (X - c)[d (X - a) + f^2]^2 - b d (X - a)[(X - c) + b]^2.
@@ -82,7 +85,8 @@ def secular_coefficients(a, b, c, d, f) -> tuple[np.ndarray, ...]:
     return c3, c2, c1, c0
 
 
-def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
+def decay_constants(X: ArrayLike, a: ArrayLike, b: ArrayLike, c: ArrayLike, d: ArrayLike,
+                    f: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The two decay constants kappa (principal square roots, Re >= 0) at X = rho c^2.
 
     Returns
@@ -102,7 +106,8 @@ def decay_constants(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
     return np.sqrt(k2a.astype(complex)), np.sqrt(k2b.astype(complex))
 
 
-def boundary_function(X, a, b, c, d, f) -> tuple[np.ndarray, np.ndarray]:
+def boundary_function(X: ArrayLike, a: ArrayLike, b: ArrayLike, c: ArrayLike, d: ArrayLike,
+                      f: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Unsquared free-surface condition G(X) with p = +sqrt(p^2), and its magnitude scale.
 
     The four-term form of the module docstring, elementwise (G also equals
@@ -349,7 +354,8 @@ def _solve_flat(S: np.ndarray, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarr
     return X, has
 
 
-def solve(S: np.ndarray, rho=1.0, c2_SH=None, rtol: float = 1e-7) -> dict[str, np.ndarray]:
+def solve(S: np.ndarray, rho: ArrayLike = 1.0, c2_SH: np.ndarray | None = None,
+          rtol: float = 1e-7) -> dict[str, np.ndarray]:
     """Rayleigh velocity with root selection and wave type, vectorised over leading axes.
 
     Parameters
@@ -413,7 +419,12 @@ def _check_rho(rho) -> np.ndarray:
     return r
 
 
-def rayleigh_c2(S: np.ndarray, rho=1.0, *, reasons: bool = False):
+@overload
+def rayleigh_c2(S: np.ndarray, rho: ArrayLike = 1.0, *, reasons: Literal[False] = False) -> np.ndarray: ...
+@overload
+def rayleigh_c2(S: np.ndarray, rho: ArrayLike = 1.0, *, reasons: Literal[True]) -> tuple[np.ndarray, np.ndarray]: ...
+def rayleigh_c2(S: np.ndarray, rho: ArrayLike = 1.0, *,
+                reasons: bool = False) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
     """Squared Rayleigh speed from the stress derivatives; NaN where no surface wave exists.
 
     Parameters
@@ -458,8 +469,9 @@ def rayleigh_c2(S: np.ndarray, rho=1.0, *, reasons: bool = False):
     """
     r = _check_rho(rho)
     S = real_array(S, "S")                                    # numbers only (one line, not a numpy error)
-    if S.shape[-4:] != (2, 2, 2, 2):
-        raise InputError(f"S must have shape (..., 2, 2, 2, 2) (the in-plane stress derivatives), got {S.shape}")
+    if S.ndim < 4 or S.shape[-4:] not in ((2, 2, 2, 2), (3, 3, 3, 3)):
+        raise InputError(f"S must have shape (..., 2, 2, 2, 2) or (..., 3, 3, 3, 3) (stress derivatives, lab "
+                         f"frame), got {S.shape}")
     X, has = (v.reshape(S.shape[:-4]) for v in _solve_flat(S))
     c2 = np.where(has, X / r, np.nan)
     if not reasons:
@@ -468,7 +480,7 @@ def rayleigh_c2(S: np.ndarray, rho=1.0, *, reasons: bool = False):
     return c2, _reasons(np.broadcast_to(has, c2.shape), b, c, d)
 
 
-def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
+def cauchy_c2(c2_L_par: np.ndarray, c2_T_par: np.ndarray, c2_L_perp: np.ndarray, c2_T_perp: np.ndarray) -> np.ndarray:
     """Eq. (20): c_R^2 from the four sound speeds when S_xyxy = S_yyxx (pair forces, sigma_yy = 0)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         return 0.5 * (c2_L_par + c2_T_par) - 0.5 * np.sqrt(
@@ -476,13 +488,13 @@ def cauchy_c2(c2_L_par, c2_T_par, c2_L_perp, c2_T_perp) -> np.ndarray:
         )
 
 
-def triangular_c2(d_over_d0) -> np.ndarray:
+def triangular_c2(d_over_d0: ArrayLike) -> np.ndarray:
     """Eq. (16): (m / K d0^2) c_R^2 of the harmonic triangular lattice, x = d_x/d0 = d_over_d0/2."""
     x = 0.5 * np.asarray(d_over_d0, dtype=float)
     return 5 * x**2 - x - np.sqrt(4 * x**5 + x**4 - 2 * x**3 + x**2)
 
 
-def unstressed_residual(gamma, C11, C12, C44, C22=None) -> np.ndarray:
+def unstressed_residual(gamma: ArrayLike, C11: float, C12: float, C44: float, C22: float | None = None) -> np.ndarray:
     """Eq. (21) residual, gamma = rho c_R^2 / C44 (Voigt constants; C22 defaults to C11).
 
     gamma^2 (gamma - C11/C44) - (C22/C44)(gamma - 1)[gamma - C11/C44 + C12^2/(C22 C44)]^2.

@@ -27,6 +27,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.solvers import impedance as imp
@@ -52,7 +53,7 @@ REASON_NOROOT_MIRROR = ("no surface wave: neither below v_L nor, for the decoupl
 
 
 
-def wave_propagation_tensor(C, sigma, *, rtol: float = 1e-9) -> np.ndarray:
+def wave_propagation_tensor(C: ArrayLike, sigma: ArrayLike, *, rtol: float = 1e-9) -> np.ndarray:
     """A_ijkl = C_ijkl + sigma_jl delta_ik, refusing prestress that loads the surface.
 
     Parameters
@@ -168,7 +169,9 @@ def _root_search(Q, R, T, XL, tol: float) -> tuple[np.ndarray, ...]:
     return X, found, U, P
 
 
-def bracketed_step(lam, dlam, t, lo, hi, bad, previous, XL, tol: float):
+def bracketed_step(lam: np.ndarray, dlam: np.ndarray, t: np.ndarray, lo: np.ndarray, hi: np.ndarray, bad: np.ndarray,
+                   previous: tuple[np.ndarray, np.ndarray, np.ndarray], XL: np.ndarray,
+                   tol: float) -> tuple[np.ndarray, ...]:
     """One safeguarded step of the root search in t = sqrt(1 - X/X_L) (elastic and piezoelectric).
 
     Newton's step lam / (d lam/dt) with the inverse cubic Hermite correction through the previous
@@ -247,7 +250,7 @@ def _phase(u: np.ndarray) -> np.ndarray:
     return u * phase[:, None]
 
 
-def surface_wave(A, rho=1.0, *, mirror=None, tol: float = 1e-12) -> dict:
+def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None = None, tol: float = 1e-12) -> dict:
     """Surface wave of a half space with wave-propagation tensor A, vectorised.
 
     Parameters

@@ -15,6 +15,7 @@ True
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 #: Tensor index pairs of the six Voigt indices (0-based): 11, 22, 33, 23, 13, 12.
 VOIGT_PAIRS = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
@@ -22,7 +23,7 @@ VOIGT_PAIRS = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
 VOIGT_INDEX = np.array([[0, 5, 4], [5, 1, 3], [4, 3, 2]])
 
 
-def voigt_to_tensor(C6) -> np.ndarray:
+def voigt_to_tensor(C6: ArrayLike) -> np.ndarray:
     """Full stiffness C_ijkl from its Voigt matrix.
 
     Parameters
@@ -40,7 +41,7 @@ def voigt_to_tensor(C6) -> np.ndarray:
     return C6[..., VOIGT_INDEX[:, :, None, None], VOIGT_INDEX[None, None, :, :]]
 
 
-def tensor_to_voigt(C) -> np.ndarray:
+def tensor_to_voigt(C: ArrayLike) -> np.ndarray:
     """Voigt matrix C_IJ of a stiffness tensor, shape (..., 3, 3, 3, 3) -> (..., 6, 6)."""
     C = np.asarray(C, dtype=float)
     i = np.array([p[0] for p in VOIGT_PAIRS])
@@ -48,7 +49,7 @@ def tensor_to_voigt(C) -> np.ndarray:
     return C[..., i[:, None], j[:, None], i[None, :], j[None, :]]
 
 
-def cubic_voigt(C11, C12, C44) -> np.ndarray:
+def cubic_voigt(C11: ArrayLike, C12: ArrayLike, C44: ArrayLike) -> np.ndarray:
     """Voigt stiffness of a cubic crystal in its cube axes; scalars or arrays -> (..., 6, 6)."""
     C11, C12, C44 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (C11, C12, C44)))
     C6 = np.zeros(C11.shape + (6, 6))
@@ -60,7 +61,7 @@ def cubic_voigt(C11, C12, C44) -> np.ndarray:
     return C6
 
 
-def hexagonal_voigt(C11, C12, C13, C33, C44) -> np.ndarray:
+def hexagonal_voigt(C11: ArrayLike, C12: ArrayLike, C13: ArrayLike, C33: ArrayLike, C44: ArrayLike) -> np.ndarray:
     """Voigt stiffness of a hexagonal (transversely isotropic) crystal, c axis along x3.
 
     C66 = (C11 - C12)/2. Scalars or arrays -> (..., 6, 6).
@@ -77,7 +78,7 @@ def hexagonal_voigt(C11, C12, C13, C33, C44) -> np.ndarray:
     return C6
 
 
-def rotate4(C, R) -> np.ndarray:
+def rotate4(C: ArrayLike, R: ArrayLike) -> np.ndarray:
     """A fourth-rank tensor in rotated axes: C'_abcd = R_ai R_bj R_ck R_dl C_ijkl.
 
     Parameters
@@ -98,7 +99,7 @@ def rotate4(C, R) -> np.ndarray:
     return np.einsum("...dl,...abcl->...abcd", R, out)
 
 
-def rotate2(s, R) -> np.ndarray:
+def rotate2(s: ArrayLike, R: ArrayLike) -> np.ndarray:
     """A second-rank tensor in rotated axes: s'_ab = R_ai R_bj s_ij; shapes (..., 3, 3)."""
     return np.einsum("...ai,...ij,...bj->...ab", np.asarray(R, dtype=float), np.asarray(s, dtype=float),
                      np.asarray(R, dtype=float))
