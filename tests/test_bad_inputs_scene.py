@@ -162,3 +162,17 @@ def test_radians_note_for_a_scene(tmp_path, capsys):
     path = write(tmp_path, PIEZO)
     assert main(["scenes", "--configfile", path]) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_the_rest_of_a_broken_scene_is_checked_too():
+    """Every problem in one run: a mistyped key, a mistyped material and a stress in Pa (the
+    physical check of what is left of the scene) are reported together."""
+    found = problems({"materials": ["LiNbO3", "LiNbO"], "euler": {"theta": -52.0}, "electrcal": ["free"],
+                      "stress": [1.0e8]})
+    text = "\n".join(found)
+    assert len(found) == 3, found
+    assert "unknown key 'electrcal'" in text and "value 'LiNbO'" in text and "looks like Pa" in text
+    found = problems({**CRYSTAL, "materials": ["Coper"], "stress": [1.0e8]})
+    assert len(found) == 1 and "did you mean" in found[0] and "Cu" in found[0]  # nothing left to check: one line
+    found = problems({**LATTICE, "potential": ["lj"], "d_over_d0": [1.5e0, 3.0]})
+    assert any("unknown key 'potential'" in f for f in found) and any("d/d0 = 3" in f for f in found), found

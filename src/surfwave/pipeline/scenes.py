@@ -264,7 +264,58 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     }, []
 
 
-def _name_problems(name: str, raw: dict) -> list[str]:
+def _scene_check(name: str, raw: dict, sources: dict[str, list[str]] | None) -> tuple[dict | None, list[str]]:
+    """The physical checks and expansion of one schema-valid scene, by its kind."""
+    check = check_crystal_scene if "materials" in raw else _check_scene  # real crystals name materials
+    if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
+        where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
+        check = partial(check_piezo_scene, base_dir=where)
+    return check(name, raw)
+
+
+def _rest_problems(name: str, raw: dict, errors: list, unknown: dict[str, set],
+                   sources: dict[str, list[str]] | None) -> list[str]:
+    """Problems of the physical checks of a scene that already has problems, on what is left of it.
+
+    The keys with schema errors (and unknown keys) are dropped, the unknown names removed from
+    their lists; if the scene keeps its kind and every key that kind requires, the checks run on
+    the rest and their problems are returned (so a mistyped key and a stress in Pa come in one
+    run). Best effort: a check that fails otherwise on a scene already known to be broken adds
+    nothing.
+    """
+    from surfwave.pipeline.config_messages import scene_kind
+
+    drop: set = set()
+    for e in errors:
+        path = list(e.absolute_path)
+        if len(path) < 2 or path[0] != "scenes" or str(path[1]) != name:
+            continue
+        if len(path) == 2:
+            if e.validator != "additionalProperties" or not isinstance(e.instance, dict):
+                return []  # a missing required key, or the scene is not a mapping: nothing to check
+            props = e.schema.get("properties", {}) if isinstance(e.schema, dict) else {}
+            drop.update(k for k in e.instance if k not in props)
+        else:
+            drop.add(path[2])
+    rest = {k: v for k, v in raw.items() if k not in drop}
+    for key, names in unknown.items():
+        if isinstance(rest.get(key), list):
+            rest[key] = [v for v in rest[key] if v not in names]
+            if not rest[key]:
+                return []
+    required = {"scene": ("lattice", "loading", "potentials", "d_over_d0", "quantities", "theta", "accuracy"),
+                "crystal_scene": ("materials", "surfaces", "loading", "toec", "quantities", "accuracy"),
+                "piezo_scene": ("materials",)}
+    kind = scene_kind(rest)
+    if kind != scene_kind(raw) or any(k not in rest for k in required[kind]):
+        return []
+    try:
+        return _scene_check(name, rest, sources)[1]
+    except Exception:  # noqa: BLE001 (best effort on a scene whose problems are already reported)
+        return []
+
+
+def _name_problems(name: str, raw: dict) -> tuple[list[str], dict[str, set]]:
     """Unknown names in a scene's lists of materials, cuts or potentials (did-you-mean included).
 
     Checked even when the scene has schema problems, so that one run reports every problem
@@ -276,6 +327,7 @@ def _name_problems(name: str, raw: dict) -> list[str]:
     from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
 
     kind = scene_kind(raw)
+    unknown: dict[str, set] = {}
     lookups: dict[str, dict[str, Callable[[str], object]]] = {
         "scene": {"potentials": get_potential}, "crystal_scene": {"materials": get_material},
         "piezo_scene": {"materials": get_piezo_material, "cuts": get_cut}}
@@ -298,7 +350,8 @@ def _name_problems(name: str, raw: dict) -> list[str]:
                     except InputError:
                         pass
                 problems.append(f"scene {name!r}, key {key!r}: value {value!r}: {note}")
-    return problems
+                unknown.setdefault(key, set()).add(value)
+    return problems, unknown
 
 
 def _key_dir(name: str, key: str, sources: dict[str, list[str]] | None) -> str | None:
@@ -359,21 +412,19 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
     for name, raw in raw_scenes.items():
         if not isinstance(raw, dict):
             continue
-        named = _name_problems(name, raw)  # unknown names, reported along with any schema problem
+        named, unknown = _name_problems(name, raw)  # unknown names, reported along with any schema problem
         if name in broken or named:
-            problems += named
+            # every problem at once: the physical checks of the rest of the scene (the keys and names
+            # that passed), best effort, their problems added to those already found
+            problems += named + _rest_problems(name, raw, errors, unknown, sources)
             continue
-        # a real-crystal scene names materials (surfwave.pipeline.crystal_scenes)
-        check = check_crystal_scene if "materials" in raw else _check_scene
-        if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
-            where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
-            check = partial(check_piezo_scene, base_dir=where)
-        scene, found = check(name, raw)
+        scene, found = _scene_check(name, raw, sources)
         problems += found
         if found and len((sources or {}).get(name, [])) > 1:
             problems.append(_redefined(name, sources[name]))
         if scene is not None:
             scenes[name] = scene
+    problems = list(dict.fromkeys(problems))
     run = config.get("run", [])
     for name in run if isinstance(run, list) else []:
         if name not in raw_scenes:
