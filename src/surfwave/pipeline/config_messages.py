@@ -5,7 +5,9 @@ several shapes (``oneOf``: a list, a grid, a number) it reports the branch the v
 for, or, when the value has none of the shapes (``stress: "0.1"``, ``theta: null``), the shapes
 it may take. A scene-level unknown or missing key also says which kind of scene the keys make
 (model lattice, elastic real crystal, piezoelectric) and what that kind needs, with a
-did-you-mean for a mistyped key.
+did-you-mean for a mistyped key. :func:`name_problems` checks a scene's names (materials, cuts,
+potentials) and :func:`rest_problems` runs the physical checks on what is left of a scene that
+already has problems, so one run reports every problem of a config.
 
 Examples
 --------
@@ -17,7 +19,10 @@ Examples
 from __future__ import annotations
 
 import difflib
+from collections.abc import Callable
 from typing import Any
+
+from surfwave.errors import InputError
 
 #: Scene kinds: the schema's definition name -> (what it is called, how the config selects it,
 #: what it needs). The selection mirrors the ``if``/``then`` of the schema's ``scenes`` key.
@@ -230,3 +235,82 @@ def schema_message(err, schema: dict | None = None) -> str:
     if err.validator == "type":
         msg += _text_hint(err.instance)
     return msg + (f"; expected: {hint}" if hint else "")
+
+
+def rest_problems(name: str, raw: dict, errors: list, unknown: dict[str, set],
+                  check: Callable[[str, dict], tuple[Any, list[str]]]) -> list[str]:
+    """Problems of the physical checks of a scene that already has problems, on what is left of it.
+
+    The keys with schema errors (and unknown keys) are dropped, the unknown names removed from
+    their lists; if the scene keeps its kind and every key that kind requires, the checks run on
+    the rest and their problems are returned (so a mistyped key and a stress in Pa come in one
+    run). Best effort: a check that fails otherwise on a scene already known to be broken adds
+    nothing. ``check(name, scene)`` returns (expanded scene or None, problems).
+    """
+    drop: set = set()
+    for e in errors:
+        path = list(e.absolute_path)
+        if len(path) < 2 or path[0] != "scenes" or str(path[1]) != name:
+            continue
+        if len(path) == 2:
+            if e.validator != "additionalProperties" or not isinstance(e.instance, dict):
+                return []  # a missing required key, or the scene is not a mapping: nothing to check
+            props = e.schema.get("properties", {}) if isinstance(e.schema, dict) else {}
+            drop.update(k for k in e.instance if k not in props)
+        else:
+            drop.add(path[2])
+    rest = {k: v for k, v in raw.items() if k not in drop}
+    for key, names in unknown.items():
+        if isinstance(rest.get(key), list):
+            rest[key] = [v for v in rest[key] if v not in names]
+            if not rest[key]:
+                return []
+    required = {"scene": ("lattice", "loading", "potentials", "d_over_d0", "quantities", "theta", "accuracy"),
+                "crystal_scene": ("materials", "surfaces", "loading", "toec", "quantities", "accuracy"),
+                "piezo_scene": ("materials",)}
+    kind = scene_kind(rest)
+    if kind != scene_kind(raw) or any(k not in rest for k in required[kind]):
+        return []
+    try:
+        return check(name, rest)[1]
+    except Exception:  # noqa: BLE001 (best effort on a scene whose problems are already reported)
+        return []
+
+
+def name_problems(name: str, raw: dict) -> tuple[list[str], dict[str, set]]:
+    """Unknown names in a scene's lists of materials, cuts or potentials (did-you-mean included).
+
+    Checked even when the scene has schema problems, so that one run reports every problem
+    (a mistyped key no longer hides a mistyped material). A material of the piezoelectric
+    database in an elastic real-crystal scene is told what makes a scene piezoelectric.
+    """
+    from surfwave.model_crystals.potentials import get_potential
+    from surfwave.real_crystals.materials import get_material
+    from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
+
+    kind = scene_kind(raw)
+    unknown: dict[str, set] = {}
+    lookups: dict[str, dict[str, Callable[[str], object]]] = {
+        "scene": {"potentials": get_potential}, "crystal_scene": {"materials": get_material},
+        "piezo_scene": {"materials": get_piezo_material, "cuts": get_cut}}
+    keys = lookups[kind]
+    problems = []
+    for key, lookup in keys.items():
+        values = raw.get(key)
+        for value in values if isinstance(values, list) else ():
+            if not isinstance(value, str):
+                continue  # the schema reports it
+            try:
+                lookup(value)
+            except InputError as exc:
+                note = str(exc)
+                if kind == "crystal_scene":
+                    try:
+                        get_piezo_material(value)
+                        note = ("it is a crystal of the piezoelectric database: a piezoelectric scene gives "
+                                "'cuts' or 'euler' (Euler angles) with its materials")
+                    except InputError:
+                        pass
+                problems.append(f"scene {name!r}, key {key!r}: value {value!r}: {note}")
+                unknown.setdefault(key, set()).add(value)
+    return problems, unknown

@@ -25,13 +25,13 @@ import copy
 import re
 from functools import partial
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.model_crystals.potentials import get_potential
 from surfwave.pipeline.config_messages import join as _join
-from surfwave.pipeline.config_messages import schema_message
+from surfwave.pipeline.config_messages import name_problems, rest_problems, schema_message
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid, theta_grid  # noqa: F401 (public)
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
@@ -273,87 +273,6 @@ def _scene_check(name: str, raw: dict, sources: dict[str, list[str]] | None) -> 
     return check(name, raw)
 
 
-def _rest_problems(name: str, raw: dict, errors: list, unknown: dict[str, set],
-                   sources: dict[str, list[str]] | None) -> list[str]:
-    """Problems of the physical checks of a scene that already has problems, on what is left of it.
-
-    The keys with schema errors (and unknown keys) are dropped, the unknown names removed from
-    their lists; if the scene keeps its kind and every key that kind requires, the checks run on
-    the rest and their problems are returned (so a mistyped key and a stress in Pa come in one
-    run). Best effort: a check that fails otherwise on a scene already known to be broken adds
-    nothing.
-    """
-    from surfwave.pipeline.config_messages import scene_kind
-
-    drop: set = set()
-    for e in errors:
-        path = list(e.absolute_path)
-        if len(path) < 2 or path[0] != "scenes" or str(path[1]) != name:
-            continue
-        if len(path) == 2:
-            if e.validator != "additionalProperties" or not isinstance(e.instance, dict):
-                return []  # a missing required key, or the scene is not a mapping: nothing to check
-            props = e.schema.get("properties", {}) if isinstance(e.schema, dict) else {}
-            drop.update(k for k in e.instance if k not in props)
-        else:
-            drop.add(path[2])
-    rest = {k: v for k, v in raw.items() if k not in drop}
-    for key, names in unknown.items():
-        if isinstance(rest.get(key), list):
-            rest[key] = [v for v in rest[key] if v not in names]
-            if not rest[key]:
-                return []
-    required = {"scene": ("lattice", "loading", "potentials", "d_over_d0", "quantities", "theta", "accuracy"),
-                "crystal_scene": ("materials", "surfaces", "loading", "toec", "quantities", "accuracy"),
-                "piezo_scene": ("materials",)}
-    kind = scene_kind(rest)
-    if kind != scene_kind(raw) or any(k not in rest for k in required[kind]):
-        return []
-    try:
-        return _scene_check(name, rest, sources)[1]
-    except Exception:  # noqa: BLE001 (best effort on a scene whose problems are already reported)
-        return []
-
-
-def _name_problems(name: str, raw: dict) -> tuple[list[str], dict[str, set]]:
-    """Unknown names in a scene's lists of materials, cuts or potentials (did-you-mean included).
-
-    Checked even when the scene has schema problems, so that one run reports every problem
-    (a mistyped key no longer hides a mistyped material). A material of the piezoelectric
-    database in an elastic real-crystal scene is told what makes a scene piezoelectric.
-    """
-    from surfwave.pipeline.config_messages import scene_kind
-    from surfwave.real_crystals.materials import get_material
-    from surfwave.real_crystals.piezo_materials import get_cut, get_piezo_material
-
-    kind = scene_kind(raw)
-    unknown: dict[str, set] = {}
-    lookups: dict[str, dict[str, Callable[[str], object]]] = {
-        "scene": {"potentials": get_potential}, "crystal_scene": {"materials": get_material},
-        "piezo_scene": {"materials": get_piezo_material, "cuts": get_cut}}
-    keys = lookups[kind]
-    problems = []
-    for key, lookup in keys.items():
-        values = raw.get(key)
-        for value in values if isinstance(values, list) else ():
-            if not isinstance(value, str):
-                continue  # the schema reports it
-            try:
-                lookup(value)
-            except InputError as exc:
-                note = str(exc)
-                if kind == "crystal_scene":
-                    try:
-                        get_piezo_material(value)
-                        note = ("it is a crystal of the piezoelectric database: a piezoelectric scene gives "
-                                "'cuts' or 'euler' (Euler angles) with its materials")
-                    except InputError:
-                        pass
-                problems.append(f"scene {name!r}, key {key!r}: value {value!r}: {note}")
-                unknown.setdefault(key, set()).add(value)
-    return problems, unknown
-
-
 def _key_dir(name: str, key: str, sources: dict[str, list[str]] | None) -> str | None:
     """Directory of the last config file whose scene ``name`` gives ``key`` (the one Snakemake's
     merge keeps), where a relative path in that key is read from; None if no file gives it."""
@@ -412,11 +331,11 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
     for name, raw in raw_scenes.items():
         if not isinstance(raw, dict):
             continue
-        named, unknown = _name_problems(name, raw)  # unknown names, reported along with any schema problem
+        named, unknown = name_problems(name, raw)  # unknown names, reported along with any schema problem
         if name in broken or named:
             # every problem at once: the physical checks of the rest of the scene (the keys and names
             # that passed), best effort, their problems added to those already found
-            problems += named + _rest_problems(name, raw, errors, unknown, sources)
+            problems += named + rest_problems(name, raw, errors, unknown, partial(_scene_check, sources=sources))
             continue
         scene, found = _scene_check(name, raw, sources)
         problems += found
