@@ -38,8 +38,10 @@ cubic constants --C11 --C12 --C44, or a full 6x6 Voigt stiffness (GPa, crystal a
 surface, or --angle in degrees from the surface's reference direction ((001): [100];
 (110): [001]; (111): [1-10]) toward n x reference. Prestress: --stress S (uniaxial along
 the propagation) or nine values (the Cauchy tensor in crystal axes, row by row; it must lie
-in the surface plane). Below v_L (the lowest bulk trace velocity) the surface wave is found
-by the Stroh/impedance solver, at mirror directions by Eq. (17).
+in the surface plane); a list of other length (-0.1 0 0.1) or START:STOP:STEP is a sweep of
+uniaxial stresses, printed as a table (one orientation). Below v_L (the lowest bulk trace
+velocity) the surface wave is found by the Stroh/impedance solver, at mirror directions by
+Eq. (17).
 
 Two models of the stressed crystal:
   fixed constants (default): the given constants are those of the stressed crystal; the
@@ -59,6 +61,7 @@ examples:
   surfwave material --material Cu --direction "[100]" --stress 0.1 --toec
   surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(111)" --direction "[1-10]"
   surfwave material --material Si --surface "(110)" --angle 0:90:15
+  surfwave material --material Cu --direction "[100]" --stress -0.2:0.2:0.1 --toec
 """
 
 
@@ -310,7 +313,8 @@ def _cmd_material(args) -> int:
                  f"surface {args.surface}, " + (f"direction {direction}" if isinstance(direction, str)
                                                    else f"angle {direction:g} deg"))
         name = f"{args.material}, " if args.material else ""
-        return run_stress_sweep(call, stress_sweep, args.json, name + where)
+        model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
+        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}")
     r = call(stress)
     rows = _material_rows(r)
     if args.json:
