@@ -314,7 +314,7 @@ def _cmd_material(args) -> int:
                                                    else f"angle {direction:g} deg"))
         name = f"{args.material}, " if args.material else ""
         model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
-        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}")
+        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}", _material_rows)
     r = call(stress)
     rows = _material_rows(r)
     if args.json:

@@ -21,6 +21,7 @@ surfwave.errors.InputError: --euler must be finite numbers of degrees, got nan i
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -142,7 +143,8 @@ def stress_values(tokens: list[str], option: str = "--stress") -> tuple[float | 
     return 0.0, values
 
 
-def run_stress_sweep(call, stresses: np.ndarray, as_json: bool, title: str) -> int:
+def run_stress_sweep(call: Callable[[float], dict], stresses: np.ndarray, as_json: bool, title: str,
+                     rows_of: Callable[[dict], list[dict]]) -> int:
     """Run ``call(stress)`` (a :func:`surfwave.material` with everything else fixed) for each stress
     and print one table row per stress (or a JSON list of the result rows, each with ``stress``).
 
@@ -156,14 +158,14 @@ def run_stress_sweep(call, stresses: np.ndarray, as_json: bool, title: str) -> i
         Print JSON instead of a table.
     title : str
         The table's first line (what is fixed), without the leading "# ".
+    rows_of : callable
+        A result -> its JSON-ready rows (the CLI's, so that the sweep prints what one call prints).
     """
     import json
 
-    from surfwave.cli import _material_rows
-
     rows = []
     for s in stresses:
-        row = _material_rows(call(float(s)))[0]
+        row = rows_of(call(float(s)))[0]
         rows.append({"stress": float(s), **row})
     if as_json:
         print(json.dumps(rows, indent=2))
