@@ -68,7 +68,7 @@ def write(tmp_path, scene: dict) -> str:
     return str(path)
 
 
-@pytest.mark.parametrize("scene, fragments", TABLE[:6])
+@pytest.mark.parametrize("scene, fragments", TABLE[:8])
 def test_scenes_command_answers_within_seconds(tmp_path, capsys, scene, fragments):
     """The same scenes through ``surfwave scenes --configfile`` (main() in-process): exit 2, one line."""
     path = write(tmp_path, scene)
