@@ -15,7 +15,7 @@ from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
 from surfwave.model_crystals.lattices import build
-from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.real_crystals.stressed_wave import BULK_KEYS, TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.records import MaterialResult, PointResult
 from surfwave.solvers import long_wave, rayleigh, stroh
 from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
@@ -392,6 +392,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
                                    "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
                                    "penetration_depth", "method", "rho", "c_leaky", "leaky_attenuation",
                                    "leaky_reason")}
+    out.update({key: r[key] for key in BULK_KEYS + ("grazing",)})    # bulk waves along x1, x2; grazing flag
     out["toec"] = np.full(R.shape[0], C3 is not None)
     ref = reference_direction(surface)
     out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))

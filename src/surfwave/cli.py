@@ -11,6 +11,7 @@ import json
 import os
 import re
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -251,6 +252,8 @@ def _material_rows(r: dict) -> list[dict]:
             elif key in ("polarisation", "decay"):
                 row[key] = {"re": [None if np.isnan(x) else float(x) for x in v.real],
                             "im": [None if np.isnan(x) else float(x) for x in v.imag]}
+            elif v.dtype.kind == "f" and v.ndim:        # a vector: the bulk waves' polarisations
+                row[key] = [None if np.isnan(x) else float(x) for x in v]
             elif v.dtype.kind == "f":
                 row[key] = None if np.isnan(v) else float(v)
             elif v.dtype.kind == "b":
@@ -329,7 +332,7 @@ def _cmd_material(args) -> int:
           f"{' '.join(args.stress)} GPa, {model}")
     if np.ndim(direction) == 0:
         row = rows[0]
-        for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH"):
+        for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH", "c_SH_perp"):
             val = row[key]
             unit = "deg" if key == "angle" else "m/s"
             print(f"{key:>17} = " + (f"{cli_piezo.cell(val, '10.2f')} {unit}" if val is not None else "       nan"))
@@ -342,6 +345,8 @@ def _cmd_material(args) -> int:
             for u in pol))
         if row["reason"]:
             print(f"             note: {row['reason']}")
+        if row.get("grazing"):
+            print(f"             note: {cli_piezo.GRAZING_NOTE}")
         return 0
     header = ["angle", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
     print("  ".join(f"{h:>10}" for h in header))
@@ -466,6 +471,17 @@ def _cmd_cache(args) -> int:
     return 0
 
 
+def _show_note(message, category, filename, lineno, file=None, line=None) -> None:
+    """Warnings as the command shows them: a :class:`surfwave.errors.ConstantsNote` is its own one
+    line on stderr; any other warning keeps Python's format."""
+    from surfwave.errors import ConstantsNote
+
+    if issubclass(category, ConstantsNote):
+        print(f"note: {message}", file=sys.stderr)
+    else:
+        sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``surfwave`` command."""
     parser = _parser()
@@ -475,7 +491,9 @@ def main(argv: list[str] | None = None) -> int:
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
                "scenes": _cmd_scenes, "cache": _cmd_cache}[args.command]
     try:
-        return handler(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_note
+            return handler(args)
     except SurfwaveError as exc:
         print(f"surfwave {args.command}: error: {exc}", file=sys.stderr)
         return 2

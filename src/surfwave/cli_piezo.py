@@ -39,6 +39,11 @@ piezoelectric examples:
 """
 
 
+#: Printed where a SAW is a bulk-like grazing wave (``grazing``).
+GRAZING_NOTE = ("grazing: the SAW is a bulk-like wave at the limiting speed, deeper than 50 wavelengths "
+                "(penetration_depth): not a surface wave to design on")
+
+
 def add_options(mt) -> None:
     """Add the piezoelectric options to the ``material`` sub-parser."""
     # let a sweep that starts negative ("-90:90:2") be a value, as argparse already does for "-54"
@@ -159,6 +164,10 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
                                ("potential_share", "", "10.3g")):
             items.append((key, f"{_f(row[key], fmt)} {unit}"))
         items.append(("K2", f"{_f(None if row['K2'] is None else 100 * row['K2'], '10.4f')} %"))
+        for key in ("c_leaky_free", "c_leaky_metallized"):
+            items.append((key, f"{_f(row.get(key), '10.2f')} m/s"))
+        k2l = row.get("K2_leaky")
+        items.append(("K2_leaky", f"{_f(None if k2l is None else 100 * k2l, '10.4f')} %"))
         items.append(("wave_type", f"{row['wave_type']}   stable = {row['stable']}"))
         for key, text in items:
             print(f"{key:>17} = {text}")
@@ -166,17 +175,23 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
             print(f"{'note':>17}: {row['reason']}")
         if row["leaky_reason"] and (row["c_leaky"] is not None or _leaky_expected(args, row)):
             print(f"{'note':>17}: {row['leaky_reason']}")
+        if row.get("grazing"):
+            print(f"{'note':>17}: {GRAZING_NOTE}")
         return 0
     label = ("phi", "theta", "psi")[swept] if swept is not None else "angle"
-    header = [label, "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "PFA (deg)", "wave_type"]
+    header = [label, "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "K2_leaky(%)", "PFA (deg)", "wave_type"]
     print("  ".join(f"{h:>10}" for h in header))
     for row in rows:
         a = row["euler"][swept] if swept is not None else row["angle"]
         k2 = None if row["K2"] is None else 100 * row["K2"]
+        k2l = None if row.get("K2_leaky") is None else 100 * row["K2_leaky"]
+        wave = row["wave_type"] + ("*" if row.get("grazing") else "")
         cells = [f"{angle_text(a):>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
-                 _f(row["c_leaky"], "10.2f"), _f(row["leaky_attenuation"], "10.5f"),
-                 _f(row["power_flow_angle"], "10.4f"), f"{row['wave_type']:>10}"]
+                 _f(row["c_leaky"], "10.2f"), _f(row["leaky_attenuation"], "10.5f"), _f(k2l, "11.4f", 11),
+                 _f(row["power_flow_angle"], "10.4f"), f"{wave:>10}"]
         print("  ".join(cells))
+    if any(row.get("grazing") for row in rows):
+        print(f"* {GRAZING_NOTE}")
     return 0
 
 

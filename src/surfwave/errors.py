@@ -28,3 +28,8 @@ class DamagedCubeError(InputError):
 
 class PhonopyPointError(SurfwaveError):
     """Phonopy could not produce trustworthy force constants at one strain point."""
+
+
+class ConstantsNote(UserWarning):
+    """A one-line note that an unverified or provisional constant set is in use (a warning, not
+    an error: the numbers are computed; the note says how far to trust the constants)."""

@@ -99,9 +99,19 @@ class MaterialResult(TypedDict):
         Imaginary part of the complex speed of a pseudo wave, m/s (0 for a real wave).
     c_limit : float or ndarray
         Limiting speed v_L, m/s.
-    c_L_par, c_T_par, c_L_perp, c_T_perp, c_SH : float or ndarray
-        Bulk speeds along x1 (par) and along the inward normal x2 (perp), m/s; NaN where
+    c_L_par, c_T_par, c_SH, c_T_perp, c_L_perp, c_SH_perp : float or ndarray
+        Bulk speeds along x1 (``L_par``, ``T_par``, ``SH``: polarised mostly along u1, u2, u3)
+        and along the inward normal x2 (``T_perp``, ``L_perp``, ``SH_perp``: mostly u1, u2, u3),
+        m/s: eigen-speeds of the Christoffel tensor of C + sigma0 delta, piezoelectrically
+        stiffened on the piezoelectric route (:mod:`surfwave.solvers.bulk_waves`); NaN where
         imaginary.
+    polarisation_L_par, polarisation_T_par, polarisation_SH, polarisation_T_perp, \
+polarisation_L_perp, polarisation_SH_perp : ndarray, shape (3,) or (m, 3)
+        Unit displacement (u1, u2, u3) of each bulk wave, lab frame, largest component positive.
+    grazing : bool or ndarray of bool
+        The surface wave is a bulk-like grazing wave, deeper than
+        :data:`surfwave.real_crystals.stressed_wave.GRAZING_DEPTH` (50) wavelengths: do not
+        design on it.
     wave_type : str or ndarray of str
         :data:`surfwave.vocab.WAVE_TYPES`.
     reason : str or ndarray of str
@@ -133,6 +143,12 @@ class MaterialResult(TypedDict):
         displacement) and ``c_limit`` is the stiffened limiting speed.
     K2 : float or ndarray
         Coupling 2 (c_free - c_metallized) / c_free (fraction, 1).
+    c_leaky_free, c_leaky_metallized : float or ndarray
+        Leaky SAW speed (omega / Re k) with a free and with a metallized surface, m/s, from one
+        solve whatever ``electrical`` is (``c_leaky`` is the one of ``electrical``).
+    K2_leaky : float or ndarray
+        Coupling of the leaky SAW, 2 (c_leaky_free - c_leaky_metallized) / c_leaky_free (1);
+        the coupling a device on a leaky cut (36Y-X LiTaO3, 64Y-X LiNbO3) uses.
     power_flow_angle : float or ndarray
         Beam-steering angle of the SAW, degrees.
     potential_share : float or ndarray
@@ -153,6 +169,14 @@ class MaterialResult(TypedDict):
     c_L_perp: _Array
     c_T_perp: _Array
     c_SH: _Array
+    c_SH_perp: _Array
+    polarisation_L_par: _Array
+    polarisation_T_par: _Array
+    polarisation_SH: _Array
+    polarisation_T_perp: _Array
+    polarisation_L_perp: _Array
+    polarisation_SH_perp: _Array
+    grazing: _Array
     wave_type: _Array
     reason: _Array
     stable: _Array
@@ -169,6 +193,9 @@ class MaterialResult(TypedDict):
     c_free: NotRequired[_Array]
     c_metallized: NotRequired[_Array]
     K2: NotRequired[_Array]
+    c_leaky_free: NotRequired[_Array]
+    c_leaky_metallized: NotRequired[_Array]
+    K2_leaky: NotRequired[_Array]
     power_flow_angle: NotRequired[_Array]
     potential_share: NotRequired[_Array]
     electrical: NotRequired[_Array]

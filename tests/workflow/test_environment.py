@@ -3,16 +3,16 @@ the cluster path (issue 20, item 11).
 
 References: the plugin's own source (snakemake-executor-plugin-slurm 2.8.0: its package
 __init__ runs ``scontrol show config`` via ``shutil.which("sinfo")`` while Snakemake builds its
-command line, measured ~10 s per call where no controller answers) and the bare Snakemake
-time of the same dry run measured here without the fake SLURM client.
+command line, measured ~10 s per call where no controller answers). The time is not asserted:
+the test checks the behaviour (no probe call).
 """
 from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import sys
-import time
 from importlib import metadata
 from pathlib import Path
 
@@ -53,9 +53,10 @@ def test_locks_split_the_cluster_plugin_and_agree_on_every_shared_pin():
 @pytest.mark.workflow
 @pytest.mark.xdist_group("workflow")
 def test_noop_snakemake_does_not_probe_slurm(tmp_path):
-    """A dry run with a SLURM client on PATH whose `sinfo` and `scontrol` hang for 10 s (a
-    workstation without a controller) calls none of them and takes within 5 s of the same
-    dry run without them (the plugin's probe cost ~10 s per call)."""
+    """A dry run with a SLURM client on PATH (fake `sinfo`, `scontrol`, `squeue`, `sacct` that
+    record each call) calls none of them: a local Snakemake call does not load the cluster
+    plugin, whose import probes the controller (~10 s per call without one). Behaviour, not wall
+    time: the time it saves is a benchmark's business."""
     from test_workflow import make_workdir
 
     (tmp_path / "wf").mkdir()
@@ -63,24 +64,15 @@ def test_noop_snakemake_does_not_probe_slurm(tmp_path):
     fake = tmp_path / "fakebin"
     fake.mkdir()
     for tool in ("sinfo", "scontrol", "squeue", "sacct"):
-        (fake / tool).write_text(f"#!/bin/sh\necho \"{tool} $*\" >> {fake}/calls\nsleep 10\n")
+        (fake / tool).write_text(f"#!/bin/sh\necho \"{tool} $*\" >> {fake}/calls\n")
         (fake / tool).chmod(0o755)
-    env = {**os.environ, "OMP_NUM_THREADS": "1"}
-
-    def dry(path: str) -> float:
-        t = time.perf_counter()
-        subprocess.run([str(SNAKEMAKE), "-n", "--directory", str(work)], cwd=work, check=True,
-                       capture_output=True, env={**env, "PATH": path}, timeout=120)
-        return time.perf_counter() - t
-
-    dry(env["PATH"])  # warm the file cache
-    bare = dry(env["PATH"])
-    probed = dry(f"{fake}{os.pathsep}{env['PATH']}")
+    path = f"{fake}{os.pathsep}{os.environ['PATH']}"
+    assert shutil.which("sinfo", path=path) == str(fake / "sinfo")    # the fake is what a probe finds
+    subprocess.run([str(SNAKEMAKE), "-n", "--directory", str(work)], cwd=work, check=True, capture_output=True,
+                   env={**os.environ, "OMP_NUM_THREADS": "1", "PATH": path}, timeout=120)
     try:
         where = f"{PLUGIN} {metadata.version(PLUGIN)} is installed in {sys.prefix}"
     except metadata.PackageNotFoundError:
         where = f"{PLUGIN} is not installed"
     calls = (fake / "calls").read_text().splitlines() if (fake / "calls").exists() else []
-    assert calls == [], f"snakemake ran {calls}; {where}"
-    assert probed < bare + 5.0, (f"dry run {probed:.1f} s with a fake SLURM client, {bare:.1f} s "
-                                 f"without; {where} (it belongs in .venv-cluster: make cluster-env)")
+    assert calls == [], f"snakemake ran {calls}; {where} (it belongs in .venv-cluster: make cluster-env)"

@@ -356,7 +356,34 @@ def open_cube(path: str | Path, load: bool = True) -> xr.Dataset:
     if load:
         with ds:
             ds = ds.load()
-    return decode_complex(_legacy_complex(ds))
+    return index_plate_angles(decode_complex(_legacy_complex(ds)))
+
+
+#: Coordinates on ``surface`` that :func:`open_cube` makes selectable (a piezoelectric plate's
+#: SAW Euler angles, and the named cut): ``ds.sel(euler_theta=38.0)`` without ``swap_dims``.
+PLATE_COORDS = ("euler_phi", "euler_theta", "cut")
+
+
+def index_plate_angles(ds: xr.Dataset) -> xr.Dataset:
+    """Give the plate coordinates on ``surface`` (:data:`PLATE_COORDS`) their own index.
+
+    netCDF stores no index for a coordinate that is not a dimension; with one, a piezoelectric
+    cube selects its plates by Euler angle (``ds.sel(euler_theta=38.0)``, chained for two
+    angles: ``ds.sel(euler_phi=0.0).sel(euler_theta=38.0)``) while ``surface`` keeps its labels.
+    Plain ``xr.open_dataset`` users call ``ds.set_xindex("euler_theta")`` themselves.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset(coords={"surface": ["Euler (0, 38)", "Euler (0, -26)"],
+    ...                         "euler_theta": ("surface", [38.0, -26.0])})
+    >>> str(index_plate_angles(ds).sel(euler_theta=-26.0).surface.values)
+    'Euler (0, -26)'
+    """
+    for name in PLATE_COORDS:
+        if name in ds.coords and ds[name].dims == ("surface",) and name not in ds.xindexes:
+            ds = ds.set_xindex(name)
+    return ds
 
 
 def _legacy_complex(ds: xr.Dataset) -> xr.Dataset:

@@ -501,6 +501,37 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
     },
 }
 
+#: Bulk waves along x1 and x2 of a real crystal (surfwave.solvers.bulk_waves): the same variables in
+#: both real-crystal cubes; ``polarisation_*`` carry a trailing ``bulk_component`` (u1, u2, u3).
+_ALONG = {"L_par": ("x1", "u1 (quasi-longitudinal)"), "T_par": ("x1", "u2 (sagittal quasi-shear)"),
+          "SH": ("x1", "u3 (shear-horizontal quasi-shear)"), "T_perp": ("x2", "u1 (quasi-shear)"),
+          "L_perp": ("x2", "u2 (quasi-longitudinal)"), "SH_perp": ("x2", "u3 (quasi-shear)")}
+_BULK_WAVES: dict[str, dict[str, Any]] = {}
+for _name, (_axis, _pol) in _ALONG.items():
+    _BULK_WAVES[f"c_{_name}"] = {
+        "long_name": f"bulk wave along {_axis} polarised mostly along {_pol}: eigen-speed of the Christoffel "
+                     "tensor of C + sigma0 delta (piezoelectrically stiffened in a piezoelectric crystal)",
+        "units": "m s-1"}
+    _BULK_WAVES[f"polarisation_{_name}"] = {
+        "long_name": f"unit displacement (u1, u2, u3), lab frame, of the bulk wave c_{_name}, largest "
+                     "component positive",
+        "units": "1"}
+CUBES["surface_wave"].update(_BULK_WAVES)
+CUBES["piezo_wave"].update(_BULK_WAVES)
+CUBES["piezo_wave"]["K2_leaky"] = {
+    "long_name": "electromechanical coupling of the leaky SAW, 2 (c_leaky_free - c_leaky_metallized) / "
+                 "c_leaky_free (NaN where either leaky root is missing)",
+    "units": "1"}
+for _el in ("free", "metallized"):
+    CUBES["piezo_wave"][f"c_leaky_{_el}"] = {
+        "long_name": f"leaky SAW phase speed omega / Re k with a {_el} surface, from the solve of both conditions "
+                     "(also when the scene lists one electrical condition); NaN where none",
+        "units": "m s-1"}
+CUBES["piezo_wave"]["grazing"] = {
+    "long_name": "subsonic SAW that is a bulk-like grazing wave (penetration depth above "
+                 "surfwave.real_crystals.stressed_wave.GRAZING_DEPTH wavelengths): not usable as a surface wave"}
+CUBES["surface_wave"]["grazing"] = dict(CUBES["piezo_wave"]["grazing"])
+
 #: displacements.nc (row amplitudes, surfwave.dynamics.dispersion) carries a subset of the dispersion
 #: cube's variables with the same metadata.
 CUBES["displacements"] = {k: CUBES["dispersion"][k] for k in (

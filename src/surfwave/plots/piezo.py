@@ -107,9 +107,15 @@ def speeds_vs_euler(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
             av.plot(x, e.c_leaky, STYLES.get(el, "-"), color="tab:red", label=f"leaky SAW, {el}")
             aa.plot(x, e.leaky_attenuation, STYLES.get(el, "-"), color="tab:red", label=f"leaky SAW, {el}")
         av.plot(x, d.c_limit, ":", color="0.4", lw=1, label="limiting speed (stiffened bulk)")
+        if "c_SH" in d:          # cubes before the bulk waves lack them; sorted: the names swap where
+            shear = np.sort(np.stack([d.c_T_par.values, d.c_SH.values]), axis=0)   # the polarisations cross
+            av.plot(x, shear[1], "--", color="0.6", lw=0.8, label="fast bulk shear along x1")
+            av.plot(x, shear[0], "-.", color="0.6", lw=0.8, label="slow bulk shear along x1")
         ak.plot(x, 100 * d.K2, "-", color="tab:blue", label="SAW")
         els = [str(e) for e in d.electrical.values]
-        if {"free", "metallized"} <= set(els):
+        if "K2_leaky" in d:
+            ak.plot(x, 100 * d.K2_leaky, "-", color="tab:red", label="leaky SAW")
+        elif {"free", "metallized"} <= set(els):
             vf, vm = d.c_leaky.sel(electrical="free"), d.c_leaky.sel(electrical="metallized")
             ak.plot(x, 100 * 2 * (vf - vm) / vf, "-", color="tab:red", label="leaky SAW")
         for xm, label in _cut_marks(mat, dim, fixed):
@@ -169,7 +175,7 @@ def speeds_vs_stress(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """
     s = ds.stress.values
     models = [bool(t) for t in ds.toec.values] if "toec" in ds.dims else [None]
-    stacked = ds.stack(orientation=("surface", "angle"))
+    stacked = ds.stack(orientation=("surface", "angle"), create_index=False)   # surface has the plate indexes
     fig, (av, ar) = plt.subplots(1, 2, figsize=(10.5, 4.2))
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     k = 0

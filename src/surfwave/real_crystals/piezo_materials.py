@@ -94,6 +94,10 @@ class PiezoMaterial:
     note : str
         How the numbers were checked, and doubts.
     aliases : tuple of str
+    status : str
+        "" for a checked set; "unverified: ..." or "provisional: ..." (piezoelectric.yaml
+        ``status``) for one whose numbers were not checked against a second copy:
+        :func:`note_status` says so at run time.
     toec_voigt : ndarray, shape (6, 6, 6), or None
         Brugger third-order constants, GPa, crystal axes (``sources["toec"]`` names them); None
         where the database has none (every non-cubic crystal so far). GaAs takes the set of
@@ -113,6 +117,7 @@ class PiezoMaterial:
     note: str = ""
     aliases: tuple = field(default_factory=tuple)
     toec_voigt: np.ndarray | None = None
+    status: str = ""
 
     @property
     def C_tensor(self) -> np.ndarray:
@@ -275,6 +280,7 @@ def _build(name: str, entry: dict, refs: dict) -> PiezoMaterial:
         note=" ".join(str(entry.get("note", "")).split()),
         aliases=tuple(str(a) for a in entry.get("aliases", ())),
         toec_voigt=C3,
+        status=" ".join(str(entry.get("status", "")).split()),
     )
 
 
@@ -353,6 +359,49 @@ def get_piezo_material(name: str | PiezoMaterial) -> PiezoMaterial:
     from surfwave.real_crystals.catalog import unknown_name
 
     raise unknown_name(name, "piezoelectric")
+
+
+def note_status(material: PiezoMaterial) -> str:
+    """Say once (a :class:`surfwave.errors.ConstantsNote` warning, one line) that ``material`` is an
+    unverified or provisional constant set; returns the note ("" for a checked set).
+
+    Python shows a warning once per distinct text and place, so a sweep over many points of
+    one set notes it once. ``python -W "ignore:constant set"`` (or
+    ``warnings.filterwarnings("ignore", category=ConstantsNote)``) silences it.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as seen:
+    ...     warnings.simplefilter("always")
+    ...     text = note_status(get_piezo_material("LiTaO3"))
+    >>> text.startswith("constant set LiTaO3-Kovacs1990 is unverified")
+    True
+    """
+    import warnings
+
+    from surfwave.errors import ConstantsNote
+
+    if not material.status:
+        return ""
+    kind, _, why = material.status.partition(":")
+    text = (f"constant set {material.name} is {kind.strip()} ({why.strip()}); see "
+            "docs/piezoelectric-materials.md before relying on the last digits")
+    warnings.warn(text, ConstantsNote, stacklevel=_caller_level())
+    return text
+
+
+def _caller_level() -> int:
+    """``stacklevel`` of the first frame outside the surfwave package (the caller's own line)."""
+    import sys
+    from types import FrameType
+
+    package = str(Path(__file__).resolve().parents[1])
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
+    while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def available_cuts() -> list[str]:

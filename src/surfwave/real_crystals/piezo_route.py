@@ -16,6 +16,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import piezo_wave, resolve_piezo_material
+from surfwave.real_crystals.stressed_wave import BULK_KEYS
 
 __all__ = ["is_piezo_call", "material_piezo"]
 
@@ -79,7 +80,7 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
     """:func:`surfwave.material` for piezoelectric crystals and Euler-angle cuts (same arguments).
 
     Returns the keys of :func:`surfwave.material` (``polarisation`` and ``decay`` with a fourth
-    component, the potential; bulk speeds are the mechanical, unstiffened ones; ``c_limit`` is
+    component, the potential; bulk speeds are piezoelectrically stiffened eigen-speeds; ``c_limit`` is
     the piezoelectrically stiffened limiting speed) plus those of
     :func:`surfwave.real_crystals.piezo_wave.piezo_wave`: ``c_free``, ``c_metallized``, ``K2``,
     ``c_leaky``, ``leaky_attenuation``, ``leaky_reason``, ``power_flow_angle``,
@@ -137,7 +138,8 @@ def material_piezo(C11=None, C12=None, C44=None, rho=None, direction="[100]", st
                                    "penetration_depth", "method", "rho")}
     out.update(angle=ang, toec=np.full(R.shape[0], use_toec))
     for key in ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "leaky_reason",
-                "power_flow_angle", "potential_share", "electrical"):
+                "power_flow_angle", "potential_share", "electrical", "c_leaky_free", "c_leaky_metallized",
+                "K2_leaky", "grazing") + BULK_KEYS:
         out[key] = r[key]
     out["euler"] = eul if eul is not None else np.full((R.shape[0], 3), np.nan)
     if scalar:

@@ -5,7 +5,8 @@ Grid: materials x (named cuts | Euler angles phi x theta x psi) x electrical con
 ``surface``, ``angle``): a surface is a plate (a named cut, or one Euler pair (phi, theta)),
 the angle the propagation direction psi in it from the plate's reference psi0; coordinates
 ``cut``, ``euler_phi``, ``euler_theta`` (per surface) and ``euler_psi`` (surface, angle) say
-which Euler angles each point has (``ds.set_xindex("euler_theta")`` selects by them). Each point
+which Euler angles each point has (:func:`surfwave.data.cube.open_cube` indexes ``euler_phi``,
+``euler_theta`` and ``cut``, so ``ds.sel(euler_theta=38.0)`` selects by them). Each point
 is :func:`surfwave.real_crystals.piezo_wave.piezo_wave`, i.e. the one real-crystal
 path :func:`surfwave.real_crystals.stressed_wave.surface_wave` (uniaxial stress along the
 propagation x1; prestress model per ``toec`` coordinate: fixed constants,
@@ -30,6 +31,9 @@ import numpy as np
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, PIEZO_WAVE_COORDS
 from surfwave.errors import InputError
+from surfwave.real_crystals.stressed_wave import BULK_KEYS
+from surfwave.real_crystals.sweep import BULK_COMPONENT
+from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
 from surfwave.vocab import ELECTRICAL
 
 if TYPE_CHECKING:
@@ -52,7 +56,7 @@ COMPONENTS = ("u1", "u2", "u3", "phi")
 VARIABLES = CUBES["piezo_wave"]
 COORDS = PIEZO_WAVE_COORDS
 #: Per-point variables (material, orientation, [stress]) that do not depend on the electrical condition.
-NO_ELECTRICAL = ("K2", "c_limit", "rho")
+NO_ELECTRICAL = ("K2", "c_limit", "rho", "K2_leaky", "c_leaky_free", "c_leaky_metallized") + BULK_KEYS
 
 
 def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
@@ -162,7 +166,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
     for key, arr in out.items():
         trailing = arr.shape[4:]
         arr = arr.reshape(grid + trailing)
-        vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay" else ())
+        vdims = dims + (("component",) if key == "polarisation" else ("partial_wave",) if key == "decay"
+                        else ("bulk_component",) if key in BULK_POLARISATIONS else ())
         if key in NO_ELECTRICAL:
             arr, vdims = arr[:, 0], tuple(d for d in vdims if d != "electrical")
         if arr.dtype == object:
@@ -175,7 +180,8 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
               "component": ("component", np.array(COMPONENTS), {"long_name": "u1 along the propagation, u2 "
                             "along the inward normal, u3 in plane; phi the electric potential"}),
               "partial_wave": ("partial_wave", np.arange(1, 5), {"long_name": "partial wave of the Stroh "
-                               "solution (1 = fastest decaying)", "units": "1"})}
+                               "solution (1 = fastest decaying)", "units": "1"}),
+              "bulk_component": ("bulk_component", np.array(COMPONENTS[:3]), BULK_COMPONENT)}
     coords.update(surface=("surface", np.asarray(oc["surface"], dtype=str), COORDS["surface"]),
                   angle=("angle", oc["angle"], COORDS["angle"]),
                   euler_phi=("surface", oc["euler_phi"], COORDS["euler_phi"]),

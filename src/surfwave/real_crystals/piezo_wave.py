@@ -26,7 +26,13 @@ from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
-from surfwave.real_crystals.piezo_materials import EPS0, PiezoMaterial, check_piezo_record, get_piezo_material
+from surfwave.real_crystals.piezo_materials import (
+    EPS0,
+    PiezoMaterial,
+    check_piezo_record,
+    get_piezo_material,
+    note_status,
+)
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
@@ -171,7 +177,8 @@ def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | No
         the record (the database: GaAs only; else InputError naming what is missing; the API
         takes a caller's set, :func:`surfwave.material`).
     bulk : bool
-        Also the mechanical bulk speeds and ``stable`` (:func:`stressed_wave.surface_wave`).
+        Also ``stable`` (:func:`stressed_wave.surface_wave`); the stiffened bulk waves along x1
+        and x2 (``c_L_par``, ..., ``polarisation_SH_perp``) come either way.
 
     Returns
     -------
@@ -206,7 +213,7 @@ def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | No
     (3488, 3404)
     """
     if electrical not in ELECTRICAL:
-        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+        raise InputError(sw_path.electrical_error(electrical))
     return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 
@@ -237,6 +244,7 @@ def piezo_wave_conditions(material: str | PiezoMaterial | None = None, axes: Arr
     """
     conditions = tuple(conditions)                                  # checked by surface_wave_conditions
     mat = resolve_piezo_material(material, voigt=voigt, e=e, eps_r=eps_r, rho=rho)
+    note_status(mat)                                                # one line for an unverified set
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)

@@ -16,7 +16,9 @@ same reasons. Per point it does, in this order:
    a crystal with piezoelectric constants :func:`surfwave.solvers.piezo_saw.piezo_saw` (e and
    the clamped eps at their natural values rotated into the lab frame of the (deformed)
    crystal; free and metallized SAW, K^2, leaky wave, power flow; e = 0: the elastic solver);
-5. optionally bulk speeds along x1 and x2 and the stability flag.
+5. the bulk waves along x1 and x2 (speeds and polarisations: eigenvalues of the Christoffel
+   tensor of A, piezoelectrically stiffened for a piezoelectric crystal,
+   :func:`surfwave.solvers.bulk_waves.axis_waves`) and optionally the stability flag.
 
 A point without a state (deformation solve failed, Born-unstable, loaded surface) is NaN
 (``wave_type`` "none") with its reason; outputs are allocated NaN and filled only where the
@@ -47,6 +49,7 @@ from numpy.typing import ArrayLike
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
+from surfwave.solvers.bulk_waves import BULK_POLARISATIONS, BULK_SPEEDS, axis_waves
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw_conditions
@@ -57,9 +60,9 @@ from surfwave.vocab import STRESS_LOADINGS
 if TYPE_CHECKING:
     from surfwave.real_crystals.piezo_materials import PiezoMaterial
 
-__all__ = ["Constants", "ELECTRICAL", "GPA", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS", "REASON_LEAKY_OFF",
-           "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL", "stress_tensor",
-           "surface_wave", "surface_wave_conditions"]
+__all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
+           "REASON_LEAKY_OFF", "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
+           "electrical_error", "stress_tensor", "surface_wave", "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -67,6 +70,8 @@ GPA = 1.0e9
 #: n the normal of the deformed surface) and |axis . n| of an axis loading, relative to
 #: max |sigma| (to 1 for a unit axis).
 TRACTION_TOL = 1e-9
+#: Bulk-wave outputs of every point (speeds, m/s, then polarisations), :mod:`surfwave.solvers.bulk_waves`.
+BULK_KEYS = BULK_SPEEDS + BULK_POLARISATIONS
 #: Leaky-wave outputs of every crystal (elastic ones too): m/s, dB per wavelength, and ``leaky_reason``.
 LEAKY_KEYS = ("c_leaky", "leaky_attenuation")
 #: ``leaky_reason`` of an elastic point with a subsonic surface wave (the leaky wave is solved
@@ -86,6 +91,12 @@ REASON_NO_STATE = "no stressed state: "
 #: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
 #: along a fixed crystal direction in the surface.
 LOADINGS = tuple(k for k in STRESS_LOADINGS if k != "axis")
+#: Penetration depth (1/e, in wavelengths) above which a surface wave is flagged ``grazing``: a
+#: bulk-like wave grazing the limiting speed (e.g. rotated Y LiTaO3 near theta = 38 deg: 1e-4 m/s
+#: below v_L, ~680 wavelengths deep, K^2 ~ 0). 50 wavelengths is the order of a substrate's
+#: thickness at SAW wavelengths (0.35-0.5 mm at 4-10 um): such a wave reaches the back face and
+#: is not a surface wave a device can use.
+GRAZING_DEPTH = 50.0
 #: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
 PIEZO_TOL = 1e-12
 _AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
@@ -157,6 +168,14 @@ class Constants:
     def is_piezo(self) -> bool:
         """True when piezoelectric constants (possibly all zero) are given."""
         return self.piezo is not None
+
+
+def electrical_error(value) -> str:
+    """The one refusal of an ``electrical`` value: one condition, and both come from every call."""
+    both = ("; both conditions come from every call: c_free, c_metallized, K2 for the SAW and c_leaky_free, "
+            "c_leaky_metallized, K2_leaky for the leaky SAW" if not isinstance(value, str) else "")
+    return (f"electrical must be 'free' or 'metallized' (the condition of c_R, the polarisation, the power "
+            f"flow and c_leaky), got {value!r}{both}")
 
 
 # --------------------------------------------------------------------------- loadings
@@ -270,8 +289,8 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
     state_tol : float
         Tolerance of the deformation solve, GPa.
     bulk : bool
-        Also return the bulk speeds along x1 and x2 and ``stable`` (costs a stability test).
-        For a piezoelectric crystal these are the mechanical (unstiffened) bulk speeds.
+        Also return ``stable`` (costs a stability test). The bulk speeds along x1 and x2 come
+        either way (they are cheap).
     electrical : {"free", "metallized"}, optional
         Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
         polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
@@ -296,10 +315,16 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
         ``decay`` (..., 3) complex, ``penetration_depth`` (wavelengths), ``method`` (object
         str, "" where not solved), ``rho`` (kg/m^3, stressed state), ``ok`` (bool: a stressed,
         Born-stable state with a traction-free surface exists), ``F`` (..., 3, 3) (NaN where
-        no state), ``axes`` (..., 3, 3) the lab axes of the stressed crystal; with ``bulk``
-        also ``c_L_par``, ``c_T_par``, ``c_SH`` (along x1), ``c_L_perp``, ``c_T_perp`` (along
-        x2) in m/s (NaN where imaginary or no state) and ``stable`` (bool: ``ok`` and the
-        acoustic tensor positive definite in every direction). Everything that depends on a
+        no state), ``axes`` (..., 3, 3) the lab axes of the stressed crystal; the bulk waves
+        along x1 (``c_L_par``, ``c_T_par``, ``c_SH``) and along x2 (``c_T_perp``, ``c_L_perp``,
+        ``c_SH_perp``) in m/s, the eigen-speeds of the Christoffel tensor of A (stiffened by e
+        and eps for a piezoelectric crystal) named by polarisation (mostly u1, u2, u3 in that
+        order of names per axis; :mod:`surfwave.solvers.bulk_waves`), NaN where imaginary or no
+        state, each with ``polarisation_<name>`` (..., 3), the unit displacement in the lab
+        frame; ``grazing`` (bool: a surface wave, ``c_R`` finite, deeper than
+        :data:`GRAZING_DEPTH` wavelengths, i.e. a bulk-like wave grazing the limiting speed); with
+        ``bulk`` also ``stable`` (bool: ``ok`` and the acoustic tensor positive
+        definite in every direction). Everything that depends on a
         state is NaN where ``ok`` is False. Every crystal: ``c_leaky`` (m/s, omega / Re k of
         the leaky wave radiating into the slowest bulk sheet, NaN where none),
         ``leaky_attenuation`` (dB per wavelength, NaN where none) and ``leaky_reason`` (object
@@ -328,7 +353,7 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
     if constants.is_piezo:
         electrical = "free" if electrical is None else electrical
         if electrical not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
+            raise InputError(electrical_error(electrical))
     elif electrical is not None:
         raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
     return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,
@@ -416,8 +441,8 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     shared["rho"] = np.full(n, np.nan)
     shared["rho"][idx] = rho
     shared.update(ok=ok, F=st["F"], axes=lab)
+    shared.update(_bulk(A, rho, n, idx, constants, lab[idx]))
     if bulk:
-        shared.update(_bulk(A, rho, n, idx))
         shared["stable"] = np.zeros(n, dtype=bool)
         shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
     return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in conditions}
@@ -448,6 +473,8 @@ def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: d
     out["reason"][idx] = sw["reason"]
     out["method"] = np.full(n, "", dtype=object)
     out["method"][idx] = sw["method"]
+    with np.errstate(invalid="ignore"):
+        out["grazing"] = np.isfinite(out["c_R"]) & (out["penetration_depth"] > GRAZING_DEPTH)
     out.update({k: v.copy() for k, v in shared.items()})
     return out
 
@@ -464,9 +491,7 @@ def _solve(A: np.ndarray, rho: np.ndarray, constants: Constants, lab: np.ndarray
         sw = stroh.surface_wave(A, rho, **({} if tol is None else {"tol": tol}))
         return {None: {**sw, **_elastic_leaky(A, rho, sw, leaky)}}
     leaky = True if leaky is None else leaky
-    assert constants.piezo is not None and constants.permittivity is not None  # is_piezo: both given
-    e = rotate3(piezo_voigt_to_tensor(constants.piezo), lab)
-    eps = rotate2(constants.permittivity * EPS0, lab)
+    e, eps = _lab_piezo(constants, lab)
     return piezo_saw_conditions(A, rho, e, eps, conditions=conditions, tol=PIEZO_TOL if tol is None else tol,
                                 leaky=leaky)
 
@@ -517,15 +542,24 @@ def _elastic_leaky(A: np.ndarray, rho: np.ndarray, sw: dict, leaky: bool | None)
     return {"c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": reason}
 
 
-def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray) -> dict:
-    """Bulk speeds along x1 and x2 (diagonal of the acoustic tensor A_ijkl n_j n_l / rho), m/s."""
+def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray, constants: Constants, lab: np.ndarray) -> dict:
+    """Bulk speeds and polarisations along x1 and x2 (:func:`surfwave.solvers.bulk_waves.axis_waves`:
+    eigenvalues of the Christoffel tensor of A, stiffened by e and eps for a piezoelectric
+    crystal), n points, NaN where no state."""
+    e, eps = _lab_piezo(constants, lab) if constants.is_piezo else (None, None)
+    waves = axis_waves(A, rho, e, eps)
     out = {}
-    for key, comp in (("c_L_par", (0, 0, 0, 0)), ("c_T_par", (1, 0, 1, 0)), ("c_L_perp", (1, 1, 1, 1)),
-                      ("c_T_perp", (0, 1, 0, 1)), ("c_SH", (2, 0, 2, 0))):
-        x = A[(slice(None),) + comp] / rho
-        out[key] = np.full(n, np.nan)
-        out[key][idx] = np.sqrt(np.where(x > 0, x, np.nan))
+    for key, v in waves.items():
+        out[key] = np.full((n,) + v.shape[1:], np.nan)
+        out[key][idx] = v
     return out
+
+
+def _lab_piezo(constants: Constants, lab: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """e (m, 3, 3, 3), C/m^2, and the clamped eps (m, 3, 3), F/m, at natural values rotated into ``lab``."""
+    e6, eps_r = constants.piezo, constants.permittivity
+    assert e6 is not None and eps_r is not None, "called for piezoelectric constants only"
+    return rotate3(piezo_voigt_to_tensor(e6), lab), rotate2(eps_r * EPS0, lab)
 
 
 def _long_wave_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:

@@ -39,7 +39,15 @@ import numpy as np
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, SURFACE_WAVE_COORDS
 from surfwave.errors import InputError
-from surfwave.real_crystals.stressed_wave import LOADINGS, Constants, axis_of_loading, stress_tensor, surface_wave
+from surfwave.real_crystals.stressed_wave import (
+    BULK_KEYS,
+    LOADINGS,
+    Constants,
+    axis_of_loading,
+    stress_tensor,
+    surface_wave,
+)
+from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
 from surfwave.solvers.tensors import rotate4, voigt_to_tensor
 from surfwave.validate import as_1d
 
@@ -50,8 +58,12 @@ __all__ = ["LOADINGS", "applied_stress", "axis_of_loading", "surface_wave_sweep"
 
 #: Names of the three displacement components of the polarisation (lab frame).
 COMPONENTS = ("u1", "u2", "u3")
+#: Metadata of the trailing dimension of the bulk waves' polarisations (both real-crystal cubes).
+BULK_COMPONENT = {"long_name": "lab-frame displacement component of a bulk wave (u1 along the propagation x1, "
+                  "u2 along the inward normal x2, u3 = x1 x x2)"}
 #: Trailing dimension of the vector variables.
-TRAILING = {"polarisation": "component", "decay": "partial_wave"}
+TRAILING = {"polarisation": "component", "decay": "partial_wave",
+            **{key: "bulk_component" for key in BULK_POLARISATIONS}}
 
 #: The ``method`` attribute of the cube.
 METHOD = ("general anisotropic surface-wave solver (Stroh formalism, surfwave.solvers.stroh) on "
@@ -277,7 +289,7 @@ def surface_wave_sweep(
     nsf, na = axes.shape[:2]
     shape = (len(mats), nsf, na, len(loads), len(models), len(s))
     keys = ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho", "polarisation", "decay", "wave_type",
-            "reason", "c_leaky", "leaky_attenuation", "leaky_reason")
+            "reason", "c_leaky", "leaky_attenuation", "leaky_reason", "grazing") + BULK_KEYS
     out: dict = {}
     # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
@@ -328,6 +340,7 @@ def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, direc
                       "component (u1 along the propagation, u2 along the inward normal)"}),
         "partial_wave": ("partial_wave", np.arange(1, 4), {"long_name": "partial wave of the Stroh "
                          "solution (1 = fastest decaying)", "units": "1"}),
+        "bulk_component": ("bulk_component", np.asarray(COMPONENTS), BULK_COMPONENT),
     }
     import xarray as xr
 

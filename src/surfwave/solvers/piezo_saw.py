@@ -23,7 +23,7 @@ __all__ = ["DELTA_EXACT", "ELECTRICAL", "PIEZO_KEYS", "piezo_saw", "piezo_saw_co
 
 #: Extra per-point float outputs of a piezoelectric crystal.
 PIEZO_KEYS = ("c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle",
-              "potential_share")
+              "potential_share", "c_leaky_free", "c_leaky_metallized", "K2_leaky")
 #: |delta| (Im k / Re k) of a leaky root at or below which it is an exact (non-radiating) supersonic wave.
 DELTA_EXACT = 1e-10
 
@@ -54,7 +54,11 @@ def piezo_saw(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *,
     dict of ndarray, leading shape (m,)
         ``c``, ``c_imag``, ``c_limit`` (stiffened), ``penetration_depth``, ``wave_type``,
         ``reason``, ``method``, ``polarisation`` (m, 4), ``decay`` (m, 4), and :data:`PIEZO_KEYS`
-        plus ``leaky_reason``.
+        plus ``leaky_reason``. ``c_leaky_free``, ``c_leaky_metallized`` (m/s) and ``K2_leaky``
+        (2 (c_leaky_free - c_leaky_metallized) / c_leaky_free, a fraction) are the leaky wave's
+        pair and coupling, the same for either ``electrical`` (NaN where either root is missing,
+        and everywhere with ``leaky=False``); ``c_leaky`` is the member of the pair for
+        ``electrical``.
 
     Notes
     -----
@@ -126,16 +130,22 @@ def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo) -> dict:
     depth = sw.get("penetration_depth", depth)
     c_leaky, att = np.full(m, np.nan), np.full(m, np.nan)
     leaky_reason = np.full(m, "not computed (leaky=False)", dtype=object)
+    pair = {el: np.full(m, np.nan) for el in ELECTRICAL}
     if lws:
         lw = lws[electrical]
         c_leaky, att, leaky_reason = lw["c_leaky"], lw["leaky_attenuation"], lw["reason"].astype(object)
+        # e = 0 solves one condition: the potential is decoupled, so the other has the same root
+        pair = {el: np.asarray(lws.get(el, lw)["c_leaky"], dtype=float) for el in ELECTRICAL}
         if piezo:
             sw, c_free, c_met, K2 = _supersonic(sw, c_free, c_met, lws, electrical)
+    with np.errstate(invalid="ignore"):
+        K2_leaky = 2 * (pair["free"] - pair["metallized"]) / pair["free"]
     return {"c": sw["c"], "c_imag": c_imag, "c_limit": sw["c_limit"], "wave_type": sw["wave_type"],
             "reason": sw["reason"], "method": sw["method"], "polarisation": sw["polarisation"],
             "decay": sw["decay"], "penetration_depth": depth, "c_free": c_free, "c_metallized": c_met,
             "K2": K2, "c_leaky": c_leaky, "leaky_attenuation": att, "leaky_reason": leaky_reason,
-            "power_flow_angle": sw["power_flow_angle"], "potential_share": sw["potential_share"]}
+            "power_flow_angle": sw["power_flow_angle"], "potential_share": sw["potential_share"],
+            "c_leaky_free": pair["free"], "c_leaky_metallized": pair["metallized"], "K2_leaky": K2_leaky}
 
 
 def _elastic_piezo_keys(A, rho, eps, sw_piezo, tol) -> tuple:
