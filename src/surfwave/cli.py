@@ -317,7 +317,8 @@ def _cmd_material(args) -> int:
                                                    else f"angle {direction:g} deg"))
         name = f"{args.material}, " if args.material else ""
         model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
-        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}", _material_rows)
+        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}", _material_rows,
+                                {True: cli_piezo.print_table, False: _elastic_table})
     r = call(stress)
     rows = _material_rows(r)
     if args.json:
@@ -348,13 +349,18 @@ def _cmd_material(args) -> int:
         if row.get("grazing"):
             print(f"             note: {cli_piezo.GRAZING_NOTE}")
         return 0
-    header = ["angle", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
-    print("  ".join(f"{h:>10}" for h in header))
-    for row in rows:
-        vals = [row[k] for k in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
-        cells = [cli_piezo.cell(v, "10.2f") for v in vals]
-        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
+    _elastic_table(rows, "angle", [cli_piezo.cell(row["angle"], "10.2f") for row in rows])
     return 0
+
+
+def _elastic_table(rows: list[dict], label: str, first: list[str]) -> None:
+    """The elastic sweep table: one line per row, ``first`` (texts) in the column ``label``."""
+    header = [label, "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
+    print("  ".join(f"{h:>10}" for h in header))
+    for row, a in zip(rows, first):
+        vals = [row[k] for k in ("c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
+        cells = [f"{a:>10}"] + [cli_piezo.cell(v, "10.2f") for v in vals]
+        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
 
 
 def _cmd_potentials(args) -> int:

@@ -179,20 +179,25 @@ def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
             print(f"{'note':>17}: {GRAZING_NOTE}")
         return 0
     label = ("phi", "theta", "psi")[swept] if swept is not None else "angle"
+    print_table(rows, label, [angle_text(row["euler"][swept] if swept is not None else row["angle"]) for row in rows])
+    return 0
+
+
+def print_table(rows: list[dict], label: str, first: list[str]) -> None:
+    """The piezoelectric sweep table: one line per row, ``first`` (texts) in the column ``label``
+    (the swept Euler angle or angle, or the stress of a stress sweep)."""
     header = [label, "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "K2_leaky(%)", "PFA (deg)", "wave_type"]
     print("  ".join(f"{h:>10}" for h in header))
-    for row in rows:
-        a = row["euler"][swept] if swept is not None else row["angle"]
+    for row, a in zip(rows, first):
         k2 = None if row["K2"] is None else 100 * row["K2"]
         k2l = None if row.get("K2_leaky") is None else 100 * row["K2_leaky"]
         wave = row["wave_type"] + ("*" if row.get("grazing") else "")
-        cells = [f"{angle_text(a):>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
+        cells = [f"{a:>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
                  _f(row["c_leaky"], "10.2f"), _f(row["leaky_attenuation"], "10.5f"), _f(k2l, "11.4f", 11),
                  _f(row["power_flow_angle"], "10.4f"), f"{wave:>10}"]
         print("  ".join(cells))
     if any(row.get("grazing") for row in rows):
         print(f"* {GRAZING_NOTE}")
-    return 0
 
 
 def scene_row(name: str, sc: dict, built: bool, paper: bool, outputs: list[str]) -> dict:

@@ -144,9 +144,10 @@ def stress_values(tokens: list[str], option: str = "--stress") -> tuple[float | 
 
 
 def run_stress_sweep(call: Callable[[float], dict], stresses: np.ndarray, as_json: bool, title: str,
-                     rows_of: Callable[[dict], list[dict]]) -> int:
+                     rows_of: Callable[[dict], list[dict]],
+                     tables: dict[bool, Callable[[list[dict], str, list[str]], None]]) -> int:
     """Run ``call(stress)`` (a :func:`surfwave.material` with everything else fixed) for each stress
-    and print one table row per stress (or a JSON list of the result rows, each with ``stress``).
+    and print one table line per stress (or a JSON list of the result rows, each with ``stress``).
 
     Parameters
     ----------
@@ -160,6 +161,9 @@ def run_stress_sweep(call: Callable[[float], dict], stresses: np.ndarray, as_jso
         The table's first line (what is fixed), without the leading "# ".
     rows_of : callable
         A result -> its JSON-ready rows (the CLI's, so that the sweep prints what one call prints).
+    tables : dict
+        Piezoelectric result (True) or not -> the CLI's sweep table printer ``(rows, label, first
+        column texts)``: the stress sweep has the columns of an angle sweep.
     """
     import json
 
@@ -170,23 +174,6 @@ def run_stress_sweep(call: Callable[[float], dict], stresses: np.ndarray, as_jso
     if as_json:
         print(json.dumps(rows, indent=2))
         return 0
-    piezo = "K2" in rows[0]
     print(f"# {title}; stress sweep (uniaxial along the propagation, GPa)")
-    if piezo:
-        keys = ["stress", "c_free", "c_metallized", "K2", "c_leaky", "leaky_attenuation", "power_flow_angle"]
-        header = ["stress", "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "PFA (deg)", "wave_type"]
-    else:
-        keys = ["stress", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth"]
-        header = ["stress", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
-    print("  ".join(f"{h:>10}" for h in header))
-    for row in rows:
-        cells = []
-        for k in keys:
-            v = row.get(k)
-            if k == "K2" and v is not None:
-                v = 100 * v
-            fmt = "10.5f" if k == "leaky_attenuation" else "10.4f" if k in ("stress", "K2", "power_flow_angle") \
-                else "10.2f"
-            cells.append(f"{'nan':>10}" if v is None else format(v, fmt))
-        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
+    tables["K2" in rows[0]](rows, "stress", [f"{r['stress']:g}" for r in rows])
     return 0
