@@ -223,7 +223,7 @@ def _resolve_material(C11, C12, C44, rho, voigt, toec):
                              "(surfwave.real_crystals.toec_classes.TOEC_NAMES); else give a (6, 6, 6) Voigt array")
         toec = tuple(names[k] for k in CUBIC_TOEC)
     if toec is not None and toec is not True and toec is not False:
-        t = np.asarray(toec, dtype=float)
+        t = validate.toec_array(toec)
         if t.shape == (6,):
             C3 = cubic_toec(*t)
         elif t.shape == (6, 6, 6):

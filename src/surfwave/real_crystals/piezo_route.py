@@ -13,6 +13,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import piezo_wave, resolve_piezo_material
 from surfwave.real_crystals.stressed_wave import BULK_KEYS
@@ -59,9 +60,7 @@ def _orientation(cut, euler, surface, direction, angle, material):
         c = get_cut(cut)
         euler, cut_material = c.euler, c.material
     if euler is not None:
-        e = np.asarray(euler, dtype=float)
-        if e.shape not in ((3,), ) and (e.ndim != 2 or e.shape[1] != 3):
-            raise InputError(f"euler must be (phi, theta, psi) in degrees or an (m, 3) array, got shape {e.shape}")
+        e = validate.euler_angles(euler)                            # numbers, (3,) or (m >= 1, 3), finite
         R = euler_lab_axes(e)
         scalar = e.ndim == 1
         e = e.reshape(-1, 3)
