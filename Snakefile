@@ -20,6 +20,7 @@ from surfwave.pipeline.knobs import expected_cost
 from surfwave.pipeline.scenes import (
     SceneError,
     config_sources,
+    scene_notes,
     selected,
     validate_config,
 )
@@ -60,8 +61,9 @@ except SceneError as exc:
     raise WorkflowError(str(exc)) from None
 
 
-# Stages expected to run long (costly accuracy settings) are announced before any job.
-for _line in expected_cost(SCENES, selected(config, SCENES)):
+# Stages expected to run long (costly accuracy settings) are announced before any job,
+# and so are Euler angles that all look like radians (they are taken as degrees).
+for _line in expected_cost(SCENES, selected(config, SCENES)) + scene_notes(SCENES):
     print(_line, file=sys.stderr)
 
 # A damaged cube (truncated, not netCDF) is set aside as <file>.damaged and rebuilt,

@@ -41,8 +41,10 @@ cubic constants --C11 --C12 --C44, or a full 6x6 Voigt stiffness (GPa, crystal a
 surface, or --angle in degrees from the surface's reference direction ((001): [100];
 (110): [001]; (111): [1-10]) toward n x reference. Prestress: --stress S (uniaxial along
 the propagation) or nine values (the Cauchy tensor in crystal axes, row by row; it must lie
-in the surface plane). Below v_L (the lowest bulk trace velocity) the surface wave is found
-by the Stroh/impedance solver, at mirror directions by Eq. (17).
+in the surface plane); a list of other length (-0.1 0 0.1) or START:STOP:STEP is a sweep of
+uniaxial stresses, printed as a table (one orientation). Below v_L (the lowest bulk trace
+velocity) the surface wave is found by the Stroh/impedance solver, at mirror directions by
+Eq. (17).
 
 Two models of the stressed crystal:
   fixed constants (default): the given constants are those of the stressed crystal; the
@@ -62,6 +64,7 @@ examples:
   surfwave material --material Cu --direction "[100]" --stress 0.1 --toec
   surfwave material --C11 168.4 --C12 121.4 --C44 75.4 --rho 8960 --surface "(111)" --direction "[1-10]"
   surfwave material --material Si --surface "(110)" --angle 0:90:15
+  surfwave material --material Cu --direction "[100]" --stress -0.2:0.2:0.1 --toec
 """
 
 
@@ -154,9 +157,10 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--direction", help='propagation direction "[uvw]" in the surface (default: the reference)')
     where.add_argument("--angle", help="angle in degrees from the reference direction, or a sweep START:STOP:STEP "
                        "(STOP included) printed as a table")
-    mt.add_argument("--stress", type=float, nargs="+", default=[0.0], metavar="S",
-                    help="prestress, GPa (negative = compression): one value (uniaxial along the propagation) "
-                    "or nine (Cauchy tensor in crystal axes, row by row)")
+    mt.add_argument("--stress", nargs="+", default=["0"], metavar="S",
+                    help="prestress, GPa (negative = compression): one value (uniaxial along the propagation), "
+                    "nine (Cauchy tensor in crystal axes, row by row), or a sweep of uniaxial stresses printed as "
+                    "a table: a list of values (-0.1 0 0.1) or START:STOP:STEP (STOP included)")
     mt.add_argument("--toec", type=float, nargs="*", metavar="C",
                     help="third-order model: no value = the database's constants of --material; or "
                     "six values C111 C112 C123 C144 C155 C456, GPa (Brugger)")
@@ -230,34 +234,11 @@ def _cmd_point(args) -> int:
 
 
 def _angles(text: str) -> np.ndarray | float:
-    """One angle "15" or a sweep "0:90:5" (stop included) in degrees."""
-    from surfwave.errors import InputError
+    """One angle "15" or a sweep "0:90:5" (stop included) in degrees (:func:`surfwave.cli_sweeps.sweep`)."""
+    from surfwave.cli_sweeps import sweep
 
-    parts = text.split(":")
-    try:
-        values = [float(v) for v in parts]
-    except ValueError:
-        raise InputError(f"--angle must be a number or START:STOP:STEP in degrees, got {text!r}") from None
-    from surfwave.pipeline.grids import MAX_POINTS
-    from surfwave.validate import MAX_ANGLE
-
-    bad = [v for v in values if not np.isfinite(v)]
-    if bad:
-        raise InputError(f"--angle must be finite numbers of degrees, got {bad[0]!r} in {text!r}")
-    big = [v for v in values[:2] if abs(v) > MAX_ANGLE]
-    if big:
-        raise InputError(f"--angle {big[0]!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose precision in "
-                         f"float64; reduce it modulo 360 (got {text!r})")
-    if len(values) == 1:
-        return values[0]
-    if len(values) != 3 or values[2] <= 0 or values[1] < values[0]:
-        raise InputError(f"--angle sweep must be START:STOP:STEP with STEP > 0 and STOP >= START, got {text!r}")
-    start, stop, step = values
-    n = np.floor((stop - start) / step + 1e-9) + 1
-    if n > MAX_POINTS:  # before any array is made: 0:1e9:1 would fill the memory
-        raise InputError(f"--angle sweep {text!r} has {n:.4g} angles, more than the limit of {MAX_POINTS}; "
-                         "use a larger STEP or a shorter range")
-    return start + step * np.arange(int(n))
+    values = sweep(text, "--angle")
+    return float(values[0]) if ":" not in text else values
 
 
 def _material_rows(r: Mapping[str, Any]) -> list[dict]:
@@ -288,6 +269,7 @@ def _material_rows(r: Mapping[str, Any]) -> list[dict]:
 
 def _cmd_material(args) -> int:
     from surfwave.api import material
+    from surfwave.cli_sweeps import run_stress_sweep, stress_values
     from surfwave.errors import InputError
 
     if args.list:
@@ -315,12 +297,7 @@ def _cmd_material(args) -> int:
     if args.rho is None and args.material is None and not (args.cut is not None and not given):
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
     toec = cli_material.toec_arg(args)
-    if len(args.stress) == 1:
-        stress = args.stress[0]
-    elif len(args.stress) == 9:
-        stress = np.reshape(args.stress, (3, 3))
-    else:
-        raise InputError(f"--stress takes one value or nine, got {len(args.stress)}")
+    stress, stress_sweep = stress_values(args.stress)
     oriented = args.euler is None and args.cut is None      # else the Euler angles set surface and direction
     direction: Any
     if args.angle is not None:
@@ -331,11 +308,26 @@ def _cmd_material(args) -> int:
         direction = 0.0 if oriented else None
     if oriented and args.surface is None:
         args.surface = "(001)"
-    try:
-        r = material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
-                     **constants, **piezo_kw)
-    except InputError as err:
-        raise InputError(cli_material.toec_words(str(err), args)) from None
+
+    def call(stress):
+        try:
+            return material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,
+                            **constants, **piezo_kw)
+        except InputError as err:
+            raise InputError(cli_material.toec_words(str(err), args)) from None
+
+    if stress_sweep is not None:
+        if swept is not None or np.ndim(direction):
+            raise InputError("one sweep at a time: a --stress sweep with one orientation (not with an --angle or "
+                             "--euler sweep)")
+        where = (f"cut {args.cut}" if args.cut else f"Euler {' '.join(args.euler)}" if args.euler else
+                 f"surface {args.surface}, " + (f"direction {direction}" if isinstance(direction, str)
+                                                   else f"angle {direction:g} deg"))
+        name = f"{args.material}, " if args.material else ""
+        model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
+        return run_stress_sweep(call, stress_sweep, args.json, f"{name}{where}, {model}", _material_rows,
+                                {True: cli_piezo.print_table, False: _elastic_table})
+    r = call(stress)
     rows = _material_rows(r)
     if args.json:
         print(json.dumps(rows if np.ndim(r["c_R"]) else rows[0], indent=2))
@@ -346,7 +338,7 @@ def _cmd_material(args) -> int:
     model = "third-order constants (stressed state)" if toec is not None else "fixed constants"
     name = f"{args.material}, " if args.material else ""
     print(f"# {name}surface {args.surface}, {what}, stress "
-          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, {model}")
+          f"{' '.join(args.stress)} GPa, {model}")
     if np.ndim(direction) == 0:
         row = rows[0]
         for key in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "c_T_perp", "c_L_perp", "c_SH", "c_SH_perp"):
@@ -365,13 +357,18 @@ def _cmd_material(args) -> int:
         if row.get("grazing"):
             print(f"             note: {cli_piezo.GRAZING_NOTE}")
         return 0
-    header = ["angle", "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
-    print("  ".join(f"{h:>10}" for h in header))
-    for row in rows:
-        vals = [row[k] for k in ("angle", "c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
-        cells = [cli_piezo.cell(v, "10.2f") for v in vals]
-        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
+    _elastic_table(rows, "angle", [cli_piezo.cell(row["angle"], "10.2f") for row in rows])
     return 0
+
+
+def _elastic_table(rows: list[dict], label: str, first: list[str]) -> None:
+    """The elastic sweep table: one line per row, ``first`` (texts) in the column ``label``."""
+    header = [label, "c_R", "c_limit", "c_T_par", "c_L_par", "depth", "wave_type"]
+    print("  ".join(f"{h:>10}" for h in header))
+    for row, a in zip(rows, first):
+        vals = [row[k] for k in ("c_R", "c_limit", "c_T_par", "c_L_par", "penetration_depth")]
+        cells = [f"{a:>10}"] + [cli_piezo.cell(v, "10.2f") for v in vals]
+        print("  ".join(cells + [f"{row['wave_type']:>10}"]))
 
 
 def _cmd_potentials(args) -> int:
@@ -391,7 +388,7 @@ def _default_configs() -> list[Path]:
 
 
 def _cmd_scenes(args) -> int:
-    from surfwave.pipeline.scenes import config_sources, load_config, selected, validate_config
+    from surfwave.pipeline.scenes import config_sources, load_config, scene_notes, selected, validate_config
     from surfwave.pipeline.targets import paper_scenes, scene_outputs
 
     files = _default_configs() + list(args.configfile)
@@ -400,6 +397,8 @@ def _cmd_scenes(args) -> int:
         raise SurfwaveError(f"config file(s) not found: {missing}")
     config = load_config(files)
     scenes = validate_config(config, sources=config_sources(files))
+    for note in scene_notes(scenes):
+        print(note, file=sys.stderr)
     run = set(selected(config, scenes))
     paper = set(paper_scenes())
     rows = []

@@ -7,12 +7,14 @@ of :func:`surfwave.material` (:func:`material_kwargs`) and prints a piezoelectri
 from __future__ import annotations
 
 import re
+import sys
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.validate import radians_note
 
 __all__ = ["EPILOG", "add_options", "angle_text", "cell", "list_cuts", "material_kwargs", "print_result"]
 
@@ -21,7 +23,9 @@ Piezoelectric crystals (quartz, LiNbO3, LiTaO3, AlN, ZnO, GaN, langasite, GaAs):
 piezoelectric database (--material LiNbO3), a named cut (--cut 128Y-X; 'surfwave material
 --list-cuts') or SAW Euler angles --euler PHI THETA PSI in degrees (ZXZ; x1 = propagation,
 x3 = outward normal); any one of the three may be a sweep START:STOP:STEP (STOP included),
-printed as a table. Output: free and metallized SAW speeds, K2 = 2 (v_free - v_met) / v_free,
+printed as a table (one sweep at a time: --stress, too, takes a list of values or a sweep).
+Angles are degrees; when all look like radians (within 2 pi, one not a whole number) a note says
+so. Output: free and metallized SAW speeds, K2 = 2 (v_free - v_met) / v_free,
 the leaky SAW (radiating into the slowest bulk sheet) with its attenuation in dB per
 wavelength for --electrical (default free), and the power-flow angle (degrees, from x1
 toward +x2 of the SAW frame). --euler works for any crystal (Cu: e = 0). Prestress: fixed
@@ -31,6 +35,7 @@ piezoelectric examples:
   surfwave material --list-cuts
   surfwave material --material LiNbO3 --cut 128Y-X                  # 3994.2 / 3887.6 m/s, K2 5.34 %
   surfwave material --cut "ST-X quartz" --stress -0.1
+  surfwave material --cut "ST-X quartz" --stress -0.2:0.2:0.05           # a stress sweep, as a table
   surfwave material --material LiNbO3 --euler 0 -90:90:10 0              # rotated Y cuts, X propagation
   surfwave material --material LiTaO3 --euler 0 -54 0 --electrical metallized --json
 """
@@ -44,7 +49,8 @@ GRAZING_NOTE = ("grazing: the SAW is a bulk-like wave at the limiting speed, dee
 def add_options(mt) -> None:
     """Add the piezoelectric options to the ``material`` sub-parser."""
     # let a sweep that starts negative ("-90:90:2") be a value, as argparse already does for "-54"
-    mt._negative_number_matcher = re.compile(r"^-\d+$|^-\d*\.\d+$|^-\d*\.?\d*:[-\d.:]*$")
+    # (also with an exponent, "-1e-3", and a sweep's "-inf"/"-nan", which the range parser refuses in one line)
+    mt._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+|inf|nan)([eE][-+]?\d+)?(:[-+\w.:]*)?$")
     g = mt.add_argument_group("piezoelectric crystals and Euler-angle cuts")
     g.add_argument("--cut", help='a named SAW cut: "128Y-X", "ST-X quartz", "Y-Z LiNbO3", ... (see --list-cuts)')
     g.add_argument("--euler", nargs=3, metavar=("PHI", "THETA", "PSI"),
@@ -68,17 +74,9 @@ def list_cuts() -> int:
 
 
 def _sweep(text: str) -> np.ndarray:
-    parts = str(text).split(":")
-    try:
-        values = [float(v) for v in parts]
-    except ValueError:
-        raise InputError(f"--euler angles must be numbers or START:STOP:STEP in degrees, got {text!r}") from None
-    if len(values) == 1:
-        return np.array(values)
-    if len(values) != 3 or values[2] <= 0 or values[1] < values[0]:
-        raise InputError(f"--euler sweep must be START:STOP:STEP with STEP > 0 and STOP >= START, got {text!r}")
-    start, stop, step = values
-    return start + step * np.arange(int(np.floor((stop - start) / step + 1e-9)) + 1)
+    from surfwave.cli_sweeps import sweep
+
+    return sweep(text, "--euler")
 
 
 def material_kwargs(args) -> tuple[dict, int | None]:
@@ -105,6 +103,9 @@ def material_kwargs(args) -> tuple[dict, int | None]:
             kw["euler"] = np.column_stack([np.broadcast_to(p, (n,)) for p in parts])
         else:
             kw["euler"] = np.array([p[0] for p in parts])
+        note = radians_note(kw["euler"], "--euler angles")
+        if note:
+            print(note, file=sys.stderr)
     if args.electrical is not None:
         kw["electrical"] = args.electrical
     return kw, swept
@@ -148,7 +149,7 @@ def print_result(args, r: Mapping[str, Any], rows: list[dict], swept: int | None
     where = (f"cut {args.cut}" if args.cut else
              f"Euler {' '.join(args.euler)}" if args.euler else f"surface {args.surface}")
     print(f"# {args.material + ', ' if args.material else ''}{where}, stress "
-          f"{args.stress if len(args.stress) > 1 else args.stress[0]} GPa, "
+          f"{' '.join(args.stress)} GPa, "
           f"{'third-order constants' if np.any(r['toec']) else 'fixed constants'}; "
           f"leaky wave and PFA for a {electrical} surface")
     if np.ndim(r["c_R"]) == 0:
@@ -180,20 +181,25 @@ def print_result(args, r: Mapping[str, Any], rows: list[dict], swept: int | None
             print(f"{'note':>17}: {GRAZING_NOTE}")
         return 0
     label = ("phi", "theta", "psi")[swept] if swept is not None else "angle"
+    print_table(rows, label, [angle_text(row["euler"][swept] if swept is not None else row["angle"]) for row in rows])
+    return 0
+
+
+def print_table(rows: list[dict], label: str, first: list[str]) -> None:
+    """The piezoelectric sweep table: one line per row, ``first`` (texts) in the column ``label``
+    (the swept Euler angle or angle, or the stress of a stress sweep)."""
     header = [label, "v_free", "v_met", "K2 (%)", "c_leaky", "dB/lambda", "K2_leaky(%)", "PFA (deg)", "wave_type"]
     print("  ".join(f"{h:>10}" for h in header))
-    for row in rows:
-        a = row["euler"][swept] if swept is not None else row["angle"]
+    for row, a in zip(rows, first):
         k2 = None if row["K2"] is None else 100 * row["K2"]
         k2l = None if row.get("K2_leaky") is None else 100 * row["K2_leaky"]
         wave = row["wave_type"] + ("*" if row.get("grazing") else "")
-        cells = [f"{angle_text(a):>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
+        cells = [f"{a:>10}", _f(row["c_free"], "10.2f"), _f(row["c_metallized"], "10.2f"), _f(k2, "10.4f"),
                  _f(row["c_leaky"], "10.2f"), _f(row["leaky_attenuation"], "10.5f"), _f(k2l, "11.4f", 11),
                  _f(row["power_flow_angle"], "10.4f"), f"{wave:>10}"]
         print("  ".join(cells))
     if any(row.get("grazing") for row in rows):
         print(f"* {GRAZING_NOTE}")
-    return 0
 
 
 def scene_row(name: str, sc: dict, built: bool, paper: bool, outputs: list[str]) -> dict:

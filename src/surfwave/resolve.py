@@ -97,9 +97,7 @@ def _caller_toec(toec) -> np.ndarray:
     """A caller's cubic third-order set: six values, a mapping of the six names, or (6, 6, 6); GPa."""
     if isinstance(toec, Mapping):
         toec = _cubic_six(toec)
-    if isinstance(toec, str):
-        raise InputError(f"toec must be True, False, (C111, C112, C123, C144, C155, C456) in GPa or a (6, 6, 6) "
-                         f"Voigt array, got {toec!r}")
+    validate.toec_array(toec)                                       # numbers in a regular array
     t = validate.gpa_constants(toec, "third-order constants")
     if t.shape == (6,):
         return cubic_toec(*t)
@@ -197,17 +195,9 @@ def _constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, cut, cut_ma
 
 
 def _euler_values(euler) -> np.ndarray:
-    """Euler angles (phi, theta, psi) in degrees as a float array (3,) or (m, 3), checked."""
-    try:
-        shape: tuple | None = np.shape(euler)
-    except (TypeError, ValueError):                                 # ragged
-        shape = None
-    if shape is None or isinstance(euler, (str, Mapping)) or not (
-            shape == (3,) or (len(shape) == 2 and shape[1] == 3 and shape[0] > 0)):
-        raise InputError(f"euler must be (phi, theta, psi) in degrees or an (m, 3) array, got {validate.brief(euler)}")
-    e = validate.real_array(euler, "euler").reshape(shape)
-    validate.angle_values(e.reshape(-1), "euler")                   # finite, within MAX_ANGLE
-    return e
+    """Euler angles (phi, theta, psi) in degrees as a float array (3,) or (m, 3), checked
+    (:func:`surfwave.validate.euler_angles`, the guard of every door)."""
+    return validate.euler_angles(euler)
 
 
 def _orientation(surface, direction, angle, euler, cut) -> dict:

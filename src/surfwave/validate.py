@@ -1,5 +1,6 @@
 """The validators of the library's arguments: arrays (strains, angles, theta, stresses),
-propagation angles, densities and Voigt stiffnesses. Each error names the argument and value.
+propagation angles, Euler angles, densities, Voigt stiffnesses and third-order constants. Each
+error names the argument and value.
 
 Examples
 --------
@@ -67,7 +68,8 @@ def real_array(values, name: str) -> np.ndarray:
     try:
         raw = np.asarray(values)
     except (TypeError, ValueError) as exc:
-        raise InputError(f"{name} must be numbers, got {brief(values)} ({exc})") from None
+        why = "rows of different lengths" if "inhomogeneous" in str(exc) else " ".join(str(exc).split())[:80]
+        raise InputError(f"{name} must be numbers in a regular array, got {brief(values)} ({why})") from None
     if raw.dtype.kind in "USV":
         raise InputError(f"{name} must be numbers, got text: {brief(values)}")
     if raw.dtype.kind == "c":
@@ -154,6 +156,109 @@ def stiffness(voigt, name: str = "voigt") -> np.ndarray:
         raise InputError(f"the Voigt stiffness {name} must be symmetric: C{i + 1}{j + 1} = {float(C6[i, j])!r} but "
                          f"C{j + 1}{i + 1} = {float(C6[j, i])!r}")
     return C6
+
+
+def euler_angles(euler, name: str = "euler") -> np.ndarray:
+    """SAW Euler angles (degrees) as a float array of shape (3,) or (m, 3), m >= 1.
+
+    Every way of giving Euler angles (API ``euler=``, the CLI's ``--euler``, a scene's grid)
+    comes through here before any computation.
+
+    Raises
+    ------
+    InputError
+        Naming ``name`` and the value: text (``"0 38 0"``), complex, ragged or a mapping; a
+        shape other than (3,) or (m, 3); no rows; NaN or infinite angles; angles beyond
+        :data:`MAX_ANGLE` degrees.
+
+    Examples
+    --------
+    >>> euler_angles((0, -52, 0)).tolist()
+    [0.0, -52.0, 0.0]
+    >>> euler_angles("0 38 0")
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: euler must be numbers, got text: '0 38 0'
+    """
+    if isinstance(euler, dict):
+        raise InputError(f"{name} must be (phi, theta, psi) in degrees or an (m, 3) array, got a mapping "
+                         f"{brief(euler)}; give the three angles in that order")
+    e = real_array(euler, name)
+    if e.ndim == 0 or (e.shape != (3,) and (e.ndim != 2 or e.shape[1] != 3)):
+        raise InputError(f"{name} must be (phi, theta, psi) in degrees or an (m, 3) array, got shape "
+                         f"{np.shape(euler)}: {brief(euler)}")
+    if e.size == 0:
+        raise InputError(f"{name} must hold at least one (phi, theta, psi) row, got shape {e.shape}")
+    bad = ~np.isfinite(e)
+    if bad.any():
+        row = e.reshape(-1, 3)[np.flatnonzero(bad.reshape(-1, 3).any(axis=1))[0]]
+        raise InputError(f"{name} angles must be finite, got (phi, theta, psi) = {tuple(row.tolist())} degrees")
+    big = np.abs(e) > MAX_ANGLE
+    if big.any():
+        raise InputError(f"{name} = {float(e[big][0])!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose "
+                         "precision in float64 (the angle computed would not be the angle labelled); "
+                         "reduce it modulo 360")
+    return e
+
+
+#: Largest |angle| of a set of Euler angles that all look like radians (2 pi).
+_RADIANS = 2 * np.pi + 1e-9
+
+
+def radians_note(euler, name: str = "Euler angles") -> str | None:
+    """A one-line note when every Euler angle looks like radians, else None.
+
+    "Looks like radians": every non-zero angle lies within 2 pi in magnitude (the largest at
+    least 0.01) and at least one of them is not a whole number of degrees (0.663 is 38 degrees in radians; whole degrees
+    such as (0, 1, 0) and the Z cut (0, 0, 0) are taken at their word). The angles are used as
+    given (degrees); the note only says what they would be in radians.
+
+    Parameters
+    ----------
+    euler : array_like, shape (3,) or (m, 3) or (n,)
+        Angles in degrees (any shape: every value is looked at).
+    name : str
+        What the angles are called in the note ("--euler", "scene 's', key 'euler'").
+
+    Examples
+    --------
+    >>> radians_note([0, 0.663, 0])
+    'note: all Euler angles lie within 2 pi and 0.663 is not a whole number: they are taken as degrees (0.663 deg); if you meant radians, 0.663 rad = 37.99 deg'
+    >>> radians_note([0, 38, 0]) is None, radians_note([0, 0, 0]) is None
+    (True, True)
+    """  # noqa: E501 (a doctest's expected message)
+    a = np.asarray(euler, dtype=float).ravel()
+    a = a[np.isfinite(a) & (a != 0)]
+    if not a.size or not 0.01 <= np.abs(a).max() <= _RADIANS:
+        return None
+    frac = a[a != np.round(a)]
+    if not frac.size:
+        return None
+    x = float(frac[np.argmax(np.abs(frac))])
+    return (f"note: all {name} lie within 2 pi and {x:g} is not a whole number: they are taken as degrees "
+            f"({x:g} deg); if you meant radians, {x:g} rad = {np.degrees(x):.2f} deg")
+
+
+def toec_array(toec, name: str = "toec") -> np.ndarray:
+    """Third-order constants given as numbers (GPa): a float array, text, ragged, complex refused.
+
+    The shape is the caller's to check ((6,) cubic six or a (6, 6, 6) Voigt array).
+
+    Examples
+    --------
+    >>> toec_array([-1271, -814, -50, -3, -780, -95]).shape
+    (6,)
+    >>> toec_array("abc")
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: toec must be numbers, got text: 'abc'
+    """
+    if isinstance(toec, (bool, np.bool_)):
+        raise InputError(f"{name} must be True (the database's set) or numbers in GPa, got {toec!r}")
+    t = real_array(toec, name)
+    if t.ndim == 0 or t.size == 0:
+        raise InputError(f"{name} must hold the third-order constants in GPa, got {brief(toec)}")
+    return t
 
 
 # --------------------------------------------------------------------------- units and magnitudes

@@ -39,3 +39,11 @@ def test_text_float_stress_and_redefined_scene(tmp_path):
     assert "scene 'mine', key 'stress': value 100000000.0: stress must be in GPa" in text and "looks like Pa" in text
     assert "any of the given schemas" not in text
     assert "scene 'tiny_crystal' is defined in config/config.yaml and again in" in text
+
+
+def test_wrong_typed_value_is_one_line_not_a_hang(tmp_path):
+    """Issue 28 item 1: `stress: "0.1"` (a key of several shapes, every branch a type mismatch) made
+    the schema message builder loop forever under `snakemake -n`; now one line within the timeout."""
+    text = run_bad(tmp_path, "scenes:\n  mine:\n    materials: [Cu]\n    surfaces: ['(001)']\n"
+                             "    stress: '0.1'\n")
+    assert "scene 'mine', key 'stress': value '0.1' is text" in text and "a list of numbers" in text

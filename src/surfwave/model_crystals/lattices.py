@@ -130,13 +130,20 @@ def check_combination(lattice: str, loading: str, direction: str) -> None:
         )
 
 
+#: Largest d/d0 (exclusive) of FCC under uniaxial load, whose geometry alone sets no limit: at
+#: twice its rest length a bond is far past the breaking point of any pair potential in use
+#: (LJ's inflection lies at d/d0 = 1.109), and the continuation from d/d0 = 1 in steps of 0.02
+#: would take (d/d0 - 1) / 0.02 steps (5e7 at d/d0 = 1e6; an overflow at 1e308).
+MAX_UNIAXIAL_STRETCH = 2.0
+
+
 def d_over_d0_range(lattice: str, loading: str) -> tuple[float, float]:
     """Open interval of d/d0 values the geometry can take (before stability is asked)."""
     if lattice == "triangular":
         return (0.0, 2.0)
     if loading == "in_plane_hydrostatic":
         return (0.0, float(np.sqrt(2.0)))
-    return (0.0, np.inf)  # uniaxial FCC: limited only by the lateral solve
+    return (0.0, MAX_UNIAXIAL_STRETCH)  # uniaxial FCC: bonds at twice their length
 
 
 def check_d_over_d0(lattice: str, loading: str, d_over_d0: ArrayLike) -> np.ndarray:
@@ -150,7 +157,8 @@ def check_d_over_d0(lattice: str, loading: str, d_over_d0: ArrayLike) -> np.ndar
             "fcc": "t^2 = 2 - (d/d0)^2 must be positive, so 0 < d/d0 < sqrt 2",
         }[lattice]
         if lattice == "fcc" and loading == "uniaxial":
-            why = "a stretch must be positive"
+            why = (f"a stretch must be positive and below {MAX_UNIAXIAL_STRETCH:g}: bonds at twice their rest "
+                   "length are far past the breaking point of any pair potential")
         raise GeometryError(
             f"impossible geometry for {lattice} {loading}: d/d0 = {bad[0]:.6g} ({why})"
         )
@@ -243,6 +251,8 @@ def _continuation(bonds_sq, s, pot, tol, max_iter) -> tuple[np.ndarray, np.ndarr
     steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.02))
     for k in range(1, steps + 1):
         ok = np.flatnonzero(~failed)
+        if not ok.size:  # every point has failed: nothing left to march
+            break
         t[ok], failed[ok] = _newton(bonds_sq, 1.0 + (s[ok] - 1.0) * k / steps, t[ok], pot, tol, max_iter)
     return t, failed
 

@@ -58,6 +58,13 @@ def check_points(where: str, sizes: dict[str, int]) -> int:
 
 
 
+def _rounded(values: np.ndarray) -> np.ndarray:
+    """``values`` rounded to :data:`DECIMALS` decimals where that changes anything (|v| < 1e15);
+    np.round would overflow to inf beyond ~1e296 (scaling by 10**DECIMALS) and call 1e308 infinite."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        return np.where(np.abs(values) < 1e15, np.round(values, DECIMALS), values)
+
+
 def expand_grid(spec: Sequence[float] | dict[str, Any], where: str = "grid") -> np.ndarray:
     """Values of a grid: a list (sorted, rounded), or {start, stop, step} with stop included.
 
@@ -80,17 +87,18 @@ def expand_grid(spec: Sequence[float] | dict[str, Any], where: str = "grid") -> 
             raise SceneError(f"{where}: step must be positive, got {step!r}")
         if stop < start:
             raise SceneError(f"{where}: stop {stop!r} lies before start {start!r}")
-        n = (stop - start) / step
+        with np.errstate(over="ignore"):
+            n = (stop - start) / step
+        if not n + 1 <= MAX_POINTS + 0.5:  # before int(): a step of 5e-324 makes n infinite
+            raise SceneError(f"{where}: {n + 1:.4g} points exceed the limit of {MAX_POINTS}")
         k = int(round(n))
         if abs(n - k) > 1e-9 * max(1.0, abs(n)):
             raise SceneError(
                 f"{where}: stop - start = {stop - start:.12g} is not a multiple of step {step!r}"
             )
-        if k + 1 > MAX_POINTS:
-            raise SceneError(f"{where}: {k + 1} points exceed the limit of {MAX_POINTS}")
-        values = np.round(start + step * np.arange(k + 1), DECIMALS)
+        values = _rounded(start + step * np.arange(k + 1))
     else:
-        values = np.round(np.sort(np.asarray(spec, dtype=float)), DECIMALS)
+        values = _rounded(np.sort(np.asarray(spec, dtype=float)))
         if values.ndim != 1 or values.size == 0:
             raise SceneError(f"{where}: expected a non-empty list of numbers, got {spec!r}")
         dup = values[1:][np.diff(values) == 0]

@@ -30,6 +30,8 @@ from typing import Any
 from surfwave.errors import InputError, SurfwaveError
 from surfwave.model_crystals.lattices import LATTICES, build, check_combination, check_d_over_d0
 from surfwave.model_crystals.potentials import get_potential
+from surfwave.pipeline.config_messages import join as _join
+from surfwave.pipeline.config_messages import name_problems, rest_problems, schema_message
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid, theta_grid  # noqa: F401 (public)
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
@@ -49,14 +51,6 @@ CUBES = {
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
-def _where(path) -> str:
-    parts = list(path)
-    if len(parts) >= 2 and parts[0] == "scenes":
-        key = "/".join(str(p) for p in parts[2:]) or "(scene)"
-        return f"scene {parts[1]!r}, key {key!r}"
-    return f"key {'/'.join(str(p) for p in parts) or '(top level)'!r}"
-
-
 #: A number with an exponent that PyYAML (YAML 1.1) reads as text: "1.0e8", "1e8", "1e-3"
 #: without a dot or a sign after e. YAML 1.2 (and every user) reads them as floats.
 _YAML12_FLOAT = re.compile(r"^[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)[eE][-+]?[0-9]+$")
@@ -104,13 +98,23 @@ def load_yaml(path: str | Path):
     """
     import yaml
 
-    with open(path) as fh:
-        try:
-            return yaml.load(fh, Loader=_strict_loader())
-        except DuplicateKeyError as exc:
-            raise SceneError(f"config file {str(path)!r}: {exc}") from None
-        except yaml.YAMLError as exc:
-            raise SceneError(f"config file {str(path)!r} is not valid YAML: {' '.join(str(exc).split())}") from None
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = yaml.load(fh, Loader=_strict_loader())
+    except DuplicateKeyError as exc:
+        raise SceneError(f"config file {str(path)!r}: {exc}") from None
+    except yaml.YAMLError as exc:
+        raise SceneError(f"config file {str(path)!r} is not valid YAML: {' '.join(str(exc).split())}") from None
+    except UnicodeDecodeError as exc:
+        raise SceneError(f"config file {str(path)!r} is not a text file (byte {exc.object[exc.start]:#04x} at "
+                         f"offset {exc.start} is not UTF-8): give a YAML file") from None
+    except OSError as exc:
+        raise SceneError(f"config file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    if data is not None and not isinstance(data, dict):
+        what = "a list" if isinstance(data, list) else f"the single value {data!r}"[:80]
+        raise SceneError(f"config file {str(path)!r} holds {what}, not a mapping: a config is a mapping with "
+                         "the key 'scenes' (and optionally 'run')")
+    return data
 
 
 def config_sources(paths) -> dict[str, list[str]]:
@@ -180,71 +184,14 @@ def _validator_with_defaults(schema: dict):
 
 def schema_problems(config: dict, schema: dict | str | Path | None = None) -> list[str]:
     """Fill defaults into ``config`` (in place); one message per schema violation, in key order."""
-    return list(dict.fromkeys(_schema_message(e) for e in _schema_errors(config, schema)))
-
-
-def _schema_errors(config: dict, schema) -> list:
     if not isinstance(schema, dict):
         schema = load_schema(schema)
+    return list(dict.fromkeys(schema_message(e, schema) for e in _schema_errors(config, schema)))
+
+
+def _schema_errors(config: dict, schema: dict) -> list:
     validator = _validator_with_defaults(schema)
     return sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
-
-
-def _join(messages: list[str]) -> str:
-    if len(messages) == 1:
-        return messages[0]
-    return f"{len(messages)} problems in the config:\n" + "\n".join(f"  - {m}" for m in messages)
-
-
-def _branch_error(err):
-    """The error to report for a failed ``oneOf``: from the branch the value was meant for.
-
-    A branch whose errors all lie inside the value (a key of the right kind of object, an
-    item of a list) matched the value's shape: report its deepest error (``{symmetric: true,
-    step: 0}`` -> the step, not "'symmetric' was expected"). Otherwise the shallowest error
-    that is not a type mismatch.
-    """
-    depth = len(err.absolute_path)
-    branches: dict = {}
-    for e in err.context:
-        branches.setdefault(e.relative_schema_path[0] if e.relative_schema_path else 0, []).append(e)
-    inside = [errs for errs in branches.values()
-              if all(len(e.absolute_path) > depth for e in errs)]
-    if inside:
-        errs = min(inside, key=len)
-        return max(errs, key=lambda e: len(e.absolute_path))
-    deeper = [e for e in err.context if e.validator not in ("type", "const", "enum")]
-    if deeper:
-        return min(deeper, key=lambda e: len(e.absolute_path))
-    deeper = [e for e in err.context if e.validator != "type"]
-    return min(deeper, key=lambda e: len(e.absolute_path)) if deeper else err
-
-
-def _schema_message(err) -> str:
-    """One line naming the scene, the key and the offending value of a schema error."""
-    while err.validator == "oneOf" and err.context:  # report the branch of the value's shape
-        err = _branch_error(err)
-    path = list(err.absolute_path)
-    hint = err.schema.get("description", "") if isinstance(err.schema, dict) else ""
-    props = err.schema.get("properties", {}) if isinstance(err.schema, dict) else {}
-    if err.validator == "additionalProperties" and isinstance(err.instance, dict):
-        extra = sorted(k for k in err.instance if k not in props)
-        return (f"config error in {_where(path + extra[:1])}: unknown key {extra[0]!r} "
-                f"(allowed keys: {sorted(props)})")
-    if err.validator == "required" and isinstance(err.instance, dict):
-        missing = [k for k in err.validator_value if k not in err.instance]
-        key = missing[0] if missing else "?"
-        what = props.get(key, {}).get("description", "") if isinstance(props.get(key), dict) else ""
-        return (f"config error in {_where(path + [key])}: required key {key!r} is missing"
-                + (f"; expected: {what}" if what else ""))
-    msg = f"config error in {_where(path)}: value {err.instance!r} is invalid ({err.message})"
-    if err.validator == "type" and isinstance(err.instance, str):
-        try:
-            msg += (f"; YAML reads {err.instance} as text: write it with a decimal point, "
-                    f"e.g. {float(err.instance):.1e}")
-        except ValueError:
-            pass
-    return msg + (f"; expected: {hint}" if hint else "")
 
 
 def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
@@ -317,6 +264,15 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
     }, []
 
 
+def _scene_check(name: str, raw: dict, sources: dict[str, list[str]] | None) -> tuple[dict | None, list[str]]:
+    """The physical checks and expansion of one schema-valid scene, by its kind."""
+    check = check_crystal_scene if "materials" in raw else _check_scene  # real crystals name materials
+    if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
+        where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
+        check = partial(check_piezo_scene, base_dir=where)
+    return check(name, raw)
+
+
 def _key_dir(name: str, key: str, sources: dict[str, list[str]] | None) -> str | None:
     """Directory of the last config file whose scene ``name`` gives ``key`` (the one Snakemake's
     merge keeps), where a relative path in that key is read from; None if no file gives it."""
@@ -358,9 +314,13 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
         combinations, impossible d/d0, malformed grids, unknown scene names in ``run``:
         every problem of the config at once, one line each.
     """
+    if not isinstance(config, dict):
+        raise SceneError(f"the config must be a mapping with the key 'scenes', got {type(config).__name__}")
     _resolve_floats(config)
+    if not isinstance(schema, dict):
+        schema = load_schema(schema)
     errors = _schema_errors(config, schema)
-    problems = list(dict.fromkeys(_schema_message(e) for e in errors))
+    problems = list(dict.fromkeys(schema_message(e, schema) for e in errors))
     raw_scenes = config.get("scenes") if isinstance(config.get("scenes"), dict) else {}
     broken = {str(e.absolute_path[1]) for e in errors
               if len(e.absolute_path) >= 2 and e.absolute_path[0] == "scenes"}
@@ -369,19 +329,21 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
             problems.append(_redefined(name, sources[name]))
     scenes: dict[str, dict] = {}
     for name, raw in raw_scenes.items():
-        if name in broken or not isinstance(raw, dict):
+        if not isinstance(raw, dict):
             continue
-        # a real-crystal scene names materials (surfwave.pipeline.crystal_scenes)
-        check = check_crystal_scene if "materials" in raw else _check_scene
-        if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
-            where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
-            check = partial(check_piezo_scene, base_dir=where)
-        scene, found = check(name, raw)
+        named, unknown = name_problems(name, raw)  # unknown names, reported along with any schema problem
+        if name in broken or named:
+            # every problem at once: the physical checks of the rest of the scene (the keys and names
+            # that passed), best effort, their problems added to those already found
+            problems += named + rest_problems(name, raw, errors, unknown, partial(_scene_check, sources=sources))
+            continue
+        scene, found = _scene_check(name, raw, sources)
         problems += found
         if found and len((sources or {}).get(name, [])) > 1:
             problems.append(_redefined(name, sources[name]))
         if scene is not None:
             scenes[name] = scene
+    problems = list(dict.fromkeys(problems))
     run = config.get("run", [])
     for name in run if isinstance(run, list) else []:
         if name not in raw_scenes:
@@ -391,6 +353,27 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
     if problems:
         raise SceneError(_join(problems))
     return scenes
+
+
+def scene_notes(scenes: dict[str, dict]) -> list[str]:
+    """Notes (not errors) on validated scenes, one line each: Euler angles that all look like radians.
+
+    Examples
+    --------
+    >>> scene_notes({"s": {"kind": "piezo", "euler": {"phi": [0.0], "theta": [0.663], "psi": [0.0]}}})[0][:60]
+    "note: all Euler angles of scene 's' lie within 2 pi and 0.66"
+    """
+    from surfwave.validate import radians_note
+
+    notes = []
+    for name, scene in scenes.items():
+        euler = scene.get("euler") if scene.get("kind") == "piezo" else None
+        if isinstance(euler, dict):
+            note = radians_note([a for k in ("phi", "theta", "psi") for a in euler.get(k, [])],
+                                f"Euler angles of scene {name!r}")
+            if note:
+                notes.append(note)
+    return notes
 
 
 def selected(config: dict, scenes: dict[str, dict]) -> list[str]:

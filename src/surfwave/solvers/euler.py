@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
-from surfwave.validate import MAX_ANGLE
+from surfwave.validate import MAX_ANGLE, euler_angles
 
 
 def saw_euler_matrix(phi: ArrayLike, theta: ArrayLike, psi: ArrayLike) -> np.ndarray:
@@ -83,9 +83,7 @@ def euler_lab_axes(phi: ArrayLike, theta: ArrayLike | None = None, psi: ArrayLik
         is not three angles.
     """
     if theta is None and psi is None:
-        angles = np.asarray(phi, dtype=float)
-        if angles.shape[-1:] != (3,) or angles.ndim > 2:
-            raise InputError(f"Euler angles as one array must have shape (3,) or (m, 3), got {angles.shape}")
+        angles = euler_angles(phi, "Euler angles")
         phi, theta, psi = angles[..., 0], angles[..., 1], angles[..., 2]
     elif theta is None or psi is None:
         raise InputError("give all three Euler angles (phi, theta, psi) or one (m, 3) array")

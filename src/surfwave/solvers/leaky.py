@@ -19,8 +19,10 @@ X = X_L1 + (X_L2 - X_L1) sin^2 w (sqrt(X - X_L1) and sqrt(X_L2 - X) are analytic
 found by the secant method from every minimum of |det| over a grid of real speeds between
 v_L1 and v_L2; the least-attenuated root is kept. Where none of these searches converges, searches
 from w = pi/2 + i y (real X above X_L2) look for the branch that left the window through v_L2
-(kept only as a NaN with REASON_ABOVE). Without a verified root the reason of the first converged
-search is reported, else the first search's.
+(kept as a NaN with REASON_ABOVE) or for a nearly real root just below v_L2 that the real-axis
+search missed (kept when verified and not grazing: delta > PROBE_DELTA or Im p > PROBE_DECAY).
+Without a verified root the reason of the first converged search is reported, else the first
+search's.
 
 Only the leaky wave that radiates into the slowest bulk sheet is reported: a root whose
 real speed lies above the second sheet's limiting speed v_L2 (radiating into two sheets)
@@ -69,6 +71,10 @@ PROBE_Y1 = np.array([0.2])
 #: real X lies on the real axis, the real scan's business (e.g. grazing roots at the (111) mirrors of Ni and
 #: at Al (110) 0.5-2 deg and W 0.5-1 deg, whose 'decaying' second-sheet wave has Im p ~ 1e-4).
 PROBE_DELTA = 1e-6
+#: A verified root from the searches above v_L2 that drifted into the window is kept with delta >
+#: PROBE_DELTA or when every decaying partial wave has Im p > PROBE_DECAY (decays within ~160
+#: wavelengths): a nearly real leaky root, not a grazing near-double one (Im p ~ 1e-6 - 1e-4).
+PROBE_DECAY = 1e-3
 #: Halvings of a secant step allowed in a row when the roots cannot be followed.
 MAX_HALVING = 12
 #: Roots with |sin w| < T_EDGE (X - X_L1 < T_EDGE^2 (X_L2 - X_L1)) are grazing bulk waves, not leaky waves.
@@ -679,8 +685,9 @@ def _solve(sc, XL, d, electrical, tol):
     # 2b. points where no search converged: the branch may have left the window through v_L2,
     # out of reach from the real-axis minima; searches from w = pi/2 + i y (real X above X_L2,
     # X = X_L1 + (X_L2 - X_L1) cosh^2 y), continued from the highest grid point with a single
-    # real pair, find such roots. Only roots above v_L2 (REASON_ABOVE after the same validation)
-    # are kept: a probe that drifts back into the window is the real-axis search's business
+    # real pair, find such roots. Kept: roots above v_L2 (REASON_ABOVE after the same validation)
+    # and verified roots of the window that are not grazing (below); other probes that drift back
+    # into the window are the real-axis search's business
     extra_its = np.zeros(m)
     conv_row = np.zeros(m, dtype=bool)
     conv_row[rows[cand["converged"]]] = True
@@ -696,7 +703,13 @@ def _solve(sc, XL, d, electrical, tol):
         extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
                             _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
         extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
-        keep = extra["why"] == REASON_ABOVE
+        # also a verified root of the window that is not a grazing near-double root: delta >
+        # PROBE_DELTA, or every decaying wave with Im p > PROBE_DECAY (rotated Y LiNbO3 free near 41Y-X:
+        # a nearly real root above the top grid point, delta down to 0 at -49.42 deg, Im p >= 0.038,
+        # whose real-axis search wandered off; not Pb (111) 30 deg's real root with Im p = 3e-6)
+        good = extra["converged"] & (extra["why"] == "") & (
+            (extra["delta"] > PROBE_DELTA) | np.all(extra["p"][:, 1:].imag > PROBE_DECAY, axis=1))
+        keep = (extra["why"] == REASON_ABOVE) | good
         cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
         rows = np.concatenate([rows, prow[keep]])
     # 2c. points where no search from the real axis converged (or there was no minimum): the branch

@@ -37,9 +37,10 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from surfwave.errors import SymmetryError
+from surfwave.errors import InputError, SymmetryError
 from surfwave.solvers.cubic import newton_polish as _polish
 from surfwave.solvers.cubic import real_roots_closed_form as _cubic_rows
+from surfwave.validate import real_array
 from surfwave.vocab import SAGITTAL_WAVE_TYPES
 
 #: Wave types this solver reports (it never reports ``pseudo``).
@@ -467,7 +468,10 @@ def rayleigh_c2(S: np.ndarray, rho: ArrayLike = 1.0, *,
     (True, True)
     """
     r = _check_rho(rho)
-    S = np.asarray(S, dtype=float)
+    S = real_array(S, "S")                                    # numbers only (one line, not a numpy error)
+    if S.ndim < 4 or S.shape[-4:] not in ((2, 2, 2, 2), (3, 3, 3, 3)):
+        raise InputError(f"S must have shape (..., 2, 2, 2, 2) or (..., 3, 3, 3, 3) (stress derivatives, lab "
+                         f"frame), got {S.shape}")
     X, has = (v.reshape(S.shape[:-4]) for v in _solve_flat(S))
     c2 = np.where(has, X / r, np.nan)
     if not reasons:
