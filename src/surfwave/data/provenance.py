@@ -8,7 +8,7 @@ Examples
 --------
 >>> files = module_closure("solvers.rayleigh")
 >>> sorted(f.rsplit("surfwave/", 1)[1] for f in files)
-['__init__.py', 'errors.py', 'solvers/__init__.py', 'solvers/cubic.py', 'solvers/rayleigh.py', 'vocab.py']
+['__init__.py', 'errors.py', 'solvers/__init__.py', 'solvers/cubic.py', 'solvers/rayleigh.py', 'validate.py', 'vocab.py']
 """
 from __future__ import annotations
 
