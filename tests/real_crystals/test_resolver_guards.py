@@ -39,6 +39,7 @@ def test_piezoelectric_penetration_depth_is_finite_and_close_to_the_elastic_one(
     assert r["wave_type"] == "supersonic_decoupled" and np.isfinite(r["penetration_depth"])
     assert r["penetration_depth"] == pytest.approx(1 / (2 * np.pi * p.imag.min()), rel=1e-14)
     assert r["penetration_depth"] == pytest.approx(el["penetration_depth"], rel=0.02)
+    assert r["grazing"] is False          # a wave a third of a wavelength deep is not grazing (inf was)
     g = get_piezo_material("GaAs")
     zero = surfwave.material(voigt=g.voigt, rho=g.rho, piezo=np.zeros((3, 6)), permittivity=g.eps_r,
                              euler=(45, 0, 0))
