@@ -15,6 +15,13 @@ Target (issue 21 item 2): the median ratio <= 1.5 in every case.
 Cases: Cu (001) unstressed (the default call), at 0.2 GPa along the propagation (fixed
 constants), and at 0.2 GPa with third-order constants; each with BATCH angles (0-45 deg) in one
 call and with one angle (10 deg) per call.
+
+Piezoelectric rows (issue 25): ``material("LiNbO3-Warner1967", euler=E, leaky=False)`` on BATCH
+random SAW Euler angles (seed 0) against its bare solver,
+:func:`surfwave.solvers.piezo_saw.piezo_saw_conditions` (the free condition; both conditions'
+subsonic searches, as material() runs them for K^2) on the same lab tensors built outside the
+timing, and against the elastic ``material("Cu", angle=...)`` on as many directions. Targets:
+material / its solver <= 1.3, piezoelectric / elastic material() <= 3.
 """
 from __future__ import annotations
 
@@ -37,15 +44,21 @@ import xarray as xr  # noqa: E402
 
 import surfwave  # noqa: E402
 from surfwave.real_crystals.materials import get_material  # noqa: E402
+from surfwave.real_crystals.piezo_materials import lab_tensors  # noqa: E402
 from surfwave.real_crystals.toec import deformed_axes, stressed_state  # noqa: E402
 from surfwave.solvers import stroh  # noqa: E402
+from surfwave.solvers.euler import euler_lab_axes  # noqa: E402
 from surfwave.solvers.orientation import lab_axes  # noqa: E402
+from surfwave.solvers.piezo_saw import piezo_saw_conditions  # noqa: E402
 from surfwave.solvers.tensors import rotate2, rotate4  # noqa: E402
 
 BATCH = 200
 PAIRS = {BATCH: 15, 1: 100}  # timed pairs per angles-per-call
 TARGET = 1.5
 STRESS_CASES = [(0.0, False), (0.2, False), (0.2, True)]  # (GPa along the propagation, TOEC)
+PIEZO = "LiNbO3-Warner1967"
+PIEZO_PAIRS = 9
+PIEZO_TARGET, PIEZO_ELASTIC_TARGET = 1.3, 3.0
 
 
 def _tensors(angles, stress: float, use_toec: bool):
@@ -86,6 +99,29 @@ def bench(n_angles: int, stress: float, use_toec: bool, pairs: int) -> tuple[np.
     return t[0] / n_angles, t[1] / n_angles, diff
 
 
+def bench_piezo(n: int, pairs: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """CPU seconds per orientation (pairs,) of material() on a piezoelectric crystal, of its bare
+    solver on the same tensors and of the elastic material() on as many directions; max |dc/c|."""
+    rng = np.random.default_rng(0)
+    E = np.column_stack([rng.uniform(0, 360, n), rng.uniform(0, 180, n), rng.uniform(0, 360, n)])
+    t = lab_tensors(PIEZO, euler_lab_axes(E))
+    A = stroh.wave_propagation_tensor(t["C"], np.zeros((n, 3, 3)))
+    rho = np.full(n, t["rho"])
+    angles = np.linspace(0.0, 45.0, n)
+    api = lambda: surfwave.material(PIEZO, euler=E, leaky=False)  # noqa: E731
+    bare = lambda: piezo_saw_conditions(A, rho, t["e"], t["eps"], conditions=("free",), leaky=False)  # noqa: E731
+    elastic = lambda: surfwave.material("Cu", angle=angles)  # noqa: E731
+    c_api, c_bare = api()["c_R"], bare()["free"]["c"]
+    elastic()
+    np.testing.assert_allclose(c_api, c_bare, rtol=1e-12)
+    diff = float(np.nanmax(np.abs(c_api / c_bare - 1.0)))
+    tt = np.zeros((3, pairs))
+    for r in range(pairs):   # rotating order: load on the machine hits all three alike
+        for j in np.roll(np.arange(3), r):
+            tt[j, r] = _cpu((api, bare, elastic)[j])
+    return tt[0] / n, tt[1] / n, tt[2] / n, diff
+
+
 def main(outdir: str) -> Path:
     out = Path(outdir)
     out.mkdir(parents=True, exist_ok=True)
@@ -117,6 +153,19 @@ def main(outdir: str) -> Path:
             + "; ".join(parts),
             f"target median <= {TARGET:g} x the bare solver per direction (issue 21): "
             f"{'met' if w <= TARGET else 'NOT met'} (worst case {w:.2f})"])
+    p_api, p_bare, p_el, p_diff = bench_piezo(BATCH, PIEZO_PAIRS)
+    pq = [np.median(p_api / p_bare), np.median(p_api / p_el)]
+    rows.append([
+        f"`surfwave.material` on a piezoelectric crystal ({PIEZO}, free surface, leaky=False, {BATCH} random "
+        "Euler angles in one call) against its bare solver `piezo_saw_conditions` on the same tensors, and "
+        "against the elastic `material(\"Cu\", angle=...)` on as many directions",
+        "orientations per call", f"{BATCH}",
+        "identical c_R (bit for bit)" if p_diff == 0 else f"the same c_R to {p_diff:.1g} relative",
+        f"time ratio, median over {PIEZO_PAIRS} rounds (CPU, one core): material / its solver {pq[0]:.2f} "
+        f"(min {np.min(p_api / p_bare):.2f}, max {np.max(p_api / p_bare):.2f}; {np.median(p_api) * 1e6:.3g} vs "
+        f"{np.median(p_bare) * 1e6:.3g} us per orientation); piezoelectric / elastic material() {pq[1]:.2f}",
+        f"targets <= {PIEZO_TARGET:g} x its solver and <= {PIEZO_ELASTIC_TARGET:g} x the elastic material() "
+        f"(issue 25): {'met' if pq[0] <= PIEZO_TARGET and pq[1] <= PIEZO_ELASTIC_TARGET else 'NOT met'}"])
     for row in rows:
         print(" | ".join(row))
     print(f"worst median ratio: {worst:.2f} (target <= {TARGET:g})")
@@ -132,10 +181,17 @@ def main(outdir: str) -> Path:
                             {"long_name": "material / bare CPU time over the pairs", "units": "1"}),
             "c_R_difference": (("angles_per_call", "case"), diff,
                                {"long_name": "max |c_R(material) / c(bare) - 1|", "units": "1"}),
+            "piezo_time_material": ("piezo_round", p_api, {"long_name": f"CPU time of surfwave.material on {PIEZO} "
+                                                           "per orientation (free, leaky=False)", "units": "s"}),
+            "piezo_time_bare": ("piezo_round", p_bare, {"long_name": "CPU time of piezo_saw_conditions per "
+                                                        "orientation, same tensors", "units": "s"}),
+            "piezo_time_elastic_material": ("piezo_round", p_el, {"long_name": "CPU time of the elastic "
+                                                                  "surfwave.material (Cu) per direction",
+                                                                  "units": "s"}),
         },
         coords={"angles_per_call": batches, "case": ("case", names, {"long_name": "Cu (001), stress along the "
                                                                      "propagation (GPa), TOEC: deforming crystal"}),
-                "pair": np.arange(npair), "stat": ["min", "median", "max"]},
+                "pair": np.arange(npair), "stat": ["min", "median", "max"], "piezo_round": np.arange(PIEZO_PAIRS)},
         attrs={"Conventions": "CF-1.10", "title": "surfwave benchmark: cost of surfwave.material over the bare solver",
                "source": f"surfwave {surfwave.__version__}", "history": f"{time.ctime()}: bench_material.py",
                "method": "surfwave.material", "knob": "angles_per_call", "default": BATCH,

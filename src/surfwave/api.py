@@ -6,20 +6,20 @@ measured elastic constants (or a material name), optionally with third-order con
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import cast
 
 import numpy as np
 
 from surfwave import validate
+from surfwave.case import material_result
 from surfwave.errors import InputError
 from surfwave.model_crystals import elastic
 from surfwave.model_crystals.lattices import build
-from surfwave.real_crystals.stressed_wave import BULK_KEYS, TRACTION_TOL, Constants, stress_tensor, surface_wave
 from surfwave.records import MaterialResult, PointResult
+from surfwave.resolve import resolve_material
 from surfwave.solvers import long_wave, rayleigh, stroh
-from surfwave.solvers.orientation import direction_angle, lab_axes, reference_direction, surface_normal
-from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4
+from surfwave.solvers.orientation import direction_angle, lab_axes
+from surfwave.solvers.tensors import rotate2, rotate4
 from surfwave.vocab import Direction
 
 __all__ = ["MaterialResult", "PointResult", "material", "point"]
@@ -97,7 +97,7 @@ def point(lattice: str, loading: str, potential: str, direction, d_over_d0, *, l
     classic = isinstance(direction, str) and direction in ("[100]", "[110]", "[10]") \
         and load_direction in (None, direction)
     if classic:
-        out, sigma = elastic._properties(lattice, loading, potential, direction, d_over_d0, min_eig)
+        out, sigma = elastic.properties_and_stress(lattice, loading, potential, direction, d_over_d0, min_eig)
         ray = rayleigh.solve(out["S"], 1.0, out["c2_SH"])
         out.update(c2_R=ray["c2_R"], wave_type=ray["wave_type"], reason=ray["reason"])
         if details:
@@ -158,88 +158,12 @@ _ANGLE_KEYS = ("stress", "c2_L_par", "c2_T_par", "c2_L_perp", "c2_T_perp", "c2_S
                "wave_type", "reason", "polarisation", "decay", "penetration_depth", "C", "S", "angle")
 
 
-#: Largest |elastic constant| (GPa) accepted: diamond's C11 is about 1080 GPa; larger values are
-#: almost surely given in Pa.
-MAX_GPA = 1e5
+#: Largest |elastic constant| (GPa) accepted (:data:`surfwave.validate.MAX_CONSTANT_GPA`, the one bound):
+#: diamond's C11 is about 1080 GPa; larger values are almost surely given in Pa.
+MAX_GPA = validate.MAX_CONSTANT_GPA
 
 
-def _stress_tensor(stress, R: np.ndarray) -> np.ndarray:
-    """The prestress in crystal axes for each direction, GPa, shape (m, 3, 3).
-
-    A scalar: uniaxial along each propagation direction R[:, 0]
-    (:func:`surfwave.real_crystals.stressed_wave.stress_tensor`, loading ``along``); a 3 x 3
-    tensor: the Cauchy stress in crystal axes, the same for every direction.
-    """
-    s = np.asarray(stress, dtype=float)
-    if s.shape == ():
-        return stress_tensor("along", s, R)
-    if s.shape == (3, 3):
-        if not np.allclose(s, s.T, rtol=1e-12, atol=1e-12 * np.abs(s).max()):
-            raise InputError(f"the stress tensor must be symmetric, got {s.tolist()}")
-        return np.broadcast_to(s, (R.shape[0], 3, 3))
-    raise InputError(f"stress must be a scalar or a 3 x 3 tensor (GPa), got shape {s.shape}")
-
-
-def _resolve_material(C11, C12, C44, rho, voigt, toec):
-    """(Voigt C (6, 6), rho, C3 Voigt (6, 6, 6) or None, label) from the material arguments."""
-    from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
-    from surfwave.real_crystals.toec import cubic_toec
-
-    name = None
-    C3 = None
-    if isinstance(C11, (str, Material)):
-        m = get_material(C11)
-        name = m.name
-        if any(v is not None for v in (C12, C44, voigt)):
-            raise InputError(f"material {m.name!r} given by name: do not also give C12, C44 or voigt=")
-        C6 = np.array(m.voigt)
-        rho = m.rho if rho is None else rho
-        if toec is True:
-            if m.toec is None:
-                raise InputError(f"no third-order elastic constants for {m.name} in the materials database "
-                                 f"(missing: {', '.join(CUBIC_TOEC)}); give toec=(C111, C112, C123, C144, "
-                                 "C155, C456) in GPa")
-            C3 = m.toec_voigt
-    elif voigt is not None:
-        if any(v is not None for v in (C11, C12, C44)):
-            raise InputError("give either voigt= or C11, C12, C44, not both")
-        C6 = validate.stiffness(voigt)
-    else:
-        for key, value in (("C11", C11), ("C12", C12), ("C44", C44)):
-            if value is None:
-                raise InputError(f"{key} is missing: give C11, C12, C44 (GPa), voigt= or a material name")
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-                raise InputError(f"{key} must be one number (GPa), got {value!r}")
-        C6 = cubic_voigt(C11, C12, C44)
-    if toec is True and name is None:
-        raise InputError("toec=True takes the third-order constants from the materials database: "
-                         "give the material by name (e.g. material('Cu', ...)) or pass toec=(C111, ...)")
-    if isinstance(toec, Mapping):                  # the cubic six by name (a crystal class needs its own names)
-        names = dict(toec)
-        names.pop("source", None)
-        if set(names) != set(CUBIC_TOEC):
-            raise InputError(f"third-order constants by name: here the cubic six {list(CUBIC_TOEC)} (GPa), got "
-                             f"{sorted(names)}; a crystal of the piezoelectric database takes its class's names "
-                             "(surfwave.real_crystals.toec_classes.TOEC_NAMES); else give a (6, 6, 6) Voigt array")
-        toec = tuple(names[k] for k in CUBIC_TOEC)
-    if toec is not None and toec is not True and toec is not False:
-        t = validate.toec_array(toec)
-        if t.shape == (6,):
-            C3 = cubic_toec(*t)
-        elif t.shape == (6, 6, 6):
-            C3 = t
-        else:
-            raise InputError("toec must be True, (C111, C112, C123, C144, C155, C456) in GPa (a sequence or a "
-                             f"mapping of these names) or a (6, 6, 6) Voigt array; got shape {t.shape}")
-        if not np.all(np.isfinite(C3)):
-            raise InputError(f"third-order constants must be finite, got {toec!r}")
-        if np.abs(C3).max() > MAX_GPA:
-            raise InputError(f"third-order constants must be in GPa; the largest is {np.abs(C3).max():.4g}, "
-                             "which looks like Pa (divide by 1e9)")
-    return C6, rho, C3
-
-
-def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0.0, surface="(001)", *,
+def material(C11=None, C12=None, C44=None, rho=None, direction=None, stress=0.0, surface=None, *,
              voigt=None, angle=None, toec=None, piezo=None, permittivity=None, euler=None, cut=None,
              electrical=None, leaky=None) -> MaterialResult:
     """Surface-wave and bulk speeds of a real crystal on any surface, in any direction, under stress.
@@ -259,12 +183,13 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     direction : str or float or array_like of float
         A Miller direction "[uvw]" lying in the surface, or an angle in degrees from the
         surface's reference direction ((001): [100]; (110): [001]; (111): [1-10]) toward
-        n x reference (:mod:`surfwave.solvers.orientation`).
-    stress : float or array_like, shape (3, 3)
+        n x reference (:mod:`surfwave.solvers.orientation`). Default (None): "[100]".
+    stress : float or array_like, shape (3, 3), (m,) or (m, 3, 3)
         A scalar: uniaxial stress along the propagation direction; a 3 x 3 Cauchy stress in
-        crystal axes. GPa, negative = compression. It must lie in the surface plane.
+        crystal axes; or one of them per direction. GPa (at most 1e3 GPa: larger values are
+        taken for Pa and refused), negative = compression. It must lie in the surface plane.
     surface : str
-        "(hkl)".
+        "(hkl)". Default (None): "(001)".
     angle : float or array_like, optional, keyword only
         Same as an angle ``direction`` (wins over it).
     toec : None, True or sequence of 6 floats or array_like (6, 6, 6), keyword only
@@ -287,8 +212,8 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
         Clamped relative permittivity eps_r (eps / EPS0), crystal axes, symmetric positive definite.
     euler : array_like, shape (3,) or (m, 3), keyword only
         SAW Euler angles (phi, theta, psi) in degrees, ZXZ, lab x1 = propagation, x3 = outward
-        normal (:mod:`surfwave.solvers.euler`); replaces ``surface``/``direction``. Works for any
-        crystal (a non-piezoelectric one is solved with e = 0).
+        normal (:mod:`surfwave.solvers.euler`); replaces ``surface``/``direction`` (giving them
+        too is refused). Works for any crystal (a non-piezoelectric one is solved with e = 0).
     cut : str, keyword only
         A named cut (``"128Y-X LiNbO3"``, ``"ST-X quartz"``, ``"128Y-X"`` with the material given;
         :func:`surfwave.real_crystals.piezo_materials.available_cuts`).
@@ -334,10 +259,14 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     Raises
     ------
     InputError
-        Missing or non-finite constants, constants in Pa (hint given), rho <= 0, a direction
-        not in the surface, a stress with sigma . n != 0 (component named), an unknown material
-        name (known ones listed), toec=True for a material without third-order constants (the
-        material and the missing constants named).
+        One line, before any solve, the same by every door (:func:`surfwave.resolve.resolve_material`,
+        checks in :func:`surfwave.case.make_case`): missing or non-finite constants, constants
+        in Pa (hint given), rho outside [1, 1e12] kg/m^3, piezoelectric constants above
+        100 C/m^2 or eps_r below 1, complex or boolean numbers, a direction not in the surface,
+        ``euler=``/``cut=`` with ``surface=``/``direction=``/``angle=``, a stress with
+        sigma . n != 0 (component named) or beyond 1e3 GPa, an unknown material name (known
+        ones listed), toec=True for a material without third-order constants (the material
+        and the missing constants named), third-order constants in Pa or given as True.
 
     Examples
     --------
@@ -352,54 +281,7 @@ def material(C11=None, C12=None, C44=None, rho=None, direction="[100]", stress=0
     >>> round(r["c_free"], 1), round(r["c_metallized"], 1), round(100 * r["K2"], 2)
     (3994.2, 3887.6, 5.34)
     """
-    from surfwave.real_crystals.piezo_route import is_piezo_call, material_piezo
-
-    if leaky is not None and not isinstance(leaky, (bool, np.bool_)):
-        raise InputError(f"leaky must be None, True or False, got {leaky!r}")
-    if is_piezo_call(C11, piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical):
-        return cast(MaterialResult, material_piezo(
-            C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec, piezo=piezo,
-            permittivity=permittivity, euler=euler, cut=cut, electrical=electrical, leaky=leaky))
-    C6, rho, C3 = _resolve_material(C11, C12, C44, rho, voigt, toec)
-    if rho is None:
-        raise InputError("the density rho (kg/m^3) is missing")
-    if not np.all(np.isfinite(C6)):
-        raise InputError(f"elastic constants must be finite, got {C6[~np.isfinite(C6)][:3]}")
-    big = np.abs(C6).max()
-    if big > MAX_GPA:
-        raise InputError(f"elastic constants must be in GPa; the largest is {big:.4g}, which looks like Pa "
-                         "(divide by 1e9)")
-    rho = validate.density(rho)
-    stress = validate.real_array(stress, "stress").reshape(np.shape(stress))   # numbers only
-    if not np.all(np.isfinite(np.asarray(stress, dtype=float))):
-        raise InputError(f"stress must be finite, got {stress!r}")
-    if np.abs(np.asarray(stress, dtype=float)).max() > MAX_GPA:
-        raise InputError(f"stress must be in GPa; got {stress!r}, which looks like Pa (divide by 1e9)")
-    which = direction if angle is None else angle
-    if not isinstance(which, str):
-        which = validate.angle_values(which, "direction" if angle is None else "angle")
-    R = lab_axes(surface, which)
-    scalar = R.ndim == 2
-    R = R.reshape(-1, 3, 3)
-    sigma_c = _stress_tensor(stress, R)
-    traction = sigma_c[0] @ R[0, 1]
-    if np.abs(traction).max() > TRACTION_TOL * max(np.abs(sigma_c).max(), 1e-300):
-        raise InputError(f"prestress must lie in the surface plane {surface}: its traction sigma . n = "
-                         f"{np.round(traction, 12).tolist()} GPa (crystal axes) is not zero")
-    r = surface_wave(Constants(C6, rho, C3), R, sigma_c, toec=C3 is not None,
-                     leaky=None if leaky is None else bool(leaky))
-    out = {key: r[key] for key in ("c_L_par", "c_T_par", "c_L_perp", "c_T_perp", "c_SH", "c_R", "c_R_imag",
-                                   "c_limit", "wave_type", "reason", "stable", "polarisation", "decay",
-                                   "penetration_depth", "method", "rho", "c_leaky", "leaky_attenuation",
-                                   "leaky_reason")}
-    out.update({key: r[key] for key in BULK_KEYS + ("grazing",)})    # bulk waves along x1, x2; grazing flag
-    out["toec"] = np.full(R.shape[0], C3 is not None)
-    ref = reference_direction(surface)
-    out["angle"] = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))
-    if scalar:
-        out = {k: (v[0] if np.ndim(v[0]) else np.asarray(v[0]).item()) for k, v in out.items()}
-        for key in ("wave_type", "reason", "method", "leaky_reason"):
-            out[key] = str(out[key])
-        out["stable"] = bool(out["stable"])
-        out["toec"] = bool(out["toec"])
-    return cast(MaterialResult, out)
+    case = resolve_material(C11, C12, C44, rho, direction, stress, surface, voigt=voigt, angle=angle, toec=toec,
+                            piezo=piezo, permittivity=permittivity, euler=euler, cut=cut, electrical=electrical,
+                            leaky=leaky)
+    return cast(MaterialResult, material_result(case))

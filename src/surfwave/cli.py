@@ -12,7 +12,9 @@ import os
 import re
 import sys
 import warnings
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -150,7 +152,7 @@ def _parser() -> argparse.ArgumentParser:
     mt.add_argument("--voigt", type=float, nargs=36, metavar="C",
                     help="full 6x6 Voigt stiffness (36 values, row by row), GPa, crystal axes (instead of C11 C12 C44)")
     mt.add_argument("--rho", type=float, help="density, kg/m^3 (a named material brings its own)")
-    mt.add_argument("--surface", default="(001)", help='surface plane "(hkl)" (default "(001)")')
+    mt.add_argument("--surface", help='surface plane "(hkl)" (default "(001)"; not with --euler or --cut)')
     where = mt.add_mutually_exclusive_group()
     where.add_argument("--direction", help='propagation direction "[uvw]" in the surface (default: the reference)')
     where.add_argument("--angle", help="angle in degrees from the reference direction, or a sweep START:STOP:STEP "
@@ -211,8 +213,9 @@ def _cmd_point(args) -> int:
     r = point(args.lattice, args.loading, args.potential, args.direction, args.d_over_d0)
     rows = []
     for i, d in enumerate(r["d_over_d0"]):
-        row = {"d_over_d0": float(d), "stress": float(r["stress"][i])}
-        row.update({k: (None if np.isnan(r[k][i]) else float(r[k][i])) for k in SPEED_KEYS})
+        row: dict[str, Any] = {"d_over_d0": float(d), "stress": float(r["stress"][i])}
+        res: dict[str, Any] = dict(r)
+        row.update({k: (None if np.isnan(res[k][i]) else float(res[k][i])) for k in SPEED_KEYS})
         row.update(wave_type=str(r["wave_type"][i]), stable=bool(r["stable"][i]), reason=str(r["reason"][i]))
         rows.append(row)
     if args.json:
@@ -238,12 +241,12 @@ def _angles(text: str) -> np.ndarray | float:
     return float(values[0]) if ":" not in text else values
 
 
-def _material_rows(r: dict) -> list[dict]:
+def _material_rows(r: Mapping[str, Any]) -> list[dict]:
     """JSON-ready rows (one per direction) of a :func:`surfwave.material` result."""
     n = np.size(r["c_R"])
     rows = []
     for i in range(n):
-        row = {}
+        row: dict[str, Any] = {}
         for key, value in r.items():
             v = np.asarray(value)
             v = np.asarray(v[i]) if v.ndim and v.shape[0] == n and np.ndim(r["c_R"]) else v
@@ -295,12 +298,17 @@ def _cmd_material(args) -> int:
         raise InputError("missing --rho (kg/m^3); a named --material brings its own")
     toec = cli_material.toec_arg(args)
     stress, stress_sweep = stress_values(args.stress)
+    oriented = args.euler is None and args.cut is None      # else the Euler angles set surface and direction
+    direction: Any
     if args.angle is not None:
         direction = _angles(args.angle)
     elif args.direction is not None:
         direction = args.direction
     else:
-        direction = 0.0
+        direction = 0.0 if oriented else None
+    if oriented and args.surface is None:
+        args.surface = "(001)"
+
     def call(stress):
         try:
             return material(rho=args.rho, direction=direction, stress=stress, surface=args.surface, toec=toec,

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import re
 import sys
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -141,7 +143,7 @@ def _leaky_expected(args, row: dict) -> bool:
     return row["c_R"] is None
 
 
-def print_result(args, r: dict, rows: list[dict], swept: int | None) -> int:
+def print_result(args, r: Mapping[str, Any], rows: list[dict], swept: int | None) -> int:
     """Print a piezoelectric :func:`surfwave.material` result as a table (sweep) or a list."""
     electrical = rows[0]["electrical"]
     where = (f"cut {args.cut}" if args.cut else

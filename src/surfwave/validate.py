@@ -259,3 +259,108 @@ def toec_array(toec, name: str = "toec") -> np.ndarray:
     if t.ndim == 0 or t.size == 0:
         raise InputError(f"{name} must hold the third-order constants in GPa, got {brief(toec)}")
     return t
+
+
+# --------------------------------------------------------------------------- units and magnitudes
+# The one place of the unit guards of a real crystal (GPa, C/m^2, relative permittivity): every
+# door (API, CLI, scene validation, sweeps) reaches them through surfwave.case.make_case.
+
+#: Largest |elastic constant| accepted, second and third order, GPa: diamond's C11 is about
+#: 1080 GPa and the largest measured third-order constants a few thousand GPa; a larger value
+#: was almost surely given in Pa.
+MAX_CONSTANT_GPA = 1.0e5
+#: Largest |stress| accepted, GPa: no crystal carries a stress of 1 TPa (the ideal strength of
+#: diamond is about 100 GPa); a larger value was almost surely given in Pa (0.1 GPa = 1e8 Pa).
+MAX_STRESS_GPA = 1.0e3
+#: Largest |piezoelectric stress constant| accepted, C/m^2: the strongest known (PZT ceramics,
+#: e33 about 25 C/m^2; LiNbO3 e15 3.7 C/m^2) stay far below; a larger value is in another unit
+#: (uC/cm^2 is 100 x smaller than C/m^2 per unit value) or mistyped.
+MAX_PIEZO_E = 100.0
+#: Smallest eigenvalue of a relative permittivity accepted: vacuum (1) is the floor.
+MIN_EPS_R = 1.0
+
+
+def _has_bool(values) -> bool:
+    """True when ``values`` is or holds a bool (``True`` would silently count as 1)."""
+    if isinstance(values, (bool, np.bool_)):
+        return True
+    if isinstance(values, np.ndarray):
+        return values.dtype.kind == "b" or (values.dtype == object and any(_has_bool(v) for v in values.flat))
+    if isinstance(values, (list, tuple)):
+        return any(_has_bool(v) for v in values)
+    return False
+
+
+def _numbers(values, name: str, unit: str) -> np.ndarray:
+    """``values`` as a real float array; booleans, text and complex refused (naming ``unit``)."""
+    if _has_bool(values):
+        raise InputError(f"{name} must be numbers ({unit}), not True/False: got {brief(values)}")
+    a = real_array(values, name).reshape(np.shape(values))
+    if not np.all(np.isfinite(a)):
+        raise InputError(f"{name} must be finite, got {brief(values)}")
+    return a
+
+
+def gpa_constants(values, name: str = "elastic constants") -> np.ndarray:
+    """Elastic constants (any shape) in GPa: real, finite, within :data:`MAX_CONSTANT_GPA`.
+
+    Examples
+    --------
+    >>> gpa_constants([[168.4e9]])
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: elastic constants must be in GPa; the largest is 1.684e+11, which looks like Pa (divide by 1e9)
+    """  # noqa: E501 (a doctest's expected message)
+    a = _numbers(values, name, "GPa")
+    big = float(np.abs(a).max()) if a.size else 0.0
+    if big > MAX_CONSTANT_GPA:
+        raise InputError(f"{name} must be in GPa; the largest is {big:.4g}, which looks like Pa (divide by 1e9)")
+    return a
+
+
+def gpa_stress(values, name: str = "stress") -> np.ndarray:
+    """A prestress (any shape) in GPa: real numbers (not True), finite, within :data:`MAX_STRESS_GPA`.
+
+    Examples
+    --------
+    >>> gpa_stress(0.1).tolist()
+    0.1
+    >>> gpa_stress(2000.0)
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: stress must be in GPa; got 2000.0, beyond 1000 GPa, which looks like Pa (divide by 1e9: 2e-06 GPa)
+    """  # noqa: E501 (a doctest's expected message)
+    a = _numbers(values, name, "GPa")
+    big = float(a.flat[np.argmax(np.abs(a))]) if a.size else 0.0
+    if abs(big) > MAX_STRESS_GPA:
+        raise InputError(f"{name} must be in GPa; got {big!r}, beyond {MAX_STRESS_GPA:g} GPa, which looks like Pa "
+                         f"(divide by 1e9: {big / 1e9:g} GPa)")
+    return a
+
+
+def piezo_constants(e, eps_r) -> tuple[np.ndarray, np.ndarray]:
+    """Piezoelectric stress constants e (3, 6), C/m^2, and relative permittivity eps_r (3, 3), checked.
+
+    Raises
+    ------
+    InputError
+        Text, complex or boolean entries, wrong shapes, non-finite values, |e| beyond
+        :data:`MAX_PIEZO_E` C/m^2, an eps_r that is not symmetric or has an eigenvalue below
+        :data:`MIN_EPS_R` (vacuum is the floor; eps_r is relative, not in F/m).
+    """
+    e6 = _numbers(e, "piezo (e)", "C/m^2")
+    er = _numbers(eps_r, "permittivity (eps_r)", "relative")
+    if e6.shape != (3, 6) or er.shape != (3, 3):
+        raise InputError(f"piezo must be 3 x 6 (C/m^2) and permittivity 3 x 3 (relative), got shapes {e6.shape} "
+                         f"and {er.shape}")
+    big = float(np.abs(e6).max())
+    if big > MAX_PIEZO_E:
+        raise InputError(f"piezo (e) must be in C/m^2; the largest is {big:.4g}, beyond {MAX_PIEZO_E:g} C/m^2 "
+                         "(the strongest piezoelectrics have about 25)")
+    if not np.allclose(er, er.T, rtol=0, atol=1e-12 * max(float(np.abs(er).max()), 1.0)):
+        raise InputError(f"permittivity (eps_r) must be symmetric, got {er.tolist()}")
+    low = float(np.linalg.eigvalsh(er)[0])
+    if low < MIN_EPS_R:
+        raise InputError(f"permittivity (eps_r) must be positive definite with eigenvalues >= 1 (relative to "
+                         f"vacuum, eps / EPS0; not in F/m), the lowest is {low:.4g}")
+    return e6, er

@@ -36,7 +36,7 @@ def test_text_float_stress_and_redefined_scene(tmp_path):
                              "  mine:\n    materials: [Cu]\n    surfaces: ['(001)']\n    directions: ['[100]']\n"
                              "    stress: [0, 1.0e8]\n"
                              "  tiny_crystal:\n    lattice: fcc\n")
-    assert "scene 'mine', key 'stress': value 100000000.0 is in GPa" in text and "looks like Pa" in text
+    assert "scene 'mine', key 'stress': value 100000000.0: stress must be in GPa" in text and "looks like Pa" in text
     assert "any of the given schemas" not in text
     assert "scene 'tiny_crystal' is defined in config/config.yaml and again in" in text
 

@@ -154,8 +154,10 @@ def sound_speeds(S: np.ndarray, rho: ArrayLike = 1.0) -> dict[str, np.ndarray]:
     return out
 
 
-def _properties(lattice, loading, potential, direction, d_over_d0, min_eig: bool) -> tuple[dict, np.ndarray]:
-    """:func:`properties` and the stress tensor V sigma, shape (n, d, d)."""
+def properties_and_stress(lattice, loading, potential, direction, d_over_d0,
+                          min_eig: bool) -> tuple[dict, np.ndarray]:
+    """:func:`properties` and the stress tensor V sigma, shape (n, d, d) (the front door's
+    :func:`surfwave.point` needs both)."""
     crystal = build(lattice, loading, potential, direction, d_over_d0)
     sigma = stress(crystal.bonds, potential)
     C = elastic_constants(crystal.bonds, potential)
@@ -169,6 +171,10 @@ def _properties(lattice, loading, potential, direction, d_over_d0, min_eig: bool
     out["C"] = C
     out["S"] = S
     return out, sigma
+
+
+#: The former private name, kept.
+_properties = properties_and_stress
 
 
 def properties(lattice: str, loading: str, potential: str | PairPotential, direction: str, d_over_d0: ArrayLike,
@@ -200,4 +206,4 @@ def properties(lattice: str, loading: str, potential: str | PairPotential, direc
         sufficient test, a certificate of instability, the scan only where neither
         decides: same flags, several times faster).
     """
-    return _properties(lattice, loading, potential, direction, d_over_d0, min_eig)[0]
+    return properties_and_stress(lattice, loading, potential, direction, d_over_d0, min_eig)[0]

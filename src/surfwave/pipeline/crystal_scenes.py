@@ -19,7 +19,7 @@ import copy
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, MAX_STRESS_GPA, SceneError, check_points, expand_grid
+from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid
 
 #: Quantities an FCC scene with propagation angles can compute.
 ANGLE_QUANTITIES = ("elastic", "rayleigh")
@@ -50,7 +50,8 @@ def fcc_angles(where: str, raw: dict) -> tuple[list[float] | None, list[str]]:
 def unique_records(where: str, key: str, names, lookup) -> list:
     """Database records of ``names`` (``lookup(name)``), refusing unknown names and two spellings
     of one record ("Cu" and "copper" would give two labels Cu in one cube)."""
-    records, given = [], {}
+    records: list = []
+    given: dict[str, str] = {}
     for n in names:
         try:
             rec = lookup(n)
@@ -66,11 +67,14 @@ def unique_records(where: str, key: str, names, lookup) -> list:
 
 def stress_grid(where: str, spec) -> list[float]:
     """The stress values of a scene, GPa; values beyond :data:`MAX_STRESS_GPA` look like Pa."""
+    from surfwave.validate import gpa_stress
+
     stress = [float(x) for x in expand_grid(spec, f"{where}, key 'stress'")]
-    big = [x for x in stress if abs(x) > MAX_STRESS_GPA]
-    if big:
-        raise SceneError(f"{where}, key 'stress': value {big[0]!r} is in GPa and beyond "
-                         f"{MAX_STRESS_GPA:g} GPa: it looks like Pa (divide by 1e9: {big[0] / 1e9:g} GPa)")
+    for x in stress:   # the one Pa guard (MAX_STRESS_GPA) and its wording, as surfwave.material
+        try:
+            gpa_stress(x)
+        except InputError as exc:
+            raise SceneError(f"{where}, key 'stress': value {x!r}: {exc}") from None
     return stress
 
 
@@ -177,6 +181,13 @@ def _expand_crystal_scene(name: str, raw: dict) -> dict:
     if stress:
         sizes.update({"stresses": len(stress), "loadings": len(raw["loading"]), "toec": len(raw["toec"])})
     check_points(where, sizes)
+    from surfwave.real_crystals.sweep import scene_cases
+
+    try:  # every point through the one resolver: the refusals of surfwave.material, before any job
+        scene_cases(mats, surfaces, angles, stress, raw["loading"] if stress else ("along",),
+                    raw["toec"] if stress else (False,))
+    except InputError as exc:
+        raise SceneError(f"{where}: {exc}") from None
     return {
         "name": name,
         "kind": "crystal",

@@ -10,15 +10,17 @@ from typing import Any, Sequence
 import numpy as np
 
 from surfwave.errors import SceneError
+from surfwave.validate import MAX_STRESS_GPA as _MAX_STRESS_GPA
 
 #: Decimals kept in d/d0 and theta values: grids land on the decimal values a user types.
 DECIMALS = 12
 #: Most points one grid, and one scene's product of grids, may hold: checked before any job
 #: (a scene beyond it would run for hours or exhaust memory; split it into scenes).
 MAX_POINTS = 100_000
-#: Largest |stress| in GPa a scene may give (as surfwave.api.MAX_GPA): larger values are
-#: almost surely in Pa (1.0e+8 Pa = 0.1 GPa).
-MAX_STRESS_GPA = 1.0e5
+#: Largest |stress| in GPa a scene may give: the one bound of every door,
+#: :data:`surfwave.validate.MAX_STRESS_GPA` (1e3 GPa); larger values are almost surely in Pa
+#: (1.0e+8 Pa = 0.1 GPa).
+MAX_STRESS_GPA = _MAX_STRESS_GPA
 
 
 def check_points(where: str, sizes: dict[str, int]) -> int:

@@ -17,6 +17,8 @@ import copy
 import hashlib
 from pathlib import Path
 
+import numpy as np
+
 from surfwave.errors import InputError
 from surfwave.pipeline.crystal_scenes import check_angle_range, stress_grid, unique_records
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
@@ -36,6 +38,9 @@ def _angle(spec, where: str) -> list[float]:
         angles = [float(spec)]
     else:
         angles = [float(v) for v in expand_grid(spec, where)]
+    bad = [a for a in angles if not np.isfinite(a)]
+    if bad:
+        raise SceneError(f"{where}: value {bad[0]!r} degrees: Euler angles must be finite numbers")
     check_angle_range(angles, where)
     return angles
 
@@ -88,6 +93,13 @@ def _expand(name: str, raw: dict, base_dir=None) -> dict:
     if n > min(MAX_PIEZO_POINTS, MAX_POINTS):
         raise SceneError(f"{where}: {n} points (materials x orientations x electrical x toec x stress) exceed "
                          f"the limit of {min(MAX_PIEZO_POINTS, MAX_POINTS)}")
+    from surfwave.real_crystals.piezo_sweep import scene_cases
+
+    try:  # every point through the one resolver: the refusals of surfwave.material, before any job
+        scene_cases([m.name for m in mats], cuts=cuts, euler=euler, electrical=electrical, stress=stress,
+                    toec=toec if stress else [False], toec_constants=toec_set["constants"] if toec_set else None)
+    except InputError as exc:
+        raise SceneError(f"{where}: {exc}") from None
     return {
         "name": name,
         "kind": "piezo",

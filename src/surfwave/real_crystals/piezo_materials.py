@@ -50,6 +50,7 @@ from surfwave.solvers.piezo_tensors import (
     uniaxial_eps,
 )
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
+from surfwave.validate import MAX_CONSTANT_GPA
 
 #: Per crystal class: (independent C names or None for "from materials.yaml", e names, eps names,
 #: C builder, e builder).
@@ -64,7 +65,7 @@ CLASSES: dict[str, tuple[tuple[str, ...] | None, tuple[str, ...], tuple[str, ...
     "-43m": (None, ("e14",), ("eps11",), None, cubic_43m_piezo),
 }
 #: Largest stiffness accepted, GPa (a value above this was almost surely written in Pa).
-C_MAX_GPA = 1.0e5
+C_MAX_GPA = MAX_CONSTANT_GPA
 
 
 @dataclass(frozen=True, eq=False)
@@ -446,6 +447,22 @@ def with_toec(material: PiezoMaterial, toec: Mapping[str, float] | ArrayLike,
     return replace(material, toec_voigt=toec_from_user(toec, cls), sources={**material.sources, "toec": source})
 
 
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """A safe YAML loader that refuses a key given twice in one mapping (YAML keeps the last
+    silently: a second ``C111`` would replace the first)."""
+
+    def construct_mapping(self, node, deep=False):  # noqa: D102 (yaml API)
+        seen: dict = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"key {key!r} is given twice (lines {seen[key] + 1} and "
+                    f"{key_node.start_mark.line + 1}); give each constant once", key_node.start_mark)
+            seen[key] = key_node.start_mark.line
+        return super().construct_mapping(node, deep=deep)
+
+
 def read_toec_file(path: str | Path) -> tuple[dict, bytes]:
     """Named third-order constants (GPa) from a YAML mapping ``name: value`` (``source:`` allowed).
 
@@ -461,14 +478,15 @@ def read_toec_file(path: str | Path) -> tuple[dict, bytes]:
     Raises
     ------
     InputError
-        Unreadable file, invalid YAML, not a mapping, or a value that is not a number.
+        Unreadable file, invalid YAML, a key given twice, not a mapping, or a value that is not
+        a number.
     """
     try:
         text = Path(path).read_bytes()
     except OSError as err:
         raise InputError(f"cannot read {str(path)!r} ({err.strerror or err})") from None
     try:
-        data = yaml.load(text, Loader=SAFE_LOADER)
+        data = yaml.load(text, Loader=_UniqueKeyLoader)
     except yaml.YAMLError as err:
         raise InputError(f"{str(path)!r} is not valid YAML: {' '.join(str(err).split())}") from None
     if not isinstance(data, dict) or not data:

@@ -24,13 +24,16 @@ Examples
 from __future__ import annotations
 
 from functools import partial
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple, Sequence
 
 import numpy as np
 
+from surfwave import validate
+from surfwave.case import Case, make_case, solve
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, PIEZO_WAVE_COORDS
 from surfwave.errors import InputError
+from surfwave.real_crystals.piezo_materials import note_status
 from surfwave.real_crystals.stressed_wave import BULK_KEYS
 from surfwave.real_crystals.sweep import BULK_COMPONENT
 from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
@@ -74,7 +77,7 @@ def _orientations(cuts, euler) -> tuple[np.ndarray, dict, tuple[int, int]]:
         found = [get_cut(c) for c in cuts]
         e = np.array([c.euler for c in found], dtype=float)
         angle = np.array([0.0])
-        coords = {"surface": [c.name for c in found], "cut": [c.name for c in found]}
+        coords: dict[str, Any] = {"surface": [c.name for c in found], "cut": [c.name for c in found]}
     else:
         phi, theta, angle = (np.atleast_1d(np.asarray(euler[k], dtype=float)) for k in ("phi", "theta", "psi"))
         pt = np.stack(np.meshgrid(phi, theta, indexing="ij"), axis=-1).reshape(-1, 2)
@@ -131,28 +134,16 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         ``toec`` true for a material without third-order constants (and no ``toec_constants``),
         or ``toec_constants`` not a valid set for a material's class.
     """
-    import xarray as xr
-
-    from surfwave.real_crystals.piezo_materials import get_piezo_material
-    from surfwave.real_crystals.piezo_wave import piezo_wave_conditions
-    from surfwave.solvers.euler import euler_lab_axes
-
-    angles, oc, oshape = _orientations(cuts, euler)
-    R0 = euler_lab_axes(angles).reshape(-1, 3, 3)
-    s = np.array([0.0]) if stress is None else np.asarray(stress, dtype=float).reshape(-1)
-    models = [bool(t) for t in toec] if stress is not None else [False]
-    if len(set(models)) < len(models) or not models:
-        raise InputError(f"toec must be distinct booleans, got {list(toec)!r}")
-    n_o, n_s = R0.shape[0], s.size
-    R = np.repeat(R0, n_s, axis=0)                                   # orientation-major, stress inner
-    S = np.tile(s, n_o)
-    mats = [_with_toec(get_piezo_material(m), toec_constants, any(models)) for m in materials]
-    el = list(electrical)
+    g = scene_cases(materials, cuts=cuts, euler=euler, electrical=electrical, stress=stress, toec=toec,
+                    toec_constants=toec_constants, tol=tol)
+    mats, models, el = g.materials, g.models, g.electrical
     out: dict[str, np.ndarray] = {}
     for i, m in enumerate(mats):
+        note_status(m)                                                  # one line for an unverified set
         for t, use in enumerate(models):
-            solve = partial(_solve_points, piezo_wave_conditions, m, R, S, conditions=el, tol=tol, toec=use)
-            rs = solve_in_chunks(solve, len(R), f"piezo_wave, {m.name}" + (", toec" if use else ""))
+            case = g.cases[i][t]
+            rs = solve_in_chunks(partial(_solve_case, case), case.size,
+                                 f"piezo_wave, {m.name}" + (", toec" if use else ""))
             for j, cond in enumerate(el):                               # both conditions from one solve
                 r = rs[cond]
                 for key in VARIABLES:
@@ -160,7 +151,16 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
                     if key not in out:
                         out[key] = np.empty((len(mats), len(el), len(models)) + v.shape, dtype=v.dtype)
                     out[key][i, j, t] = v
-    grid = (len(mats), len(el), len(models)) + oshape + (n_s,)
+    return _dataset(out, g, stressed=stress is not None)
+
+
+def _dataset(out: dict[str, np.ndarray], g: PiezoSceneGrid, stressed: bool) -> xr.Dataset:
+    """Label the arrays of :func:`piezo_wave_sweep` (``out[key]``: (material, electrical, toec, point, ...))
+    as the cube; without a stress grid the ``toec`` and ``stress`` dims are dropped."""
+    import xarray as xr
+
+    mats, models, el, oc, oshape, s = g.materials, g.models, g.electrical, g.coords, g.shape, g.stress
+    grid = (len(mats), len(el), len(models)) + oshape + (s.size,)
     dims = ("material", "electrical", "toec", "surface", "angle", "stress")
     data_vars = {}
     for key, arr in out.items():
@@ -173,7 +173,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         if arr.dtype == object:
             arr = arr.astype(str)
         data_vars[key] = (vdims, arr, dict(VARIABLES[key]))
-    coords = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
+    coords: dict[str, Any] = {"material": ("material", np.array([m.name for m in mats], dtype=str), COORDS["material"]),
               "electrical": ("electrical", np.array(el, dtype=str), COORDS["electrical"]),
               "toec": ("toec", np.asarray(models, dtype=bool), COORDS["toec"]),
               "stress": ("stress", s, COORDS["stress"]),
@@ -191,7 +191,7 @@ def piezo_wave_sweep(materials: Sequence[str], *, cuts: Sequence[str] | None = N
         coords["cut"] = ("surface", np.asarray(oc["cut"], dtype=str), COORDS["cut"])
     ds = xr.Dataset(data_vars, coords=coords).transpose("material", "surface", "angle", "electrical", "toec",
                                                         "stress", ...)
-    if stress is None:
+    if not stressed:
         ds = ds.isel(toec=0, stress=0, drop=True)
     return ds
 
@@ -209,9 +209,66 @@ def _with_toec(material, constants, needed: bool):
     return material
 
 
-def _solve_points(solver, material, R, S, start: int, stop: int, **kw) -> dict:
-    """``solver`` (:func:`piezo_wave_conditions`) on the orientations ``start:stop`` (one chunk)."""
-    return solver(material, R[start:stop], S[start:stop], **kw)
+def _solve_case(case: Case, start: int, stop: int) -> dict:
+    """The one path on the points ``start:stop`` of a case (one chunk): condition -> dict."""
+    return solve(case, start, stop, bulk=False)
+
+
+class PiezoSceneGrid(NamedTuple):
+    """The checked cases of a piezoelectric scene (:func:`scene_cases`).
+
+    ``cases[i][j]``: material i, model j; points orientation-major (``shape`` = (n_surface,
+    n_angle)), stress inner.
+    """
+
+    materials: list
+    models: list[bool]
+    electrical: list[str]
+    coords: dict
+    shape: tuple[int, int]
+    stress: np.ndarray
+    cases: list[list[Case]]
+
+
+def scene_cases(materials: Sequence[str], *, cuts: Sequence[str] | None = None, euler: dict | None = None,
+                electrical: Sequence[str] = ELECTRICAL, stress: Sequence[float] | None = None,
+                toec: Sequence[bool] = (False,), toec_constants=None, tol: float = 1e-12) -> PiezoSceneGrid:
+    """Every point of a piezoelectric scene as checked cases (:func:`surfwave.case.make_case`), one per
+    material and model: what :func:`piezo_wave_sweep` solves and the scene check validates.
+
+    Parameters
+    ----------
+    materials, cuts, euler, electrical, stress, toec, toec_constants, tol
+        As :func:`piezo_wave_sweep`.
+
+    Raises
+    ------
+    InputError
+        Unknown names, repeated ``toec`` values, a missing or invalid third-order set, and
+        every refusal of :func:`surfwave.case.make_case` (constants, density, the stress in
+        GPa, sigma . n = 0, the electrical conditions, non-finite Euler angles).
+    """
+    from surfwave.real_crystals.piezo_materials import get_piezo_material
+    from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
+    from surfwave.solvers.euler import euler_lab_axes
+
+    angles, oc, oshape = _orientations(cuts, euler)
+    if not np.all(np.isfinite(angles)):
+        raise InputError(f"Euler angles must be finite, got {angles[~np.all(np.isfinite(angles), axis=1)][0].tolist()}")
+    R0 = euler_lab_axes(angles).reshape(-1, 3, 3)
+    s = np.array([0.0]) if stress is None else validate.gpa_stress(stress).reshape(-1)
+    models = [bool(t) for t in toec] if stress is not None else [False]
+    if len(set(models)) < len(models) or not models:
+        raise InputError(f"toec must be distinct booleans, got {list(toec)!r}")
+    n_o, n_s = R0.shape[0], s.size
+    R = np.repeat(R0, n_s, axis=0)                                   # orientation-major, stress inner
+    S = np.tile(s, n_o)
+    sigma = stress_tensor("along", 1.0, R) * S[..., None, None]      # uniaxial along each x1
+    mats = [_with_toec(get_piezo_material(m), toec_constants, any(models)) for m in materials]
+    el = list(electrical)
+    cases = [[make_case(Constants.from_piezo_material(m), R, sigma, electrical=tuple(el), toec=use, tol=tol,
+                        leaky=True, where="of the Euler angles") for use in models] for m in mats]
+    return PiezoSceneGrid(mats, models, el, oc, oshape, s, cases)
 
 
 def scene_points(n_materials: int, cuts, euler, electrical, stress, toec=(False,)) -> int:
@@ -220,4 +277,5 @@ def scene_points(n_materials: int, cuts, euler, electrical, stress, toec=(False,
     return n_materials * n_o * len(electrical) * (len(stress) * len(toec) if stress else 1)
 
 
-__all__ = ["COMPONENTS", "METHOD", "UNITS_NOTE", "VARIABLES", "piezo_wave_sweep", "scene_points"]
+__all__ = ["COMPONENTS", "METHOD", "UNITS_NOTE", "VARIABLES", "PiezoSceneGrid", "piezo_wave_sweep", "scene_cases",
+           "scene_points"]

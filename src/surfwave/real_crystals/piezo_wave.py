@@ -24,6 +24,7 @@ from typing import Iterable, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
 from surfwave.real_crystals.piezo_materials import (
@@ -33,6 +34,7 @@ from surfwave.real_crystals.piezo_materials import (
     get_piezo_material,
     note_status,
 )
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.piezo_tensors import piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
 
@@ -55,8 +57,9 @@ def stress_model(toec: Iterable[bool]) -> str:
     return "; ".join(f"toec={str(t).lower()}: {MODEL_TOEC if t else MODEL}" for t in models)
 
 
-#: Largest |stress| (GPa) accepted; larger values are almost surely in Pa.
-MAX_STRESS_GPA = 1e3
+#: Largest |stress| (GPa) accepted; larger values are almost surely in Pa (the one bound,
+#: :data:`surfwave.validate.MAX_STRESS_GPA`).
+MAX_STRESS_GPA = validate.MAX_STRESS_GPA
 #: The one traction tolerance and wording (:mod:`surfwave.real_crystals.stressed_wave`).
 TRACTION_RTOL = sw_path.TRACTION_TOL
 REASON_TRACTION = sw_path.REASON_TRACTION
@@ -82,7 +85,8 @@ def resolve_piezo_material(material: str | PiezoMaterial | None = None, *, voigt
     ------
     InputError
         Unknown name; explicit constants missing, of the wrong shape, non-finite, in Pa, not
-        positive definite (stiffness, eps_r), rho <= 0 (:func:`check_piezo_record`).
+        positive definite (stiffness, eps_r) (:func:`check_piezo_record`); e beyond 100 C/m^2,
+        eps_r below 1, rho outside [1, 1e12] kg/m^3 (:mod:`surfwave.validate`).
     """
     if material is not None:
         if any(v is not None for v in (voigt, e, eps_r)):
@@ -91,8 +95,7 @@ def resolve_piezo_material(material: str | PiezoMaterial | None = None, *, voigt
         m = get_piezo_material(material)
         if rho is None:
             return m
-        check_piezo_record(m.voigt, m.e, m.eps_r, rho, name=m.name)
-        return PiezoMaterial(**{**m.__dict__, "rho": float(rho)})
+        return PiezoMaterial(**{**m.__dict__, "rho": validate.density(rho)})
     for key, value in (("voigt", voigt), ("piezo (e)", e), ("permittivity (eps_r)", eps_r), ("rho", rho)):
         if value is None:
             raise InputError(f"{key} is missing: a piezoelectric crystal needs voigt (6 x 6, GPa), piezo "
@@ -103,6 +106,8 @@ def resolve_piezo_material(material: str | PiezoMaterial | None = None, *, voigt
         raise InputError(f"piezoelectric constants must be numeric arrays: {exc}") from None
     assert rho is not None  # refused above when missing
     check_piezo_record(C6, e6, er, rho, name="constants")
+    validate.piezo_constants(e, eps_r)                 # the bounds of every door: C/m^2, eps_r >= 1
+    rho = validate.density(rho)
     return PiezoMaterial(name="user", formula="", crystal_class="", rho=float(rho), voigt=C6, e=e6, eps_r=er,
                          constants={}, setting="user-supplied, crystal axes", sources={})
 
@@ -114,15 +119,7 @@ def _prestress(stress, axes: np.ndarray) -> np.ndarray:
     point), an (m,) array (uniaxial along x1, one value per point) or an (m, 3, 3) array.
     """
     m = axes.shape[0]
-    try:
-        s = np.asarray(stress, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"stress must be a number or a 3 x 3 tensor (GPa), got {stress!r}") from None
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"stress must be finite, got {stress!r}")
-    if s.size and np.abs(s).max() > MAX_STRESS_GPA:
-        raise InputError(f"stress must be in GPa; got max |stress| = {np.abs(s).max():.4g}, which looks like Pa "
-                         "(divide by 1e9)")
+    s = validate.gpa_stress(stress)                              # numbers, finite, the one Pa guard
     if s.shape == () or s.shape == (m,):                         # uniaxial along each x1: the one loading
         return sw_path.stress_tensor("along", 1.0, axes) * s[..., None, None]
     if s.shape in ((3, 3), (m, 3, 3)):
@@ -212,8 +209,9 @@ def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | No
     >>> round(float(r["c_free"][0])), round(float(r["c_metallized"][0]))   # Slobodnik 1973: 3488 / 3404
     (3488, 3404)
     """
-    if electrical not in ELECTRICAL:
+    if not isinstance(electrical, Boundary) and electrical not in ELECTRICAL:
         raise InputError(sw_path.electrical_error(electrical))
+    electrical = as_boundary(electrical).name
     return piezo_wave_conditions(material, axes, stress, conditions=(electrical,), leaky=leaky, tol=tol,
                                  voigt=voigt, e=e, eps_r=eps_r, rho=rho, toec=toec, bulk=bulk)[electrical]
 

@@ -49,6 +49,7 @@ from numpy.typing import ArrayLike
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.bulk_waves import BULK_POLARISATIONS, BULK_SPEEDS, axis_waves
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.long_wave import long_wave_stable
@@ -268,7 +269,7 @@ def stress_tensor(loading: str, magnitude: ArrayLike, axes: ArrayLike, *,
 
 def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, toec: bool = False,
                  tol: float | None = None, state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
-                 electrical: str | None = None, leaky: bool | None = None) -> dict:
+                 electrical: str | Boundary | None = None, leaky: bool | None = None) -> dict:
     """Surface wave of a stressed real crystal at each point (the one path).
 
     Parameters
@@ -291,10 +292,10 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
     bulk : bool
         Also return ``stable`` (costs a stability test). The bulk speeds along x1 and x2 come
         either way (they are cheap).
-    electrical : {"free", "metallized"}, optional
-        Piezoelectric crystals only (default "free"): the surface condition of ``c_R``, the
-        polarisation, the power flow and ``c_leaky``; ``c_free``, ``c_metallized`` and ``K2``
-        come either way.
+    electrical : {"free", "metallized"} or Boundary, optional
+        Piezoelectric crystals only (default "free"; :mod:`surfwave.solvers.boundary`): the
+        surface condition of ``c_R``, the polarisation, the power flow and ``c_leaky``;
+        ``c_free``, ``c_metallized`` and ``K2`` come either way.
     leaky : bool or None
         The leaky wave (``c_leaky``, ``leaky_attenuation``, ``leaky_reason``) radiating into
         the slowest bulk sheet (:func:`surfwave.solvers.leaky.leaky_wave`). True: solved at
@@ -350,18 +351,21 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
         ``electrical`` without piezoelectric constants. Never for a point: those get NaN and a
         reason.
     """
+    condition: Boundary | None = None
     if constants.is_piezo:
-        electrical = "free" if electrical is None else electrical
-        if electrical not in ELECTRICAL:
+        if electrical is not None and not isinstance(electrical, Boundary) and electrical not in ELECTRICAL:
             raise InputError(electrical_error(electrical))
+        condition = as_boundary("free" if electrical is None else electrical)
     elif electrical is not None:
         raise InputError(f"electrical={electrical!r} needs piezoelectric constants (piezo=, permittivity=)")
-    return surface_wave_conditions(constants, axes, stress, conditions=(electrical,), toec=toec, tol=tol,
-                                   state_tol=state_tol, bulk=bulk, leaky=leaky)[electrical]
+    return surface_wave_conditions(constants, axes, stress, conditions=(condition,), toec=toec, tol=tol,
+                                   state_tol=state_tol, bulk=bulk, leaky=leaky)[None if condition is None
+                                                                                else condition.name]
 
 
 def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: ArrayLike, *,
-                            conditions: Sequence[str | None] = ELECTRICAL, toec: bool = False, tol: float | None = None,
+                            conditions: Sequence[str | Boundary | None] = ELECTRICAL, toec: bool = False,
+                            tol: float | None = None,
                             state_tol: float = toec_model.DEFAULT_TOL, bulk: bool = True,
                             leaky: bool | None = None) -> dict:
     """:func:`surface_wave` for several electrical conditions from one stressed state and one solve.
@@ -374,8 +378,9 @@ def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: Array
     ----------
     constants, axes, stress, toec, tol, state_tol, bulk, leaky
         As :func:`surface_wave`.
-    conditions : sequence of {"free", "metallized"}, or (None,)
-        Distinct electrical conditions (piezoelectric crystals); ``(None,)`` for a crystal
+    conditions : sequence of {"free", "metallized"} or of Boundary objects, or (None,)
+        Distinct electrical conditions (piezoelectric crystals; results keyed by their names,
+        :mod:`surfwave.solvers.boundary`); ``(None,)`` for a crystal
         without piezoelectric constants.
 
     Returns
@@ -390,8 +395,11 @@ def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: Array
     """
     conditions = tuple(conditions)
     allowed = ELECTRICAL if constants.is_piezo else (None,)
-    if not conditions or len(set(conditions)) != len(conditions) or any(c not in allowed for c in conditions):
-        raise InputError(f"conditions must be distinct values of {allowed}, got {conditions!r}")
+    known = all(isinstance(c, Boundary) or c in allowed for c in conditions) and (
+        constants.is_piezo or conditions == (None,))
+    names = tuple(c.name if isinstance(c, Boundary) else c for c in conditions)
+    if not conditions or len(set(names)) != len(names) or not known:
+        raise InputError(f"conditions must be distinct values of {allowed} (or Boundary objects), got {conditions!r}")
     axes = np.asarray(axes, dtype=float)
     sigma = np.asarray(stress, dtype=float)
     if axes.shape[-2:] != (3, 3) or sigma.shape[-2:] != (3, 3):
@@ -445,7 +453,8 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
     if bulk:
         shared["stable"] = np.zeros(n, dtype=bool)
         shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
-    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in conditions}
+    names = [c.name if isinstance(c, Boundary) else c for c in conditions]
+    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in names}
 
 
 def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict) -> dict:

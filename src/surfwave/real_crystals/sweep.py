@@ -32,21 +32,15 @@ from __future__ import annotations
 
 import itertools
 from functools import partial
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, NamedTuple, Sequence
 
 import numpy as np
 
+from surfwave.case import Case, make_case, solve
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, SURFACE_WAVE_COORDS
 from surfwave.errors import InputError
-from surfwave.real_crystals.stressed_wave import (
-    BULK_KEYS,
-    LOADINGS,
-    Constants,
-    axis_of_loading,
-    stress_tensor,
-    surface_wave,
-)
+from surfwave.real_crystals.stressed_wave import BULK_KEYS, LOADINGS, Constants, axis_of_loading, stress_tensor
 from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
 from surfwave.solvers.tensors import rotate4, voigt_to_tensor
 from surfwave.validate import as_1d
@@ -54,7 +48,8 @@ from surfwave.validate import as_1d
 if TYPE_CHECKING:  # xarray only for the Dataset builder: scene checks at workflow parse stay light
     import xarray as xr
 
-__all__ = ["LOADINGS", "applied_stress", "axis_of_loading", "surface_wave_sweep", "symmetry_reduced_range"]
+__all__ = ["LOADINGS", "SceneGrid", "applied_stress", "axis_of_loading", "scene_cases", "surface_wave_sweep",
+           "symmetry_reduced_range"]
 
 #: Names of the three displacement components of the polarisation (lab frame).
 COMPONENTS = ("u1", "u2", "u3")
@@ -272,6 +267,65 @@ def surface_wave_sweep(
         Unknown surfaces, an ``axis_<hkl>`` loading outside a surface, or
         ``toec=True`` for a material without third-order constants.
     """
+    grid = scene_cases(materials, surfaces, angles, stress, loadings, toec, tol=tol, leaky=leaky)
+    mats, (nsf, na, nl, ns) = grid.materials, grid.sub
+    shape = (len(mats), nsf, na, nl, len(grid.models), ns)
+    keys = ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho", "polarisation", "decay", "wave_type",
+            "reason", "c_leaky", "leaky_attenuation", "leaky_reason", "grazing") + BULK_KEYS
+    out: dict = {}
+    for im, mat in enumerate(mats):
+        for it, use in enumerate(grid.models):
+            # every value comes from this material and model's own solve (NaN where no state)
+            case = grid.cases[im][it]
+            res = solve_in_chunks(partial(_solve_points, case), case.size,
+                                  f"surface_wave, {mat.name}" + (", toec" if use else ""))
+            for name in keys:
+                arr = res[name].reshape(grid.sub + res[name].shape[1:])
+                if name not in out:
+                    out[name] = np.empty(shape + arr.shape[len(grid.sub):], dtype=arr.dtype)
+                out[name][im, :, :, :, it, :] = arr
+    ds = _dataset(out, [m.name for m in mats], list(surfaces), grid.angles, grid.loadings, grid.models, grid.stress,
+                  grid.stressed, directions)
+    width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
+    return ds.assign(symmetric_range=(("material", "surface"), np.array(width),
+                                      VARIABLES["symmetric_range"]))
+
+
+class SceneGrid(NamedTuple):
+    """The checked cases of a real-crystal scene (:func:`scene_cases`).
+
+    ``cases[i][j]``: material i, model j, points in the order (surface, angle, loading, stress),
+    whose sizes are ``sub``.
+    """
+
+    materials: list
+    angles: np.ndarray
+    loadings: list[str]
+    models: list[bool]
+    stress: np.ndarray
+    stressed: bool
+    sub: tuple[int, int, int, int]
+    cases: list[list[Case]]
+
+
+def scene_cases(materials: Sequence, surfaces: Sequence[str], angles, stress=None,
+                loadings: Sequence[str] = ("along",), toec: Sequence[bool] = (False,), *, tol: float | None = None,
+                leaky: bool | None = True) -> SceneGrid:
+    """Every point of a real-crystal scene as checked cases (:func:`surfwave.case.make_case`), one per
+    material and model: what :func:`surface_wave_sweep` solves and the scene check validates.
+
+    Parameters
+    ----------
+    materials, surfaces, angles, stress, loadings, toec, tol, leaky
+        As :func:`surface_wave_sweep`.
+
+    Raises
+    ------
+    InputError
+        Unknown surfaces, an ``axis_<hkl>`` loading outside a surface, ``toec`` true for a
+        material without third-order constants, and every refusal of
+        :func:`surfwave.case.make_case` (constants, density, the stress in GPa, sigma . n = 0).
+    """
     from surfwave.solvers import orientation
 
     mats = list(materials)
@@ -287,37 +341,20 @@ def surface_wave_sweep(
     axes = np.stack([np.asarray(orientation.lab_axes(sf, angles), dtype=float).reshape(-1, 3, 3)
                      for sf in surfaces])                                # (nsf, na, 3, 3)
     nsf, na = axes.shape[:2]
-    shape = (len(mats), nsf, na, len(loads), len(models), len(s))
-    keys = ("c_R", "c_R_imag", "c_limit", "penetration_depth", "rho", "polarisation", "decay", "wave_type",
-            "reason", "c_leaky", "leaky_attenuation", "leaky_reason", "grazing") + BULK_KEYS
-    out: dict = {}
     # Applied stress in crystal axes at every (surface, angle, loading, stress): (nsf*na, nl, ns, 3, 3)
     flat_axes = axes.reshape(nsf * na, 3, 3)
     sig = np.stack([applied_stress(ld, flat_axes, s) for ld in loads], axis=1)
     point_axes = np.broadcast_to(flat_axes[:, None, None], sig.shape).reshape(-1, 3, 3)
     sig = sig.reshape(-1, 3, 3)
-    sub = (nsf, na, len(loads), len(s))
-    for im, mat in enumerate(mats):
-        constants = Constants.from_material(mat)
-        for it, use in enumerate(models):
-            # every value comes from this material and model's own solve (NaN where no state)
-            solve = partial(_solve_points, constants, point_axes, sig, toec=use, tol=tol, leaky=leaky)
-            res = solve_in_chunks(solve, len(sig), f"surface_wave, {mat.name}" + (", toec" if use else ""))
-            for name in keys:
-                arr = res[name].reshape(sub + res[name].shape[1:])
-                if name not in out:
-                    out[name] = np.empty(shape + arr.shape[len(sub):], dtype=arr.dtype)
-                out[name][im, :, :, :, it, :] = arr
-    ds = _dataset(out, [m.name for m in mats], list(surfaces), angles, loads, models, s, stressed,
-                  directions)
-    width = [[symmetry_reduced_range(sf, [m.voigt]) for sf in surfaces] for m in mats]
-    return ds.assign(symmetric_range=(("material", "surface"), np.array(width),
-                                      VARIABLES["symmetric_range"]))
+    where = " ".join(surfaces)
+    cases = [[make_case(Constants.from_material(m), point_axes, sig, toec=use, tol=tol, leaky=leaky, where=where)
+              for use in models] for m in mats]
+    return SceneGrid(mats, angles, loads, models, s, stressed, (nsf, na, len(loads), len(s)), cases)
 
 
-def _solve_points(constants, axes, sig, start: int, stop: int, *, toec: bool, tol, leaky) -> dict:
-    """:func:`surface_wave` of the points ``start:stop`` (one chunk of the sweep)."""
-    return surface_wave(constants, axes[start:stop], sig[start:stop], toec=toec, tol=tol, bulk=False, leaky=leaky)
+def _solve_points(case: Case, start: int, stop: int) -> dict:
+    """The one path on the points ``start:stop`` of a case (one chunk of the sweep)."""
+    return solve(case, start, stop, bulk=False)[None]
 
 
 def _dataset(out, materials, surfaces, angles, loads, models, s, stressed, directions) -> xr.Dataset:

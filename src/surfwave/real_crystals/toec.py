@@ -214,6 +214,10 @@ def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.
     return out / np.linalg.det(F)[..., None, None, None, None]
 
 
+_VI = np.array([p[0] for p in VOIGT_PAIRS])
+_VJ = np.array([p[1] for p in VOIGT_PAIRS])
+
+
 def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     """Wallace's stability tensor of a stressed crystal, Voigt form, symmetrised.
 
@@ -232,11 +236,13 @@ def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     """
     e = np.eye(3)
     sigma = np.asarray(sigma, dtype=float)
-    B = np.asarray(C, dtype=float) + 0.5 * (
-        np.einsum("ik,...jl->...ijkl", e, sigma) + np.einsum("jk,...il->...ijkl", e, sigma)
-        + np.einsum("il,...jk->...ijkl", e, sigma) + np.einsum("jl,...ik->...ijkl", e, sigma)
-        - 2 * np.einsum("kl,...ij->...ijkl", e, sigma))
-    B6 = tensor_to_voigt(B)
+    # the 36 Voigt entries only (the same products and sums as the full tensor, term by term)
+    i, j = _VI[:, None], _VJ[:, None]
+    k, m = _VI[None, :], _VJ[None, :]
+    B6 = tensor_to_voigt(C) + 0.5 * (
+        e[i, k] * sigma[..., j, m] + e[j, k] * sigma[..., i, m]
+        + e[i, m] * sigma[..., j, k] + e[j, m] * sigma[..., i, k]
+        - 2 * (e[k, m] * sigma[..., i, j]))
     return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
 
 
@@ -284,13 +290,26 @@ def born_reason(lowest: float) -> str:
 def _stress_and_jacobian(F, C2, C3):
     """Cauchy stress (..., 3, 3) and its derivative along the 6 symmetric basis directions of F,
     (..., 6, 3, 3), plus the tangent C2 + C3 : eta (matrix products: einsum chains are slow)."""
+    sigma, parts = _stress_parts(F, C2, C3)
+    return sigma, _jacobian(parts), parts["K"]
+
+
+def _stress_parts(F, C2, C3) -> tuple[np.ndarray, dict]:
+    """Cauchy stress (..., 3, 3) at F and the intermediate arrays its Jacobian (:func:`_jacobian`) reuses."""
     eta = lagrangian_strain(F)
     K = _tangent(C2, C3, eta)
     T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
     J = np.linalg.det(F)
-    Finv = np.linalg.inv(F)
     Ft = np.swapaxes(F, -1, -2)
     sigma = F @ T @ Ft / J[..., None, None]
+    return sigma, {"F": F, "Ft": Ft, "T": T, "J": J, "K": K, "sigma": sigma}
+
+
+def _jacobian(parts: dict, rows=None) -> np.ndarray:
+    """d sigma / dF along the 6 symmetric basis directions, (..., 6, 3, 3), of the points ``rows``
+    (all when None) from :func:`_stress_parts` (each point's numbers do not depend on the others)."""
+    F, Ft, T, J, K, sigma = (parts[k] if rows is None else parts[k][rows] for k in ("F", "Ft", "T", "J", "K", "sigma"))
+    Finv = np.linalg.inv(F)
     F1, Ft1, T1 = F[..., None, :, :], Ft[..., None, :, :], T[..., None, :, :]
     dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
     FtdF = Ft1 @ dF
@@ -300,8 +319,7 @@ def _stress_and_jacobian(F, C2, C3):
     dFTFt = dF @ T1 @ Ft1
     term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
     trace = np.einsum("...ij,...bji->...b", Finv, dF)
-    dsigma = term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
-    return sigma, dsigma, K
+    return term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
 
 
 def _voigt_vec(s) -> np.ndarray:
@@ -361,15 +379,15 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
     residual = np.full(n, np.inf)
     with np.errstate(all="ignore"):
         for it in range(max_iterations + 1):
-            s, ds, _ = _stress_and_jacobian(F, C2, C3)
+            s, parts = _stress_parts(F, C2, C3)
             r = _voigt_vec(s) - target
             residual = np.max(np.abs(r), axis=-1)
             done |= residual <= tol
             active = ~done & np.isfinite(residual)
             if not active.any() or it == max_iterations:
-                break
+                break                                                   # no Jacobian for the last check
             iterations[active] += 1
-            jac = np.swapaxes(_voigt_vec(ds[active]), -1, -2)          # (m, 6 stress, 6 F)
+            jac = np.swapaxes(_voigt_vec(_jacobian(parts, active)), -1, -2)   # (m, 6 stress, 6 F), active only
             try:
                 du = -np.linalg.solve(jac, r[active][..., None])[..., 0]
             except np.linalg.LinAlgError:

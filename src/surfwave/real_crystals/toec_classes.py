@@ -41,6 +41,7 @@ from surfwave.errors import InputError
 from surfwave.real_crystals.toec import toec_tensor
 from surfwave.solvers.piezo_tensors import point_group_generators
 from surfwave.solvers.tensors import VOIGT_PAIRS
+from surfwave.validate import MAX_CONSTANT_GPA
 
 __all__ = ["HEXAGONAL_6MM_TOEC", "INVARIANCE_TOL", "MAX_TOEC_GPA", "TOEC_NAMES", "TRIGONAL_32_TOEC", "checked_toec",
            "invariant_toec_basis", "rotate_toec", "toec_from_named", "toec_from_user", "trigonal_32_toec"]
@@ -55,7 +56,7 @@ HEXAGONAL_6MM_TOEC = ("C111", "C112", "C113", "C123", "C133", "C144", "C155", "C
 TOEC_NAMES = {"32": TRIGONAL_32_TOEC, "3m": TRIGONAL_32_TOEC, "6mm": HEXAGONAL_6MM_TOEC,
               "-43m": ("C111", "C112", "C123", "C144", "C155", "C456")}
 #: Largest |third-order constant| accepted, GPa (diamond's are about 1e4; larger values are in Pa).
-MAX_TOEC_GPA = 1e5
+MAX_TOEC_GPA = MAX_CONSTANT_GPA
 #: Largest departure from the class's invariant subspace accepted in a user's array, relative to
 #: its largest component (rounding of typed components is far below; a wrong sign is not).
 INVARIANCE_TOL = 1e-6
@@ -138,7 +139,8 @@ def toec_from_named(crystal_class: str, constants: Mapping[str, float]) -> np.nd
     Raises
     ------
     InputError
-        An unknown class, a missing, unknown or non-finite constant (named).
+        An unknown class, a missing, unknown, boolean or non-finite constant (named), values
+        beyond :data:`MAX_TOEC_GPA` (Pa).
     """
     if crystal_class not in TOEC_NAMES:
         raise InputError(f"third-order constants by name: crystal class {crystal_class!r} not one of "
@@ -149,6 +151,10 @@ def toec_from_named(crystal_class: str, constants: Mapping[str, float]) -> np.nd
     if missing or unknown:
         raise InputError(f"class-{crystal_class} third-order constants: missing {missing}, unknown {unknown}; "
                          f"give exactly {list(names)}")
+    flags = [k for k in names if isinstance(constants[k], (bool, np.bool_))]
+    if flags:
+        raise InputError(f"class-{crystal_class} third-order constants must be numbers (GPa), not True/False: "
+                         f"{flags}")
     try:
         values = np.array([float(constants[k]) for k in names])
     except (TypeError, ValueError):
@@ -156,6 +162,10 @@ def toec_from_named(crystal_class: str, constants: Mapping[str, float]) -> np.nd
                          f"got {dict(constants)}") from None
     if not np.all(np.isfinite(values)):
         raise InputError(f"class-{crystal_class} third-order constants must be finite, got {dict(constants)}")
+    big = float(np.abs(values).max())
+    if big > MAX_TOEC_GPA:
+        raise InputError(f"third-order constants must be in GPa; the largest is {big:.4g}, which looks like Pa "
+                         "(divide by 1e9)")
     B = invariant_toec_basis(crystal_class)
     cols = [_TRIPLES.index(tuple(int(c) - 1 for c in k[1:])) for k in names]
     y = np.linalg.solve(B[:, cols].T, values)

@@ -38,9 +38,10 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.piezo_stroh import generalised_blocks, stroh_matrix
 from surfwave.solvers.piezo_tensors import EPS0
-from surfwave.vocab import ELECTRICAL
+from surfwave.vocab import ELECTRICAL  # noqa: F401  (kept: a public name of this module)
 
 #: dB per wavelength per unit delta: 20 log10(exp(2 pi delta)) = 40 pi log10(e) delta.
 DB_PER_DELTA = 40 * np.pi * np.log10(np.e)
@@ -210,11 +211,7 @@ def _condition(M, d, electrical) -> tuple[np.ndarray, np.ndarray]:
     (phi = 0); elastic (d = 3): M itself.
     """
     if d == 4:
-        if electrical == "free":
-            M = M.copy()
-            M[:, 3, 3] -= 1j
-        else:
-            M = M[:, :3, :3]
+        M = as_boundary(electrical).secular_matrix(M)
     with np.errstate(invalid="ignore"):
         return np.linalg.det(M), M
 
@@ -292,8 +289,9 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         Piezoelectric stress constants e_kij, lab frame; None: non-piezoelectric (6 x 6 problem).
     eps : None or array_like, shape (m, 3, 3), F/m
         Absolute clamped permittivity, lab frame (with ``e``).
-    electrical : {"free", "metallized"} or sequence of them
-        Electrically free surface (vacuum above) or shorted (phi = 0). Ignored without ``e``.
+    electrical : {"free", "metallized"}, a :class:`surfwave.solvers.boundary.Boundary`, or a sequence of them
+        Electrically free surface (vacuum above) or shorted (phi = 0), or any boundary object
+        (its ``secular_matrix``; the result is keyed by its ``name``). Ignored without ``e``.
         A sequence (e.g. ``("free", "metallized")``, each once) solves every condition in one call:
         the limits, the real-speed scan's eigen-decompositions, the outgoing choice and the surface
         impedance M = B A^-1 on the grid are shared (only the boundary function's electrical part
@@ -320,11 +318,9 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     InputError
         Wrong shapes, non-finite values, rho <= 0, eps not absolute, unknown ``electrical``.
     """
-    several = not isinstance(electrical, str)
-    conds = tuple(electrical) if several else (electrical,)
-    for el in conds:
-        if el not in ELECTRICAL:
-            raise InputError(f"electrical must be 'free' or 'metallized', got {el!r}")
+    several = not isinstance(electrical, (str, Boundary))
+    bounds = tuple(as_boundary(el) for el in (electrical if several else (electrical,)))
+    conds = tuple(b.name for b in bounds)         # the result's keys; the objects do the physics
     if not conds or len(set(conds)) != len(conds):
         raise InputError(f"electrical: each condition once, at least one, got {electrical!r}")
     A, rho, e, eps = _check(A, rho, e, eps)
@@ -346,7 +342,7 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
     ii = np.nonzero(ok)[0]
     sc = _scan(Q[ii], R[ii], T[ii], XL[ii], d) if ii.size else None
     out: dict = {}
-    for el in conds:
+    for el, bound in zip(conds, bounds):
         if d == 3 and out:          # elastic: the condition is ignored, the same answer (copied)
             first = out[conds[0]]
             out[el] = {k: v.copy() for k, v in first.items()}
@@ -358,7 +354,7 @@ def leaky_wave(A, rho, e=None, eps=None, *, electrical="free", tol=1e-10) -> dic
         pol = np.full((m, d), np.nan + 0j)
         its = np.zeros(m, dtype=int)
         if ii.size:
-            X[ii], pch[ii], pol[ii], its[ii], reason[ii] = _solve(sc, XL[ii], d, el, tol)
+            X[ii], pch[ii], pol[ii], its[ii], reason[ii] = _solve(sc, XL[ii], d, bound, tol)
         out[el] = _result(X, pch, pol, its, reason, XL, s, rho, d)
     return out if several else out[conds[0]]
 
@@ -766,8 +762,8 @@ def _solve(sc, XL, d, electrical, tol):
     w: np.ndarray = np.full(M.shape[:2], np.nan + 0j)
     if fin.any():
         w[fin] = np.linalg.svd(M[fin])[2][:, -1].conj()
-    if d == 4 and electrical == "metallized":
-        w = np.concatenate([w, np.zeros((w.shape[0], 1))], axis=1)
+    if w.shape[1] < d:   # a condition that fixes the potential (metallized): phi = 0 at the surface
+        w = np.concatenate([w, np.zeros((w.shape[0], d - w.shape[1]))], axis=1)
     nm = np.linalg.norm(w[:, :3], axis=1)
     w = w / np.where(nm > 0, nm, 1)[:, None]
     big = np.take_along_axis(w, np.argmax(np.abs(w[:, :3]), axis=1)[:, None], axis=1)

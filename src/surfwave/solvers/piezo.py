@@ -36,6 +36,7 @@ from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
+from surfwave.solvers.boundary import as_boundary
 from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
 from surfwave.solvers.impedance import _monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
@@ -49,7 +50,7 @@ from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the publ
     stroh_polynomial_parts,
 )
 from surfwave.solvers.piezo_tensors import EPS0  # noqa: F401  (vacuum permittivity, F/m; re-exported)
-from surfwave.vocab import ELECTRICAL
+from surfwave.vocab import ELECTRICAL  # noqa: F401  (kept: a public name of this module)
 
 #: Smallest t = sqrt(1 - X/X_L) searched (roots closer to X_L than T_MIN^2 relative: none).
 T_MIN = search.T_MIN
@@ -126,10 +127,8 @@ def _check(A, e, eps, rho, electrical) -> tuple[np.ndarray, np.ndarray, np.ndarr
     if np.any(sA == 0):
         raise InputError("A vanishes at some point")
     el = np.broadcast_to(np.asarray(electrical, dtype=object), (m,))
-    unknown = sorted({str(v) for v in el if v not in ELECTRICAL})
-    if unknown:
-        raise InputError(f"electrical must be 'free' or 'metallized', got {unknown}")
-    return A, e, eps, rho, el == "free"
+    vacuum = {v: as_boundary(v).vacuum for v in set(el.tolist())}   # each condition asked once
+    return A, e, eps, rho, np.array([vacuum[v] for v in el.tolist()], dtype=bool)
 
 
 def piezo_surface_wave(A: ArrayLike, e: ArrayLike, eps: ArrayLike, rho: ArrayLike, *,

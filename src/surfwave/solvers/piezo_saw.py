@@ -14,6 +14,7 @@ from typing import Sequence
 
 import numpy as np
 
+from surfwave.solvers.boundary import BOUNDARIES, Boundary, as_boundary
 from surfwave.solvers.leaky import leaky_wave
 from surfwave.solvers.piezo import piezo_surface_wave
 from surfwave.solvers.stroh import surface_wave
@@ -72,8 +73,8 @@ def piezo_saw(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *,
 
 
 def piezo_saw_conditions(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.ndarray, *,
-                         conditions: Sequence[str | None] = ELECTRICAL, tol: float = 1e-12,
-                         leaky: bool = True) -> dict[str | None, dict]:
+                         conditions: Sequence[str | Boundary] = ELECTRICAL, tol: float = 1e-12,
+                         leaky: bool = True) -> dict[str, dict]:
     """:func:`piezo_saw` for several electrical conditions from one set of solves.
 
     The subsonic search always solves both conditions (K^2 needs both) and, for a piezoelectric
@@ -84,47 +85,57 @@ def piezo_saw_conditions(A: np.ndarray, rho: np.ndarray, e: np.ndarray, eps: np.
     ----------
     A, rho, e, eps, tol, leaky
         As :func:`piezo_saw`.
-    conditions : sequence of {"free", "metallized"}
-        The conditions wanted, each once.
+    conditions : sequence of {"free", "metallized"} or of :class:`surfwave.solvers.boundary.Boundary`
+        The conditions wanted, each once (results keyed by their names). Free and metallized
+        are always solved (K^2); another boundary object is added to the same batch.
 
     Returns
     -------
     dict
         Condition -> the dict :func:`piezo_saw` returns for it.
     """
-    conditions = tuple(conditions)
+    asked = {b.name: b for b in (as_boundary(c) for c in conditions)}    # name -> boundary object
+    names_asked = tuple(asked)
+    # the batch: free and metallized always (K^2), then any other boundary asked, each once
+    batch = tuple(BOUNDARIES[n] for n in ELECTRICAL) + tuple(b for n, b in asked.items() if n not in ELECTRICAL)
     m = A.shape[0]
     if m == 0:                           # no point with a state
         f, c = np.empty(0), np.empty((0, 4), dtype=complex)
         return {el: {**{k: f for k in ("c", "c_imag", "c_limit", "penetration_depth") + PIEZO_KEYS},
                      **{k: np.empty(0, dtype=object) for k in ("wave_type", "reason", "method", "leaky_reason")},
-                     "polarisation": c, "decay": c} for el in conditions}
+                     "polarisation": c, "decay": c} for el in names_asked}
+    nb = len(batch)
     with np.errstate(invalid="ignore"):    # a point without a wave is NaN + reason, not a warning
-        both = piezo_surface_wave(np.concatenate([A, A]), np.concatenate([e, e]), np.concatenate([eps, eps]),
-                                  np.concatenate([rho, rho]),
-                                  electrical=np.repeat(np.array(ELECTRICAL, dtype=object), m), tol=tol)
+        both = piezo_surface_wave(np.concatenate([A] * nb), np.concatenate([e] * nb), np.concatenate([eps] * nb),
+                                  np.concatenate([rho] * nb),
+                                  electrical=np.repeat(np.array(batch, dtype=object), m), tol=tol)
     piezo = bool(np.any(e))
     lws: dict = {}
     if leaky:
         with np.errstate(invalid="ignore"):
-            # both conditions in one call: the scan's eigen-decompositions are shared
-            lws = leaky_wave(A, rho, e, eps, electrical=tuple(ELECTRICAL if piezo else conditions))
-    return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo) for el in conditions}
+            # every condition in one call: the scan's eigen-decompositions are shared
+            lws = leaky_wave(A, rho, e, eps, electrical=batch if piezo else tuple(asked.values()))
+    names = tuple(b.name for b in batch)
+    return {el: _one_condition(A, rho, e, eps, both, lws, el, tol, piezo, names) for el in names_asked}
 
 
-def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo) -> dict:
-    """The :func:`piezo_saw` dict of one condition from the shared subsonic (``both``) and
-    leaky (``lws``, empty without leaky) solves."""
+def _one_condition(A, rho, e, eps, both, lws, electrical, tol, piezo, batch=ELECTRICAL) -> dict:
+    """The :func:`piezo_saw` dict of one condition from the shared subsonic (``both``, the
+    conditions ``batch`` one after the other, free and metallized first) and leaky (``lws``,
+    empty without leaky) solves."""
     m = A.shape[0]
-    k = ELECTRICAL.index(electrical)
+    k = batch.index(electrical)
     sw = {key: v[k * m:(k + 1) * m] for key, v in both.items()}
-    c_free, c_met = both["c"][:m], both["c"][m:]
+    c_free, c_met = both["c"][:m], both["c"][m:2 * m]
     with np.errstate(invalid="ignore"):
         K2 = 2 * (c_free - c_met) / c_free
     c_imag = np.where(np.isfinite(sw["c"]), 0.0, np.nan)
     if not piezo:                        # e = 0: the elastic solver, exactly (supersonic waves too)
         sw, c_free, c_met, K2, c_imag = _elastic_piezo_keys(A, rho, eps, sw, tol)
-    im = np.where(np.isfinite(sw["decay"].imag), sw["decay"].imag, np.inf).min(axis=-1)
+    # the smallest Im p > 0 of the partial waves carrying the wave (a NaN slot, e.g. the decoupled
+    # potential of a mirror wave, carries none: NaN + 0j must not count as Im p = 0, depth inf)
+    dec = sw["decay"]
+    im = np.where(np.isfinite(dec) & (dec.imag > 0), dec.imag, np.inf).min(axis=-1)
     with np.errstate(divide="ignore"):
         depth = np.where(np.isfinite(sw["c"]) & np.isfinite(im), 1.0 / (2 * np.pi * im), np.nan)
     depth = sw.get("penetration_depth", depth)
@@ -179,6 +190,10 @@ def _supersonic(sw, c_free, c_met, lws, electrical):
     polarisation and decay; the power flow and potential share are not computed there, NaN)."""
     cs = {"free": c_free.copy(), "metallized": c_met.copy()}
     for el, lw in lws.items():
+        if el not in cs:                 # another boundary: only where it is the condition asked
+            if el != electrical:
+                continue
+            cs[el] = sw["c"].copy()
         exact = ~np.isfinite(cs[el]) & np.isfinite(lw["c_leaky"]) & (np.abs(lw["delta"]) <= DELTA_EXACT)
         cs[el] = np.where(exact, lw["c_leaky"], cs[el])
         if el == electrical and exact.any():

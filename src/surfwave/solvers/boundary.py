@@ -1,0 +1,119 @@
+"""The electrical condition of a piezoelectric surface as an object: free, metallized.
+
+A boundary turns the surface impedance of the half space into the matrix whose determinant
+vanishes at a surface wave (the secular equation) and says what it leaves of the generalised
+displacement (u1, u2, u3, phi) at the surface. The solvers ask the object
+(:func:`surfwave.solvers.leaky.leaky_wave`, :func:`surfwave.solvers.piezo.piezo_surface_wave`)
+instead of comparing condition names, so that another condition (e.g. the surface impedance
+of a layer stack on the substrate) is one more subclass of :class:`Boundary`.
+
+Conventions: the impedance M = B A^-1 of the decaying partial waves is (m, 4, 4) with the
+electric row and column last, scaled so that EPS0 = 1 (:mod:`surfwave.solvers.leaky`). A purely
+elastic problem (M of shape (m, 3, 3)) has no electrical condition: every boundary returns M.
+
+Examples
+--------
+>>> import numpy as np
+>>> M = np.zeros((1, 4, 4), dtype=complex)
+>>> complex(as_boundary("free").secular_matrix(M)[0, 3, 3]), as_boundary("metallized").secular_matrix(M).shape
+(-1j, (1, 3, 3))
+>>> as_boundary(METALLIZED) is METALLIZED, str(FREE)
+(True, 'free')
+"""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import ClassVar
+
+import numpy as np
+
+from surfwave.errors import InputError
+
+__all__ = ["BOUNDARIES", "FREE", "METALLIZED", "Boundary", "Free", "Metallized", "as_boundary"]
+
+
+class Boundary(ABC):
+    """An electrical (and mechanical: traction-free) condition of the crystal's surface.
+
+    Attributes
+    ----------
+    name : str
+        The label of the results and cubes (``electrical`` coordinate).
+    vacuum : bool
+        True where the electric field continues into the vacuum above the surface (its
+        energy belongs to the wave: power flow, potential share).
+    """
+
+    name: ClassVar[str]
+    vacuum: ClassVar[bool]
+
+    @abstractmethod
+    def secular_matrix(self, M: np.ndarray) -> np.ndarray:
+        """The matrix whose determinant vanishes at a surface wave.
+
+        Parameters
+        ----------
+        M : ndarray, shape (m, d, d), complex
+            Surface impedance B A^-1 of the decaying partial waves (d = 4 piezoelectric, EPS0 =
+            1 scaling; d = 3 elastic).
+
+        Returns
+        -------
+        ndarray, shape (m, k, k)
+            A new array (M is not modified); its null vector is the surface value of the first
+            k components of (u1, u2, u3, phi), the others vanish.
+        """
+
+    def __str__(self) -> str:
+        """The condition's name."""
+        return self.name
+
+    def __repr__(self) -> str:
+        """``Free()``, ``Metallized()``."""
+        return f"{type(self).__name__}()"
+
+
+class Free(Boundary):
+    """Open-circuit surface, vacuum above: traction-free, D2 continuous into the vacuum
+    (M - i e4 e4^T in the EPS0 = 1 scaling)."""
+
+    name = "free"
+    vacuum = True
+
+    def secular_matrix(self, M: np.ndarray) -> np.ndarray:  # noqa: D102 (documented on the base)
+        M = M.copy()
+        if M.shape[-1] == 4:
+            M[:, 3, 3] -= 1j
+        return M
+
+
+class Metallized(Boundary):
+    """A perfectly conducting, grounded film: traction-free, phi = 0 (the mechanical 3 x 3 block)."""
+
+    name = "metallized"
+    vacuum = False
+
+    def secular_matrix(self, M: np.ndarray) -> np.ndarray:  # noqa: D102 (documented on the base)
+        return M[:, :3, :3].copy()
+
+
+#: The two conditions, one instance each.
+FREE, METALLIZED = Free(), Metallized()
+#: Name -> boundary.
+BOUNDARIES: dict[str, Boundary] = {b.name: b for b in (FREE, METALLIZED)}
+
+
+def as_boundary(value: str | Boundary) -> Boundary:
+    """A :class:`Boundary` from its name (``"free"``, ``"metallized"``) or itself.
+
+    Raises
+    ------
+    InputError
+        Anything else (the known names listed).
+    """
+    if isinstance(value, Boundary):
+        return value
+    if isinstance(value, str) and value in BOUNDARIES:
+        return BOUNDARIES[value]
+    raise InputError(f"electrical must be 'free' or 'metallized' (or a surfwave.solvers.boundary.Boundary), "
+                     f"got {value!r}")
