@@ -7,8 +7,9 @@ Modules are named by their dotted path below the package (``"solvers.rayleigh"``
 Examples
 --------
 >>> files = module_closure("solvers.rayleigh")
->>> sorted(f.rsplit("surfwave/", 1)[1] for f in files)
-['__init__.py', 'errors.py', 'solvers/__init__.py', 'solvers/cubic.py', 'solvers/rayleigh.py', 'validate.py', 'vocab.py']
+>>> [f.rsplit("surfwave/", 1)[1] for f in sorted(files)]  # doctest: +NORMALIZE_WHITESPACE
+['__init__.py', 'errors.py', 'solvers/__init__.py', 'solvers/cubic.py', 'solvers/rayleigh.py',
+ 'validate.py', 'vocab.py']
 """
 from __future__ import annotations
 

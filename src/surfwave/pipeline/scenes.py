@@ -60,7 +60,9 @@ def _strict_loader():
     """A SafeLoader that reads YAML 1.2 floats ("1.0e8") as floats and refuses duplicate keys."""
     import yaml
 
-    class StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml parser where built
+    base: type = getattr(yaml, "CSafeLoader", yaml.SafeLoader)  # libyaml parser where built
+
+    class StrictLoader(base):  # a base chosen at run time
         """SafeLoader + YAML 1.2 floats + :class:`DuplicateKeyError` on a repeated mapping key."""
 
         def construct_mapping(self, node, deep=False):
@@ -248,7 +250,7 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
             check_points(where, {"potentials": len(pots), "angles": len(angles), "d/d0": len(d)})
         except SceneError as exc:
             problems.append(str(exc))
-    if problems:
+    if problems or d is None:
         return None, problems
     return {
         "name": name,
@@ -321,11 +323,12 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
         schema = load_schema(schema)
     errors = _schema_errors(config, schema)
     problems = list(dict.fromkeys(schema_message(e, schema) for e in errors))
-    raw_scenes = config.get("scenes") if isinstance(config.get("scenes"), dict) else {}
+    raw_scenes: dict = config["scenes"] if isinstance(config.get("scenes"), dict) else {}
+    sources = sources or {}
     broken = {str(e.absolute_path[1]) for e in errors
               if len(e.absolute_path) >= 2 and e.absolute_path[0] == "scenes"}
     for name in sorted(broken):
-        if len((sources or {}).get(name, [])) > 1:
+        if len(sources.get(name, [])) > 1:
             problems.append(_redefined(name, sources[name]))
     scenes: dict[str, dict] = {}
     for name, raw in raw_scenes.items():
@@ -339,7 +342,7 @@ def validate_config(config: dict, schema: dict | str | Path | None = None,
             continue
         scene, found = _scene_check(name, raw, sources)
         problems += found
-        if found and len((sources or {}).get(name, [])) > 1:
+        if found and len(sources.get(name, [])) > 1:
             problems.append(_redefined(name, sources[name]))
         if scene is not None:
             scenes[name] = scene
