@@ -1,0 +1,454 @@
+"""Least-squares fit of a forward model's parameters to measured dispersion points, with the
+covariance from the Jacobian and plain warnings when parameters are not separable.
+
+The forward model is any callable ``model(params, x) -> c``: ``params`` a dict of named floats,
+``x`` the measured abscissae (kh or frequency), ``c`` the predicted phase speed (m/s) of the
+chosen mode, shape (n,). When it also has a ``jacobian(params, x, names) -> (n, m)`` method (or
+one is passed as ``jacobian=``) the sensitivities dc/dp come from it; otherwise from central
+differences with a step set by each parameter's scale.
+
+The fit runs in scaled parameters u_j = p_j / s_j (s_j = |initial value|, or the bound width
+when the initial value is 0), so that parameters of very different size (GPa, kg/m^3, metres)
+are treated alike by the trust-region solver (:func:`scipy.optimize.least_squares`, ``trf``).
+See docs/physics/metrology.md.
+
+Examples
+--------
+>>> import numpy as np
+>>> line = lambda p, x: p["a"] + p["b"] * x
+>>> x = np.linspace(0.0, 1.0, 5)
+>>> r = fit(line, x, 1.0 + 2.0 * x + np.array([0.01, -0.01, 0.0, 0.01, -0.01]),
+...         {"a": 0.5, "b": 1.0}, noise="absolute")
+>>> round(r["values"]["b"], 4), r["uncertainty_basis"]
+(1.992, 'reduced_chi2')
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, Literal, TypedDict
+
+import numpy as np
+from scipy import stats
+from scipy.optimize import least_squares
+
+from surfwave.errors import InputError
+
+__all__ = ["FitResult", "ForwardModel", "JacobianFunction", "fit", "finite_difference_jacobian"]
+
+ForwardModel = Callable[[dict[str, float], np.ndarray], np.ndarray]
+JacobianFunction = Callable[[dict[str, float], np.ndarray, Sequence[str]], np.ndarray]
+
+#: |correlation| above which two parameters are reported as not separable.
+CORRELATION_LIMIT = 0.99
+#: Condition number of the column-normalised Jacobian above which the weakest combination of
+#: parameters is reported (two parameters at |r| = 0.99 give about 14; 1e3 means some
+#: combination is determined 1000 x worse than the best one).
+CONDITION_LIMIT = 1.0e3
+#: Relative 1-sigma uncertainty above which a strongly correlated pair is called not separable
+#: (below it the pair is reported as correlated: determined, but mainly as a combination).
+LOOSE = 0.1
+#: Singular values below this fraction of the largest count as zero (no information at all).
+RANK_TOL = 1.0e-9
+#: Residual (in units of sigma) that stands in for a point where the model has no answer
+#: (a mode cut off) during the iterations: the trust region rejects such a step.
+NAN_PENALTY = 1.0e8
+
+
+class FitResult(TypedDict):
+    """Result of :func:`fit` (and :func:`surfwave.fit_film`).
+
+    Attributes
+    ----------
+    names : list of str
+        The free parameters, in the order of ``covariance`` and ``correlation``.
+    values : dict of str to float
+        Every parameter (free ones at their fitted value, fixed ones as given).
+    uncertainties : dict of str to float
+        1-sigma uncertainty of each free parameter (same unit as the value); ``inf`` for a
+        parameter the data do not determine at all.
+    covariance : ndarray, shape (m, m)
+        Covariance of the free parameters (units: products of theirs).
+    correlation : ndarray, shape (m, m)
+        Correlation matrix (1); NaN where an uncertainty is infinite.
+    uncertainty_basis : {"sigma", "reduced_chi2"}
+        ``sigma``: propagated from the given measurement uncertainties alone;
+        ``reduced_chi2``: no sigma given, the covariance is scaled by chi2/dof (the scatter of
+        the residuals estimates the measurement noise).
+    chi2 : float
+        sum(((c_model - c) / sigma)^2). With no sigma: sigma = c (``noise="relative"``, chi2
+        dimensionless) or 1 m/s (``noise="absolute"``, chi2 in (m/s)^2).
+    dof : int
+        Degrees of freedom, n points - m free parameters.
+    reduced_chi2 : float
+        chi2 / dof (NaN when dof = 0).
+    p_value : float
+        Probability of a chi2 at least this large (NaN without sigma).
+    residuals : ndarray, shape (n,)
+        c_model - c at the fitted values, m/s.
+    x, c : ndarray, shape (n,)
+        The data.
+    sigma : ndarray, shape (n,)
+        The given 1-sigma uncertainties of c (m/s); with none given, their estimate from the
+        scatter, sqrt(chi2/dof) x c (relative noise) or x 1 m/s (absolute noise).
+    c_model : ndarray, shape (n,)
+        The model at the fitted values, m/s.
+    curve_x, curve_c : ndarray, shape (k,)
+        The model on a fine grid over the data's range (for figures).
+    singular_values : ndarray, shape (m,)
+        Of the column-normalised Jacobian, descending (1).
+    condition_number : float
+        Their ratio, largest / smallest (inf when rank-deficient).
+    jacobian_method : {"analytic", "finite differences"}
+    warnings : list of str
+        Plain-language problems: parameters not separable, without effect, at a bound, a poor
+        fit for the given sigma, no convergence.
+    success : bool
+        The least-squares solver converged.
+    message : str
+        The solver's message.
+    nfev : int
+        Model evaluations by the solver (not counting finite-difference Jacobians).
+    """
+
+    names: list[str]
+    values: dict[str, float]
+    uncertainties: dict[str, float]
+    covariance: np.ndarray
+    correlation: np.ndarray
+    uncertainty_basis: Literal["sigma", "reduced_chi2"]
+    chi2: float
+    dof: int
+    reduced_chi2: float
+    p_value: float
+    residuals: np.ndarray
+    x: np.ndarray
+    c: np.ndarray
+    sigma: np.ndarray
+    c_model: np.ndarray
+    curve_x: np.ndarray
+    curve_c: np.ndarray
+    singular_values: np.ndarray
+    condition_number: float
+    jacobian_method: Literal["analytic", "finite differences"]
+    warnings: list[str]
+    success: bool
+    message: str
+    nfev: int
+
+
+def _data(x, c, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    arrays = []
+    for name, v in (("x", x), ("c", c)):
+        a = np.atleast_1d(np.asarray(v, dtype=float))
+        if a.ndim != 1:
+            raise InputError(f"{name} must be 1-D, got shape {a.shape}")
+        if not np.all(np.isfinite(a)):
+            raise InputError(f"{name} must be finite, got {a[~np.isfinite(a)][:3].tolist()}")
+        arrays.append(a)
+    xa, ca = arrays
+    if xa.shape != ca.shape:
+        raise InputError(f"x and c must have the same length, got {xa.size} and {ca.size}")
+    if sigma is None:
+        return xa, ca, None
+    s = np.broadcast_to(np.asarray(sigma, dtype=float), ca.shape).copy()
+    if not np.all(np.isfinite(s) & (s > 0)):
+        raise InputError(f"sigma must be finite and > 0, got {s[~(np.isfinite(s) & (s > 0))][:3].tolist()}")
+    return xa, ca, s
+
+
+def _parameters(initial: Mapping[str, float], free: Sequence[str] | None,
+                bounds: Mapping[str, tuple[float, float]] | None) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """Free names, their (lo, hi) bounds, their scales; every problem named."""
+    init = {}
+    for k, v in initial.items():
+        try:
+            init[k] = float(v)
+        except (TypeError, ValueError):
+            raise InputError(f"initial value of {k!r} must be a number, got {v!r}") from None
+        if not math.isfinite(init[k]):
+            raise InputError(f"initial value of {k!r} must be finite, got {v!r}")
+    names = list(init) if free is None else list(free)
+    if not names:
+        raise InputError("no free parameter: name at least one in 'free'")
+    unknown = [n for n in names if n not in init]
+    if unknown:
+        raise InputError(f"free parameter(s) {unknown} have no initial value; given: {sorted(init)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"free parameters named twice: {names}")
+    bounds = dict(bounds or {})
+    stray = [b for b in bounds if b not in names]
+    if stray:
+        raise InputError(f"bounds given for {stray}, which are not free parameters {names}")
+    lo = np.full(len(names), -np.inf)
+    hi = np.full(len(names), np.inf)
+    for j, n in enumerate(names):
+        if n in bounds:
+            try:
+                lo[j], hi[j] = (float(b) for b in bounds[n])
+            except (TypeError, ValueError):
+                raise InputError(f"bounds of {n!r} must be a pair (low, high), got {bounds[n]!r}") from None
+            if not lo[j] < hi[j]:
+                raise InputError(f"bounds of {n!r} must have low < high, got {bounds[n]!r}")
+            if not lo[j] <= init[n] <= hi[j]:
+                raise InputError(f"initial value {init[n]!r} of {n!r} is outside its bounds {bounds[n]!r}")
+    scale = np.array([abs(init[n]) for n in names])
+    for k in np.flatnonzero(scale == 0):
+        width = hi[k] - lo[k]
+        scale[k] = width if np.isfinite(width) else 1.0
+    return names, np.stack([lo, hi]), scale
+
+
+def finite_difference_jacobian(model: ForwardModel, params: Mapping[str, float], x: np.ndarray,
+                               names: Sequence[str], scale: np.ndarray | None = None,
+                               bounds: np.ndarray | None = None) -> np.ndarray:
+    """Central differences dc/dp, shape (n, m), with steps eps^(1/3) x each parameter's scale.
+
+    Parameters
+    ----------
+    model : callable
+        ``model(params, x) -> c``.
+    params : mapping
+        Where to differentiate.
+    x : ndarray, shape (n,)
+    names : sequence of str, length m
+    scale : ndarray, shape (m,), optional
+        Typical size of each parameter (default: |value|, or 1 at 0). The step is
+        eps^(1/3) * scale, which balances truncation (step^2) and rounding (eps / step) errors.
+    bounds : ndarray, shape (2, m), optional
+        Where a central step would leave the bounds, a one-sided second-order formula is used.
+    """
+    p = {k: float(v) for k, v in params.items()}
+    if scale is None:
+        scale = np.array([abs(p[n]) or 1.0 for n in names])
+    step = np.finfo(float).eps ** (1.0 / 3.0) * np.asarray(scale, dtype=float)
+    cols = []
+    for j, n in enumerate(names):
+        h = float(step[j])
+        lo, hi = (-np.inf, np.inf) if bounds is None else (bounds[0, j], bounds[1, j])
+
+        def at(delta: float, n: str = n) -> np.ndarray:
+            q = dict(p)
+            q[n] = p[n] + delta
+            return np.asarray(model(q, x), dtype=float)
+
+        if p[n] - h >= lo and p[n] + h <= hi:
+            cols.append((at(h) - at(-h)) / (2.0 * h))
+        else:
+            sgn = 1.0 if p[n] + 2.0 * h <= hi else -1.0
+            cols.append(sgn * (-3.0 * at(0.0) + 4.0 * at(sgn * h) - at(2.0 * sgn * h)) / (2.0 * h))
+    return np.stack(cols, axis=1)
+
+
+def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequence[str] | None = None,
+        bounds: Mapping[str, tuple[float, float]] | None = None, sigma=None,
+        jacobian: JacobianFunction | None = None, noise: Literal["relative", "absolute"] = "relative",
+        context: str = "from these data", max_nfev: int = 200, curve_points: int = 200) -> FitResult:
+    """Fit the free parameters of ``model`` to measured points (x, c) by least squares.
+
+    Parameters
+    ----------
+    model : callable
+        ``model(params: dict[str, float], x: ndarray) -> ndarray``, the predicted phase speed
+        (m/s), shape (n,), NaN where the model has no answer. If it has a ``jacobian`` method
+        it is used for dc/dp (see ``jacobian``).
+    x : array_like, shape (n,)
+        Measured abscissae (kh, or frequency in Hz: whatever ``model`` takes).
+    c : array_like, shape (n,)
+        Measured phase speeds, m/s.
+    initial : mapping of str to float
+        Every parameter the model needs: the free ones' starting values, the fixed ones'
+        values.
+    free : sequence of str, optional
+        The parameters to fit (default: all of ``initial``).
+    bounds : mapping of str to (float, float), optional
+        (low, high) of some free parameters (default unbounded).
+    sigma : float or array_like, shape (n,), optional
+        1-sigma uncertainty of each c, m/s. Given: weighted fit, uncertainties from sigma
+        alone (``uncertainty_basis = "sigma"``). Not given: see ``noise``; the covariance is
+        scaled by the reduced chi^2 (``"reduced_chi2"``).
+    jacobian : callable, optional
+        ``jacobian(params, x, names) -> ndarray (n, len(names))``, dc/dp. Default: the
+        model's ``jacobian`` attribute if it has one, else central differences
+        (:func:`finite_difference_jacobian`).
+    noise : {"relative", "absolute"}
+        Without ``sigma``: every point equally uncertain in relative terms (sigma_i
+        proportional to c_i, the default: timing and frequency errors scale with c) or in m/s;
+        the common factor is estimated from the scatter. Ignored when ``sigma`` is given.
+    context : str
+        Words describing the data for the warnings ("from one mode at kh 0.05-0.3").
+    max_nfev : int
+        Most model evaluations of the solver.
+    curve_points : int
+        Points of ``curve_x``/``curve_c`` (the fitted model over the data's range; 0: none).
+
+    Returns
+    -------
+    FitResult
+        Values, 1-sigma uncertainties, covariance and correlation, chi^2, dof, residuals and
+        warnings (:class:`FitResult`).
+
+    Raises
+    ------
+    InputError
+        Bad data, parameters or bounds, fewer points than free parameters, or a model with no
+        answer at the initial values; before any fit.
+    """
+    xa, ca, sa = _data(x, c, sigma)
+    names, bnds, scale = _parameters(initial, free, bounds)
+    m, n = len(names), xa.size
+    if n < m or (sa is None and n == m):
+        raise InputError(f"{n} points cannot determine {m} free parameters {names}"
+                         + ("" if sa is not None else " and the noise level (give sigma or more points)"))
+    base = {k: float(v) for k, v in initial.items()}
+    jac_fn = jacobian if jacobian is not None else getattr(model, "jacobian", None)
+    if noise not in ("relative", "absolute"):
+        raise InputError(f"noise must be 'relative' or 'absolute', got {noise!r}")
+    if sa is not None:
+        w = sa
+    else:
+        w = np.abs(ca) if noise == "relative" else np.ones(n)
+        if np.any(w == 0):
+            raise InputError("noise='relative' needs c != 0 at every point; give sigma or noise='absolute'")
+
+    def params_of(u: np.ndarray) -> dict[str, float]:
+        p = dict(base)
+        p.update({nm: float(u[j] * scale[j]) for j, nm in enumerate(names)})
+        return p
+
+    def dcdp(p: dict[str, float]) -> np.ndarray:
+        if jac_fn is not None:
+            J = np.asarray(jac_fn(p, xa, names), dtype=float).reshape(n, m)
+        else:
+            J = finite_difference_jacobian(model, p, xa, names, scale, bnds)
+        return J
+
+    c0 = np.asarray(model(dict(base), xa), dtype=float)
+    if c0.shape != (n,):
+        raise InputError(f"the model returned shape {c0.shape} for {n} points")
+    if not np.all(np.isfinite(c0)):
+        bad = xa[~np.isfinite(c0)]
+        raise InputError(f"the model has no answer at x = {bad[:5].tolist()} with the initial values "
+                         f"{ {k: base[k] for k in names} } (a mode below its cut-off?); change them or the data")
+
+    def residual(u: np.ndarray) -> np.ndarray:
+        r = (np.asarray(model(params_of(u), xa), dtype=float) - ca) / w
+        return np.where(np.isfinite(r), r, NAN_PENALTY)
+
+    def jac_u(u: np.ndarray) -> np.ndarray:
+        J = dcdp(params_of(u)) * scale[None, :] / w[:, None]
+        return np.where(np.isfinite(J), J, 0.0)
+
+    u0 = np.array([base[nm] / scale[j] for j, nm in enumerate(names)])
+    lb, ub = bnds[0] / scale, bnds[1] / scale
+    sol = least_squares(residual, u0, jac=jac_u, bounds=(lb, ub), method="trf", x_scale=1.0,
+                        xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=max_nfev)
+    p_fit = params_of(sol.x)
+    c_fit = np.asarray(model(p_fit, xa), dtype=float)
+    resid = c_fit - ca
+    J_u = dcdp(p_fit) * scale[None, :] / w[:, None]
+    chi2 = float(np.sum((resid / w) ** 2))
+    dof = n - m
+    red = chi2 / dof if dof > 0 else math.nan
+    cov_u, sv, cond, null = _covariance(J_u)
+    if sa is None:
+        cov_u = cov_u * red
+    cov = cov_u * scale[:, None] * scale[None, :]
+    sd = np.sqrt(np.diag(cov))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(sd, sd)
+    corr[~np.isfinite(corr)] = np.nan
+    np.fill_diagonal(corr, np.where(np.isfinite(sd), 1.0, np.nan))
+    p_value = float(stats.chi2.sf(chi2, dof)) if (sa is not None and dof > 0) else math.nan
+    warns = _warnings(names, J_u, corr, sv, cond, null, context, sol, p_fit, bnds, sd, red, p_value)
+    if curve_points > 0:
+        curve_x = np.linspace(float(xa.min()), float(xa.max()), curve_points)
+        curve_c = np.asarray(model(p_fit, curve_x), dtype=float)
+    else:
+        curve_x = curve_c = np.empty(0)
+    return FitResult(
+        names=names, values=p_fit, uncertainties={nm: float(sd[j]) for j, nm in enumerate(names)},
+        covariance=cov, correlation=corr, uncertainty_basis="sigma" if sa is not None else "reduced_chi2",
+        chi2=chi2, dof=dof, reduced_chi2=red, p_value=p_value, residuals=resid, x=xa, c=ca,
+        sigma=sa if sa is not None else math.sqrt(red) * w, c_model=c_fit, curve_x=curve_x, curve_c=curve_c,
+        singular_values=sv, condition_number=cond,
+        jacobian_method="analytic" if jac_fn is not None else "finite differences",
+        warnings=warns, success=bool(sol.success), message=str(sol.message), nfev=int(sol.nfev))
+
+
+def _covariance(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
+    """(J^T J)^-1 through the SVD of the column-normalised J; infinite along null directions.
+
+    Returns the covariance (scaled parameters), the singular values of the normalised J
+    (descending), its condition number, and its right singular vectors (columns, the last one
+    the weakest combination).
+    """
+    norms = np.linalg.norm(J, axis=0)
+    safe = np.where(norms > 0, norms, 1.0)
+    _, sv, Vt = np.linalg.svd(J / safe, full_matrices=False)
+    zero = (sv <= RANK_TOL * sv[0]) if sv[0] > 0 else np.ones(sv.shape, bool)
+    zero_cols = norms <= RANK_TOL * max(float(norms.max()), 1e-300)
+    V = Vt.T
+    inv = np.where(zero, 0.0, 1.0 / np.where(zero, 1.0, sv) ** 2)
+    cov_n = (V * inv) @ V.T
+    cov = cov_n / np.outer(safe, safe)
+    # parameters touched by a null direction (or with no effect at all) are not determined
+    undetermined = zero_cols | np.any(np.abs(V[:, zero]) > 1e-6, axis=1)
+    cov[undetermined, :] = np.nan
+    cov[:, undetermined] = np.nan
+    cov[undetermined, undetermined] = np.inf
+    cond = float(sv[0] / sv[-1]) if sv[-1] > RANK_TOL * sv[0] else math.inf
+    return cov, sv, cond, V
+
+
+def _warnings(names: list[str], J: np.ndarray, corr: np.ndarray, sv: np.ndarray, cond: float, V: np.ndarray,
+              context: str, sol: Any, p: dict[str, float], bnds: np.ndarray, sd: np.ndarray, red: float,
+              p_value: float) -> list[str]:
+    out: list[str] = []
+    norms = np.linalg.norm(J, axis=0)
+    dead = [nm for j, nm in enumerate(names) if norms[j] <= RANK_TOL * max(float(norms.max()), 1e-300)]
+    for nm in dead:
+        out.append(f"{nm} has no effect on the data {context} (dc/d{nm} = 0 at every point): it cannot be "
+                   "fitted; fix it" if context != "from these data" else
+                   f"{nm} has no effect on these data (dc/d{nm} = 0 at every point): it cannot be fitted; fix it")
+    named_pairs: list[set[str]] = []
+    m = len(names)
+    for i in range(m):
+        for j in range(i + 1, m):
+            r = corr[i, j]
+            if np.isfinite(r) and abs(r) > CORRELATION_LIMIT:
+                named_pairs.append({names[i], names[j]})
+                rel = [sd[k] / abs(p[names[k]]) if p[names[k]] else math.inf for k in (i, j)]
+                if max(rel) > LOOSE:
+                    out.append(f"{names[i]} and {names[j]} are not separable {context} (correlation {r:+.4f}): "
+                               "fix one, or add data that tell them apart (another mode, a wider kh range)")
+                else:
+                    out.append(f"{names[i]} and {names[j]} are strongly correlated {context} (correlation "
+                               f"{r:+.4f}): the data determine mainly a combination of them; their uncertainties "
+                               f"({100 * rel[0]:.2g} %, {100 * rel[1]:.2g} %) include this, and fixing one would "
+                               "sharpen the other")
+    if m > 1 and (not math.isfinite(cond) or cond > CONDITION_LIMIT):
+        v = V[:, -1]  # the weakest direction (normalised columns)
+        live = [j for j in range(m) if names[j] not in dead]
+        share = np.abs(v) / max(float(np.abs(v).max()), 1e-300)
+        involved = [names[j] for j in live if share[j] > 0.1]
+        if len(involved) >= 2 and set(involved) not in named_pairs:
+            how = ("the data depend on them only through a combination of them" if not math.isfinite(cond)
+                   else f"one combination of them is determined {cond:.3g} times worse than the best one")
+            out.append(f"{', '.join(involved[:-1])} and {involved[-1]} are not separable {context}: {how}; "
+                       "fix one of them")
+    for j, nm in enumerate(names):
+        at_lo = np.isfinite(bnds[0, j]) and math.isclose(p[nm], bnds[0, j], rel_tol=1e-6, abs_tol=1e-300)
+        at_hi = np.isfinite(bnds[1, j]) and math.isclose(p[nm], bnds[1, j], rel_tol=1e-6, abs_tol=1e-300)
+        if at_lo or at_hi:
+            out.append(f"{nm} stopped at its {'lower' if at_lo else 'upper'} bound {p[nm]:.6g}: the fit wants it "
+                       "beyond; its uncertainty there means little")
+        elif np.isfinite(sd[j]) and nm not in dead and abs(p[nm]) > 0 and sd[j] > abs(p[nm]):
+            out.append(f"{nm} is not determined {context}: its 1-sigma uncertainty ({sd[j]:.3g}) exceeds its "
+                       f"value ({p[nm]:.3g})")
+    if math.isfinite(p_value) and p_value < 1e-3:
+        out.append(f"chi2/dof = {red:.3g} with the given sigma (p = {p_value:.2g}): the model does not fit the "
+                   "data within their uncertainties, or sigma is underestimated")
+    if not sol.success:
+        out.append(f"the least-squares solver did not converge: {sol.message}")
+    return out
