@@ -193,9 +193,9 @@ def _parameters(initial: Mapping[str, float], free: Sequence[str] | None,
             if not lo[j] <= init[n] <= hi[j]:
                 raise InputError(f"initial value {init[n]!r} of {n!r} is outside its bounds {bounds[n]!r}")
     scale = np.array([abs(init[n]) for n in names])
-    for k in np.flatnonzero(scale == 0):
-        width = hi[k] - lo[k]
-        scale[k] = width if np.isfinite(width) else 1.0
+    for jz in np.flatnonzero(scale == 0):
+        width = hi[jz] - lo[jz]
+        scale[jz] = width if np.isfinite(width) else 1.0
     return names, np.stack([lo, hi]), scale
 
 
