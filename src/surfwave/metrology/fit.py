@@ -29,8 +29,8 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any, Literal, TypedDict
 
 import numpy as np
-from scipy import stats
 from scipy.optimize import least_squares
+from scipy.special import chdtrc
 
 from surfwave.errors import InputError
 
@@ -109,6 +109,10 @@ class FitResult(TypedDict):
         The solver's message.
     nfev : int
         Model evaluations by the solver (not counting finite-difference Jacobians).
+    model : str
+        The forward model in words.
+    x_name : str
+        What x is ("kh", "frequency_Hz", ...).
     """
 
     names: list[str]
@@ -135,6 +139,8 @@ class FitResult(TypedDict):
     success: bool
     message: str
     nfev: int
+    model: str
+    x_name: str
 
 
 def _data(x, c, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -243,7 +249,8 @@ def finite_difference_jacobian(model: ForwardModel, params: Mapping[str, float],
 def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequence[str] | None = None,
         bounds: Mapping[str, tuple[float, float]] | None = None, sigma=None,
         jacobian: JacobianFunction | None = None, noise: Literal["relative", "absolute"] = "relative",
-        context: str = "from these data", max_nfev: int = 200, curve_points: int = 200) -> FitResult:
+        context: str = "from these data", x_name: str = "x", description: str | None = None,
+        max_nfev: int = 200, curve_points: int = 200) -> FitResult:
     """Fit the free parameters of ``model`` to measured points (x, c) by least squares.
 
     Parameters
@@ -277,6 +284,10 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         the common factor is estimated from the scatter. Ignored when ``sigma`` is given.
     context : str
         Words describing the data for the warnings ("from one mode at kh 0.05-0.3").
+    x_name : str
+        What x is ("kh", "frequency_Hz"), recorded in the result.
+    description : str, optional
+        The model in words, recorded in the result (default: ``repr(model)``).
     max_nfev : int
         Most model evaluations of the solver.
     curve_points : int
@@ -359,7 +370,7 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         corr = cov / np.outer(sd, sd)
     corr[~np.isfinite(corr)] = np.nan
     np.fill_diagonal(corr, np.where(np.isfinite(sd), 1.0, np.nan))
-    p_value = float(stats.chi2.sf(chi2, dof)) if (sa is not None and dof > 0) else math.nan
+    p_value = float(chdtrc(dof, chi2)) if (sa is not None and dof > 0) else math.nan
     warns = _warnings(names, J_u, corr, sv, cond, null, context, sol, p_fit, bnds, sd, red, p_value)
     if curve_points > 0:
         curve_x = np.linspace(float(xa.min()), float(xa.max()), curve_points)
@@ -373,7 +384,8 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         sigma=sa if sa is not None else math.sqrt(red) * w, c_model=c_fit, curve_x=curve_x, curve_c=curve_c,
         singular_values=sv, condition_number=cond,
         jacobian_method="analytic" if jac_fn is not None else "finite differences",
-        warnings=warns, success=bool(sol.success), message=str(sol.message), nfev=int(sol.nfev))
+        warnings=warns, success=bool(sol.success), message=str(sol.message), nfev=int(sol.nfev),
+        model=description if description is not None else repr(model), x_name=x_name)
 
 
 def _covariance(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
