@@ -113,6 +113,10 @@ class FitResult(TypedDict):
         The forward model in words.
     x_name : str
         What x is ("kh", "frequency_Hz", ...).
+    noise : {"sigma", "relative", "absolute"}
+        How the points were weighted: by the given sigma, or (none given) as equally uncertain
+        in relative terms or in m/s; then sqrt(reduced_chi2) is the noise estimated from the
+        scatter (a fraction of c, or m/s).
     """
 
     names: list[str]
@@ -141,6 +145,7 @@ class FitResult(TypedDict):
     nfev: int
     model: str
     x_name: str
+    noise: Literal["sigma", "relative", "absolute"]
 
 
 def _data(x, c, sigma) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -385,7 +390,8 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         singular_values=sv, condition_number=cond,
         jacobian_method="analytic" if jac_fn is not None else "finite differences",
         warnings=warns, success=bool(sol.success), message=str(sol.message), nfev=int(sol.nfev),
-        model=description if description is not None else repr(model), x_name=x_name)
+        model=description if description is not None else repr(model), x_name=x_name,
+        noise="sigma" if sa is not None else noise)
 
 
 def _covariance(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
