@@ -26,6 +26,6 @@ def test_figure_shows_the_result(tmp_path):
     v, s = (float(t) for t in cells[cells.index("mu") + 1].split(" ± "))
     assert abs(v - r["values"]["mu"]) <= 0.01 * s + 1e-9 * v and abs(s / r["uncertainties"]["mu"] - 1) < 0.03
     text = axt.texts[0].get_text()
-    assert "noise estimated from the scatter" in text and "fixed: substrate_rho = 2650" in text
+    assert "noise estimated from the scatter" in text and "fixed: rho = 2200 kg/m³, substrate_rho = 2650" in text
     path = plot_fit(r, tmp_path / "fit.png")
     assert path.stat().st_size > 10_000
