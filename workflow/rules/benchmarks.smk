@@ -37,6 +37,7 @@ BENCH_MODULES = {
         "real_crystals.materials",
         "solvers.stroh",
     ),
+    "fit": ("metrology.fit", "metrology.love", "api", "solvers.stroh"),
 }
 BENCH_METHODS = [
     name
