@@ -106,7 +106,7 @@ def main(outdir: str) -> Path:
         verdict = "met" if med < TARGET_S else "NOT met"
         note = "; degenerate, flagged by the fitter" if warned[i] and "degenerate" in name else ""
         rows.append([f"film fit, Love model: {name}", "free parameters", f"{len(CASES[name][0])}",
-                     f"max |fit - truth| / sigma {np.nanmax(zmax[i]):.2g} over {REPEATS} seeds (0.1 % noise)",
+                     f"largest deviation from the truth {np.nanmax(zmax[i]):.2g} sigma over {REPEATS} seeds (0.1 % noise)",
                      f"{med * 1e3:.3g} ms ({lo * 1e3:.3g}-{hi * 1e3:.3g}), {ratio[i]:.2g} x material() at 200 angles; "
                      f"{int(np.median(calls[i]))} model calls",
                      f"target < {TARGET_S:g} s for 5 parameters and 50 points: {verdict}{note}"])
