@@ -157,3 +157,31 @@ def test_bound_poor_fit_and_bad_input():
     assert calls == []
     with pytest.raises(InputError, match="no answer"):  # mode 1 is cut off below kh 3.6
         fit(LoveModel(1), x, c, P, free=["mu"])
+
+
+def test_broyden_updates_agree_with_exact_jacobians_in_fewer_calls():
+    """jacobian_updates="broyden" (rank-1 updates between finite-difference Jacobians) reaches the same fit as
+    fresh finite-difference Jacobians at every step (values within 1e-2 sigma, uncertainties to 1e-3, since both
+    take the covariance from an exact Jacobian at the solution) in fewer model calls (measured: 0.7-0.8 x here,
+    0.45 x with bounds)."""
+    m = LoveModel(0, "frequency")
+    f = np.linspace(2e7, 3e9, 50)
+    free = ["mu", "rho", "thickness", "substrate_mu"]
+    calls = [0]
+
+    def no_jacobian(p, x):
+        calls[0] += 1
+        return m(p, x)
+
+    for seed in range(3):
+        c = m(P, f) * (1 + 1e-3 * np.random.default_rng(seed).standard_normal(f.size))
+        out = {}
+        for how in ("exact", "broyden"):
+            calls[0] = 0
+            r = fit(no_jacobian, f, c, dict(P, **{k: 1.1 * P[k] for k in free}), free=free, jacobian_updates=how,
+                    curve_points=0)
+            out[how] = (calls[0], np.array([r["values"][k] for k in free]), np.array([r["uncertainties"][k] for k in free]))
+        (n_e, v_e, s_e), (n_b, v_b, s_b) = out["exact"], out["broyden"]
+        assert np.all(np.abs(v_b - v_e) < 1e-2 * s_e)  # the convergence test of the Broyden route: 1 % of sigma
+        np.testing.assert_allclose(s_b, s_e, rtol=1e-3)
+        assert n_b < 0.8 * n_e, (n_b, n_e)

@@ -53,6 +53,8 @@ RANK_TOL = 1.0e-9
 #: Residual (in units of sigma) that stands in for a point where the model has no answer
 #: (a mode cut off) during the iterations: the trust region rejects such a step.
 NAN_PENALTY = 1.0e8
+#: With jacobian_updates="broyden": rank-1 updates per free parameter between two exact Jacobians.
+BROYDEN_REFRESH = 2
 
 
 class FitResult(TypedDict):
@@ -254,6 +256,7 @@ def finite_difference_jacobian(model: ForwardModel, params: Mapping[str, float],
 def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequence[str] | None = None,
         bounds: Mapping[str, tuple[float, float]] | None = None, sigma=None,
         jacobian: JacobianFunction | None = None, noise: Literal["relative", "absolute"] = "relative",
+        jacobian_updates: Literal["exact", "broyden"] = "exact",
         context: str = "from these data", x_name: str = "x", description: str | None = None,
         max_nfev: int = 200, curve_points: int = 200) -> FitResult:
     """Fit the free parameters of ``model`` to measured points (x, c) by least squares.
@@ -283,6 +286,14 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         ``jacobian(params, x, names) -> ndarray (n, len(names))``, dc/dp. Default: the
         model's ``jacobian`` attribute if it has one, else central differences
         (:func:`finite_difference_jacobian`).
+    jacobian_updates : {"exact", "broyden"}
+        ``exact``: a fresh Jacobian at every iteration. ``broyden``: between fresh ones (every
+        max(3, m) iterations) the Jacobian is updated from the steps already taken (Broyden's
+        rank-1 update), which saves the 2 m model calls of a finite-difference Jacobian per
+        iteration; the solution is then checked with an exact Jacobian (and finished with
+        exact ones if the Gauss-Newton step left exceeds 1 % of a 1-sigma), and the
+        covariance always comes from an exact Jacobian at the solution. For expensive models
+        without a Jacobian.
     noise : {"relative", "absolute"}
         Without ``sigma``: every point equally uncertain in relative terms (sigma_i
         proportional to c_i, the default: timing and frequency errors scale with c) or in m/s;
@@ -320,6 +331,8 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
     jac_fn = jacobian if jacobian is not None else getattr(model, "jacobian", None)
     if noise not in ("relative", "absolute"):
         raise InputError(f"noise must be 'relative' or 'absolute', got {noise!r}")
+    if jacobian_updates not in ("exact", "broyden"):
+        raise InputError(f"jacobian_updates must be 'exact' or 'broyden', got {jacobian_updates!r}")
     if sa is not None:
         w = sa
     else:
@@ -347,22 +360,55 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         raise InputError(f"the model has no answer at x = {bad[:5].tolist()} with the initial values "
                          f"{ {k: base[k] for k in names} } (a mode below its cut-off?); change them or the data")
 
+    tried: dict[bytes, np.ndarray] = {}  # residuals at the points the solver evaluated (the last few)
+    exact: dict[bytes, np.ndarray] = {}  # the last exact (model's or finite-difference) scaled Jacobian
+    last: dict[str, Any] = {"u": None, "r": None, "J": None, "updates": 0}
+    refresh = BROYDEN_REFRESH * m  # Broyden updates between two exact Jacobians
+
     def residual(u: np.ndarray) -> np.ndarray:
         r = (np.asarray(model(params_of(u), xa), dtype=float) - ca) / w
-        return np.where(np.isfinite(r), r, NAN_PENALTY)
+        r = np.where(np.isfinite(r), r, NAN_PENALTY)
+        if len(tried) > 64:
+            tried.clear()
+        tried[u.tobytes()] = r
+        return r
+
+    def exact_jac(u: np.ndarray) -> np.ndarray:
+        key = u.tobytes()
+        if key not in exact:
+            J = dcdp(params_of(u)) * scale[None, :] / w[:, None]
+            exact.clear()
+            exact[key] = np.where(np.isfinite(J), J, 0.0)
+        return exact[key]
 
     def jac_u(u: np.ndarray) -> np.ndarray:
-        J = dcdp(params_of(u)) * scale[None, :] / w[:, None]
-        return np.where(np.isfinite(J), J, 0.0)
+        r = tried.get(u.tobytes())
+        if (jacobian_updates == "broyden" and last["J"] is not None and r is not None
+                and last["updates"] < refresh):
+            du, dr = u - last["u"], r - last["r"]
+            dd = float(du @ du)
+            J = last["J"] + np.outer(dr - last["J"] @ du, du) / dd if dd > 0 else last["J"]
+            last["updates"] += 1
+        else:
+            J = exact_jac(u)
+            last["updates"] = 0
+        last.update(u=u.copy(), r=r, J=J)
+        return J
 
     u0 = np.array([base[nm] / scale[j] for j, nm in enumerate(names)])
     lb, ub = bnds[0] / scale, bnds[1] / scale
-    sol = least_squares(residual, u0, jac=jac_u, bounds=(lb, ub), method="trf", x_scale=1.0,
-                        xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=max_nfev)
+    opts = dict(bounds=(lb, ub), method="trf", x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12)
+    sol = least_squares(residual, u0, jac=jac_u, max_nfev=max_nfev, **opts)
+    if jacobian_updates == "broyden" and not _converged(exact_jac(sol.x), sol.fun, sa is None):
+        # the updated Jacobian can stop the solver short: finish with exact Jacobians
+        nfev = sol.nfev
+        jacobian_updates = "exact"
+        sol = least_squares(residual, sol.x, jac=jac_u, max_nfev=max_nfev, **opts)
+        sol.nfev += nfev
     p_fit = params_of(sol.x)
     c_fit = np.asarray(model(p_fit, xa), dtype=float)
     resid = c_fit - ca
-    J_u = dcdp(p_fit) * scale[None, :] / w[:, None]
+    J_u = exact_jac(sol.x)
     chi2 = float(np.sum((resid / w) ** 2))
     dof = n - m
     red = chi2 / dof if dof > 0 else math.nan
@@ -392,6 +438,14 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
         warnings=warns, success=bool(sol.success), message=str(sol.message), nfev=int(sol.nfev),
         model=description if description is not None else repr(model), x_name=x_name,
         noise="sigma" if sa is not None else noise)
+
+
+def _converged(J: np.ndarray, r: np.ndarray, scaled: bool) -> bool:
+    """Whether the Gauss-Newton step from the exact Jacobian is below 1 % of every 1-sigma."""
+    step = np.linalg.lstsq(J, -r, rcond=None)[0]
+    dof = max(J.shape[0] - J.shape[1], 1)
+    var = np.diag(np.linalg.pinv(J.T @ J)) * (float(r @ r) / dof if scaled else 1.0)
+    return bool(np.all(np.abs(step) <= 0.01 * np.sqrt(var) + 1e-12 * np.abs(step).max(initial=0.0)))
 
 
 def _covariance(J: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, np.ndarray]:
