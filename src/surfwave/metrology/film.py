@@ -73,6 +73,7 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
              substrate: Any, free: Sequence[str], sigma=None, variable: Literal["kh", "frequency"] = "kh",
              mode: int | str = 0, layer: int = 0, bounds: Mapping[str, tuple[float, float]] | None = None,
              noise: Literal["relative", "absolute"] = "relative",
+             jacobian_updates: Literal["auto", "exact", "broyden"] = "auto",
              layered_options: Mapping[str, Any] | None = None) -> FitResult:
     """Fit a film's parameters (E, nu, rho, thickness, C_ij, residual stress) to measured
     surface-wave dispersion points.
@@ -117,6 +118,11 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         -1 < nu < 0.5; C_ij and stress unbounded).
     noise : {"relative", "absolute"}
         Without sigma: equal relative (default) or absolute uncertainty of every point.
+    jacobian_updates : {"auto", "exact", "broyden"}
+        How the fitter refreshes the sensitivities between iterations
+        (:func:`surfwave.metrology.fit.fit`); ``auto``: exact for the Love model (they are
+        analytic), Broyden updates between finite-difference Jacobians for the layered model
+        (each finite-difference Jacobian costs 2 x the free parameters solver calls).
     layered_options : mapping, optional
         Extra keywords of :func:`surfwave.layered` (``euler``, ``surface``, ``direction``,
         ``electrical``, ``stress``, ``leaky``).
@@ -184,6 +190,8 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         if n in params and not lo <= params[n] <= hi:
             raise InputError(f"starting value {params[n]!r} of {n!r} is outside its bounds ({lo}, {hi})")
     context = f"from one mode ({'Love ' if model == 'love' else ''}mode {mode}) at {span}"
+    if jacobian_updates == "auto":
+        jacobian_updates = "exact" if model == "love" else "broyden"
     return fit(fwd, xa, c, params, free=free, bounds={n: limits[n] for n in free if n in limits},
-               sigma=sigma, noise=noise, context=context, x_name="kh" if variable == "kh" else "frequency_Hz",
-               description=desc)
+               sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, context=context,
+               x_name="kh" if variable == "kh" else "frequency_Hz", description=desc)
