@@ -80,3 +80,28 @@ def test_bad_csv(tmp_path, capsys):
     assert main(["fit-film", "--data", str(bad), "--film", "mu=28,rho=2200", "--substrate", "mu=66,rho=2650",
                  "--free", "mu"]) == 2
     assert "row 2" in capsys.readouterr().err
+
+
+def test_layered_model_through_the_cli(tmp_path, capsys, monkeypatch):
+    """--model layered with a substrate by name reaches surfwave.layered (a closed-form stand-in here: the
+    Love mode of the film on an isotropic substrate named "iso"), mode by label."""
+    import surfwave
+
+    seen = []
+
+    def layered(substrate, films, *, kh=None, frequency=None, **options):
+        seen.append(substrate)
+        f = films[0]
+        p = {"E": f["E"], "nu": f["nu"], "rho": f["rho"], "substrate_mu": 66.25, "substrate_rho": 2650.0}
+        c = love_speed(kh, p)
+        return {"c": c[:, None], "mode": np.full((c.size, 1), "L0", dtype=object)}
+
+    monkeypatch.setattr(surfwave, "layered", layered, raising=False)
+    kh = np.linspace(0.3, 5, 15)
+    c = love_speed(kh, {"E": 73.0, "nu": 0.17, "rho": 2200.0, "substrate_mu": 66.25, "substrate_rho": 2650.0})
+    data = tmp_path / "p.csv"
+    data.write_text("kh,c_m_s,sigma_m_s\n" + "".join(f"{a},{b},1.0\n" for a, b in zip(kh, c)))
+    assert main(["fit-film", "--data", str(data), "--model", "layered", "--substrate", "iso", "--film",
+                 "E=65,nu=0.17,rho=2200,thickness=1e-6", "--free", "E", "--mode", "L0", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert seen[0] == "iso" and abs(r["values"]["E"] - 73.0) < 1e-6
