@@ -78,6 +78,7 @@ def test_bounds_keep_parameters_physical():
     (dict(variable="frequency", film={"mu": 31.2, "rho": 2200.0}), "thickness"),
     (dict(film={"mu": 31.2, "rho": 2200.0, "thickness": float("nan")}), "thickness"),
     (dict(mode=-1), "mode"),
+    (dict(film=dict(FILM, stress=-0.5)), "unstressed"),
     (dict(film=[FILM, FILM]), "one film"),
 ])
 def test_bad_input_is_one_line(kw, text):

@@ -34,7 +34,10 @@ def _shear(m: Mapping[str, Any], what: str) -> dict[str, float]:
     if not isinstance(m, Mapping):
         raise InputError(f"model='love' needs the {what} as an isotropic mapping {{mu, rho}} or {{E, nu, rho}}, "
                          f"got {m!r}")
-    keys = set(m) - {"thickness", "stress", "name"}
+    if "stress" in m or "voigt" in m:
+        raise InputError(f"model='love' is an isotropic, unstressed {what}: drop "
+                         f"{[k for k in ('stress', 'voigt') if k in m]} or use model='layered'")
+    keys = set(m) - {"thickness", "name"}
     if keys not in ({"mu", "rho"}, {"E", "nu", "rho"}):
         raise InputError(f"model='love' needs the {what} as {{mu, rho}} or {{E, nu, rho}} (GPa, kg/m^3), "
                          f"got keys {sorted(m)}")
