@@ -179,9 +179,43 @@ def test_broyden_updates_agree_with_exact_jacobians_in_fewer_calls():
         for how in ("exact", "broyden"):
             calls[0] = 0
             r = fit(no_jacobian, f, c, dict(P, **{k: 1.1 * P[k] for k in free}), free=free, jacobian_updates=how,
-                    curve_points=0)
+                    curve_points=0, check_linearity=False)
             out[how] = (calls[0], np.array([r["values"][k] for k in free]), np.array([r["uncertainties"][k] for k in free]))
         (n_e, v_e, s_e), (n_b, v_b, s_b) = out["exact"], out["broyden"]
         assert np.all(np.abs(v_b - v_e) < 1e-2 * s_e)  # the convergence test of the Broyden route: 1 % of sigma
         np.testing.assert_allclose(s_b, s_e, rtol=1e-3)
         assert n_b < 0.8 * n_e, (n_b, n_e)
+
+
+def test_profile_check_flags_nonlinear_uncertainties():
+    """At 1 % noise the Love fit of (mu, rho, thickness) moves far enough for the model to bend within one sigma:
+    the chord-refitted profile rises reported in the warning agree with a full profile refit (scipy least_squares
+    over the other parameters, the independent route) to 10 %, and fall outside [0.6, 1.6]. At 0.1 % noise no such
+    warning."""
+    import re
+
+    from scipy.optimize import least_squares
+
+    m = LoveModel(0, "frequency")
+    f = np.linspace(1e8, 2e9, 30)
+    free = ["mu", "rho", "thickness"]
+    for noise, expect in ((1e-3, False), (1e-2, True)):
+        c = m(P, f) * (1 + noise * np.random.default_rng(3).standard_normal(f.size))
+        sigma = noise * m(P, f)
+        r = fit(m, f, c, P, free=free, sigma=sigma)
+        found = [w for w in r["warnings"] if w.startswith("the 1-sigma uncertainty of mu is only a linear estimate")]
+        assert bool(found) == expect
+    up, down = (float(v) for v in re.search(r"chi2 rises by ([\d.]+) and ([\d.]+)", found[0]).groups())
+    chi0 = r["chi2"]
+    for sgn, rise in ((1, up), (-1, down)):
+        mu = r["values"]["mu"] + sgn * r["uncertainties"]["mu"]
+
+        def others(v):
+            return (m(dict(P, mu=mu, rho=v[0] * 2200.0, thickness=v[1] * 1e-6), f) - c) / sigma
+
+        j = [r["names"].index(k) for k in ("rho", "thickness")]
+        cov = r["covariance"]
+        start = [r["values"][k] + sgn * cov[jj, 0] / np.sqrt(cov[0, 0]) for k, jj in zip(("rho", "thickness"), j)]
+        full = least_squares(others, [start[0] / 2200.0, start[1] / 1e-6], xtol=1e-12, ftol=1e-12)
+        assert abs((2 * full.cost - chi0) / rise - 1) < 0.1
+    assert not (0.6 <= up <= 1.6 and 0.6 <= down <= 1.6)
