@@ -441,16 +441,21 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
     warns = _warnings(names, J_u, corr, sv, cond, null, context, sol, p_fit, bnds, sd, red, p_value)
     if check_linearity and np.all(np.isfinite(cov_u)):
         rises = _profile_rises(residual, sol.x, cov_u, J_u, red if sa is None else 1.0, lb, ub)
+        off = []
         for j, nm in enumerate(names):
             up, down = rises[j]
-            if any(np.isfinite(v) and not PROFILE_RANGE[0] <= v <= PROFILE_RANGE[1] for v in (up, down)) or \
-                    any(v == math.inf for v in (up, down)):
+            if any(v == math.inf or (np.isfinite(v) and not PROFILE_RANGE[0] <= v <= PROFILE_RANGE[1])
+                   for v in (up, down)):
                 plus = sd[j] / math.sqrt(up) if np.isfinite(up) and up > 0 else math.nan
                 minus = sd[j] / math.sqrt(down) if np.isfinite(down) and down > 0 else math.nan
-                warns.append(f"the 1-sigma uncertainty of {nm} is only a linear estimate: held one sigma above and "
-                             f"below its value with the others refitted, chi2 rises by {up:.2g} and {down:.2g} "
-                             f"instead of 1 (the model is not linear over that range); the profile suggests "
-                             f"+{plus:.2g} / -{minus:.2g}, to be confirmed by refitting perturbed data")
+                off.append(f"{nm}: chi2 rises by {up:.2g} and {down:.2g}, profile +{plus:.2g} / -{minus:.2g}")
+        if off:
+            which = [o.split(":")[0] for o in off]
+            warns.append(f"the 1-sigma uncertaint{'y' if len(off) == 1 else 'ies'} of {', '.join(which)} "
+                         f"{'is only a linear estimate' if len(off) == 1 else 'are only linear estimates'}: held one "
+                         "sigma above and below "
+                         "with the others refitted, chi2 should rise by 1 but the model bends within that range ("
+                         + "; ".join(off) + "); confirm by refitting perturbed data")
     if curve_points > 0:
         curve_x = np.linspace(float(xa.min()), float(xa.max()), curve_points)
         curve_c = np.asarray(model(p_fit, curve_x), dtype=float)
