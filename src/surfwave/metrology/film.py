@@ -76,7 +76,7 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
              substrate: Any, free: Sequence[str], sigma=None, variable: Literal["kh", "frequency"] = "kh",
              mode: int | str = 0, layer: int = 0, bounds: Mapping[str, tuple[float, float]] | None = None,
              noise: Literal["relative", "absolute"] = "relative",
-             jacobian_updates: Literal["auto", "exact", "broyden"] = "auto",
+             jacobian_updates: Literal["auto", "exact", "broyden"] = "auto", check_linearity: bool = True,
              layered_options: Mapping[str, Any] | None = None) -> FitResult:
     """Fit a film's parameters (E, nu, rho, thickness, C_ij, residual stress) to measured
     surface-wave dispersion points.
@@ -126,6 +126,10 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         (:func:`surfwave.metrology.fit.fit`); ``auto``: exact for the Love model (they are
         analytic), Broyden updates between finite-difference Jacobians for the layered model
         (each finite-difference Jacobian costs 2 x the free parameters solver calls).
+    check_linearity : bool
+        Check the linear uncertainties by holding each parameter one sigma off and refitting the
+        others (6 model calls per free parameter); a warning gives the profile's range where
+        they disagree (:func:`surfwave.metrology.fit.fit`).
     layered_options : mapping, optional
         Extra keywords of :func:`surfwave.layered` (``euler``, ``surface``, ``direction``,
         ``electrical``, ``stress``, ``leaky``).
@@ -196,5 +200,6 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
     if jacobian_updates == "auto":
         jacobian_updates = "exact" if model == "love" else "broyden"
     return fit(fwd, xa, c, params, free=free, bounds={n: limits[n] for n in free if n in limits},
-               sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, context=context,
+               sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, check_linearity=check_linearity,
+               context=context,
                x_name="kh" if variable == "kh" else "frequency_Hz", description=desc)
