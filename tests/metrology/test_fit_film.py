@@ -90,3 +90,21 @@ def test_bad_input_is_one_line(kw, text):
 def test_negative_x_refused():
     with pytest.raises(InputError, match=">= 0"):
         surfwave.fit_film([-1.0, 1.0, 2.0], [4000.0, 4000, 4000], model="love", film=FILM, substrate=SUB, free=["mu"])
+
+
+def test_points_of_two_modes_in_one_fit():
+    """Points of Love modes 0 and 1 fitted together: the truth to 1e-8 from exact data, the curves of both modes
+    (NaN between them) in the result, and refusals of a mode list of the wrong length or of negative modes."""
+    kh0, kh1 = np.linspace(0.3, 8, 20), np.linspace(3.8, 8, 12)
+    c = np.r_[love_speed(kh0, P), love_speed(kh1, P, mode=1)]
+    modes = [0] * 20 + [1] * 12
+    r = surfwave.fit_film(np.r_[kh0, kh1], c, model="love", film={"mu": 28.0, "rho": 2300.0}, substrate=SUB,
+                          free=["mu", "rho"], mode=modes, sigma=1e-3 * c)
+    assert r["values"]["mu"] == pytest.approx(31.2, rel=1e-8) and r["values"]["rho"] == pytest.approx(2200, rel=1e-8)
+    assert r["model"].startswith("Love modes 0, 1") and any("from 2 modes (Love modes 0, 1)" in w for w in r["warnings"])
+    gap = np.flatnonzero(np.isnan(r["curve_x"]))
+    assert gap.size == 1 and np.all(np.diff(r["curve_x"][gap[0] + 1:]) > 0)
+    np.testing.assert_allclose(r["curve_c"][gap[0] + 1:], love_speed(r["curve_x"][gap[0] + 1:], P, mode=1))
+    for bad, text in (([0] * 5, "one per point"), ([0] * 31 + [-1], "integer >= 0")):
+        with pytest.raises(InputError, match=text):
+            surfwave.fit_film(np.r_[kh0, kh1], c, model="love", film=FILM, substrate=SUB, free=["mu"], mode=bad)

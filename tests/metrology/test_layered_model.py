@@ -105,3 +105,37 @@ def test_real_layered_solver_love_family():
     r = surfwave.fit_film(kh, c[:, col], model="layered", film=dict(FILM, E=65.0), substrate=SUB,
                           free=["E"], mode=col, sigma=1.0)
     assert r["values"]["E"] == pytest.approx(73.0, rel=1e-6) and math.isfinite(r["uncertainties"]["E"])
+
+
+def test_points_of_two_mode_labels_through_the_adapter(fake_layered):
+    """fit_film(model='layered') with a label per point: each point takes its mode's column (the stand-in's SH0
+    and SH1 here), the truth comes back."""
+    kh0, kh1 = np.linspace(0.3, 8, 15), np.linspace(4.0, 8, 10)
+    p = _love_params(FILM, SUB)
+    c = np.r_[love_speed(kh0, p), love_speed(kh1, p, mode=1)]
+    r = surfwave.fit_film(np.r_[kh0, kh1], c, model="layered", film=dict(FILM, E=65.0), substrate=SUB, free=["E"],
+                          mode=["SH0"] * 15 + ["SH1"] * 10, sigma=1.0)
+    assert r["values"]["E"] == pytest.approx(73.0, rel=1e-6) and r["model"].startswith("modes SH0, SH1")
+
+
+def test_real_layered_second_family_separates_parameters():
+    """Once surfwave.layered exists: (E, nu, rho) of a SiO2-like film on Si from its Rayleigh mode alone are tied
+    (relative uncertainties of several %); adding the Love mode L0 at the same kh (the other polarisation family,
+    which sees only mu = E / 2(1 + nu) and rho) cuts every uncertainty by more than 5x (measured: 7.4 -> 0.43 % for
+    E at 0.1 % sigma)."""
+    if not hasattr(surfwave, "layered"):
+        pytest.skip("surfwave.layered is not in this version yet")
+    film = {"E": 70.0, "nu": 0.17, "rho": 2200.0, "thickness": 1e-6}
+    kh = np.linspace(0.2, 4, 25)
+    res = surfwave.layered("Si", [film], kh=kh)
+    pick = {lab: np.array([res["c"][i, list(res["mode"][i]).index(lab)] for i in range(kh.size)]) for lab in ("R", "L0")}
+    free = ["E", "nu", "rho"]
+    start = dict(film, E=65.0, nu=0.2, rho=2300.0)
+    one = surfwave.fit_film(kh, pick["R"], model="layered", film=start, substrate="Si", free=free, mode="R",
+                            sigma=1e-3 * pick["R"], check_linearity=False)
+    both_c = np.r_[pick["R"], pick["L0"]]
+    two = surfwave.fit_film(np.r_[kh, kh], both_c, model="layered", film=start, substrate="Si", free=free,
+                            mode=["R"] * kh.size + ["L0"] * kh.size, sigma=1e-3 * both_c, check_linearity=False)
+    for k in free:
+        assert two["values"][k] == pytest.approx(film[k], rel=1e-6)
+        assert two["uncertainties"][k] < one["uncertainties"][k] / 5

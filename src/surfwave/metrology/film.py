@@ -74,7 +74,8 @@ def _love_setup(film: Mapping[str, Any], substrate: Any, free: Sequence[str],
 
 def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any] | Sequence[Mapping[str, Any]],
              substrate: Any, free: Sequence[str], sigma=None, variable: Literal["kh", "frequency"] = "kh",
-             mode: int | str = 0, layer: int = 0, bounds: Mapping[str, tuple[float, float]] | None = None,
+             mode: int | str | Sequence[int | str] = 0, layer: int = 0,
+             bounds: Mapping[str, tuple[float, float]] | None = None,
              noise: Literal["relative", "absolute"] = "relative",
              jacobian_updates: Literal["auto", "exact", "broyden"] = "auto", check_linearity: bool = True,
              layered_options: Mapping[str, Any] | None = None) -> FitResult:
@@ -111,9 +112,12 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
     variable : {"kh", "frequency"}
         What ``x`` is. With kh data a single film's thickness does not enter (a warning says so
         if it is free).
-    mode : int or str
+    mode : int or str, or sequence of them (one per point)
         Which mode was measured: Love mode number (0 = fundamental); layered: column of the
-        ascending speeds or a mode label of :func:`surfwave.layered`'s result.
+        ascending speeds or a mode label of :func:`surfwave.layered`'s result. One per point to
+        fit points of several modes together (a second mode often separates parameters that
+        one mode ties together); ``curve_x``/``curve_c`` then hold each mode's curve,
+        separated by NaN.
     layer : int
         Layered: which film's parameters are free (0 = top).
     bounds : mapping of str to (float, float), optional
@@ -161,6 +165,7 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
     from surfwave.metrology.fit import fit
     from surfwave.metrology.layered_model import film_value, layered_model
     from surfwave.metrology.love import LoveModel
+    from surfwave.metrology.modes import PerPointModes, mode_curves
 
     if variable not in ("kh", "frequency"):
         raise InputError(f"variable must be 'kh' or 'frequency', got {variable!r}")
@@ -175,31 +180,53 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
             else f"{xa.min() / 1e6:.4g}-{xa.max() / 1e6:.4g} MHz") if xa.size else ""
     limits = {n: DEFAULT_BOUNDS[n] for n in free if n in DEFAULT_BOUNDS}
     limits.update(bounds or {})
+    several = not isinstance(mode, (str, int, np.integer))
+    modes: list[Any] = list(mode) if several else [mode]  # type: ignore[arg-type]
+    if several and len(modes) != xa.size:
+        raise InputError(f"mode must be one value or one per point ({xa.size}), got {len(modes)}")
+    distinct = list(dict.fromkeys(modes))
     if model == "love":
         if not isinstance(film, Mapping):
             if len(film) != 1:
                 raise InputError(f"model='love' takes one film, got {len(film)}; use model='layered'")
             film = film[0]
-        if not (isinstance(mode, (int, np.integer)) and mode >= 0):
-            raise InputError(f"Love mode must be an integer >= 0, got {mode!r}")
+        bad = [m for m in distinct if not (isinstance(m, (int, np.integer)) and m >= 0)]
+        if bad:
+            raise InputError(f"Love mode must be an integer >= 0, got {bad[0]!r}")
         params = _love_setup(film, substrate, free, variable)
-        fwd: Any = LoveModel(int(mode), variable)
-        desc = f"Love mode {mode} (SH, isotropic film on isotropic substrate, closed form)"
+
+        def one(m: Any) -> Any:
+            return LoveModel(int(m), variable)
+
+        desc = (f"Love mode{'s' if len(distinct) > 1 else ''} {', '.join(str(m) for m in distinct)} "
+                "(SH, isotropic film on isotropic substrate, closed form)")
     elif model == "layered":
         films = [film] if isinstance(film, Mapping) else list(film)
-        fwd = layered_model(substrate, films, free, layer=layer, mode=mode, variable=variable,
-                            **dict(layered_options or {}))
+        opts = dict(layered_options or {})
+        for m in distinct:
+            layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)  # checks
+
+        def one(m: Any) -> Any:
+            return layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)
+
         params = {n: film_value(films[layer], n) for n in free}
-        desc = f"mode {mode!r} of surfwave.layered, film {layer} of {len(films)}"
+        desc = (f"mode{'s' if len(distinct) > 1 else ''} {', '.join(map(str, distinct))} of surfwave.layered, "
+                f"film {layer} of {len(films)}")
     else:
         raise InputError(f"model must be 'love' or 'layered', got {model!r}")
+    fwd: Any = PerPointModes(one, modes, xa) if several else one(distinct[0])
     for n, (lo, hi) in limits.items():
         if n in params and not lo <= params[n] <= hi:
             raise InputError(f"starting value {params[n]!r} of {n!r} is outside its bounds ({lo}, {hi})")
-    context = f"from one mode ({'Love ' if model == 'love' else ''}mode {mode}) at {span}"
+    kind = "Love " if model == "love" else ""
+    context = (f"from {len(distinct)} modes ({kind}modes {', '.join(map(str, distinct))}) at {span}"
+               if len(distinct) > 1 else f"from one mode ({kind}mode {distinct[0]}) at {span}")
     if jacobian_updates == "auto":
         jacobian_updates = "exact" if model == "love" else "broyden"
-    return fit(fwd, xa, c, params, free=free, bounds={n: limits[n] for n in free if n in limits},
-               sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, check_linearity=check_linearity,
-               context=context,
-               x_name="kh" if variable == "kh" else "frequency_Hz", description=desc)
+    result = fit(fwd, xa, c, params, free=free, bounds={n: limits[n] for n in free if n in limits},
+                 sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, check_linearity=check_linearity,
+                 context=context, x_name="kh" if variable == "kh" else "frequency_Hz", description=desc,
+                 curve_points=0 if several else 200)
+    if several:
+        result["curve_x"], result["curve_c"] = mode_curves(fwd, result["values"])
+    return result
