@@ -105,3 +105,16 @@ def test_layered_model_through_the_cli(tmp_path, capsys, monkeypatch):
                  "E=65,nu=0.17,rho=2200,thickness=1e-6", "--free", "E", "--mode", "L0", "--json"]) == 0
     r = json.loads(capsys.readouterr().out)
     assert seen[0] == "iso" and abs(r["values"]["E"] - 73.0) < 1e-6
+
+
+def test_mode_column(tmp_path, capsys):
+    """A mode column fits points of Love modes 0 and 1 together."""
+    kh0, kh1 = np.linspace(0.3, 8, 12), np.linspace(4.0, 8, 8)
+    p = {"mu": 31.2, "rho": 2200.0, "substrate_mu": 66.25, "substrate_rho": 2650.0}
+    rows = [f"{a},{b},0" for a, b in zip(kh0, love_speed(kh0, p))] + [f"{a},{b},1" for a, b in zip(kh1, love_speed(kh1, p, mode=1))]
+    data = tmp_path / "two.csv"
+    data.write_text("kh,c_m_s,mode\n" + "\n".join(rows) + "\n")
+    assert main(["fit-film", "--data", str(data), "--film", "mu=28,rho=2200", "--substrate", "mu=66.25,rho=2650",
+                 "--free", "mu", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert abs(r["values"]["mu"] - 31.2) < 1e-6 and r["model"].startswith("Love modes 0, 1")

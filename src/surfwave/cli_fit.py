@@ -21,9 +21,11 @@ __all__ = ["EPILOG", "add_parser", "parse_pairs", "read_points", "run"]
 EPILOG = """\
 The CSV file: a header row, then one measured point per row; '#' lines are comments. Columns:
 kh (wavenumber x total film thickness) or frequency_Hz, then c_m_s (phase speed, m/s), and
-optionally sigma_m_s (1-sigma uncertainty of c, m/s). Without sigma the uncertainties come from
-the scatter of the residuals (covariance scaled by chi2/dof; --noise says whether the points are
-equally uncertain in relative terms, the default, or in m/s).
+optionally sigma_m_s (1-sigma uncertainty of c, m/s) and mode (the point's mode: Love mode
+number, or a label or column of surfwave.layered; instead of --mode, to fit several modes).
+Without sigma the uncertainties come from the scatter of the residuals (covariance scaled by
+chi2/dof; --noise says whether the points are equally uncertain in relative terms, the
+default, or in m/s).
 
 Stack: --film and --substrate as KEY=VALUE lists. Love model (shear-horizontal guided wave, one
 isotropic film on an isotropic substrate, closed form): mu (GPa) or E (GPa) and nu, rho
@@ -87,8 +89,9 @@ def parse_pairs(text: str, what: str) -> dict[str, float]:
     return out
 
 
-def read_points(path: Path) -> tuple[Literal["kh", "frequency"], np.ndarray, np.ndarray, np.ndarray | None]:
-    """(variable, x, c, sigma) from a CSV file of measured points (see :data:`EPILOG`)."""
+def read_points(path: Path) -> tuple[Literal["kh", "frequency"], np.ndarray, np.ndarray, np.ndarray | None,
+                                     list[int | str] | None]:
+    """(variable, x, c, sigma, modes) from a CSV file of measured points (see :data:`EPILOG`)."""
     if not path.is_file():
         raise InputError(f"--data: no such file {str(path)!r}")
     with path.open(newline="") as fh:
@@ -110,7 +113,13 @@ def read_points(path: Path) -> tuple[Literal["kh", "frequency"], np.ndarray, np.
             raise InputError(f"--data {path}: row {n} is not numbers in columns {wanted}: {row}") from None
     a = np.array(table)
     variable: Literal["kh", "frequency"] = "kh" if xs[0] == "kh" else "frequency"
-    return variable, a[:, 0], a[:, 1], (a[:, 2] if a.shape[1] == 3 else None)
+    modes = None
+    if "mode" in cols:
+        texts = [row[cols["mode"]].strip() if len(row) > cols["mode"] else "" for row in rows[1:]]
+        if any(not t for t in texts):
+            raise InputError(f"--data {path}: the mode column has empty entries")
+        modes = [int(t) if t.lstrip("-").isdigit() else t for t in texts]
+    return variable, a[:, 0], a[:, 1], (a[:, 2] if a.shape[1] == 3 else None), modes
 
 
 def _bounds(items: list[str]) -> dict[str, tuple[float, float]]:
@@ -135,11 +144,13 @@ def run(args: argparse.Namespace) -> int:
     """Run ``surfwave fit-film``: read, fit, print (and draw)."""
     from surfwave.metrology.film import fit_film
 
-    variable, x, c, sigma = read_points(args.data)
+    variable, x, c, sigma, modes = read_points(args.data)
     film = parse_pairs(args.film, "--film")
     layered_sub = args.model == "layered" and "=" not in args.substrate
     substrate: Any = args.substrate.strip() if layered_sub else parse_pairs(args.substrate, "--substrate")
-    mode: int | str = int(args.mode) if args.mode.lstrip("-").isdigit() else args.mode
+    mode: Any = int(args.mode) if args.mode.lstrip("-").isdigit() else args.mode
+    if modes is not None:
+        mode = modes
     r = fit_film(x, c, model=args.model, film=film, substrate=substrate, free=args.free, sigma=sigma,
                  variable=variable, mode=mode, bounds=_bounds(args.bounds), noise=args.noise)
     if args.figure is not None:
