@@ -439,7 +439,7 @@ def fit(model: ForwardModel, x, c, initial: Mapping[str, float], *, free: Sequen
     np.fill_diagonal(corr, np.where(np.isfinite(sd), 1.0, np.nan))
     p_value = float(chdtrc(dof, chi2)) if (sa is not None and dof > 0) else math.nan
     warns = _warnings(names, J_u, corr, sv, cond, null, context, sol, p_fit, bnds, sd, red, p_value)
-    if check_linearity and np.all(np.isfinite(cov_u)):
+    if check_linearity and np.all(np.isfinite(cov_u)) and (sa is not None or red > 0):
         rises = _profile_rises(residual, sol.x, cov_u, J_u, red if sa is None else 1.0, lb, ub)
         off = []
         for j, nm in enumerate(names):
@@ -487,6 +487,8 @@ def _profile_rises(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray, 
     m = u.size
     out = np.full((m, 2), np.nan)
     for j in range(m):
+        if not cov[j, j] > 0:
+            continue
         others = [k for k in range(m) if k != j]
         for col, sgn in enumerate((1.0, -1.0)):
             v = u + sgn * cov[:, j] / math.sqrt(cov[j, j])  # held one sigma off, others at the linear optimum
