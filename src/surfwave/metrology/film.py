@@ -132,7 +132,7 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         (each finite-difference Jacobian costs 2 x the free parameters solver calls).
     check_linearity : bool
         Check the linear uncertainties by holding each parameter one sigma off and refitting the
-        others (6 model calls per free parameter); a warning gives the profile's range where
+        others (8 model calls per free parameter); a warning gives the profile's range where
         they disagree (:func:`surfwave.metrology.fit.fit`).
     layered_options : mapping, optional
         Extra keywords of :func:`surfwave.layered` (``euler``, ``surface``, ``direction``,
