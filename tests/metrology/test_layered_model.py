@@ -116,6 +116,13 @@ def test_points_of_two_mode_labels_through_the_adapter(fake_layered):
     r = surfwave.fit_film(np.r_[kh0, kh1], c, model="layered", film=dict(FILM, E=65.0), substrate=SUB, free=["E"],
                           mode=["SH0"] * 15 + ["SH1"] * 10, sigma=1.0)
     assert r["values"]["E"] == pytest.approx(73.0, rel=1e-6) and r["model"].startswith("modes SH0, SH1")
+    # one solver call serves both modes
+    m = layered_model(SUB, [FILM], ["E"], mode=["SH0"] * 15 + ["SH1"] * 10)
+    before = len(fake_layered)
+    np.testing.assert_allclose(m({"E": 73.0}, np.r_[kh0, kh1]), c, rtol=1e-12)
+    assert len(fake_layered) == before + 1
+    with pytest.raises(InputError, match="a mode per point"):
+        m({"E": 73.0}, kh0)
 
 
 def test_real_layered_second_family_separates_parameters():

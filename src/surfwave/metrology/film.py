@@ -214,7 +214,11 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
                 f"film {layer} of {len(films)}")
     else:
         raise InputError(f"model must be 'love' or 'layered', got {model!r}")
-    fwd: Any = PerPointModes(one, modes, xa) if several else one(distinct[0])
+    per_mode = PerPointModes(one, modes, xa) if several else None
+    if several and model == "layered":  # one solver call serves every mode
+        fwd: Any = layered_model(substrate, films, free, layer=layer, mode=modes, variable=variable, **opts)
+    else:
+        fwd = per_mode if per_mode is not None else one(distinct[0])
     for n, (lo, hi) in limits.items():
         if n in params and not lo <= params[n] <= hi:
             raise InputError(f"starting value {params[n]!r} of {n!r} is outside its bounds ({lo}, {hi})")
@@ -227,6 +231,6 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
                  sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, check_linearity=check_linearity,
                  context=context, x_name="kh" if variable == "kh" else "frequency_Hz", description=desc,
                  curve_points=0 if several else 200)
-    if several:
-        result["curve_x"], result["curve_c"] = mode_curves(fwd, result["values"])
+    if per_mode is not None:
+        result["curve_x"], result["curve_c"] = mode_curves(per_mode, result["values"])
     return result

@@ -78,7 +78,7 @@ class LayeredModel:
     """
 
     def __init__(self, substrate: Any, films: Sequence[Mapping[str, Any]], layer: int,
-                 mode: int | str, variable: Literal["kh", "frequency"], options: Mapping[str, Any]) -> None:
+                 mode: Any, variable: Literal["kh", "frequency"], options: Mapping[str, Any]) -> None:
         self.substrate = substrate
         self.films = [dict(f) for f in films]
         self.layer, self.mode, self.variable = layer, mode, variable
@@ -100,6 +100,8 @@ class LayeredModel:
             raise InputError("model='layered' needs surfwave.layered, which this version of surfwave lacks; "
                              "use the closed-form Love model (model='love') for an isotropic film")
         xs = np.atleast_1d(np.asarray(x, dtype=float))
+        if not isinstance(self.mode, (int, np.integer, str)) and len(self.mode) != xs.size:
+            raise InputError(f"a mode per point needs {len(self.mode)} points, got {xs.size}")
         where = {"kh": xs} if self.variable == "kh" else {"frequency": xs}
         result = solver(self.substrate, self.stack(params), **where, **self.options)
         return select_mode(result, self.mode, xs.size)
@@ -109,13 +111,20 @@ class LayeredModel:
                 f"{len(self.films)} film(s))")
 
 
-def select_mode(result: Mapping[str, Any], mode: int | str, n: int) -> np.ndarray:
+def select_mode(result: Mapping[str, Any], mode: Any, n: int) -> np.ndarray:
     """The phase speed of one mode from a :func:`surfwave.layered` result, shape (n,).
 
     ``mode`` is a column index of ``c`` (ascending speeds at each kh) or a label of ``mode``
-    (per kh when the labels are per point); NaN where the mode is absent.
+    (per kh when the labels are per point), or a sequence of them, one per point; NaN where
+    the mode is absent.
     """
     c = np.asarray(result["c"], dtype=float).reshape(n, -1)
+    if not isinstance(mode, (int, np.integer, str)):
+        out = np.full(n, np.nan)
+        for m in dict.fromkeys(list(mode)):
+            rows = np.flatnonzero(np.array([v == m for v in mode]))
+            out[rows] = select_mode({"c": c[rows], "mode": _rows(result["mode"], rows, c.shape)}, m, rows.size)
+        return out
     if isinstance(mode, (int, np.integer)):
         if mode >= c.shape[1]:
             return np.full(n, np.nan)
@@ -130,8 +139,14 @@ def select_mode(result: Mapping[str, Any], mode: int | str, n: int) -> np.ndarra
     return out
 
 
+def _rows(labels: Any, rows: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """The label rows ``rows`` (labels per point) or the labels themselves (one row for all)."""
+    lab = np.asarray(labels, dtype=object)
+    return lab if lab.ndim <= 1 else lab.reshape(shape)[rows]
+
+
 def layered_model(substrate: Any, films: Sequence[Mapping[str, Any]], free: Sequence[str], *, layer: int = 0,
-                  mode: int | str = 0, variable: Literal["kh", "frequency"] = "kh",
+                  mode: Any = 0, variable: Literal["kh", "frequency"] = "kh",
                   **options: Any) -> LayeredModel:
     """The forward model of one guided mode of a film stack, for :func:`surfwave.metrology.fit.fit`.
 
@@ -148,8 +163,10 @@ def layered_model(substrate: Any, films: Sequence[Mapping[str, Any]], free: Sequ
         ``stress`` (equibiaxial, GPa) or ``C11`` ... ``C66`` (checked here, before any solve).
     layer : int
         Which film the parameters belong to (0 = top).
-    mode : int or str
-        Column of the ascending speeds (0 = slowest guided mode) or a mode label of the result.
+    mode : int or str, or sequence of them
+        Column of the ascending speeds (0 = slowest guided mode) or a mode label of the result;
+        or one per measured point (the model then takes exactly that many points, and one solver
+        call serves every mode).
     variable : {"kh", "frequency"}
         What ``x`` is: kh (wavenumber x total film thickness) or frequency (Hz).
     **options
@@ -173,8 +190,9 @@ def layered_model(substrate: Any, films: Sequence[Mapping[str, Any]], free: Sequ
         raise InputError(f"layer must index one of the {len(films)} films, got {layer!r}")
     if variable not in ("kh", "frequency"):
         raise InputError(f"variable must be 'kh' or 'frequency', got {variable!r}")
-    if isinstance(mode, (int, np.integer)) and mode < 0:
-        raise InputError(f"mode must be >= 0 or a label, got {mode!r}")
+    for m in [mode] if isinstance(mode, (int, np.integer, str)) else list(mode):
+        if not isinstance(m, (int, np.integer, str)) or (isinstance(m, (int, np.integer)) and m < 0):
+            raise InputError(f"mode must be a column >= 0 or a label, got {m!r}")
     for name in free:
         film_value(films[layer], name)  # every name known and present
     bad = [k for k in options if k in ("kh", "frequency")]
