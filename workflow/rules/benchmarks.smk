@@ -37,6 +37,14 @@ BENCH_MODULES = {
         "real_crystals.materials",
         "solvers.stroh",
     ),
+    "fit": (
+        "metrology.fit",
+        "metrology.love",
+        "metrology.film",
+        "metrology.layered_model",
+        "api",
+        "solvers.stroh",
+    ),
 }
 BENCH_METHODS = [
     name
