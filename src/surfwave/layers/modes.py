@@ -51,11 +51,41 @@ def lowest_speed(b: Blocks) -> float:
     return float(0.2 * np.sqrt(np.min(XL * b.sA / b.rho)))
 
 
-def speed_grid(c_lim: float, c_lo: float, n: int) -> np.ndarray:
-    """Ascending speeds in (c_lo, c_lim): uniform in t plus a geometric tail toward c_lim, shape (n + 24,)."""
+def film_bulk_speeds(b: Blocks) -> np.ndarray:
+    """Trace-speed minima along x1 of the three bulk sheets of every film, m/s, shape (3 L,).
+
+    Above such a speed a partial wave of the film is real (propagates across the film), and at
+    large kh the film's modes crowd just above it (spacing ~ pi / kh in the vertical wavenumber).
+    """
+    L = len(b.frac)
+    if L == 0:
+        return np.zeros(0)
+    phi = np.linspace(-0.5 * np.pi, 0.5 * np.pi, 181)[1:-1]
+    cs, sn = np.cos(phi)[:, None, None], np.sin(phi)[:, None, None]
+    out = []
+    for layer in range(L):
+        Q, R, T = b.Q[layer, :3, :3], b.R[layer, :3, :3], b.T[layer, :3, :3]
+        G = cs * cs * Q + sn * cs * (R + R.T) + sn * sn * T
+        w = np.linalg.eigvalsh(G) / (cs[:, :, 0] ** 2)
+        out.append(np.sqrt(np.clip(w.min(axis=0), 0, None) * b.sA / b.rho[layer]))
+    return np.concatenate(out)
+
+
+def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) -> np.ndarray:
+    """Ascending speeds in (c_lo, c_lim): uniform in t = sqrt(1 - c^2/c_lim^2), a geometric tail toward
+    c_lim, and above each film bulk speed v in ``bulk`` the points v sqrt(1 + q^2) with q spaced by
+    pi / (6 kh_max) (modes crowd there at large kh)."""
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
-    return np.sort(c_lim * np.sqrt(1.0 - t * t))
+    parts = [c_lim * np.sqrt(1.0 - t * t)]
+    if kh_max > 1.0:
+        for v in bulk:
+            if c_lo < v < c_lim:
+                q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
+                q = np.arange(1e-9, q_max, np.pi / (6.0 * kh_max))[:4000]
+                parts.append(v * np.sqrt(1.0 + q * q))
+    g = np.unique(np.concatenate(parts))
+    return g[(g > c_lo) & (g < c_lim)]
 
 
 def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str) -> np.ndarray:
@@ -114,8 +144,9 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     """
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-    n = n_grid or int(BASE_GRID + GRID_PER_KH * float(np.max(kh, initial=0.0)))
-    grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n)
+    n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
+    kh_max = float(np.max(kh, initial=0.0))
+    grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, film_bulk_speeds(b), kh_max)
     D = secular(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)   # (n_c, k)
     s = np.sign(D)
     change = (s[:-1] * s[1:] < 0) & np.isfinite(D[:-1]) & np.isfinite(D[1:])
