@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.layers.partial import Blocks, Family
-from surfwave.layers.recursion import boundary_matrix, secular, top_impedance
+from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, secular, top_impedance
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
 
 __all__ = ["C_TOL", "family_modes", "label", "lowest_speed"]
@@ -88,30 +88,46 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
     return g[(g > c_lo) & (g < c_lim)]
 
 
-def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str) -> np.ndarray:
-    """Illinois regula falsi on all brackets at once; returns the converged speeds (m,)."""
-    a, fa, c_, fc = lo.copy(), flo.copy(), hi.copy(), fhi.copy()      # c_ = the latest point
+def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim: float) -> np.ndarray:
+    """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
+
+    Each step takes the secant through the two latest points (order 1.6); a step that leaves
+    the current bracket (sign change of det Z), or two steps in a row that shrink it by less
+    than half, fall back to bisection. The iteration runs in t = sqrt(1 - c^2 / c_lim^2), in
+    which det Z is smooth up to the limit (in c it has a square-root branch point there).
+    """
+    def to_t(c):
+        return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
+
+    def to_c(t):
+        return c_lim * np.sqrt(1.0 - t * t)
+
+    a, fa, z, fz = to_t(lo), flo.copy(), to_t(hi), fhi.copy()           # bracket ends (a, z)
+    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()            # the two latest points
+    width = np.abs(z - a)
     idx = np.arange(a.size)
-    out = 0.5 * (a + c_)
-    for _ in range(MAX_ITER):
+    out = 0.5 * (lo + hi)
+    for it in range(MAX_ITER):
         if idx.size == 0:
             break
+        left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
-            x = c_ - fc * (c_ - a) / (fc - fa)
-        left, right = np.minimum(a, c_), np.maximum(a, c_)
-        bad = ~np.isfinite(x) | (x <= left) | (x >= right)
-        x = np.where(bad, 0.5 * (a + c_), x)
-        fx = secular(b, fam, x, kh[idx, None], electrical)[:, 0]
-        same = np.sign(fx) == np.sign(fc)
-        # Illinois: keep the old end a, halve its value when the new point falls on c_'s side
-        fa = np.where(same, 0.5 * fa, fc)
-        a = np.where(same, a, c_)
-        c_, fc = x, fx
-        done = (np.abs(c_ - a) <= C_TOL * np.abs(c_)) | (fx == 0) | ~np.isfinite(fx)
-        out[idx[done]] = c_[done]
+            x = x1 - f1 * (x1 - x0) / (f1 - f0)
+        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | ((it % 3 == 2) & (right - left > 0.5 * width))
+        x = np.where(bis, 0.5 * (left + right), x)
+        if it % 3 == 2:
+            width = right - left
+        fx = secular(b, fam, to_c(x), kh[idx, None], electrical)[:, 0]
+        side_a = np.sign(fx) == np.sign(fa)
+        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
+        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
+        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+        done = (np.abs(x - x1) <= tol) & ~bis | (np.abs(z - a) <= tol) | (fx == 0) | ~np.isfinite(fx)
+        x0, f0, x1, f1 = x1, f1, x, fx
+        out[idx[done]] = to_c(x[done])
         keep = ~done
-        idx, a, fa, c_, fc = idx[keep], a[keep], fa[keep], c_[keep], fc[keep]
-    out[idx] = c_
+        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+    out[idx] = to_c(x1)
     return out
 
 
@@ -122,6 +138,29 @@ def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
     w = np.abs(np.linalg.eigvalsh(Z))
     return np.isfinite(w).all(axis=-1) & (w.min(axis=-1) <= 1e-7 * np.maximum(w.max(axis=-1), 1e-3)) \
         & (w.max(axis=-1) < 1e6)
+
+
+def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str, rounds: int = 6):
+    """det Z and the number of negative eigenvalues on the grid (n_c, k); cells whose count rises by
+    more than one, or by one with det of the wrong sign pattern, are bisected (``rounds`` times)."""
+    w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
+    D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
+    D[~np.isfinite(w).all(axis=-1)] = np.nan
+    for _ in range(rounds):
+        step = neg[1:] - neg[:-1]
+        odd = (np.abs(step) > 1) | ((np.abs(step) == 1) & ~(D[:-1] * D[1:] < 0)) | \
+            ((step == 0) & (D[:-1] * D[1:] < 0))
+        cells = np.flatnonzero(odd.any(axis=1))
+        if cells.size == 0:
+            break
+        mid = 0.5 * (grid[cells] + grid[cells + 1])
+        wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
+        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
+        Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
+        grid = np.insert(grid, cells + 1, mid)
+        D = np.insert(D, cells + 1, Dm, axis=0)
+        neg = np.insert(neg, cells + 1, nm, axis=0)
+    return grid, D, neg
 
 
 def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid: int | None = None) -> np.ndarray:
@@ -147,15 +186,17 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
     grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, film_bulk_speeds(b), kh_max)
-    D = secular(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)   # (n_c, k)
-    s = np.sign(D)
-    change = (s[:-1] * s[1:] < 0) & np.isfinite(D[:-1]) & np.isfinite(D[1:])
-    ic, ik = np.nonzero(change)
+    grid, D, neg = _scan(b, fam, grid, kh, electrical)
+    # a mode: the count of negative eigenvalues rises by one (a pole: it falls); two modes in one
+    # cell (near-degenerate) are split by bisecting the cell until each holds one
+    step = neg[1:] - neg[:-1]
+    ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0))
     if ic.size == 0:
         return np.full((kh.size, 0), np.nan)
-    roots = _refine(b, fam, grid[ic], grid[ic + 1], D[ic, ik], D[ic + 1, ik], kh[ik], electrical)
+    roots = _refine(b, fam, grid[ic], grid[ic + 1], D[ic, ik], D[ic + 1, ik], kh[ik], electrical, c_lim)
     ok = _is_mode(b, fam, roots, kh[ik], electrical)
     ik, roots = ik[ok], roots[ok]
+    _ = secular  # (the refinement evaluates det Z through :func:`secular`)
     counts = np.bincount(ik, minlength=kh.size)
     out = np.full((kh.size, max(int(counts.max(initial=0)), 0)), np.nan)
     order = np.lexsort((roots, ik))

@@ -204,4 +204,33 @@ def eigen(Q, R, T, X, mech) -> tuple[np.ndarray, np.ndarray]:
     order = np.argsort(p.imag, axis=-1, kind="stable")
     p = np.take_along_axis(p, order, axis=-1)
     V = np.take_along_axis(V, order[:, None, :], axis=-1)
+    _degenerate_pairs(N, p, V, Q.shape[-1])
     return p, V
+
+
+#: Two Stroh roots of one group closer than this (relative to 1 + |p|) are one double root.
+DEGENERATE_TOL = 1e-7
+
+
+def _degenerate_pairs(N: np.ndarray, p: np.ndarray, V: np.ndarray, n: int) -> None:
+    """Replace (in place) the eigenvectors of double roots by an orthonormal basis of their eigenspace.
+
+    An isotropic layer has a double root p_T (SV and SH partial waves) whenever the motion does
+    not split into families; LAPACK then returns two eigenvectors of that eigenspace that may be
+    almost parallel, which costs up to half the digits of the impedance. The eigenspace of a
+    semisimple double root is the null space of N - p I: its two right singular vectors of
+    smallest singular value are an exact, well-conditioned basis (both with the mean root).
+    """
+    for lo in (0, n):
+        for i in range(lo, lo + n):
+            for j in range(i + 1, lo + n):
+                close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
+                if not close.any():
+                    continue
+                rows = np.flatnonzero(close)
+                pm = 0.5 * (p[rows, i] + p[rows, j])
+                A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
+                _, _, vh = np.linalg.svd(A)
+                basis = np.conj(vh[:, -2:, :]).transpose(0, 2, 1)          # (r, 2n, 2)
+                V[rows, :, i], V[rows, :, j] = basis[..., 0], basis[..., 1]
+                p[rows, i] = p[rows, j] = pm

@@ -127,6 +127,22 @@ def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str) -> t
     return Z, np.arange(nf)
 
 
+def boundary_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
+    """Eigenvalues (ascending) of the Hermitian boundary matrix at speeds c (m,) and kh (m, k), (m, k, na).
+
+    Every eigenvalue decreases with c between poles (the impedance of a lossless stack is a
+    reactance), so the number of negative eigenvalues rises by one at each mode and falls by one
+    at each pole; :mod:`surfwave.layers.modes` uses this to tell modes from poles on its grid.
+    """
+    M = top_impedance(b, fam, c, kh)["M"]
+    Z, _ = boundary_matrix(b, fam, M, electrical)
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(Z).all(axis=(-1, -2))
+        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
+    w[bad] = np.nan
+    return w
+
+
 def secular(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
     """Real secular function det(Z) of the family at speeds c (m,) and kh (m, k): zeros are guided modes.
 

@@ -202,8 +202,8 @@ def _material(spec, where: str) -> dict:
 
 def _eps_r(value, where: str) -> np.ndarray:
     er = validate.real_array(value, f"{where} permittivity")
-    if er.shape == ():
-        er = float(er) * np.eye(3)
+    if np.ndim(value) == 0:
+        er = float(er[0]) * np.eye(3)
     if er.shape != (3, 3) or not np.all(np.isfinite(er)):
         raise InputError(f"{where}: permittivity must be a number or a finite 3 x 3 array (relative)")
     if not np.allclose(er, er.T) or np.linalg.eigvalsh(er)[0] < 1.0 - 1e-9:
