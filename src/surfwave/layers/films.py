@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 from importlib import resources
+from typing import Any
 
 import numpy as np
 import yaml
@@ -32,7 +33,7 @@ def _film_db() -> dict:
         for key in ("E", "nu", "rho"):
             if entry.get(key) is None or entry[key].get("source") not in refs:
                 raise InputError(f"films.yaml: {name} {key} needs a value and a known source")
-        rec = {"E": float(entry["E"]["value"]), "nu": float(entry["nu"]["value"]),
+        rec: dict[str, Any] = {"E": float(entry["E"]["value"]), "nu": float(entry["nu"]["value"]),
                "rho": float(entry["rho"]["value"]), "aliases": tuple(entry.get("aliases", ())),
                "sources": {k: refs[entry[k]["source"]] for k in ("E", "nu", "rho")}}
         if entry.get("permittivity") is not None:

@@ -102,8 +102,8 @@ def scaled_blocks(stack: Stack) -> Blocks:
     A = np.stack([lay.A for lay in layers])
     sA = float(np.abs(A).max())
     if stack.piezo:
-        eps = np.stack([lay.eps for lay in layers])
-        e = np.stack([lay.e for lay in layers])
+        eps = np.stack([np.asarray(lay.eps) for lay in layers])
+        e = np.stack([np.asarray(lay.e) for lay in layers])
         se = float(max(np.abs(eps).max(), EPS0))
         Q, R, T = generalised_blocks(A / sA, e / np.sqrt(sA * se), eps / se)
     else:

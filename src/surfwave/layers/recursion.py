@@ -26,6 +26,8 @@ mechanical block of Z).
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from surfwave.layers.partial import Blocks, Family, eigen
@@ -96,7 +98,7 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False) -> dict:
             Rrs.append(Rr)
             Xms.append(Xm)
             ts.append(t)
-    out = {"M": M}
+    out: dict[str, Any] = {"M": M}
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
     return out

@@ -70,7 +70,9 @@ def solve_stack(stack: Stack, kh, electrical: str = "free") -> dict:
 def _merge(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray]]) -> tuple:
     """Columns of all families merged, ascending per row; labels; the extra arrays in the same order."""
     k = cs[0].shape[0] if cs else 0
-    cols_c, cols_l, cols_x = [], [], [[] for _ in extra]
+    cols_c: list[np.ndarray] = []
+    cols_l: list[np.ndarray] = []
+    cols_x: list[list[np.ndarray]] = [[] for _ in extra]
     for f, (fam, c) in enumerate(zip(fams, cs)):
         for j in range(c.shape[1]):
             cols_c.append(c[:, j])

@@ -212,11 +212,11 @@ def _eps_r(value, where: str) -> np.ndarray:
     return er
 
 
-def _stress(stress, where: str, film: bool) -> np.ndarray:
+def _stress(stress, where: str) -> np.ndarray:
     """In-plane prestress in our lab frame (3, 3), GPa, from a scalar (equibiaxial) or a 3 x 3 SAW-frame tensor."""
     if stress is None:
         return np.zeros((3, 3))
-    s = validate.real_array(stress, f"{where} stress")
+    s = validate.real_array(stress, f"{where} stress").reshape(np.shape(stress))
     if not np.all(np.isfinite(s)):
         raise InputError(f"{where}: stress must be finite, got {stress!r}")
     if s.size and np.abs(s).max() > MAX_STRESS_GPA:
@@ -229,9 +229,8 @@ def _stress(stress, where: str, film: bool) -> np.ndarray:
             raise InputError(f"{where}: the stress tensor must be symmetric, got {s.tolist()}")
         sig = s
     else:
-        kind = "a scalar (equibiaxial) or " if film else ""
-        raise InputError(f"{where}: stress must be {kind}a 3 x 3 tensor in GPa (x1 propagation, x2 in-plane, "
-                         f"x3 outward normal), got shape {s.shape}")
+        raise InputError(f"{where}: stress must be a scalar (equibiaxial) or a 3 x 3 tensor in GPa (x1 "
+                         f"propagation, x2 in-plane, x3 outward normal), got shape {s.shape}")
     lab = SAW_TO_LAB @ sig @ SAW_TO_LAB.T
     normal = np.abs(lab[1]).max()
     if normal > 1e-9 * max(np.abs(lab).max(), 1e-300):
@@ -324,7 +323,7 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
     R_sub = _euler_axes(euler, "substrate") if euler is not None else np.asarray(lab_axes(surface, direction), float)
     if R_sub.ndim != 2:
         raise InputError(f"one propagation direction at a time, got {direction!r}")
-    s_sub = _stress(stress, "substrate", film=False)
+    s_sub = _stress(stress, "substrate")
     recs = []
     for i, f in enumerate(films):
         where = f"film {i} (from the top)"
@@ -333,7 +332,7 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         rec = _material(f, where)
         t = _thickness(f.get("thickness"), where)
         R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
-        recs.append((rec, R, t, _stress(f.get("stress"), where, film=True), where))
+        recs.append((rec, R, t, _stress(f.get("stress"), where), where))
     piezo = sub.get("e") is not None or any(r[0].get("e") is not None for r in recs)
     layers = tuple(_layer(*r[:4], piezo, r[4]) for r in recs)
     return Stack(substrate=_layer(sub, R_sub, 0.0, s_sub, piezo, "substrate"), films=layers, piezo=piezo)

@@ -1,0 +1,99 @@
+"""Numerical robustness of the layered solver: large kh, tiny kh, stress, piezoelectric stacks."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+
+import surfwave
+from surfwave.layers.partial import families, scaled_blocks, stroh_matrix
+from surfwave.layers.recursion import top_impedance
+from surfwave.layers.stack import resolve_stack
+from surfwave.solvers import stroh
+
+SIO2 = {"E": 70.0, "nu": 0.17, "rho": 2200.0}
+
+
+def _plain_transfer_impedance(b, fam, c: float, kh: float) -> np.ndarray:
+    """M_top by the plain transfer-matrix product: [a; b]_top = expm(-i kh N_film) [a; b]_substrate top."""
+    nf = len(fam.idx)
+    ix = np.ix_(fam.idx, fam.idx)
+    Ns = stroh_matrix(b.Q[-1][ix], b.R[-1][ix], b.T[-1][ix], np.array([b.rho[-1] * c * c / b.sA]), fam.mech)[0]
+    p, V = np.linalg.eig(Ns)
+    d = np.argsort(p.imag)[nf:]
+    Ms = V[nf:, d] @ np.linalg.inv(V[:nf, d])
+    Nf = stroh_matrix(b.Q[0][ix], b.R[0][ix], b.T[0][ix], np.array([b.rho[0] * c * c / b.sA]), fam.mech)[0]
+    P = expm(-1j * kh * Nf)
+    top = P @ np.vstack([np.eye(nf), Ms])
+    return top[nf:] @ np.linalg.inv(top[:nf])
+
+
+def test_plain_transfer_matrix_fails_at_large_kh_recursion_does_not():
+    """At kh = 1 both routes give the same impedance (1e-9); at kh = 50 the transfer-matrix product
+    (exponentials exp(kh |Im p|) ~ 1e20) has lost it, while the recursion still gives the film's own
+    Rayleigh speed (the kh -> infinity limit, stroh.surface_wave) to 1e-12."""
+    b = scaled_blocks(resolve_stack("Si", [{**SIO2, "thickness": 1e-6}]))
+    fam = families(b)[0]
+    c = 3300.0
+    for kh, agree in ((1.0, True), (50.0, False)):
+        ours = top_impedance(b, fam, [c], [[kh]])["M"][0, 0]
+        plain = _plain_transfer_impedance(b, fam, c, kh)
+        err = np.abs(plain - ours).max() / np.abs(ours).max()
+        assert (err < 1e-9) == agree, (kh, err)
+    r = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[50.0])
+    cR = float(stroh.surface_wave(resolve_stack(SIO2, []).substrate.A, SIO2["rho"])["c"])
+    assert r["c"][0, 0] == pytest.approx(cR, rel=1e-12)
+
+
+def test_tiny_kh_is_first_order():
+    """kh = 1e-6: the shift from c_R is 1e-6 times the slope between kh = 1e-4 and 2e-4 (to 1e-4)."""
+    r = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[0.0, 1e-6, 1e-4, 2e-4])
+    c = r["c"][:, 0]
+    slope = 2 * (c[2] - c[0]) / 1e-4 - (c[3] - c[0]) / 2e-4
+    assert (c[1] - c[0]) / 1e-6 == pytest.approx(slope, rel=1e-4)
+
+
+def test_film_stress_shifts_like_a_stressed_half_space():
+    """At kh = 60 the first mode of a stressed film is the stressed film's own half-space c_R
+    (stroh.surface_wave with A = C + sigma delta, the existing prestressed route); the stress is
+    equibiaxial in the surface plane (SAW frame) and compression slows the wave."""
+    out = []
+    for s in (-1.0, 0.0, 1.0):
+        r = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "stress": s}], kh=[60.0])
+        film = resolve_stack("Si", [{**SIO2, "thickness": 1e-6, "stress": s}]).films[0]
+        ref = float(stroh.surface_wave(film.A, film.rho)["c"])
+        assert r["c"][0, 0] == pytest.approx(ref, rel=1e-10)
+        out.append(r["c"][0, 0])
+    assert out[0] < out[1] < out[2]
+
+
+def test_substrate_stress_at_kh_zero_matches_material():
+    """Substrate stress, kh = 0: a 3 x 3 uniaxial stress along x1 (SAW frame) gives material()'s c_R
+    under the same uniaxial stress along the propagation direction (fixed constants)."""
+    s = np.zeros((3, 3))
+    s[0, 0] = 0.5
+    r = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[0.0], stress=s)
+    assert r["c"][0, 0] == pytest.approx(surfwave.material("Si", stress=0.5)["c_R"], rel=1e-10)
+
+
+def test_piezoelectric_film_of_substrate_material():
+    """A 128Y-X LiNbO3 film on the same cut (same Euler angles) is the bare cut: c_free, c_metallized
+    and K^2 of material() at every kh."""
+    m = surfwave.material("LiNbO3", euler=(0, 38, 0))
+    film = [{"name": "LiNbO3", "euler": (0, 38, 0), "thickness": 1e-6}]
+    free = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.0, 2.0])
+    met = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.0, 2.0], electrical="metallized")
+    np.testing.assert_allclose(free["c"][:, 0], m["c_free"], rtol=1e-10)
+    np.testing.assert_allclose(met["c"][:, 0], m["c_metallized"], rtol=1e-10)
+    np.testing.assert_allclose(free["K2"][:, 0], m["K2"], rtol=1e-7)
+
+
+def test_dielectric_gap_under_an_electrode():
+    """A thin vacuum-permittivity film with a metallized top: as kh -> 0 the metallized speed tends to
+    material()'s c_metallized, and the free one to c_free (the film's mass is second order here)."""
+    m = surfwave.material("LiNbO3", euler=(0, 38, 0))
+    film = [{**SIO2, "permittivity": 1.0, "thickness": 1e-6}]
+    met = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[1e-7], electrical="metallized")
+    free = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[1e-7])
+    assert met["c"][0, 0] == pytest.approx(m["c_metallized"], rel=1e-6)
+    assert free["c"][0, 0] == pytest.approx(m["c_free"], rel=1e-6)
