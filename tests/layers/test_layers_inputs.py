@@ -49,3 +49,30 @@ def test_piezo_stack_needs_permittivity():
     """A film without permittivity on a piezoelectric substrate is refused (the potential must be solved in it)."""
     with pytest.raises(InputError, match="permittivity"):
         surfwave.layered("LiNbO3", [{**SIO2, "thickness": 1e-6}], euler=(0, 38, 0), kh=[1.0])
+
+
+def test_film_database_records_have_sources():
+    """Every film of films.yaml carries a cited source for each number, and its stiffness is positive definite."""
+    from surfwave.layers.films import _film_db, available_films, lookup
+
+    assert {"fused-SiO2", "Pt-film", "Si3N4", "sapphire"} <= set(available_films())
+    for name, rec in _film_db().items():
+        assert rec["sources"]["rho"] and ("C" in rec["sources"] or rec["sources"]["E"])
+        assert np.linalg.eigvalsh(lookup(name)["voigt"])[0] > 0
+    # a film called SiO2 is fused silica; a substrate called SiO2 is alpha-quartz (piezoelectric database)
+    assert lookup("SiO2")["name"] == "fused-SiO2"
+    assert lookup("SiO2", film=False)["name"].startswith("quartz")
+
+
+def test_polycrystal_hill_average_is_between_bounds():
+    """'Au-poly' is the Voigt-Reuss-Hill average of the Au crystal: isotropic, G between the Reuss and Voigt bounds."""
+    from surfwave.layers.films import lookup
+    from surfwave.real_crystals.materials import get_material
+
+    C = lookup("Au-poly")["voigt"]
+    c11, c12, c44 = (get_material("Au").constants[k] for k in ("C11", "C12", "C44"))
+    G = C[3, 3]
+    gv = (c11 - c12 + 3 * c44) / 5
+    gr = 5 * (c11 - c12) * c44 / (4 * c44 + 3 * (c11 - c12))
+    assert min(gv, gr) < G < max(gv, gr)
+    assert C[0, 0] - C[0, 1] == pytest.approx(2 * G)

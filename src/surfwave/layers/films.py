@@ -25,21 +25,45 @@ __all__ = ["available_films", "hill_average", "lookup"]
 
 @lru_cache(maxsize=1)
 def _film_db() -> dict:
+    """The records of ``films.yaml``: name -> {voigt (6, 6) GPa, rho, eps_r (3, 3) or None, aliases, sources}."""
+    from surfwave.layers.stack import isotropic_voigt
+    from surfwave.solvers.piezo_tensors import trigonal_3m_voigt
+
     text = resources.files("surfwave.layers").joinpath("films.yaml").read_text(encoding="utf-8")
     raw = yaml.load(text, Loader=SAFE_LOADER) or {}
     refs = {str(k): " ".join(str(v).split()) for k, v in (raw.get("references") or {}).items()}
     out = {}
+
+    def val(entry, key, name):
+        block = entry.get(key)
+        if not isinstance(block, dict) or block.get("source") not in refs or "value" not in block:
+            raise InputError(f"films.yaml: {name} {key} needs a value and a known source")
+        return float(block["value"]), refs[block["source"]]
+
     for name, entry in (raw.get("materials") or {}).items():
-        for key in ("E", "nu", "rho"):
-            if entry.get(key) is None or entry[key].get("source") not in refs:
-                raise InputError(f"films.yaml: {name} {key} needs a value and a known source")
-        rec: dict[str, Any] = {"E": float(entry["E"]["value"]), "nu": float(entry["nu"]["value"]),
-               "rho": float(entry["rho"]["value"]), "aliases": tuple(entry.get("aliases", ())),
-               "sources": {k: refs[entry[k]["source"]] for k in ("E", "nu", "rho")}}
-        if entry.get("permittivity") is not None:
-            rec["eps_r"] = float(entry["permittivity"]["value"])
-            rec["sources"]["permittivity"] = refs[entry["permittivity"]["source"]]
-        out[str(name)] = rec
+        sources: dict[str, str] = {}
+        rho, sources["rho"] = val(entry, "rho", name)
+        if "trigonal" in entry:
+            blk = dict(entry["trigonal"])
+            if blk.pop("source", None) not in refs:
+                raise InputError(f"films.yaml: {name} trigonal constants need a known source")
+            keys = ("C11", "C12", "C13", "C14", "C33", "C44")
+            voigt = trigonal_3m_voigt(*(float(blk[k]) for k in keys))
+            sources["C"] = refs[entry["trigonal"]["source"]]
+        else:
+            E, sources["E"] = val(entry, "E", name)
+            nu, sources["nu"] = val(entry, "nu", name)
+            voigt = isotropic_voigt(E, nu)
+        eps = None
+        if "permittivity" in entry:
+            e, sources["permittivity"] = val(entry, "permittivity", name)
+            eps = e * np.eye(3)
+        elif "permittivity_11" in entry:
+            e11, sources["permittivity"] = val(entry, "permittivity_11", name)
+            e33, _ = val(entry, "permittivity_33", name)
+            eps = np.diag([e11, e11, e33])
+        out[str(name)] = {"voigt": np.asarray(voigt, dtype=float), "rho": rho, "eps_r": eps,
+                          "aliases": tuple(str(a) for a in entry.get("aliases", ())), "sources": sources}
     return out
 
 
@@ -70,24 +94,25 @@ def hill_average(C6) -> tuple[float, float]:
     return 0.5 * (Kv + Kr), 0.5 * (Gv + Gr)
 
 
-def lookup(name: str, where: str = "material") -> dict:
+def lookup(name: str, where: str = "material", *, film: bool = True) -> dict:
     """The record of a named material: ``name``, ``voigt`` (6, 6) GPa, ``rho``, ``e`` (3, 6) or None, ``eps_r``.
+
+    A film name is looked up in ``films.yaml`` first (so "SiO2" is fused silica for a film), a
+    substrate name in the crystal databases first (so "SiO2" is alpha-quartz for a substrate).
 
     Raises
     ------
     InputError
         An unknown name (the known names of every database listed).
     """
-    from surfwave.layers.stack import isotropic_voigt
     from surfwave.real_crystals.materials import available_materials, get_material
     from surfwave.real_crystals.piezo_materials import available_piezo_materials, get_piezo_material
 
     key = str(name).strip()
-    db = _film_db()
-    for n, rec in db.items():
-        if key.casefold() in (n.casefold(), *(a.casefold() for a in rec["aliases"])):
-            return {"name": n, "voigt": isotropic_voigt(rec["E"], rec["nu"]), "rho": rec["rho"], "e": None,
-                    "eps_r": None if "eps_r" not in rec else rec["eps_r"] * np.eye(3), "conductor": False}
+    if film:
+        hit = _from_film_db(key)
+        if hit is not None:
+            return hit
     if key.casefold().endswith("-poly"):
         m = get_material(key[:-5])
         K, G = hill_average(m.voigt)
@@ -106,7 +131,18 @@ def lookup(name: str, where: str = "material") -> dict:
     try:
         m = get_material(key)
     except InputError:
+        hit = _from_film_db(key)
+        if hit is not None:
+            return hit
         known = sorted(set(available_films()) | set(available_piezo_materials()) | set(available_materials()))
         raise InputError(f"{where}: unknown material {name!r}; known: {', '.join(known)} (or '<cubic>-poly')") from None
     return {"name": m.name, "voigt": np.array(m.voigt, dtype=float), "rho": m.rho, "e": None, "eps_r": None,
             "conductor": False}
+
+
+def _from_film_db(key: str) -> dict | None:
+    for n, rec in _film_db().items():
+        if key.casefold() in (n.casefold(), *(a.casefold() for a in rec["aliases"])):
+            return {"name": n, "voigt": rec["voigt"].copy(), "rho": rec["rho"], "e": None,
+                    "eps_r": None if rec["eps_r"] is None else rec["eps_r"].copy(), "conductor": False}
+    return None

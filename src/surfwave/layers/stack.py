@@ -149,12 +149,12 @@ def _check_stiffness(C6: np.ndarray, where: str) -> np.ndarray:
     return C6
 
 
-def _material(spec, where: str) -> dict:
+def _material(spec, where: str, film: bool = True) -> dict:
     """Voigt C (GPa, crystal axes), rho, e (3, 6) or None, eps_r (3, 3) or None from a name or a mapping."""
     from surfwave.layers.films import lookup
 
     if isinstance(spec, str):
-        return lookup(spec, where)
+        return lookup(spec, where, film=film)
     if not isinstance(spec, Mapping):
         raise InputError(f"{where} must be a material name or a mapping (voigt/rho, E/nu/rho, name), got {spec!r}")
     extra = sorted(set(spec) - _FILM_KEYS)
@@ -162,7 +162,7 @@ def _material(spec, where: str) -> dict:
         raise InputError(f"{where}: unknown keys {extra}; accepted: {sorted(_FILM_KEYS)}")
     name = spec.get("name", spec.get("material"))
     if name is not None:
-        rec = lookup(str(name), where)
+        rec = lookup(str(name), where, film=film)
         if "rho" in spec:
             rec["rho"] = validate.density(spec["rho"], f"{where} rho")
         for key in ("voigt", "E", "nu", "piezo"):
@@ -317,7 +317,7 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         films = [films]
     if not isinstance(films, Sequence):
         raise InputError(f"films must be a list of mappings (top film first), got {films!r}")
-    sub = _material(substrate, "substrate")
+    sub = _material(substrate, "substrate", film=False)
     if isinstance(substrate, Mapping) and "thickness" in substrate:
         raise InputError("the substrate is semi-infinite: do not give it a thickness")
     R_sub = _euler_axes(euler, "substrate") if euler is not None else np.asarray(lab_axes(surface, direction), float)
