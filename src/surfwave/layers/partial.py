@@ -167,9 +167,9 @@ def stroh_matrix(Q, R, T, X, mech) -> np.ndarray:
     RT = np.swapaxes(R, -1, -2)
     N1 = -Ti @ RT
     N3 = R @ Ti @ RT - Q
-    X = np.asarray(X, dtype=float)
+    X = np.asarray(X)
     shape = X.shape + (2 * Q.shape[-1],) * 2
-    N = np.zeros(shape)
+    N = np.zeros(shape, dtype=np.result_type(X.dtype, float))
     n = Q.shape[-1]
     N[..., :n, :n] = N1
     N[..., :n, n:] = Ti
@@ -191,7 +191,7 @@ def eigen(Q, R, T, X, mech) -> tuple[np.ndarray, np.ndarray]:
     ----------
     Q, R, T : ndarray, shape (n, n)
     X : ndarray, shape (m,)
-        Scaled rho c^2 of this layer.
+        Scaled rho c^2 of this layer (complex for a leaky mode).
     mech : ndarray, shape (n,)
 
     Returns

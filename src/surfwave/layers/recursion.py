@@ -51,7 +51,7 @@ def _solve_right(Y: np.ndarray, Xm: np.ndarray) -> np.ndarray:
     return np.swapaxes(np.linalg.solve(np.swapaxes(Xm, -1, -2), np.swapaxes(Y, -1, -2)), -1, -2)
 
 
-def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False) -> dict:
+def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=None) -> dict:
     """Generalised impedance M_top (b = M a at the free surface) of the stack, family ``fam``.
 
     Parameters
@@ -64,6 +64,10 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False) -> dict:
         Wavenumber times total film thickness for each speed.
     keep : bool
         Also return the per-layer quantities needed for the fields (:mod:`surfwave.layers.fields`).
+    M_sub : ndarray, shape (m, nf, nf), optional
+        The substrate's impedance (default: its decaying partial waves); the leaky continuation
+        (:mod:`surfwave.layers.leaky`) passes the one of its outgoing set. ``c`` and ``kh`` may then
+        be complex.
 
     Returns
     -------
@@ -72,15 +76,20 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False) -> dict:
         substrate), ``Rr`` and ``Xm`` (lists, per layer from the top, (m, k, nf, nf)) and ``t``
         (list of layer thicknesses k h_l, (m, k)).
     """
-    c = np.atleast_1d(np.asarray(c, dtype=float))
-    kh = np.asarray(kh, dtype=float)
+    c = np.atleast_1d(np.asarray(c))
+    c = c.astype(np.result_type(c.dtype, float))
+    kh = np.asarray(kh)
+    kh = kh.astype(np.result_type(kh.dtype, float))
     kh = np.broadcast_to(kh.reshape(kh.shape + (1,) * (2 - kh.ndim)) if kh.ndim < 2 else kh,
                          (c.shape[0], np.shape(kh)[-1] if kh.ndim else 1))
     eigs = _layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
-    with np.errstate(all="ignore"):
-        M = _solve_right(Vs[:, nf:, nf:], Vs[:, :nf, nf:])[:, None]          # (m, 1, nf, nf)
+    if M_sub is None:
+        with np.errstate(all="ignore"):
+            M = _solve_right(Vs[:, nf:, nf:], Vs[:, :nf, nf:])[:, None]      # (m, 1, nf, nf)
+    else:
+        M = np.asarray(M_sub)[:, None]
     M = np.broadcast_to(M, kh.shape + (nf, nf))
     Rrs, Xms, ts = [], [], []
     for layer in range(len(b.frac) - 1, -1, -1):

@@ -181,11 +181,13 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict
             k2[:, :n] = 2.0 * (cf[:, :n] - cm[:, :n]) / cf[:, :n]
             k2s[f] = k2
     att = [np.full(c.shape, np.nan) for c in cs]
+    lk = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
     if leaky:
         from surfwave.layers.leaky import leaky_continuation
 
-        cs, vgs, k2s, att = leaky_continuation(sol, kh, electrical, cs, vgs, k2s, att)
-    C, labels, (vg, K2, A) = _merge(fams, cs, [vgs, k2s, att])
+        cs, vgs, k2s, att, lk = leaky_continuation(sol, kh, electrical, cs, vgs, k2s, att)
+    C, labels, (vg, K2, A, L) = _merge(fams, cs, [vgs, k2s, att, lk])
+    labels = np.where(L == 1.0, labels + "~", labels).astype(object)
     H = stack.total_thickness
     khm = np.broadcast_to(kh[:, None], C.shape).copy()
     freq = C * khm / (2 * np.pi * H) if H > 0 else np.full(C.shape, np.nan)
