@@ -1,4 +1,4 @@
-"""Command-line interface: ``surfwave point|material|potentials|scenes|cache info|cache clear``.
+"""Command-line interface: ``surfwave point|material|potentials|scenes|cache info|cache clear|layered``.
 
 Run ``surfwave --help`` or ``surfwave <command> --help`` (also ``python -m surfwave``).
 Mistyped commands, choices and options get a "did you mean" suggestion.
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from surfwave import __version__, cli_piezo
+from surfwave import __version__, cli_layered, cli_piezo
 from surfwave.errors import SurfwaveError
 from surfwave.vocab import DIRECTIONS, LATTICES, LOADINGS
 
@@ -190,6 +190,7 @@ def _parser() -> argparse.ArgumentParser:
         where.add_argument("--root", type=Path, help="the cache directory itself")
         if name == "info":
             a.add_argument("--json", action="store_true", help="print JSON")
+    cli_layered.add_parser(sub, _Parser)
     return p
 
 
@@ -503,7 +504,7 @@ def main(argv: list[str] | None = None) -> int:
     _check_options(parser, argv)
     args = parser.parse_args(argv)
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
-               "scenes": _cmd_scenes, "cache": _cmd_cache}[args.command]
+               "scenes": _cmd_scenes, "cache": _cmd_cache, "layered": cli_layered.run}[args.command]
     try:
         return handler(args)
     except SurfwaveError as exc:
