@@ -31,8 +31,8 @@ C_TOL = 4e-15
 #: Iterations of the bracket refinement at most.
 MAX_ITER = 200
 #: Points of the speed grid per unit of kh (on top of :data:`BASE_GRID`): thick films hold many modes.
-GRID_PER_KH = 12
-BASE_GRID = 120
+GRID_PER_KH = 8
+BASE_GRID = 60
 #: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
 T_MIN = 1e-7
 
@@ -92,8 +92,8 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim
     """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
-    the current bracket (sign change of det Z), or two steps in a row that shrink it by less
-    than half, fall back to bisection. The iteration runs in t = sqrt(1 - c^2 / c_lim^2), in
+    the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
+    halve the bracket nor make a small secant step), falls back to bisection. The iteration runs in t = sqrt(1 - c^2 / c_lim^2), in
     which det Z is smooth up to the limit (in c it has a square-root branch point there).
     """
     def to_t(c):
@@ -113,9 +113,12 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim
         left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
             x = x1 - f1 * (x1 - x0) / (f1 - f0)
-        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | ((it % 3 == 2) & (right - left > 0.5 * width))
+        # bisection where the secant leaves the bracket or, every fourth step, where the last
+        # four steps did not shrink it by half and the secant step is not small (stalled iteration)
+        slow = (it % 4 == 3) & (right - left > 0.5 * width) & (np.abs(x - x1) > 1e-3 * (right - left))
+        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
         x = np.where(bis, 0.5 * (left + right), x)
-        if it % 3 == 2:
+        if it % 4 == 3:
             width = right - left
         fx = secular(b, fam, to_c(x), kh[idx, None], electrical)[:, 0]
         side_a = np.sign(fx) == np.sign(fa)
