@@ -71,6 +71,15 @@ def film_bulk_speeds(b: Blocks) -> np.ndarray:
     return np.concatenate(out)
 
 
+def film_x1_speeds(b: Blocks) -> np.ndarray:
+    """Bulk speeds along x1 of every film (sqrt of the eigenvalues of Q / rho), m/s, shape (3 L,)."""
+    L = len(b.frac)
+    if L == 0:
+        return np.zeros(0)
+    w = np.linalg.eigvalsh(b.Q[:L, :3, :3])
+    return np.sqrt(np.clip(w, 0, None) * b.sA / b.rho[:L, None]).ravel()
+
+
 def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) -> np.ndarray:
     """Ascending speeds in (c_lo, c_lim): uniform in t = sqrt(1 - c^2/c_lim^2), a geometric tail toward
     c_lim, and above each film bulk speed v in ``bulk`` the points v sqrt(1 + q^2) with q spaced by
@@ -82,7 +91,7 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
         for v in bulk:
             if c_lo < v < c_lim:
                 q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
-                q = np.arange(1e-9, q_max, np.pi / (6.0 * kh_max))[:4000]
+                q = np.arange(1e-4, q_max, np.pi / (6.0 * kh_max))[:4000]
                 parts.append(v * np.sqrt(1.0 + q * q))
     g = np.unique(np.concatenate(parts))
     return g[(g > c_lo) & (g < c_lim)]
@@ -189,11 +198,19 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
     grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, film_bulk_speeds(b), kh_max)
+    # at a film's bulk speed along x1 its Stroh roots p = 0 coalesce (a Jordan block): det Z is
+    # analytic there but its evaluation is not, and may jump. Fence each such speed with grid
+    # points 1e-9 apart and ignore that one cell.
+    v_x1 = film_x1_speeds(b)
+    v_x1 = v_x1[(v_x1 > grid[0]) & (v_x1 < grid[-1])]
+    near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
+    grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
     grid, D, neg = _scan(b, fam, grid, kh, electrical)
     # a mode: the count of negative eigenvalues rises by one (a pole: it falls); two modes in one
     # cell (near-degenerate) are split by bisecting the cell until each holds one
     step = neg[1:] - neg[:-1]
-    ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0))
+    fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
+    ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
     if ic.size == 0:
         return np.full((kh.size, 0), np.nan)
     roots = _refine(b, fam, grid[ic], grid[ic + 1], D[ic, ik], D[ic + 1, ik], kh[ik], electrical, c_lim)

@@ -219,18 +219,19 @@ def _degenerate_pairs(N: np.ndarray, p: np.ndarray, V: np.ndarray, n: int) -> No
     not split into families; LAPACK then returns two eigenvectors of that eigenspace that may be
     almost parallel, which costs up to half the digits of the impedance. The eigenspace of a
     semisimple double root is the null space of N - p I: its two right singular vectors of
-    smallest singular value are an exact, well-conditioned basis (both with the mean root).
+    smallest singular value are an exact, well-conditioned basis (both with the mean root). Pairs
+    are looked for across both groups: above a film's shear speed the double root is real and the
+    sort by Im p may put its two copies in different groups.
     """
-    for lo in (0, n):
-        for i in range(lo, lo + n):
-            for j in range(i + 1, lo + n):
-                close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
-                if not close.any():
-                    continue
-                rows = np.flatnonzero(close)
-                pm = 0.5 * (p[rows, i] + p[rows, j])
-                A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
-                _, _, vh = np.linalg.svd(A)
-                basis = np.conj(vh[:, -2:, :]).transpose(0, 2, 1)          # (r, 2n, 2)
-                V[rows, :, i], V[rows, :, j] = basis[..., 0], basis[..., 1]
-                p[rows, i] = p[rows, j] = pm
+    for i in range(2 * n):
+        for j in range(i + 1, 2 * n):
+            close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
+            if not close.any():
+                continue
+            rows = np.flatnonzero(close)
+            pm = 0.5 * (p[rows, i] + p[rows, j])
+            A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
+            _, _, vh = np.linalg.svd(A)
+            basis = np.conj(vh[:, -2:, :]).transpose(0, 2, 1)          # (r, 2n, 2)
+            V[rows, :, i], V[rows, :, j] = basis[..., 0], basis[..., 1]
+            p[rows, i] = p[rows, j] = pm
