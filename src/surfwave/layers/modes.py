@@ -102,8 +102,9 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
     the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
-    halve the bracket nor make a small secant step), falls back to bisection. The iteration runs in t = sqrt(1 - c^2 / c_lim^2), in
-    which det Z is smooth up to the limit (in c it has a square-root branch point there).
+    halve the bracket nor make a small secant step), falls back to bisection. The iteration runs
+    in t = sqrt(1 - c^2 / c_lim^2), in which det Z is smooth up to the limit (in c it has a
+    square-root branch point there).
     """
     def to_t(c):
         return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
