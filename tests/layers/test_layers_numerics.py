@@ -97,3 +97,21 @@ def test_dielectric_gap_under_an_electrode():
     free = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[1e-7])
     assert met["c"][0, 0] == pytest.approx(m["c_metallized"], rel=1e-6)
     assert free["c"][0, 0] == pytest.approx(m["c_free"], rel=1e-6)
+
+
+def test_film_compressed_toward_and_beyond_buckling():
+    """Fused silica (shear modulus 73/2.34 = 31.2 GPa) under equibiaxial compression: at -30 GPa the stack
+    still has its modes and the slowest one at kh = 5 is far below the unstressed one (the film's shear
+    stiffness A_1212 = mu + sigma nearly vanishes); at -40 GPa the film's stressed state is unstable (a bulk
+    wave with rho v^2 < 0, surfwave.solvers.long_wave): no modes, NaN rows and the reason, no warning."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        near = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "stress": -30.0}], kh=[5.0])
+        free = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[5.0])
+        beyond = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "stress": -40.0}], kh=[1.0, 5.0])
+    assert np.isfinite(near["c"][0]).sum() >= 3
+    assert near["c"][0, 0] < 0.5 * free["c"][0, 0]
+    assert beyond["c"].shape == (2, 0)
+    assert all("unstable under its prestress" in s for s in beyond["reason"])

@@ -37,9 +37,12 @@ def _frequencies(frequency) -> np.ndarray:
 
 def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies)."""
-    from surfwave.layers.solve import MAX_KH, REASON_NONE, _merge, assemble
+    from surfwave.layers.solve import MAX_KH, REASON_NONE, _empty, _merge, assemble, unstable_reason
 
     f = _frequencies(frequency)
+    why = unstable_reason(stack)
+    if why:
+        return _empty(f, np.nan, why)
     H = stack.total_thickness
     if H == 0:
         out = assemble(stack, np.zeros(f.size), electrical, leaky)

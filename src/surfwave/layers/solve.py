@@ -163,8 +163,40 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     return cast(LayeredResult, assemble(stack, _kh_values(kh), electrical, bool(leaky)))
 
 
+def unstable_reason(stack: Stack) -> str:
+    """Why the prestressed stack has no modes ("" when every layer is stable).
+
+    A layer is unstable when some bulk wave has rho v^2 <= 0 under its prestress (the acoustic
+    tensor (C_ijkl + sigma_jl delta_ik) n_j n_l not positive definite for some direction n:
+    :func:`surfwave.solvers.long_wave.long_wave_stable`), e.g. a film compressed beyond its
+    shear modulus.
+    """
+    from surfwave.solvers.long_wave import long_wave_stable
+
+    layers = [*stack.films, stack.substrate]
+    sig = np.stack([lay.sigma for lay in layers]) / 1e9
+    C = np.stack([lay.A for lay in layers]) / 1e9 - np.einsum("sjl,ik->sijkl", sig, np.eye(3))
+    ok = long_wave_stable(C, sig)
+    bad = [("substrate" if i == len(layers) - 1 else f"film {i} (from the top)") for i in np.flatnonzero(~ok)]
+    if not bad:
+        return ""
+    return (f"no modes: {', '.join(bad)} unstable under its prestress (a bulk wave has rho v^2 <= 0 for some "
+            "direction: the stressed state buckles)")
+
+
+def _empty(kh: np.ndarray, c_limit: float, reason: str) -> dict:
+    shape = (kh.size, 0)
+    nan = np.full(shape, np.nan)
+    return {"c": nan, "mode": np.full(shape, "", dtype=object), "group_velocity": nan.copy(), "K2": nan.copy(),
+            "c_limit": c_limit, "attenuation": nan.copy(), "kh": nan.copy(), "frequency": nan.copy(),
+            "reason": np.full(kh.size, reason, dtype=object)}
+
+
 def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict:
-    """The result record for a resolved stack at kh (n,)."""
+    """The result record for a resolved stack at kh (n,) (all NaN with the reason if a layer is unstable)."""
+    why = unstable_reason(stack)
+    if why:
+        return _empty(kh, np.nan, why)
     sol = solve_stack(stack, kh, electrical)
     fams, cs, vgs = sol["families"], sol["c"], sol["group_velocity"]
     k2s = [np.full(c.shape, np.nan) for c in cs]
