@@ -100,18 +100,24 @@ def test_dielectric_gap_under_an_electrode():
 
 
 def test_film_compressed_toward_and_beyond_buckling():
-    """Fused silica (shear modulus 73/2.34 = 31.2 GPa) under equibiaxial compression: at -30 GPa the stack
-    still has its modes and the slowest one at kh = 5 is far below the unstressed one (the film's shear
-    stiffness A_1212 = mu + sigma nearly vanishes); at -40 GPa the film's stressed state is unstable (a bulk
-    wave with rho v^2 < 0, surfwave.solvers.long_wave): no modes, NaN rows and the reason, no warning."""
+    """Fused silica (database: shear modulus 73/2.34 = 31.2 GPa) under equibiaxial compression.
+    -25 GPa: every mode is still there, the Rayleigh mode at kh = 5 far below the unstressed one (the
+    film's shear stiffness A_1212 = mu + sigma is small). -30 GPa: at kh = 0.1 the substrate still holds
+    the thin film, at kh = 5 the stack has a mode with omega^2 < 0 (surface buckling sets in before the
+    bulk instability): that row is empty with the reason. -40 GPa: the film's stressed state itself is
+    unstable (a bulk wave with rho v^2 < 0, surfwave.solvers.long_wave): every row empty. No warnings."""
     import warnings
 
+    film = {"name": "SiO2", "thickness": 1e-6}
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        near = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "stress": -30.0}], kh=[5.0])
-        free = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[5.0])
-        beyond = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "stress": -40.0}], kh=[1.0, 5.0])
-    assert np.isfinite(near["c"][0]).sum() >= 3
-    assert near["c"][0, 0] < 0.5 * free["c"][0, 0]
+        free = surfwave.layered("Si", [film], kh=[5.0])
+        near = surfwave.layered("Si", [{**film, "stress": -25.0}], kh=[5.0])
+        wrinkled = surfwave.layered("Si", [{**film, "stress": -30.0}], kh=[0.1, 5.0])
+        beyond = surfwave.layered("Si", [{**film, "stress": -40.0}], kh=[1.0, 5.0])
+    assert (near["mode"][0] != "").sum() >= (free["mode"][0] != "").sum()   # a slower film holds more modes
+    assert near["mode"][0, 0] == "R" and near["c"][0, 0] < 0.3 * free["c"][0, 0]
+    assert np.isfinite(wrinkled["c"][0]).any() and wrinkled["reason"][0] == ""
+    assert not np.isfinite(wrinkled["c"][1]).any() and "surface buckling" in wrinkled["reason"][1]
     assert beyond["c"].shape == (2, 0)
     assert all("unstable under its prestress" in s for s in beyond["reason"])

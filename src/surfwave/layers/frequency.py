@@ -53,7 +53,7 @@ def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bo
     b = scaled_blocks(stack)
     fams = families(b)
     wH = 2 * np.pi * f * H
-    c_floor = 2.5 * lowest_speed(b)
+    c_floor = 10.0 * lowest_speed(b)
     kh_top = min(float(wH.max()) / c_floor * 1.05, MAX_KH)
     if kh_top > MAX_KH * 0.999:
         raise InputError(f"frequency {f.max():.4g} Hz gives kh up to {float(wH.max()) / c_floor:.4g}, beyond "

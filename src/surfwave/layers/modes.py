@@ -45,10 +45,14 @@ def label(prefix: str, j: int) -> str:
 
 
 def lowest_speed(b: Blocks) -> float:
-    """A speed below every guided mode: 0.2 x the lowest limiting speed of any layer as a half-space, m/s."""
+    """The floor of the search: 0.05 x the lowest limiting speed of any layer as a half-space, m/s.
+
+    Guided modes lie above it unless a compressed layer is close to surface buckling (its Rayleigh
+    speed falls to zero there); a mode below the floor counts as buckled (:func:`floor_unstable`).
+    """
     Q, R, T = b.Q[:, :3, :3], b.R[:, :3, :3], b.T[:, :3, :3]
     XL = elastic_limiting_x(Q, R, T)[0]
-    return float(0.2 * np.sqrt(np.min(XL * b.sA / b.rho)))
+    return float(0.05 * np.sqrt(np.min(XL * b.sA / b.rho)))
 
 
 def film_bulk_speeds(b: Blocks) -> np.ndarray:
@@ -81,12 +85,12 @@ def film_x1_speeds(b: Blocks) -> np.ndarray:
 
 
 def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) -> np.ndarray:
-    """Ascending speeds in (c_lo, c_lim): uniform in t = sqrt(1 - c^2/c_lim^2), a geometric tail toward
-    c_lim, and above each film bulk speed v in ``bulk`` the points v sqrt(1 + q^2) with q spaced by
+    """Ascending speeds in (c_lo, c_lim): uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform
+    in c (n / 2 points: slow films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points v sqrt(1 + q^2) with q spaced by
     pi / (6 kh_max) (modes crowd there at large kh)."""
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
-    parts = [c_lim * np.sqrt(1.0 - t * t)]
+    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
     if kh_max > 1.0:
         for v in bulk:
             if c_lo < v < c_lim:
@@ -176,6 +180,28 @@ def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: 
     return grid, D, neg
 
 
+def floor_unstable(b: Blocks, fam: Family, kh, electrical: str = "free") -> np.ndarray:
+    """True per kh (k,) where the boundary matrix has a negative eigenvalue at the floor speed of the search.
+
+    The impedance of a stable stack is positive definite at low speed (but for the potential's
+    negative block on a free piezoelectric top, :func:`_electric`); another negative eigenvalue there
+    means a mode with omega^2 < 0 (e.g. the surface buckling of a strongly compressed film, which
+    sets in before its bulk instability) or, in principle, a mode slower than the floor
+    (:func:`lowest_speed`). :func:`family_modes` reports no mode in such rows.
+    """
+    kh = np.atleast_1d(np.asarray(kh, dtype=float))
+    c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+    c0 = min(lowest_speed(b), 0.5 * c_lim)
+    w = boundary_eigenvalues(b, fam, np.array([c0]), kh[None, :], electrical)[0]
+    return (w < 0).sum(axis=-1) > _electric(fam, electrical)
+
+
+def _electric(fam: Family, electrical: str) -> int:
+    """Negative eigenvalues of a stable stack's boundary matrix at low speed: the potential's (its block
+    of the generalised impedance is negative definite, E_3j3l = -eps), when it is kept (free top)."""
+    return int(fam.phi is not None and electrical == "free")
+
+
 def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid: int | None = None) -> np.ndarray:
     """Speeds of every guided mode of one family below its limiting speed, for each kh.
 
@@ -207,11 +233,15 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
     grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
     grid, D, neg = _scan(b, fam, grid, kh, electrical)
+    # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
+    # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
+    D[:, neg[0] > _electric(fam, electrical)] = np.nan
     # a mode: the count of negative eigenvalues rises by one (a pole: it falls); two modes in one
     # cell (near-degenerate) are split by bisecting the cell until each holds one
     step = neg[1:] - neg[:-1]
     fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
-    ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
+    with np.errstate(invalid="ignore"):
+        ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
     if ic.size == 0:
         return np.full((kh.size, 0), np.nan)
     roots = _refine(b, fam, grid[ic], grid[ic + 1], D[ic, ik], D[ic + 1, ik], kh[ik], electrical, c_lim)

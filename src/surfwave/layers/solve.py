@@ -15,7 +15,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
-from surfwave.layers.modes import family_modes, label
+from surfwave.layers.modes import family_modes, floor_unstable, label
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
@@ -25,6 +25,8 @@ __all__ = ["MAX_KH", "layered", "solve_stack"]
 #: Largest kh accepted (the speed grid grows with kh; beyond this the film is a half-space).
 MAX_KH = 1000.0
 REASON_NONE = "no guided mode below the substrate's limiting speed at this kh"
+REASON_BUCKLED = ("no modes: the prestressed stack is unstable at this kh (surface buckling: its impedance has a "
+                  "negative eigenvalue at low speed, i.e. a mode with omega^2 < 0)")
 
 
 def _kh_values(kh) -> np.ndarray:
@@ -224,5 +226,14 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict
     khm = np.broadcast_to(kh[:, None], C.shape).copy()
     freq = C * khm / (2 * np.pi * H) if H > 0 else np.full(C.shape, np.nan)
     reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
+    buckled = np.zeros(kh.size, dtype=bool)
+    for fam in fams:
+        buckled |= floor_unstable(sol["blocks"], fam, kh, electrical)
+    if buckled.any():
+        C[buckled] = np.nan
+        for arr in (vg, K2, A):
+            arr[buckled] = np.nan
+        labels[buckled] = ""
+        reason[buckled] = REASON_BUCKLED
     return {"c": C, "mode": labels, "group_velocity": vg, "K2": K2, "c_limit": sol["c_limit"],
             "attenuation": A, "kh": khm, "frequency": freq, "reason": reason}
