@@ -85,9 +85,12 @@ def film_x1_speeds(b: Blocks) -> np.ndarray:
 
 
 def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) -> np.ndarray:
-    """Ascending speeds in (c_lo, c_lim): uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform
-    in c (n / 2 points: slow films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points v sqrt(1 + q^2) with q spaced by
-    pi / (6 kh_max) (modes crowd there at large kh)."""
+    """Ascending speeds in (c_lo, c_lim).
+
+    Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
+    films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
+    v sqrt(1 + q^2) with q spaced by pi / (6 kh_max) (modes crowd there at large kh).
+    """
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
     parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
