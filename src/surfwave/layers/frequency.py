@@ -72,9 +72,11 @@ def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bo
             inside = (wH >= w[ok].min()) & (wH <= w[ok].max())
             kh = np.where(inside, np.interp(wH, w[ok], grid[ok]), np.nan)
             rows = np.flatnonzero(inside)
-            c = np.full(rows.size, np.nan)
-            v = np.full(rows.size, np.nan)
             for _ in range(NEWTON):
+                live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
+                kh[rows[~live]] = np.nan
+                C[rows[~live], j] = np.nan
+                rows = rows[live]
                 if rows.size == 0:
                     break
                 allc = family_modes(b, fam, kh[rows], electrical=electrical)
@@ -83,11 +85,11 @@ def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bo
                 v = np.full(rows.size, np.nan)
                 if good.any():
                     v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical)["group_velocity"]
+                C[rows, j], V[rows, j] = c, v
                 step = (c * kh[rows] - wH[rows]) / v
                 kh[rows] = np.where(good, kh[rows] - step, np.nan)
                 if np.all(np.abs(step[good]) <= 1e-13 * np.maximum(kh[rows][good], 1e-300)):
                     break
-            C[rows, j], V[rows, j] = c, v
         cs.append(C)
         vgs.append(V)
     Cm, labels, (vg, khm) = _merge(fams, cs, [vgs, [wH[:, None] / c for c in cs]])

@@ -224,6 +224,8 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
         Ascending speeds (m/s) per kh, NaN-padded; column j is the family's j-th slowest mode.
     """
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
+    if not np.all(np.isfinite(kh)):
+        raise ValueError("family_modes needs finite kh")
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
