@@ -504,7 +504,8 @@ def main(argv: list[str] | None = None) -> int:
     _check_options(parser, argv)
     args = parser.parse_args(argv)
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
-               "scenes": _cmd_scenes, "cache": _cmd_cache, "layered": cli_layered.run}[args.command]
+               "scenes": _cmd_scenes, "cache": _cmd_cache, "layered": cli_layered.run,
+               "layered-fit": cli_layered.run_fit}[args.command]
     try:
         return handler(args)
     except SurfwaveError as exc:

@@ -76,12 +76,46 @@ def _set(films: list, i: int, key: str, value: float) -> None:
         f[key] = value
 
 
+def _explicit(film: Mapping) -> dict:
+    """A film given by name as explicit constants: {E, nu, rho} if isotropic, else {voigt, rho} (+ the rest)."""
+    from surfwave.layers.films import lookup
+
+    f = dict(film)
+    name = f.pop("name", None) or f.pop("material", None)
+    if name is None:
+        return f
+    rec = lookup(str(name))
+    if rec.get("e") is not None:
+        raise InputError(f"fitting a piezoelectric film ({name}) is not supported; give it by constants")
+    C = np.asarray(rec["voigt"], dtype=float)
+    lam, mu = C[0, 1], C[3, 3]
+    iso = np.allclose(C, _iso(lam, mu), rtol=1e-9, atol=1e-9 * np.abs(C).max())
+    if iso:
+        f.update(E=float(mu * (3 * lam + 2 * mu) / (lam + mu)), nu=float(lam / (2 * (lam + mu))))
+    else:
+        f["voigt"] = C
+    f.setdefault("rho", rec["rho"])
+    if rec.get("eps_r") is not None:
+        f.setdefault("permittivity", np.asarray(rec["eps_r"]))
+    return f
+
+
+def _iso(lam: float, mu: float) -> np.ndarray:
+    C = np.zeros((6, 6))
+    C[:3, :3] = lam
+    C[[0, 1, 2], [0, 1, 2]] = lam + 2 * mu
+    C[[3, 4, 5], [3, 4, 5]] = mu
+    return C
+
+
 class _Model:
     """Speeds of one mode at the data points as a function of the parameter vector."""
 
     def __init__(self, substrate, films, names, mode, kw, kh=None, frequency=None) -> None:
-        self.substrate, self.films0, self.mode, self.kw = substrate, films, mode, kw
         self.keys = [_parse(n) for n in names]
+        fitted = {i for i, _ in self.keys}
+        films = [_explicit(f) if k in fitted else f for k, f in enumerate(films)]
+        self.substrate, self.films0, self.mode, self.kw = substrate, films, mode, kw
         for i, _ in self.keys:
             if not 0 <= i < len(films):
                 raise InputError(f"film index {i} out of range (there are {len(films)} films)")
