@@ -54,7 +54,7 @@ def test_fit_subcommand_reads_a_csv(tmp_path, capsys):
     kh = np.linspace(0.5, 5.0, 6)
     c = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], kh=kh)["c"][:, 0]
     path = tmp_path / "points.csv"
-    path.write_text("kh,c\n" + "".join(f"{k!r},{v!r}\n" for k, v in zip(kh, c)))
+    path.write_text("kh,c\n" + "".join(f"{float(k)!r},{float(v)!r}\n" for k, v in zip(kh, c)))
     assert main(["layered-fit", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(path),
                  "--fit", "E", "nu", "--json"]) == 0
     r = json.loads(capsys.readouterr().out)
