@@ -89,7 +89,7 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
 
     Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
     films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
-    v sqrt(1 + q^2) with q spaced by pi / (6 kh_max) (modes crowd there at large kh).
+    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) (modes and poles crowd there at large kh).
     """
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
@@ -98,7 +98,7 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
         for v in bulk:
             if c_lo < v < c_lim:
                 q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
-                q = np.arange(1e-4, q_max, np.pi / (6.0 * kh_max))[:4000]
+                q = np.arange(1e-4, q_max, np.pi / (16.0 * kh_max))[:4000]
                 parts.append(v * np.sqrt(1.0 + q * q))
     g = np.unique(np.concatenate(parts))
     return g[(g > c_lo) & (g < c_lim)]
@@ -261,3 +261,4 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     col = np.arange(ik.size) - start[ik]
     out[ik, col] = roots
     return out
+
