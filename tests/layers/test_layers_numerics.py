@@ -121,3 +121,21 @@ def test_film_compressed_toward_and_beyond_buckling():
     assert not np.isfinite(wrinkled["c"][1]).any() and "surface buckling" in wrinkled["reason"][1]
     assert beyond["c"].shape == (2, 0)
     assert all("unstable under its prestress" in s for s in beyond["reason"])
+
+
+def test_equibiaxial_film_stress_is_the_existing_biaxial_loading():
+    """A Si film on Si (001)[110] (film Euler angles turning its axes onto the substrate's) under a scalar
+    stress of 0.3 GPa: at kh = 60 the first mode is the Si (001)[110] half-space under the existing
+    equibiaxial loading (stressed_wave.stress_tensor('biaxial'), material()'s fixed-constants route)."""
+    from surfwave.real_crystals.materials import get_material
+    from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
+    from surfwave.real_crystals.stressed_wave import surface_wave as stressed_surface_wave
+    from surfwave.solvers.orientation import lab_axes
+
+    R = lab_axes("(001)", "[110]")
+    ref = stressed_surface_wave(Constants.from_material(get_material("Si")), R, stress_tensor("biaxial", 0.3, R))
+    # SAW Euler angles (45, 180, 0): x1 = [110], outward normal -[001] -> our inward x2 = [001], as lab_axes
+    film = {"name": "Si", "thickness": 1e-6, "euler": (45.0, 180.0, 0.0), "stress": 0.3}
+    r = surfwave.layered("Si", [film], direction="[110]", kh=[60.0])
+    j = list(r["mode"][0]).index("R")
+    assert r["c"][0, j] == pytest.approx(float(ref["c_R"]), rel=1e-9)
