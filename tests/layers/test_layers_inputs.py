@@ -76,3 +76,15 @@ def test_polycrystal_hill_average_is_between_bounds():
     gr = 5 * (c11 - c12) * c44 / (4 * c44 + 3 * (c11 - c12))
     assert min(gv, gr) < G < max(gv, gr)
     assert C[0, 0] - C[0, 1] == pytest.approx(2 * G)
+
+
+def test_stress_frames():
+    """A scalar film stress s is equibiaxial in the surface plane: sigma = diag(s, 0, s) GPa in the solver's
+    lab frame (x2 = inward normal carries none); a SAW-frame tensor (x3' outward) maps as x2 = -x3', x3 = x2'."""
+    from surfwave.layers.stack import resolve_stack
+
+    f = resolve_stack("Si", [{**SIO2, "thickness": 1e-6, "stress": -0.4}]).films[0]
+    np.testing.assert_allclose(f.sigma, np.diag([-0.4, 0.0, -0.4]) * 1e9)
+    s = np.array([[0.1, 0.2, 0.0], [0.2, 0.3, 0.0], [0.0, 0.0, 0.0]])
+    g = resolve_stack("Si", [{**SIO2, "thickness": 1e-6, "stress": s}]).films[0]
+    np.testing.assert_allclose(g.sigma, np.array([[0.1, 0, 0.2], [0, 0, 0], [0.2, 0, 0.3]]) * 1e9)
