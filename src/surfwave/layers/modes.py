@@ -89,12 +89,13 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
 
     Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
     films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
-    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) (modes and poles crowd there at large kh).
+    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) when kh_max > 8 (modes and poles crowd there at
+    large kh; below, the other two parts resolve them).
     """
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
     parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
-    if kh_max > 1.0:
+    if kh_max > 8.0:
         for v in bulk:
             if c_lo < v < c_lim:
                 q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
