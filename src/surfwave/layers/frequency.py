@@ -2,8 +2,9 @@
 
 At a fixed frequency f the modes of a stack of total film thickness H have different
 wavenumbers. For each family and mode index j the dispersion curve is first computed on a kh grid
-(:func:`surfwave.layers.modes.family_modes`), omega(kh) H = c_j(kh) kh is interpolated to give a
-start, and Newton's method on g(kh) = c_j(kh) kh - 2 pi f H with the exact slope
+(:func:`surfwave.layers.modes.family_modes`) with its group velocity; omega(kh) H = c_j(kh) kh
+(monotone, slope v_g) is inverted by cubic Hermite interpolation to give a start (kh = omega H /
+c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on g(kh) = c_j(kh) kh - 2 pi f H with the exact slope
 dg/dkh = v_g (the group velocity, :func:`surfwave.layers.fields.mode_fields`) polishes it;
 every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh measures the error.
 """
@@ -35,6 +36,22 @@ def _frequencies(frequency) -> np.ndarray:
     return f
 
 
+def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """kh at omega H = target on the curve (w ascending, kh) with dw/dkh = slope: cubic Hermite in w; NaN outside."""
+    out = np.full(target.size, np.nan)
+    i = np.searchsorted(w, target, side="right") - 1
+    inside = (i >= 0) & (i < w.size - 1)
+    exact = target == w[-1]
+    i = i[inside]
+    h = w[i + 1] - w[i]
+    s = (target[inside] - w[i]) / h
+    d0, d1 = h / slope[i], h / slope[i + 1]
+    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+    out[inside] = h00 * kh[i] + h10 * d0 + h01 * kh[i + 1] + h11 * d1
+    out[exact] = kh[-1]
+    return out
+
+
 def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies)."""
     from surfwave.layers.solve import MAX_KH, REASON_NONE, _empty, _merge, assemble, unstable_reason
@@ -64,14 +81,19 @@ def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bo
         cg = family_modes(b, fam, grid, electrical=electrical)           # (GRID, n_f)
         C = np.full((f.size, cg.shape[1]), np.nan)
         V = np.full(C.shape, np.nan)
+        c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
         for j in range(cg.shape[1]):
-            w = cg[:, j] * grid                                          # omega H along the curve
-            ok = np.isfinite(w)
-            if ok.sum() < 2:
+            ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
+            if ok.size < 2:
                 continue
-            inside = (wH >= w[ok].min()) & (wH <= w[ok].max())
-            kh = np.where(inside, np.interp(wH, w[ok], grid[ok]), np.nan)
-            rows = np.flatnonzero(inside)
+            vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical)["group_velocity"]
+            w = cg[ok, j] * grid[ok]                                     # omega H along the curve
+            kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
+            # between the last grid point without the mode and the first with it: the cut-off is
+            # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
+            below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
+            kh[below] = wH[below] / c_lim
+            rows = np.flatnonzero(np.isfinite(kh))
             for _ in range(NEWTON):
                 live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
                 kh[rows[~live]] = np.nan
@@ -88,7 +110,7 @@ def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bo
                 C[rows, j], V[rows, j] = c, v
                 step = (c * kh[rows] - wH[rows]) / v
                 kh[rows] = np.where(good, kh[rows] - step, np.nan)
-                if np.all(np.abs(step[good]) <= 1e-13 * np.maximum(kh[rows][good], 1e-300)):
+                if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
                     break
         cs.append(C)
         vgs.append(V)
