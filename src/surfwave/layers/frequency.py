@@ -4,8 +4,9 @@ At a fixed frequency f the modes of a stack of total film thickness H have diffe
 wavenumbers. For each family and mode index j the dispersion curve is first computed on a kh grid
 (:func:`surfwave.layers.modes.family_modes`) with its group velocity; omega(kh) H = c_j(kh) kh
 (monotone, slope v_g) is inverted by cubic Hermite interpolation to give a start (kh = omega H /
-c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on g(kh) = c_j(kh) kh - 2 pi f H with the exact slope
-dg/dkh = v_g (the group velocity, :func:`surfwave.layers.fields.mode_fields`) polishes it;
+c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on
+g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g (the group velocity,
+:func:`surfwave.layers.fields.mode_fields`) polishes it;
 every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh measures the error.
 """
 from __future__ import annotations
