@@ -139,3 +139,13 @@ def test_equibiaxial_film_stress_is_the_existing_biaxial_loading():
     r = surfwave.layered("Si", [film], direction="[110]", kh=[60.0])
     j = list(r["mode"][0]).index("R")
     assert r["c"][0, j] == pytest.approx(float(ref["c_R"]), rel=1e-9)
+
+
+def test_k2_at_frequency_input():
+    """SiO2 on 128Y-X LiNbO3 at 1 GHz: K^2 at a given frequency (free and metallized speeds at the same f)
+    is positive and within 5 % of K^2 at the same kh (the two differ by the film's dispersion only)."""
+    film = [{"name": "SiO2", "thickness": 5e-7}]
+    r = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), frequency=[1e9])
+    rk = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[r["kh"][0, 0]])
+    assert r["c"][0, 0] == pytest.approx(rk["c"][0, 0], rel=1e-10)
+    assert 0 < r["K2"][0, 0] == pytest.approx(rk["K2"][0, 0], rel=0.05)
