@@ -193,7 +193,8 @@ class LayeredResult(TypedDict):
     group_velocity : ndarray, shape (n, n_modes)
         d omega / dk, m/s (NaN for leaky modes).
     K2 : ndarray, shape (n, n_modes)
-        2 (c_free - c_metallized) / c_free of piezoelectric stacks (1); NaN for elastic stacks.
+        2 (c_free - c_metallized) / c_free of piezoelectric stacks (1), the two speeds of the same mode
+        label at the same kh (at the same frequency with ``frequency`` input); NaN for elastic stacks.
     c_limit : float
         Limiting speed of the substrate (the slowest bulk wave's trace speed along x1), m/s.
     attenuation : ndarray, shape (n, n_modes)
