@@ -228,6 +228,12 @@ def _degenerate_pairs(N: np.ndarray, p: np.ndarray, V: np.ndarray, n: int) -> No
             close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
             if not close.any():
                 continue
+            vi, vj = V[:, :, i], V[:, :, j]
+            cos = np.abs(np.einsum("mk,mk->m", np.conj(vi), vj)) / (np.linalg.norm(vi, axis=-1)
+                                                                   * np.linalg.norm(vj, axis=-1))
+            close &= cos > 0.5                      # a well-conditioned pair is kept as LAPACK gave it
+            if not close.any():
+                continue
             rows = np.flatnonzero(close)
             pm = 0.5 * (p[rows, i] + p[rows, j])
             A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
