@@ -161,3 +161,19 @@ def test_group_velocity_against_finite_differences():
     for j in range(r["c"].shape[1]):
         fd = r["c"][1, j] + kh * (r["c"][2, j] - r["c"][0, j]) / (2 * h)
         assert r["group_velocity"][1, j] == pytest.approx(fd, rel=1e-6)
+
+
+def test_near_mirror_finds_every_mode_next_to_a_pole():
+    """0.2 deg off Si (001)[100] every family couples and the modes of the mirror stack stay within 1e-4;
+    at kh = 5.12 the S2-like mode (5476.5 m/s) lies 2.5 m/s from a pole of the impedance (a mode of the
+    clamped-top stack) and must still be found, alone at one kh and along a kh sweep (reference: the
+    decoupled [100] stack, where the two families' poles and zeros do not mix)."""
+    film = [{"name": "SiO2", "thickness": 1e-6}]
+    kh = np.linspace(4.8, 6.0, 31)
+    for k in ([5.12], kh):
+        a = surfwave.layered("Si", film, direction="[100]", kh=k)
+        b = surfwave.layered("Si", film, direction=0.2, kh=k)
+        for ra, rb in zip(a["c"], b["c"]):
+            x, y = np.sort(ra[ra < a["c_limit"]]), np.sort(rb[rb < b["c_limit"]])
+            assert x.size == y.size
+            np.testing.assert_allclose(y, x, rtol=1e-4)

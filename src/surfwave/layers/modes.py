@@ -33,6 +33,11 @@ MAX_ITER = 200
 #: Points of the speed grid per unit of kh (on top of :data:`BASE_GRID`): thick films hold many modes.
 GRID_PER_KH = 8
 BASE_GRID = 60
+#: A grid point whose largest |eigenvalue| of Z exceeds this many times the median over the grid is
+#: next to a pole: its cells are bisected (a mode there could share a cell with the pole and cancel).
+POLE_FACTOR = 20.0
+#: Bisections of a cell next to a pole (toward the pole).
+POLE_SPLIT = 4
 #: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
 T_MIN = 1e-7
 
@@ -163,10 +168,12 @@ def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
 
 def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str, rounds: int = 6):
     """det Z and the number of negative eigenvalues on the grid (n_c, k); cells whose count rises by
-    more than one, or by one with det of the wrong sign pattern, are bisected (``rounds`` times)."""
+    more than one, or by one with det of the wrong sign pattern, or that touch a pole (an eigenvalue
+    :data:`POLE_FACTOR` times the median size), are bisected (``rounds`` times)."""
     w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
     D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
     D[~np.isfinite(w).all(axis=-1)] = np.nan
+    amax = np.abs(w).max(axis=-1)
     for _ in range(rounds):
         step = neg[1:] - neg[:-1]
         odd = (np.abs(step) > 1) | ((np.abs(step) == 1) & ~(D[:-1] * D[1:] < 0)) | \
@@ -178,10 +185,65 @@ def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: 
         wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
         Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
         Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
+        amax = np.insert(amax, cells + 1, np.abs(wm).max(axis=-1), axis=0)
         grid = np.insert(grid, cells + 1, mid)
         D = np.insert(D, cells + 1, Dm, axis=0)
         neg = np.insert(neg, cells + 1, nm, axis=0)
-    return grid, D, neg
+    return grid, D, neg, amax
+
+
+def _near_poles(b: Blocks, fam: Family, grid, D, neg, amax, kh, electrical: str, skip) -> tuple:
+    """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
+
+    Cells without a net count change that touch a grid point where an eigenvalue of Z is
+    :data:`POLE_FACTOR` times its median size (next to a pole) are bisected per (cell, kh) pair,
+    always keeping the half on the pole's side, :data:`POLE_SPLIT` times; a half whose count rises
+    by one with a sign change of det Z is a bracket.
+
+    Returns
+    -------
+    lo, hi, flo, fhi : ndarray, shape (r,)
+        Bracket ends (m/s) and det Z there.
+    ik : ndarray of int, shape (r,)
+        The kh index of each bracket.
+    """
+    with np.errstate(invalid="ignore"):
+        big_at = POLE_FACTOR * np.nanmedian(amax, axis=0)                 # (k,)
+    step = neg[1:] - neg[:-1]
+    # a large eigenvalue at a cell's end that a pole in the neighbouring cell explains (the count
+    # falls there) does not flag the cell
+    pole = step < 0
+    prev_pole = np.vstack([np.zeros((1, step.shape[1]), dtype=bool), pole[:-1]])
+    next_pole = np.vstack([pole[1:], np.zeros((1, step.shape[1]), dtype=bool)])
+    near = (((amax[:-1] > big_at) & ~prev_pole) | ((amax[1:] > big_at) & ~next_pole)) & (step == 0) \
+        & ~skip[:, None]
+    ic, ik = np.nonzero(near)
+    lo, hi = grid[ic], grid[ic + 1]
+    Dl, Dh, nl, nh = D[ic, ik], D[ic + 1, ik], neg[ic, ik], neg[ic + 1, ik]
+    al, ah = amax[ic, ik], amax[ic + 1, ik]
+    found: list[tuple] = []
+    for _ in range(POLE_SPLIT):
+        if ik.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        w = boundary_eigenvalues(b, fam, mid, kh[ik, None], electrical)[:, 0]
+        Dm, nm, am = np.prod(w, axis=-1), (w < 0).sum(axis=-1), np.abs(w).max(axis=-1)
+        with np.errstate(invalid="ignore"):
+            left = (nm - nl == 1) & (Dl * Dm < 0)
+            right = (nh - nm == 1) & (Dm * Dh < 0)
+        found.append((np.r_[lo[left], mid[right]], np.r_[mid[left], hi[right]], np.r_[Dl[left], Dm[right]],
+                      np.r_[Dm[left], Dh[right]], np.r_[ik[left], ik[right]]))
+        go_left = al >= ah                                                   # the pole's side
+        keep = ~(left | right) & np.isfinite(Dm)
+        lo, hi = np.where(go_left, lo, mid), np.where(go_left, mid, hi)
+        Dl, Dh = np.where(go_left, Dl, Dm), np.where(go_left, Dm, Dh)
+        nl, nh = np.where(go_left, nl, nm), np.where(go_left, nm, nh)
+        al, ah = np.where(go_left, al, am), np.where(go_left, am, ah)
+        lo, hi, Dl, Dh, nl, nh, al, ah, ik = (v[keep] for v in (lo, hi, Dl, Dh, nl, nh, al, ah, ik))
+    if not found:
+        empty = np.zeros(0)
+        return empty, empty, empty, empty, np.zeros(0, dtype=int)
+    return tuple(np.concatenate([f[i] for f in found]) for i in range(5))
 
 
 def floor_unstable(b: Blocks, fam: Family, kh, electrical: str = "free") -> np.ndarray:
@@ -227,6 +289,29 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
     if not np.all(np.isfinite(kh)):
         raise ValueError("family_modes needs finite kh")
+    out = _family_scan(b, fam, kh, electrical, n_grid)
+    # a mode and a pole of Z in one grid cell cancel in the count: where a kh holds fewer modes
+    # than kh on both sides of it (modes are continuous in kh and enter only at the top), rescan it
+    # on a grid four times finer
+    n = np.isfinite(out).sum(axis=1)
+    order = np.argsort(kh, kind="stable")
+    ns = n[order]
+    left = np.maximum.accumulate(ns)
+    right = np.maximum.accumulate(ns[::-1])[::-1]
+    dip = order[(ns < np.minimum(left, right))]
+    if dip.size:
+        n0 = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
+        fine = _family_scan(b, fam, kh[dip], electrical, 4 * n0)
+        if fine.shape[1] > out.shape[1]:
+            out = np.pad(out, ((0, 0), (0, fine.shape[1] - out.shape[1])), constant_values=np.nan)
+        better = np.isfinite(fine).sum(axis=1) > n[dip]
+        out[dip[better]] = np.nan
+        out[dip[better], :fine.shape[1]] = fine[better]
+    return out
+
+
+def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str, n_grid: int | None) -> np.ndarray:
+    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh)."""
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
@@ -238,7 +323,7 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     v_x1 = v_x1[(v_x1 > grid[0]) & (v_x1 < grid[-1])]
     near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
     grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
-    grid, D, neg = _scan(b, fam, grid, kh, electrical)
+    grid, D, neg, amax = _scan(b, fam, grid, kh, electrical)
     # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
     # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
     D[:, neg[0] > _electric(fam, electrical)] = np.nan
@@ -248,9 +333,17 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
     with np.errstate(invalid="ignore"):
         ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
-    if ic.size == 0:
+    plo, phi_, pfl, pfh, pik = _near_poles(b, fam, grid, D, neg, amax, kh, electrical, fenced)
+    unstable_rows = neg[0] > _electric(fam, electrical)
+    keep_p = ~unstable_rows[pik]
+    lo = np.concatenate([grid[ic], plo[keep_p]])
+    hi = np.concatenate([grid[ic + 1], phi_[keep_p]])
+    flo = np.concatenate([D[ic, ik], pfl[keep_p]])
+    fhi = np.concatenate([D[ic + 1, ik], pfh[keep_p]])
+    ik = np.concatenate([ik, pik[keep_p]])
+    if ik.size == 0:
         return np.full((kh.size, 0), np.nan)
-    roots = _refine(b, fam, grid[ic], grid[ic + 1], D[ic, ik], D[ic + 1, ik], kh[ik], electrical, c_lim)
+    roots = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
     ok = _is_mode(b, fam, roots, kh[ik], electrical)
     ik, roots = ik[ok], roots[ok]
     _ = secular  # (the refinement evaluates det Z through :func:`secular`)
