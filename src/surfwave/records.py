@@ -205,6 +205,9 @@ class LayeredResult(TypedDict):
         Frequency of each entry, Hz (NaN without films).
     reason : ndarray of str (object), shape (n,)
         Why a row holds no mode ("" where it holds one).
+    power_flow_angle : ndarray, shape (n, n_modes)
+        Angle of the depth-integrated power flow from x1 toward the in-plane normal x2 of the SAW
+        frame, degrees (0 in a mirror plane; NaN for leaky modes).
     """
 
     c: _Array
@@ -216,3 +219,4 @@ class LayeredResult(TypedDict):
     kh: _Array
     frequency: _Array
     reason: _Array
+    power_flow_angle: _Array

@@ -149,3 +149,15 @@ def test_k2_at_frequency_input():
     rk = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[r["kh"][0, 0]])
     assert r["c"][0, 0] == pytest.approx(rk["c"][0, 0], rel=1e-10)
     assert 0 < r["K2"][0, 0] == pytest.approx(rk["K2"][0, 0], rel=0.05)
+
+
+def test_power_flow_angle():
+    """LiNbO3 (0, 38, 20) with a film of its own cut: the power-flow angle of the stack's mode is the
+    half-space's of material() (solvers.piezo, a Lyapunov-equation flux), 1e-8, at kh = 0 and 1; a mirror
+    stack (Si (001)[100]) has none."""
+    m = surfwave.material("LiNbO3", euler=(0, 38, 20))
+    f = [{"name": "LiNbO3", "euler": (0, 38, 20), "thickness": 1e-6}]
+    r = surfwave.layered("LiNbO3", f, euler=(0, 38, 20), kh=[0.0, 1.0])
+    np.testing.assert_allclose(r["power_flow_angle"][:, 0], m["power_flow_angle"], rtol=1e-8)
+    s = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[2.0])
+    np.testing.assert_allclose(s["power_flow_angle"][np.isfinite(s["c"])], 0.0, atol=1e-9)

@@ -6,7 +6,7 @@ Dimensions: ``film_stress`` (GPa, applied to every film, equibiaxial in the surf
 ``electrical`` ("free", "metallized"), ``kh`` (wavenumber x total film thickness) and ``mode``
 (the labels: "R", "S1", "L0", ..., sorted by their mean speed; an entry is NaN where that mode does
 not exist at that point). Variables: ``c``, ``group_velocity``, ``K2``, ``attenuation``,
-``frequency``; ``c_limit`` (film_stress, electrical); ``reason`` (film_stress, electrical, kh);
+``frequency``, ``power_flow_angle``; ``c_limit`` (film_stress, electrical); ``reason`` (film_stress, electrical, kh);
 ``film_bulk_speed`` (film, sheet): the films' bulk speeds along x1 (unstressed), for figures.
 """
 from __future__ import annotations
@@ -31,6 +31,8 @@ VARIABLES: dict[str, dict[str, str]] = {
     "K2": {"long_name": "electromechanical coupling 2 (c_free - c_metallized) / c_free", "units": "1"},
     "attenuation": {"long_name": "attenuation of a leaky mode per wavelength", "units": "dB"},
     "frequency": {"long_name": "frequency of the mode at this kh", "units": "Hz"},
+    "power_flow_angle": {"long_name": "power-flow angle from x1 toward the in-plane normal (SAW frame x2)",
+                         "units": "degree"},
     "c_limit": {"long_name": "limiting speed of the substrate (slowest bulk wave's trace speed along x1)",
                 "units": "m s-1"},
     "reason": {"long_name": "why a row holds no mode (empty where it holds one)", "units": "1"},
@@ -92,7 +94,8 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
                     labels.setdefault(str(lab), []).append(float(c))
     modes = sorted(labels, key=lambda k: (float(np.mean(labels[k])), k))
     shape = (s.size, len(el), kh.size, len(modes))
-    arrays = {k: np.full(shape, np.nan) for k in ("c", "group_velocity", "K2", "attenuation", "frequency")}
+    arrays = {k: np.full(shape, np.nan) for k in ("c", "group_velocity", "K2", "attenuation", "frequency",
+                                                   "power_flow_angle")}
     c_lim = np.full((s.size, len(el)), np.nan)
     reason = np.full((s.size, len(el), kh.size), "", dtype=object)
     pos = {m: q for q, m in enumerate(modes)}

@@ -64,8 +64,9 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
     Returns
     -------
     dict
-        ``group_velocity`` (m,) m/s; ``a_top`` (m, nf) the surface vector; ``U`` (m, d, nf) complex
-        with ``depth``.
+        ``group_velocity`` (m,) m/s (the energy velocity along x1); ``power_flow_angle`` (m,)
+        degrees, atan2(P3, P1) of the depth-integrated power flow (from x1 toward our x3 = the SAW
+        frame's x2); ``a_top`` (m, nf) the surface vector; ``U`` (m, d, nf) complex with ``depth``.
     """
     c = np.atleast_1d(np.asarray(c, dtype=float))
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
@@ -81,6 +82,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
     ix = np.ix_(fam.idx, fam.idx)
     mech = fam.mech
     num = np.zeros(m)
+    num3 = np.zeros(m)
     den = np.zeros(m)
     if fam.phi is not None and electrical == "free":
         num -= 0.5 * b.eps0 * np.abs(a[:, fam.phi]) ** 2
@@ -91,6 +93,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
     for layer in range(L + 1):
         p, V = r["eigs"][layer]
         Q, R = b.Q[layer][ix], b.R[layer][ix]
+        Q3, R3 = np.asarray(b.Q3)[layer][ix], np.asarray(b.R3)[layer][ix]
         X = b.rho[layer] * c * c / b.sA
         if layer < L:
             Xm, Rr, t = r["Xm"][layer][:, 0], r["Rr"][layer][:, 0], r["t"][layer][:, 0]
@@ -115,6 +118,9 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
         K = np.einsum("mki,mkj->mij", np.conj(Av) * mech[None, :, None], Av)
         gg = np.conj(gam)[:, :, None] * gam[:, None, :]
         num += np.einsum("mij,mij->m", gg, G * I).real
+        S3 = Q3[None, None] + p[:, :, None, None] * R3[None, None]
+        G3 = np.einsum("mki,mkj->mij", np.conj(Av), np.einsum("mjkl,mlj->mkj", S3, Av))
+        num3 += np.einsum("mij,mij->m", gg, G3 * I).real
         den += X * np.einsum("mij,mij->m", gg, K * I).real
         if U is not None:
             zl = depth[None, :] * kh[:, None] - z_top[:, None]            # (m, d) local k z
@@ -129,7 +135,8 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
             U = np.where(inside[..., None], val, U)
         if t is not None:
             z_top = z_top + t
-    out = {"group_velocity": c * num / den, "a_top": a_top}
+    out = {"group_velocity": c * num / den, "a_top": a_top,
+           "power_flow_angle": np.degrees(np.arctan2(num3, num))}
     if U is not None:
         scale = np.abs(U[..., :3] if nf > 3 else U).max(axis=(1, 2), keepdims=True)
         out["U"] = U / np.where(scale > 0, scale, 1)

@@ -136,7 +136,17 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: b
         vgs.append(V)
     Cm, labels, (vg, khm) = _merge(fams, cs, [vgs, [wH[:, None] / c for c in cs]])
     reason = np.where(np.isfinite(Cm).any(axis=1), "", REASON_NONE).astype(object)
-    return {"c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
+    pf = np.full(Cm.shape, np.nan)
+    rows, cols = np.nonzero(np.isfinite(Cm))
+    for fam in fams:
+        mine = np.array([(str(labels[r, c])[:1] in ("R", "S")) == (fam.prefix == "R")
+                         and (fam.prefix == "R" or str(labels[r, c])[:1] == fam.prefix) for r, c in zip(rows, cols)],
+                        dtype=bool)
+        if mine.any():
+            pf[rows[mine], cols[mine]] = mode_fields(b, fam, Cm[rows[mine], cols[mine]], khm[rows[mine], cols[mine]],
+                                                     electrical)["power_flow_angle"]
+    return {"power_flow_angle": pf,
+            "c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
             "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
             "attenuation": np.full(Cm.shape, np.nan), "kh": khm,
             "frequency": np.where(np.isfinite(Cm), f[:, None], np.nan), "reason": reason}

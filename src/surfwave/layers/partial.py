@@ -22,7 +22,7 @@ import numpy as np
 
 from surfwave.layers.stack import Layer, Stack
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
-from surfwave.solvers.piezo_stroh import generalised_blocks
+from surfwave.solvers.piezo_stroh import generalised_tensor
 from surfwave.solvers.piezo_stroh import limiting_x as piezo_limiting_x
 from surfwave.solvers.piezo_tensors import EPS0
 
@@ -48,6 +48,8 @@ class Blocks:
         Stiffness scale (Pa) and permittivity scale (F/m; 1 for elastic stacks).
     eps0 : float
         Vacuum permittivity in scaled units.
+    Q3, R3 : ndarray, shape (L + 1, n, n)
+        E_I3K1 and E_I3K2: the generalised stress on planes x3 = const (power flow along x3).
     n_mech : int
         3: components 0..2 are mechanical, component 3 (if n = 4) the potential.
     """
@@ -60,6 +62,8 @@ class Blocks:
     sA: float
     se: float
     eps0: float
+    Q3: np.ndarray | None = None
+    R3: np.ndarray | None = None
     n_mech: int = 3
 
 
@@ -105,13 +109,16 @@ def scaled_blocks(stack: Stack) -> Blocks:
         eps = np.stack([np.asarray(lay.eps) for lay in layers])
         e = np.stack([np.asarray(lay.e) for lay in layers])
         se = float(max(np.abs(eps).max(), EPS0))
-        Q, R, T = generalised_blocks(A / sA, e / np.sqrt(sA * se), eps / se)
+        E = generalised_tensor(A / sA, e / np.sqrt(sA * se), eps / se)
+        Q, R, T = E[:, :, 0, :, 0], E[:, :, 0, :, 1], E[:, :, 1, :, 1]
+        Q3, R3 = E[:, :, 2, :, 0], E[:, :, 2, :, 1]
     else:
         se = 1.0
         Q, R, T = A[:, :, 0, :, 0] / sA, A[:, :, 0, :, 1] / sA, A[:, :, 1, :, 1] / sA
+        Q3, R3 = A[:, :, 2, :, 0] / sA, A[:, :, 2, :, 1] / sA
     H = stack.total_thickness
     frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
-    return Blocks(Q=Q, R=R, T=T, rho=np.array([lay.rho for lay in layers]), frac=frac, sA=sA, se=se,
+    return Blocks(Q=Q, R=R, T=T, Q3=Q3, R3=R3, rho=np.array([lay.rho for lay in layers]), frac=frac, sA=sA, se=se,
                   eps0=EPS0 / se)
 
 

@@ -38,14 +38,16 @@ def _kh_values(kh) -> np.ndarray:
     return a
 
 
-def _family_solution(b: Blocks, fam: Family, kh: np.ndarray, electrical: str) -> tuple[np.ndarray, np.ndarray]:
-    """Speeds (k, n_f) and group velocities (k, n_f) of one family."""
+def _family_solution(b: Blocks, fam: Family, kh: np.ndarray, electrical: str) -> tuple[np.ndarray, ...]:
+    """Speeds, group velocities and power-flow angles (k, n_f) of one family."""
     c = family_modes(b, fam, kh, electrical=electrical)
     vg = np.full(c.shape, np.nan)
+    pf = np.full(c.shape, np.nan)
     ik, jm = np.nonzero(np.isfinite(c))
     if ik.size:
-        vg[ik, jm] = mode_fields(b, fam, c[ik, jm], kh[ik], electrical)["group_velocity"]
-    return c, vg
+        r = mode_fields(b, fam, c[ik, jm], kh[ik], electrical)
+        vg[ik, jm], pf[ik, jm] = r["group_velocity"], r["power_flow_angle"]
+    return c, vg, pf
 
 
 def solve_stack(stack: Stack, kh, electrical: str = "free") -> dict:
@@ -54,19 +56,21 @@ def solve_stack(stack: Stack, kh, electrical: str = "free") -> dict:
     Returns
     -------
     dict
-        ``blocks`` (Blocks), ``families`` (list of Family), ``c`` and ``group_velocity`` (lists of
-        (k, n_f) arrays, one per family), ``c_limit`` (m/s).
+        ``blocks`` (Blocks), ``families`` (list of Family), ``c``, ``group_velocity`` and
+        ``power_flow_angle`` (lists of (k, n_f) arrays, one per family), ``c_limit`` (m/s).
     """
     kh = _kh_values(kh)
     b = scaled_blocks(stack)
     fams = families(b)
-    cs, vgs = [], []
+    cs, vgs, pfs = [], [], []
     for fam in fams:
-        c, vg = _family_solution(b, fam, kh, electrical)
+        c, vg, pf = _family_solution(b, fam, kh, electrical)
         cs.append(c)
         vgs.append(vg)
+        pfs.append(pf)
     c_lim = float(np.sqrt(min(f.X_limit for f in fams) * b.sA / b.rho[-1]))
-    return {"blocks": b, "families": fams, "c": cs, "group_velocity": vgs, "c_limit": c_lim}
+    return {"blocks": b, "families": fams, "c": cs, "group_velocity": vgs, "power_flow_angle": pfs,
+            "c_limit": c_lim}
 
 
 def _merge(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray]]) -> tuple:
@@ -130,7 +134,7 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     -------
     LayeredResult
         ``c`` (n, n_modes) m/s ascending per row, NaN-padded; ``mode`` labels; ``group_velocity``
-        (m/s); ``K2`` (piezoelectric stacks; NaN otherwise); ``c_limit``; ``attenuation``
+        (m/s); ``power_flow_angle`` (degrees); ``K2`` (piezoelectric stacks; NaN otherwise); ``c_limit``; ``attenuation``
         (dB per wavelength; NaN for guided modes and when ``leaky`` is False); ``kh`` and
         ``frequency`` (n, n_modes); ``reason`` (n,).
 
@@ -191,7 +195,7 @@ def _empty(kh: np.ndarray, c_limit: float, reason: str) -> dict:
     nan = np.full(shape, np.nan)
     return {"c": nan, "mode": np.full(shape, "", dtype=object), "group_velocity": nan.copy(), "K2": nan.copy(),
             "c_limit": c_limit, "attenuation": nan.copy(), "kh": nan.copy(), "frequency": nan.copy(),
-            "reason": np.full(kh.size, reason, dtype=object)}
+            "reason": np.full(kh.size, reason, dtype=object), "power_flow_angle": nan.copy()}
 
 
 def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict:
@@ -220,7 +224,9 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict
         from surfwave.layers.leaky import leaky_continuation
 
         cs, vgs, k2s, att, lk = leaky_continuation(sol, kh, electrical, cs, vgs, k2s, att)
-    C, labels, (vg, K2, A, L) = _merge(fams, cs, [vgs, k2s, att, lk])
+    pfs = [np.pad(p, ((0, 0), (0, c.shape[1] - p.shape[1])), constant_values=np.nan)
+           for p, c in zip(sol["power_flow_angle"], cs)]
+    C, labels, (vg, K2, A, L, PF) = _merge(fams, cs, [vgs, k2s, att, lk, pfs])
     labels = np.where(L == 1.0, labels + "~", labels).astype(object)
     H = stack.total_thickness
     khm = np.broadcast_to(kh[:, None], C.shape).copy()
@@ -231,9 +237,9 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict
         buckled |= floor_unstable(sol["blocks"], fam, kh, electrical)
     if buckled.any():
         C[buckled] = np.nan
-        for arr in (vg, K2, A):
+        for arr in (vg, K2, A, PF):
             arr[buckled] = np.nan
         labels[buckled] = ""
         reason[buckled] = REASON_BUCKLED
     return {"c": C, "mode": labels, "group_velocity": vg, "K2": K2, "c_limit": sol["c_limit"],
-            "attenuation": A, "kh": khm, "frequency": freq, "reason": reason}
+            "attenuation": A, "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF}
