@@ -134,9 +134,9 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     -------
     LayeredResult
         ``c`` (n, n_modes) m/s ascending per row, NaN-padded; ``mode`` labels; ``group_velocity``
-        (m/s); ``power_flow_angle`` (degrees); ``K2`` (piezoelectric stacks; NaN otherwise); ``c_limit``; ``attenuation``
-        (dB per wavelength; NaN for guided modes and when ``leaky`` is False); ``kh`` and
-        ``frequency`` (n, n_modes); ``reason`` (n,).
+        (m/s); ``power_flow_angle`` (degrees); ``K2`` (piezoelectric stacks; NaN otherwise);
+        ``c_limit``; ``attenuation`` (dB per wavelength; NaN for guided modes and when ``leaky``
+        is False); ``kh`` and ``frequency`` (n, n_modes); ``reason`` (n,).
 
     Raises
     ------
