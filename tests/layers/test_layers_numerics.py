@@ -6,6 +6,7 @@ import pytest
 from scipy.linalg import expm
 
 import surfwave
+from surfwave.errors import InputError
 from surfwave.layers.partial import families, scaled_blocks, stroh_matrix
 from surfwave.layers.recursion import top_impedance
 from surfwave.layers.stack import resolve_stack
@@ -161,3 +162,21 @@ def test_power_flow_angle():
     np.testing.assert_allclose(r["power_flow_angle"][:, 0], m["power_flow_angle"], rtol=1e-8)
     s = surfwave.layered("Si", [{**SIO2, "thickness": 1e-6}], kh=[2.0])
     np.testing.assert_allclose(s["power_flow_angle"][np.isfinite(s["c"])], 0.0, atol=1e-9)
+
+
+def test_grounded_electrode_under_a_film():
+    """A 128Y-X LiNbO3 film on the same cut with a grounded electrode (phi = 0) on the interface: as kh -> 0
+    the electrode is the surface, so the speed tends to material()'s c_metallized (kh = 1e-4: 1e-5); deep
+    under a thick film (kh = 20) it no longer matters, c_free (1e-5); the free top is never slower than the
+    metallized one; and the group velocity still equals c + kh dc/dkh (1e-6)."""
+    m = surfwave.material("LiNbO3", euler=(0, 38, 0))
+    f = [{"name": "LiNbO3", "euler": (0, 38, 0), "thickness": 1e-6, "electrode_below": True}]
+    free = surfwave.layered("LiNbO3", f, euler=(0, 38, 0), kh=[1e-4, 0.5, 0.5 - 1e-5, 0.5 + 1e-5, 20.0])
+    met = surfwave.layered("LiNbO3", f, euler=(0, 38, 0), kh=[0.5], electrical="metallized")
+    c = free["c"][:, 0]
+    assert c[0] == pytest.approx(m["c_metallized"], rel=1e-5)
+    assert c[4] == pytest.approx(m["c_free"], rel=1e-5)
+    assert c[1] > met["c"][0, 0]
+    assert free["group_velocity"][1, 0] == pytest.approx(c[1] + 0.5 * (c[3] - c[2]) / 2e-5, rel=1e-6)
+    with pytest.raises(InputError, match="electrode_below needs"):
+        surfwave.layered("Si", [{**SIO2, "thickness": 1e-6, "electrode_below": True}], kh=[1.0])

@@ -48,6 +48,8 @@ class Blocks:
         Stiffness scale (Pa) and permittivity scale (F/m; 1 for elastic stacks).
     eps0 : float
         Vacuum permittivity in scaled units.
+    electrode_below : tuple of bool, length L
+        A grounded electrode (phi = 0) on the interface under each film.
     Q3, R3 : ndarray, shape (L + 1, n, n)
         E_I3K1 and E_I3K2: the generalised stress on planes x3 = const (power flow along x3).
     n_mech : int
@@ -64,6 +66,7 @@ class Blocks:
     eps0: float
     Q3: np.ndarray | None = None
     R3: np.ndarray | None = None
+    electrode_below: tuple[bool, ...] = ()
     n_mech: int = 3
 
 
@@ -118,7 +121,8 @@ def scaled_blocks(stack: Stack) -> Blocks:
         Q3, R3 = A[:, :, 2, :, 0] / sA, A[:, :, 2, :, 1] / sA
     H = stack.total_thickness
     frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
-    return Blocks(Q=Q, R=R, T=T, Q3=Q3, R3=R3, rho=np.array([lay.rho for lay in layers]), frac=frac, sA=sA, se=se,
+    return Blocks(Q=Q, R=R, T=T, Q3=Q3, R3=R3, electrode_below=tuple(f.electrode_below for f in stack.films),
+                  rho=np.array([lay.rho for lay in layers]), frac=frac, sA=sA, se=se,
                   eps0=EPS0 / se)
 
 

@@ -98,8 +98,16 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
         Ed = np.exp(1j * p[:, None, nf:] * t[..., None])                       # (m, k, nf)
         Eu = np.exp(-1j * p[:, None, :nf] * t[..., None])
+        if b.electrode_below and b.electrode_below[layer] and fam.phi is not None:
+            # grounded electrode under this layer: phi = 0 there (the normal D jumps by the
+            # electrode's charge), so the conditions are b_mech = M_mm a_mech and a_phi = 0
+            G = _electrode_condition(M, fam.phi)
+            GVu = G[..., :, :nf] @ Au + G[..., :, nf:] @ Bu
+            GVd = G[..., :, :nf] @ Ad + G[..., :, nf:] @ Bd
+        else:
+            GVu, GVd = Bu - M @ Au, Bd - M @ Ad
         with np.errstate(all="ignore"):
-            Rr = -np.linalg.solve(Bu - M @ Au, (Bd - M @ Ad) * Ed[..., None, :])
+            Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
             ER = Eu[..., :, None] * Rr
             Xm = Ad + Au @ ER
             M = _solve_right(Bd + Bu @ ER, Xm)
@@ -111,6 +119,17 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
     return out
+
+
+def _electrode_condition(M: np.ndarray, ph: int) -> np.ndarray:
+    """Rows G (..., nf, 2 nf) with G [a; b] = 0 at a grounded interface: b_m - M_mm a_m = 0, a_phi = 0."""
+    nf = M.shape[-1]
+    mech = np.array([i for i in range(nf) if i != ph])
+    G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
+    G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
+    G[..., mech, nf + mech] = 1.0
+    G[..., ph, ph] = 1.0
+    return G
 
 
 def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str) -> tuple[np.ndarray, np.ndarray]:

@@ -113,7 +113,9 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         optional ``euler`` (SAW Euler angles of the film's crystal axes, degrees; default: crystal
         axes = SAW lab axes, i.e. a c-axis film has its c axis along the normal) and ``stress``
         (GPa; a scalar is equibiaxial in the surface plane, a 3 x 3 tensor is in the SAW frame
-        x1 = propagation, x2 = in-plane normal to it, x3 = outward normal).
+        x1 = propagation, x2 = in-plane normal to it, x3 = outward normal); in a piezoelectric
+        stack, optional ``permittivity`` (relative) and ``electrode_below`` (True: a thin grounded
+        electrode on the interface under the film).
     euler : array_like (3,), optional
         SAW Euler angles of the substrate (instead of ``surface``/``direction``).
     surface, direction : str

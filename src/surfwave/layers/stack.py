@@ -19,7 +19,7 @@ normal, crystal X along the propagation).
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -45,7 +45,7 @@ MAX_STRESS_GPA = 1.0e3
 #: Largest |constant| in GPa (larger looks like Pa).
 MAX_GPA = 1.0e5
 _MATERIAL_KEYS = {"name", "voigt", "rho", "piezo", "permittivity", "E", "nu", "conductor"}
-_FILM_KEYS = _MATERIAL_KEYS | {"thickness", "euler", "stress", "material"}
+_FILM_KEYS = _MATERIAL_KEYS | {"thickness", "euler", "stress", "material", "electrode_below"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,6 +68,8 @@ class Layer:
         m (0 for the substrate, which is semi-infinite).
     sigma : ndarray, shape (3, 3)
         In-plane prestress in the lab frame, Pa.
+    electrode_below : bool
+        A thin grounded electrode (phi = 0, no mass) on the interface under this film.
     """
 
     name: str
@@ -77,6 +79,7 @@ class Layer:
     eps: np.ndarray | None
     thickness: float
     sigma: np.ndarray
+    electrode_below: bool = False
 
 
 @dataclass(frozen=True, eq=False)
@@ -293,7 +296,8 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         From the top down. Each: a material as for ``substrate`` (``name`` or ``material`` for a
         database entry) plus ``thickness`` (m), optional ``euler`` (SAW Euler angles of the film's
         crystal axes, degrees; default (0, 0, 0)) and ``stress`` (GPa; scalar: equibiaxial in the
-        surface plane; 3 x 3: SAW frame x1 propagation, x2 in-plane, x3 outward normal).
+        surface plane; 3 x 3: SAW frame x1 propagation, x2 in-plane, x3 outward normal) and, in a
+        piezoelectric stack, ``electrode_below`` (a grounded electrode on the interface under it).
     euler : array_like, shape (3,), optional
         SAW Euler angles of the substrate (wins over ``surface`` and ``direction``).
     surface, direction : str
@@ -332,7 +336,12 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         rec = _material(f, where)
         t = _thickness(f.get("thickness"), where)
         R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
-        recs.append((rec, R, t, _stress(f.get("stress"), where), where))
+        recs.append((rec, R, t, _stress(f.get("stress"), where), where, f.get("electrode_below", False)))
     piezo = sub.get("e") is not None or any(r[0].get("e") is not None for r in recs)
-    layers = tuple(_layer(*r[:4], piezo, r[4]) for r in recs)
+    for r in recs:
+        if not isinstance(r[5], (bool, np.bool_)):
+            raise InputError(f"{r[4]}: electrode_below must be True or False, got {r[5]!r}")
+        if r[5] and not piezo:
+            raise InputError(f"{r[4]}: electrode_below needs a piezoelectric layer or substrate")
+    layers = tuple(replace(_layer(*r[:4], piezo, r[4]), electrode_below=bool(r[5])) for r in recs)
     return Stack(substrate=_layer(sub, R_sub, 0.0, s_sub, piezo, "substrate"), films=layers, piezo=piezo)
