@@ -33,11 +33,8 @@ MAX_ITER = 200
 #: Points of the speed grid per unit of kh (on top of :data:`BASE_GRID`): thick films hold many modes.
 GRID_PER_KH = 8
 BASE_GRID = 60
-#: A grid point whose largest |eigenvalue| of Z exceeds this many times the median over the grid is
-#: next to a pole: its cells are bisected (a mode there could share a cell with the pole and cancel).
-POLE_FACTOR = 20.0
-#: Bisections of a cell next to a pole (toward the pole).
-POLE_SPLIT = 4
+#: Bisections of a cell holding a pole and, by its count, a mode (toward the pole).
+POLE_SPLIT = 8
 #: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
 T_MIN = 1e-7
 
@@ -94,13 +91,13 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
 
     Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
     films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
-    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) when kh_max > 8 (modes and poles crowd there at
+    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) when kh_max > 2 (modes and poles crowd there at
     large kh; below, the other two parts resolve them).
     """
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
     parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
-    if kh_max > 8.0:
+    if kh_max > 2.0:
         for v in bulk:
             if c_lo < v < c_lim:
                 q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
@@ -167,13 +164,12 @@ def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
 
 
 def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str, rounds: int = 6):
-    """det Z and the number of negative eigenvalues on the grid (n_c, k); cells whose count rises by
-    more than one, or by one with det of the wrong sign pattern, or that touch a pole (an eigenvalue
-    :data:`POLE_FACTOR` times the median size), are bisected (``rounds`` times)."""
+    """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
+    cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
+    bisected (``rounds`` times)."""
     w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
     D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
     D[~np.isfinite(w).all(axis=-1)] = np.nan
-    amax = np.abs(w).max(axis=-1)
     for _ in range(rounds):
         step = neg[1:] - neg[:-1]
         odd = (np.abs(step) > 1) | ((np.abs(step) == 1) & ~(D[:-1] * D[1:] < 0)) | \
@@ -185,20 +181,30 @@ def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: 
         wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
         Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
         Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
-        amax = np.insert(amax, cells + 1, np.abs(wm).max(axis=-1), axis=0)
+        w = np.insert(w, cells + 1, wm, axis=0)
         grid = np.insert(grid, cells + 1, mid)
         D = np.insert(D, cells + 1, Dm, axis=0)
         neg = np.insert(neg, cells + 1, nm, axis=0)
-    return grid, D, neg, amax
+    return grid, D, neg, w
 
 
-def _near_poles(b: Blocks, fam: Family, grid, D, neg, amax, kh, electrical: str, skip) -> tuple:
+def _pole_inside(wl: np.ndarray, wr: np.ndarray) -> np.ndarray:
+    """True where a cell holds a pole of Z: some sorted eigenvalue is larger at the cell's right end.
+
+    Between poles every eigenvalue of the reactance Z decreases with c (Foster), so the k-th smallest
+    does too; only a branch passing a pole (from -inf to +inf) can make a sorted eigenvalue grow.
+    """
+    tol = 1e-9 * (1.0 + np.abs(wl))
+    with np.errstate(invalid="ignore"):
+        return (wr > wl + tol).any(axis=-1)
+
+
+def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str, skip) -> tuple:
     """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
 
-    Cells without a net count change that touch a grid point where an eigenvalue of Z is
-    :data:`POLE_FACTOR` times its median size (next to a pole) are bisected per (cell, kh) pair,
-    always keeping the half on the pole's side, :data:`POLE_SPLIT` times; a half whose count rises
-    by one with a sign change of det Z is a bracket.
+    A cell whose count does not change but which holds a pole (:func:`_pole_inside`) holds a mode
+    too (or several); per (cell, kh) pair it is bisected :data:`POLE_SPLIT` times, always keeping the
+    half with the pole; a half whose count rises by one with a sign change of det Z is a bracket.
 
     Returns
     -------
@@ -207,39 +213,31 @@ def _near_poles(b: Blocks, fam: Family, grid, D, neg, amax, kh, electrical: str,
     ik : ndarray of int, shape (r,)
         The kh index of each bracket.
     """
-    with np.errstate(invalid="ignore"):
-        big_at = POLE_FACTOR * np.nanmedian(amax, axis=0)                 # (k,)
     step = neg[1:] - neg[:-1]
-    # a large eigenvalue at a cell's end that a pole in the neighbouring cell explains (the count
-    # falls there) does not flag the cell
-    pole = step < 0
-    prev_pole = np.vstack([np.zeros((1, step.shape[1]), dtype=bool), pole[:-1]])
-    next_pole = np.vstack([pole[1:], np.zeros((1, step.shape[1]), dtype=bool)])
-    near = (((amax[:-1] > big_at) & ~prev_pole) | ((amax[1:] > big_at) & ~next_pole)) & (step == 0) \
-        & ~skip[:, None]
+    near = (step == 0) & _pole_inside(W[:-1], W[1:]) & ~skip[:, None]
     ic, ik = np.nonzero(near)
     lo, hi = grid[ic], grid[ic + 1]
     Dl, Dh, nl, nh = D[ic, ik], D[ic + 1, ik], neg[ic, ik], neg[ic + 1, ik]
-    al, ah = amax[ic, ik], amax[ic + 1, ik]
+    wl, wh = W[ic, ik], W[ic + 1, ik]
     found: list[tuple] = []
     for _ in range(POLE_SPLIT):
         if ik.size == 0:
             break
         mid = 0.5 * (lo + hi)
-        w = boundary_eigenvalues(b, fam, mid, kh[ik, None], electrical)[:, 0]
-        Dm, nm, am = np.prod(w, axis=-1), (w < 0).sum(axis=-1), np.abs(w).max(axis=-1)
+        wm = boundary_eigenvalues(b, fam, mid, kh[ik, None], electrical)[:, 0]
+        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
         with np.errstate(invalid="ignore"):
             left = (nm - nl == 1) & (Dl * Dm < 0)
             right = (nh - nm == 1) & (Dm * Dh < 0)
         found.append((np.r_[lo[left], mid[right]], np.r_[mid[left], hi[right]], np.r_[Dl[left], Dm[right]],
                       np.r_[Dm[left], Dh[right]], np.r_[ik[left], ik[right]]))
-        go_left = al >= ah                                                   # the pole's side
+        go_left = _pole_inside(wl, wm)                                       # the pole's half
         keep = ~(left | right) & np.isfinite(Dm)
         lo, hi = np.where(go_left, lo, mid), np.where(go_left, mid, hi)
         Dl, Dh = np.where(go_left, Dl, Dm), np.where(go_left, Dm, Dh)
         nl, nh = np.where(go_left, nl, nm), np.where(go_left, nm, nh)
-        al, ah = np.where(go_left, al, am), np.where(go_left, am, ah)
-        lo, hi, Dl, Dh, nl, nh, al, ah, ik = (v[keep] for v in (lo, hi, Dl, Dh, nl, nh, al, ah, ik))
+        wl, wh = np.where(go_left[:, None], wl, wm), np.where(go_left[:, None], wm, wh)
+        lo, hi, Dl, Dh, nl, nh, wl, wh, ik = (v[keep] for v in (lo, hi, Dl, Dh, nl, nh, wl, wh, ik))
     if not found:
         empty = np.zeros(0)
         return empty, empty, empty, empty, np.zeros(0, dtype=int)
@@ -323,7 +321,7 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str, n_grid
     v_x1 = v_x1[(v_x1 > grid[0]) & (v_x1 < grid[-1])]
     near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
     grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
-    grid, D, neg, amax = _scan(b, fam, grid, kh, electrical)
+    grid, D, neg, W = _scan(b, fam, grid, kh, electrical)
     # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
     # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
     D[:, neg[0] > _electric(fam, electrical)] = np.nan
@@ -333,7 +331,7 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str, n_grid
     fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
     with np.errstate(invalid="ignore"):
         ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
-    plo, phi_, pfl, pfh, pik = _near_poles(b, fam, grid, D, neg, amax, kh, electrical, fenced)
+    plo, phi_, pfl, pfh, pik = _near_poles(b, fam, grid, D, neg, W, kh, electrical, fenced)
     unstable_rows = neg[0] > _electric(fam, electrical)
     keep_p = ~unstable_rows[pik]
     lo = np.concatenate([grid[ic], plo[keep_p]])
