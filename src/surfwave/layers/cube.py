@@ -17,38 +17,18 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from surfwave.data.variables import CUBES, LAYERED_COORDS
 from surfwave.errors import InputError
 from surfwave.layers.modes import film_x1_speeds
 from surfwave.layers.partial import scaled_blocks
 from surfwave.layers.solve import _kh_values, layered
 from surfwave.layers.stack import resolve_stack
 
-__all__ = ["VARIABLES", "dispersion_cube"]
+__all__ = ["dispersion_cube"]
 
-VARIABLES: dict[str, dict[str, str]] = {
-    "c": {"long_name": "phase speed of the mode (omega / Re k for a leaky mode)", "units": "m s-1"},
-    "group_velocity": {"long_name": "group velocity d omega / dk (energy velocity)", "units": "m s-1"},
-    "K2": {"long_name": "electromechanical coupling 2 (c_free - c_metallized) / c_free", "units": "1"},
-    "attenuation": {"long_name": "attenuation of a leaky mode per wavelength", "units": "dB"},
-    "frequency": {"long_name": "frequency of the mode at this kh", "units": "Hz"},
-    "power_flow_angle": {"long_name": "power-flow angle from x1 toward the in-plane normal (SAW frame x2)",
-                         "units": "degree"},
-    "c_limit": {"long_name": "limiting speed of the substrate (slowest bulk wave's trace speed along x1)",
-                "units": "m s-1"},
-    "reason": {"long_name": "why a row holds no mode (empty where it holds one)", "units": "1"},
-    "film_bulk_speed": {"long_name": "bulk wave speeds of each film along the propagation direction x1 "
-                        "(unstressed), ascending", "units": "m s-1"},
-}
-COORDS: dict[str, dict[str, str]] = {
-    "film_stress": {"long_name": "equibiaxial in-plane residual stress of every film (negative: compression)",
-                    "units": "GPa"},
-    "electrical": {"long_name": "electrical condition of the top surface", "units": "1"},
-    "kh": {"long_name": "wavenumber times total film thickness", "units": "1"},
-    "mode": {"long_name": "mode label: R Rayleigh, Sn Sezawa, Ln Love, Mn coupled; trailing ~ leaky",
-             "units": "1"},
-    "film": {"long_name": "film index from the top", "units": "1"},
-    "sheet": {"long_name": "bulk sheet (ascending speed)", "units": "1"},
-}
+#: The metadata of the cube's variables and coordinates (the one table: surfwave.data.variables).
+VARIABLES = CUBES["dispersion_layered"]
+COORDS = LAYERED_COORDS
 
 
 def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0,), electrical=("free",),
