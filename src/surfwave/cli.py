@@ -1,4 +1,4 @@
-"""Command-line interface: ``surfwave point|material|potentials|scenes|cache info|cache clear|fit-film``.
+"""Command-line interface: ``surfwave point|material|potentials|scenes|cache info|cache clear|layered|fit-film``.
 
 Run ``surfwave --help`` or ``surfwave <command> --help`` (also ``python -m surfwave``).
 Mistyped commands, choices and options get a "did you mean" suggestion.
@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from surfwave import __version__, cli_fit, cli_material, cli_piezo
+from surfwave import __version__, cli_fit, cli_layered, cli_material, cli_piezo
 from surfwave.errors import SurfwaveError
 from surfwave.vocab import DIRECTIONS, LATTICES, LOADINGS
 
@@ -199,6 +199,7 @@ def _parser() -> argparse.ArgumentParser:
         if name == "info":
             a.add_argument("--json", action="store_true", help="print JSON")
     cli_fit.add_parser(sub)
+    cli_layered.add_parser(sub, _Parser)
     return p
 
 
@@ -504,7 +505,8 @@ def main(argv: list[str] | None = None) -> int:
     _check_options(parser, argv)
     args = parser.parse_args(argv)
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
-               "scenes": _cmd_scenes, "cache": _cmd_cache, "fit-film": cli_fit.run}[args.command]
+               "scenes": _cmd_scenes, "cache": _cmd_cache, "fit-film": cli_fit.run,
+               "layered": cli_layered.run, "layered-fit": cli_layered.run_fit}[args.command]
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_note

@@ -16,7 +16,7 @@ knows every key. Also importable as ``surfwave.api.PointResult`` and
 # only from evaluated annotations (with strings every key would count as required).
 from typing import Any, NotRequired, TypedDict
 
-__all__ = ["MaterialResult", "PointResult"]
+__all__ = ["LayeredResult", "MaterialResult", "PointResult"]
 
 #: Values are NumPy arrays (shapes below); ``Any`` keeps the record free of a NumPy typing
 #: dependency and lets MaterialResult hold Python scalars for one direction.
@@ -201,3 +201,49 @@ polarisation_L_perp, polarisation_SH_perp : ndarray, shape (3,) or (m, 3)
     electrical: NotRequired[_Array]
     euler: NotRequired[_Array]
     model: NotRequired[_Array]
+
+
+class LayeredResult(TypedDict):
+    """Result of :func:`surfwave.layered`: guided modes of films on a substrate, SI units.
+
+    Shapes: n kh values (or frequencies) by n_modes columns; each row holds that kh's modes in
+    ascending speed, NaN-padded (and "" labels) where a row has fewer modes.
+
+    Attributes
+    ----------
+    c : ndarray, shape (n, n_modes)
+        Phase speeds, m/s (for a leaky mode: omega / Re k).
+    mode : ndarray of str (object), shape (n, n_modes)
+        Labels, continuous along kh: "R" (Rayleigh), "S1", "S2", ... (Sezawa) for the sagittal
+        family, "L0", "L1", ... (Love) for the shear-horizontal one, "M0", "M1", ... where the
+        motion does not decouple; a trailing "~" marks a leaky mode.
+    group_velocity : ndarray, shape (n, n_modes)
+        d omega / dk, m/s (NaN for leaky modes).
+    K2 : ndarray, shape (n, n_modes)
+        2 (c_free - c_metallized) / c_free of piezoelectric stacks (1), the two speeds of the same mode
+        label at the same kh (at the same frequency with ``frequency`` input); NaN for elastic stacks.
+    c_limit : float
+        Limiting speed of the substrate (the slowest bulk wave's trace speed along x1), m/s.
+    attenuation : ndarray, shape (n, n_modes)
+        dB per wavelength of leaky modes; NaN for guided modes and when ``leaky`` is False.
+    kh : ndarray, shape (n, n_modes)
+        Wavenumber times total film thickness of each entry (1).
+    frequency : ndarray, shape (n, n_modes)
+        Frequency of each entry, Hz (NaN without films).
+    reason : ndarray of str (object), shape (n,)
+        Why a row holds no mode ("" where it holds one).
+    power_flow_angle : ndarray, shape (n, n_modes)
+        Angle of the depth-integrated power flow from x1 toward the in-plane normal x2 of the SAW
+        frame, degrees (0 in a mirror plane; NaN for leaky modes).
+    """
+
+    c: _Array
+    mode: _Array
+    group_velocity: _Array
+    K2: _Array
+    c_limit: _Array
+    attenuation: _Array
+    kh: _Array
+    frequency: _Array
+    reason: _Array
+    power_flow_angle: _Array

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["CUBES", "MODEL_COORDS", "PIEZO_WAVE_COORDS", "SURFACE_WAVE_COORDS"]
+__all__ = ["CUBES", "LAYERED_COORDS", "MODEL_COORDS", "PIEZO_WAVE_COORDS", "SURFACE_WAVE_COORDS"]
 
 #: cube name -> variable name -> {"long_name", "units", "dims"}; the cube name is the file
 #: name under results/<scene>/ (``rayleigh_angles``: the rayleigh.nc of an FCC angle scene).
@@ -598,4 +598,32 @@ PIEZO_WAVE_COORDS: dict[str, dict[str, str]] = {
         "long_name": "uniaxial prestress along the propagation direction (negative = compression)",
         "units": "GPa",
     },
+}
+
+#: dispersion_layered (films on a substrate, surfwave.layers.cube.dispersion_cube): every mode of a stack
+#: against (film_stress, electrical, kh, mode label), SI units.
+CUBES["dispersion_layered"] = {
+    "c": {"long_name": "phase speed of the mode (omega / Re k for a leaky mode)", "units": "m s-1"},
+    "group_velocity": {"long_name": "group velocity d omega / dk (energy velocity)", "units": "m s-1"},
+    "K2": {"long_name": "electromechanical coupling 2 (c_free - c_metallized) / c_free", "units": "1"},
+    "attenuation": {"long_name": "attenuation of a leaky mode per wavelength", "units": "dB"},
+    "frequency": {"long_name": "frequency of the mode at this kh", "units": "Hz"},
+    "power_flow_angle": {"long_name": "power-flow angle from x1 toward the in-plane normal (SAW frame x2)",
+                         "units": "degree"},
+    "c_limit": {"long_name": "limiting speed of the substrate (slowest bulk wave's trace speed along x1)",
+                "units": "m s-1"},
+    "reason": {"long_name": "why a row holds no mode (empty where it holds one)"},
+    "film_bulk_speed": {"long_name": "bulk wave speeds of each film along the propagation direction x1 "
+                        "(unstressed), ascending", "units": "m s-1"},
+}
+
+#: Coordinates of the dispersion_layered cube.
+LAYERED_COORDS: dict[str, dict[str, str]] = {
+    "film_stress": {"long_name": "equibiaxial in-plane residual stress of every film (negative: compression)",
+                    "units": "GPa"},
+    "electrical": {"long_name": "electrical condition of the top surface"},
+    "kh": {"long_name": "wavenumber times total film thickness", "units": "1"},
+    "mode": {"long_name": "mode label: R Rayleigh, Sn Sezawa, Ln Love, Mn coupled; trailing ~ leaky"},
+    "film": {"long_name": "film index from the top", "units": "1"},
+    "sheet": {"long_name": "bulk sheet (ascending speed)", "units": "1"},
 }

@@ -1,0 +1,41 @@
+"""The disba side of benchmarks/bench_layered_disba.py (run with an interpreter that has disba).
+
+Reads a JSON job on stdin: layers (thickness km, vp, vs km/s, density g/cm^3; last = half-space),
+periods (s), modes, waves, repeats; prints JSON: per (wave, mode) the phase speeds (km/s, NaN where
+the mode does not exist) and the CPU seconds of one call (min over repeats).
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+
+import numpy as np
+from disba import PhaseDispersion
+
+
+def main() -> int:
+    """Run the job of stdin."""
+    job = json.load(sys.stdin)
+    lay = np.array(job["layers"], dtype=float)
+    t = np.array(job["periods"], dtype=float)
+    pd = PhaseDispersion(*lay.T, dc=job.get("dc", 0.005))
+    out = {}
+    for wave in job["waves"]:
+        for mode in job["modes"]:
+            pd(t, mode=mode, wave=wave)                          # compile (numba) outside the timing
+            best = np.inf
+            for _ in range(job["repeats"]):
+                t0 = time.process_time()
+                r = pd(t, mode=mode, wave=wave)
+                best = min(best, time.process_time() - t0)
+            c = np.full(t.size, np.nan)
+            idx = np.searchsorted(t, r.period)
+            c[idx] = r.velocity
+            out[f"{wave}{mode}"] = {"c": [None if not np.isfinite(x) else float(x) for x in c], "seconds": best}
+    json.dump(out, sys.stdout)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,152 @@
+"""Modes of a stack at given frequencies: each mode at its own kh = 2 pi f H / c.
+
+At a fixed frequency f the modes of a stack of total film thickness H have different
+wavenumbers. For each family and mode index j the dispersion curve is first computed on a kh grid
+(:func:`surfwave.layers.modes.family_modes`) with its group velocity; omega(kh) H = c_j(kh) kh
+(monotone, slope v_g) is inverted by cubic Hermite interpolation to give a start (kh = omega H /
+c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on
+g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g (the group velocity,
+:func:`surfwave.layers.fields.mode_fields`) polishes it;
+every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh measures the error.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave import validate
+from surfwave.errors import InputError
+from surfwave.layers.fields import mode_fields
+from surfwave.layers.modes import family_modes, lowest_speed
+from surfwave.layers.partial import families, scaled_blocks
+from surfwave.layers.stack import Stack
+
+__all__ = ["at_frequency"]
+
+#: Points of the kh grid of the starting curves.
+GRID = 160
+#: Newton steps at most.
+NEWTON = 8
+
+
+def _frequencies(frequency) -> np.ndarray:
+    f = validate.real_array(frequency, "frequency").reshape(-1)
+    if not np.all(np.isfinite(f)) or np.any(f < 0):
+        raise InputError(f"frequency must be finite and >= 0 (Hz), got {frequency!r}")
+    if np.any(f > 1e13):
+        raise InputError(f"frequency {f.max():.4g} Hz is beyond any acoustic wave (is it in Hz?)")
+    return f
+
+
+def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """kh at omega H = target on the curve (w ascending, kh) with dw/dkh = slope: cubic Hermite in w; NaN outside."""
+    out = np.full(target.size, np.nan)
+    i = np.searchsorted(w, target, side="right") - 1
+    inside = (i >= 0) & (i < w.size - 1)
+    exact = target == w[-1]
+    i = i[inside]
+    h = w[i + 1] - w[i]
+    s = (target[inside] - w[i]) / h
+    d0, d1 = h / slope[i], h / slope[i + 1]
+    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+    out[inside] = h00 * kh[i] + h10 * d0 + h01 * kh[i + 1] + h11 * d1
+    out[exact] = kh[-1]
+    return out
+
+
+def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
+    """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies).
+
+    K^2 of a piezoelectric stack compares the free and metallized speeds of the same mode label at
+    the same frequency.
+    """
+    out = _at_frequency(stack, frequency, electrical=electrical, leaky=leaky)
+    if stack.piezo and stack.total_thickness > 0 and out["c"].size:
+        other = _at_frequency(stack, frequency, electrical="metallized" if electrical == "free" else "free")
+        for i in range(out["c"].shape[0]):
+            lab = {str(m): j for j, m in enumerate(other["mode"][i]) if m}
+            for j, m in enumerate(out["mode"][i]):
+                if m and str(m) in lab:
+                    c_o = other["c"][i, lab[str(m)]]
+                    cf, cm = (out["c"][i, j], c_o) if electrical == "free" else (c_o, out["c"][i, j])
+                    out["K2"][i, j] = 2.0 * (cf - cm) / cf
+    return out
+
+
+def _at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
+    """:func:`at_frequency` for one electrical condition (K2 left NaN)."""
+    from surfwave.layers.solve import MAX_KH, REASON_NONE, _empty, _merge, assemble, unstable_reason
+
+    f = _frequencies(frequency)
+    why = unstable_reason(stack)
+    if why:
+        return _empty(f, np.nan, why)
+    H = stack.total_thickness
+    if H == 0:
+        out = assemble(stack, np.zeros(f.size), electrical, leaky)
+        out["frequency"] = np.broadcast_to(f[:, None], out["c"].shape).copy()
+        return out
+    if leaky:
+        raise InputError("leaky=True is available with kh, not with frequency")
+    b = scaled_blocks(stack)
+    fams = families(b)
+    wH = 2 * np.pi * f * H
+    c_floor = 10.0 * lowest_speed(b)
+    kh_top = min(float(wH.max()) / c_floor * 1.05, MAX_KH)
+    if kh_top > MAX_KH * 0.999:
+        raise InputError(f"frequency {f.max():.4g} Hz gives kh up to {float(wH.max()) / c_floor:.4g}, beyond "
+                         f"{MAX_KH:g}")
+    grid = np.linspace(0.0, kh_top, GRID)
+    cs, vgs = [], []
+    for fam in fams:
+        cg = family_modes(b, fam, grid, electrical=electrical)           # (GRID, n_f)
+        C = np.full((f.size, cg.shape[1]), np.nan)
+        V = np.full(C.shape, np.nan)
+        c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+        for j in range(cg.shape[1]):
+            ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
+            if ok.size < 2:
+                continue
+            vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical)["group_velocity"]
+            w = cg[ok, j] * grid[ok]                                     # omega H along the curve
+            kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
+            # between the last grid point without the mode and the first with it: the cut-off is
+            # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
+            below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
+            kh[below] = wH[below] / c_lim
+            rows = np.flatnonzero(np.isfinite(kh))
+            for _ in range(NEWTON):
+                live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
+                kh[rows[~live]] = np.nan
+                C[rows[~live], j] = np.nan
+                rows = rows[live]
+                if rows.size == 0:
+                    break
+                allc = family_modes(b, fam, kh[rows], electrical=electrical)
+                c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
+                good = np.isfinite(c)
+                v = np.full(rows.size, np.nan)
+                if good.any():
+                    v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical)["group_velocity"]
+                C[rows, j], V[rows, j] = c, v
+                step = (c * kh[rows] - wH[rows]) / v
+                kh[rows] = np.where(good, kh[rows] - step, np.nan)
+                if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
+                    break
+        cs.append(C)
+        vgs.append(V)
+    Cm, labels, (vg, khm) = _merge(fams, cs, [vgs, [wH[:, None] / c for c in cs]])
+    reason = np.where(np.isfinite(Cm).any(axis=1), "", REASON_NONE).astype(object)
+    pf = np.full(Cm.shape, np.nan)
+    rows, cols = np.nonzero(np.isfinite(Cm))
+    for fam in fams:
+        mine = np.array([(str(labels[r, c])[:1] in ("R", "S")) == (fam.prefix == "R")
+                         and (fam.prefix == "R" or str(labels[r, c])[:1] == fam.prefix) for r, c in zip(rows, cols)],
+                        dtype=bool)
+        if mine.any():
+            pf[rows[mine], cols[mine]] = mode_fields(b, fam, Cm[rows[mine], cols[mine]], khm[rows[mine], cols[mine]],
+                                                     electrical)["power_flow_angle"]
+    return {"power_flow_angle": pf,
+            "c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
+            "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
+            "attenuation": np.full(Cm.shape, np.nan), "kh": khm,
+            "frequency": np.where(np.isfinite(Cm), f[:, None], np.nan), "reason": reason}

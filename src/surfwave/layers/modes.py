@@ -1,0 +1,356 @@
+"""All guided modes of a stack at many kh: bracketing on a speed grid, vectorised refinement, labels.
+
+Per decoupled family (:func:`surfwave.layers.partial.families`) the real secular function
+det Z(c, kh) (:func:`surfwave.layers.recursion.secular`) is evaluated on a grid of speeds for
+all kh at once: the layers' eigen-solutions depend on c only, so they are computed once per grid
+speed and shared by every kh. The grid is uniform in t = sqrt(1 - c^2 / c_lim^2) (dense near the
+substrate's limiting speed c_lim, where modes appear at their cut-off with a square-root
+behaviour), plus a geometric tail toward t = 0. Every sign change brackets either a mode or a
+pole of Z (a mode of the stack with a clamped top); all brackets of all kh are refined together
+by the Illinois variant of regula falsi to a relative width :data:`C_TOL`, and a converged
+bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
+
+Labels. Within one family, the modes at fixed kh are ordered by speed and cannot cross as kh
+changes (crossings of one family are non-generic, and each family's modes are counted from the
+slowest); new modes enter at the top, through c_lim. The n-th slowest mode of a family therefore
+keeps its label along kh: sagittal "R" (Rayleigh), "S1", "S2", ... (Sezawa); shear horizontal
+"L0", "L1", ... (Love); coupled families "M0", "M1", ....
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave.layers.partial import Blocks, Family
+from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, secular, top_impedance
+from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
+
+__all__ = ["C_TOL", "family_modes", "label", "lowest_speed"]
+
+#: Relative width of a converged bracket in c.
+C_TOL = 4e-15
+#: Iterations of the bracket refinement at most.
+MAX_ITER = 200
+#: Points of the speed grid per unit of kh (on top of :data:`BASE_GRID`): thick films hold many modes.
+GRID_PER_KH = 8
+BASE_GRID = 60
+#: Bisections of a cell holding a pole and, by its count, a mode (toward the pole).
+POLE_SPLIT = 8
+#: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
+T_MIN = 1e-7
+
+
+def label(prefix: str, j: int) -> str:
+    """Label of the j-th slowest mode of a family with this prefix ("R" -> R, S1, S2, ...)."""
+    if prefix == "R":
+        return "R" if j == 0 else f"S{j}"
+    return f"{prefix}{j}"
+
+
+def lowest_speed(b: Blocks) -> float:
+    """The floor of the search: 0.05 x the lowest limiting speed of any layer as a half-space, m/s.
+
+    Guided modes lie above it unless a compressed layer is close to surface buckling (its Rayleigh
+    speed falls to zero there); a mode below the floor counts as buckled (:func:`floor_unstable`).
+    """
+    Q, R, T = b.Q[:, :3, :3], b.R[:, :3, :3], b.T[:, :3, :3]
+    XL = elastic_limiting_x(Q, R, T)[0]
+    return float(0.05 * np.sqrt(np.min(XL * b.sA / b.rho)))
+
+
+def film_bulk_speeds(b: Blocks) -> np.ndarray:
+    """Trace-speed minima along x1 of the three bulk sheets of every film, m/s, shape (3 L,).
+
+    Above such a speed a partial wave of the film is real (propagates across the film), and at
+    large kh the film's modes crowd just above it (spacing ~ pi / kh in the vertical wavenumber).
+    """
+    L = len(b.frac)
+    if L == 0:
+        return np.zeros(0)
+    phi = np.linspace(-0.5 * np.pi, 0.5 * np.pi, 181)[1:-1]
+    cs, sn = np.cos(phi)[:, None, None], np.sin(phi)[:, None, None]
+    out = []
+    for layer in range(L):
+        Q, R, T = b.Q[layer, :3, :3], b.R[layer, :3, :3], b.T[layer, :3, :3]
+        G = cs * cs * Q + sn * cs * (R + R.T) + sn * sn * T
+        w = np.linalg.eigvalsh(G) / (cs[:, :, 0] ** 2)
+        out.append(np.sqrt(np.clip(w.min(axis=0), 0, None) * b.sA / b.rho[layer]))
+    return np.concatenate(out)
+
+
+def film_x1_speeds(b: Blocks) -> np.ndarray:
+    """Bulk speeds along x1 of every film (sqrt of the eigenvalues of Q / rho), m/s, shape (3 L,)."""
+    L = len(b.frac)
+    if L == 0:
+        return np.zeros(0)
+    w = np.linalg.eigvalsh(b.Q[:L, :3, :3])
+    return np.sqrt(np.clip(w, 0, None) * b.sA / b.rho[:L, None]).ravel()
+
+
+def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) -> np.ndarray:
+    """Ascending speeds in (c_lo, c_lim).
+
+    Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
+    films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
+    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) when kh_max > 2 (modes and poles crowd there at
+    large kh; below, the other two parts resolve them).
+    """
+    t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
+    t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
+    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
+    if kh_max > 2.0:
+        for v in bulk:
+            if c_lo < v < c_lim:
+                q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
+                q = np.arange(1e-4, q_max, np.pi / (16.0 * kh_max))[:4000]
+                parts.append(v * np.sqrt(1.0 + q * q))
+    g = np.unique(np.concatenate(parts))
+    return g[(g > c_lo) & (g < c_lim)]
+
+
+def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim: float) -> np.ndarray:
+    """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
+
+    Each step takes the secant through the two latest points (order 1.6); a step that leaves
+    the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
+    halve the bracket nor make a small secant step), falls back to bisection. The iteration runs
+    in t = sqrt(1 - c^2 / c_lim^2), in which det Z is smooth up to the limit (in c it has a
+    square-root branch point there).
+    """
+    def to_t(c):
+        return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
+
+    def to_c(t):
+        return c_lim * np.sqrt(1.0 - t * t)
+
+    a, fa, z, fz = to_t(lo), flo.copy(), to_t(hi), fhi.copy()           # bracket ends (a, z)
+    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()            # the two latest points
+    width = np.abs(z - a)
+    idx = np.arange(a.size)
+    out = 0.5 * (lo + hi)
+    for it in range(MAX_ITER):
+        if idx.size == 0:
+            break
+        left, right = np.minimum(a, z), np.maximum(a, z)
+        with np.errstate(all="ignore"):
+            x = x1 - f1 * (x1 - x0) / (f1 - f0)
+        # bisection where the secant leaves the bracket or, every fourth step, where the last
+        # four steps did not shrink it by half and the secant step is not small (stalled iteration)
+        slow = (it % 4 == 3) & (right - left > 0.5 * width) & (np.abs(x - x1) > 1e-3 * (right - left))
+        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
+        x = np.where(bis, 0.5 * (left + right), x)
+        if it % 4 == 3:
+            width = right - left
+        fx = secular(b, fam, to_c(x), kh[idx, None], electrical)[:, 0]
+        side_a = np.sign(fx) == np.sign(fa)
+        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
+        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
+        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+        done = (np.abs(x - x1) <= tol) & ~bis | (np.abs(z - a) <= tol) | (fx == 0) | ~np.isfinite(fx)
+        x0, f0, x1, f1 = x1, f1, x, fx
+        out[idx[done]] = to_c(x[done])
+        keep = ~done
+        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+    out[idx] = to_c(x1)
+    return out
+
+
+def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
+    """True where Z(c, kh) is singular and bounded (a mode), False at a pole."""
+    M = top_impedance(b, fam, c, kh[:, None])["M"][:, 0]
+    Z, _ = boundary_matrix(b, fam, M, electrical)
+    w = np.abs(np.linalg.eigvalsh(Z))
+    return np.isfinite(w).all(axis=-1) & (w.min(axis=-1) <= 1e-7 * np.maximum(w.max(axis=-1), 1e-3)) \
+        & (w.max(axis=-1) < 1e6)
+
+
+def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str, rounds: int = 6):
+    """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
+    cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
+    bisected (``rounds`` times)."""
+    w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
+    D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
+    D[~np.isfinite(w).all(axis=-1)] = np.nan
+    for _ in range(rounds):
+        step = neg[1:] - neg[:-1]
+        odd = (np.abs(step) > 1) | ((np.abs(step) == 1) & ~(D[:-1] * D[1:] < 0)) | \
+            ((step == 0) & (D[:-1] * D[1:] < 0))
+        cells = np.flatnonzero(odd.any(axis=1))
+        if cells.size == 0:
+            break
+        mid = 0.5 * (grid[cells] + grid[cells + 1])
+        wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
+        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
+        Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
+        w = np.insert(w, cells + 1, wm, axis=0)
+        grid = np.insert(grid, cells + 1, mid)
+        D = np.insert(D, cells + 1, Dm, axis=0)
+        neg = np.insert(neg, cells + 1, nm, axis=0)
+    return grid, D, neg, w
+
+
+def _pole_inside(wl: np.ndarray, wr: np.ndarray) -> np.ndarray:
+    """True where a cell holds a pole of Z: some sorted eigenvalue is larger at the cell's right end.
+
+    Between poles every eigenvalue of the reactance Z decreases with c (Foster), so the k-th smallest
+    does too; only a branch passing a pole (from -inf to +inf) can make a sorted eigenvalue grow.
+    """
+    tol = 1e-9 * (1.0 + np.abs(wl))
+    with np.errstate(invalid="ignore"):
+        return (wr > wl + tol).any(axis=-1)
+
+
+def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str, skip) -> tuple:
+    """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
+
+    A cell whose count does not change but which holds a pole (:func:`_pole_inside`) holds a mode
+    too (or several); per (cell, kh) pair it is bisected :data:`POLE_SPLIT` times, always keeping the
+    half with the pole; a half whose count rises by one with a sign change of det Z is a bracket.
+
+    Returns
+    -------
+    lo, hi, flo, fhi : ndarray, shape (r,)
+        Bracket ends (m/s) and det Z there.
+    ik : ndarray of int, shape (r,)
+        The kh index of each bracket.
+    """
+    step = neg[1:] - neg[:-1]
+    near = (step == 0) & _pole_inside(W[:-1], W[1:]) & ~skip[:, None]
+    ic, ik = np.nonzero(near)
+    lo, hi = grid[ic], grid[ic + 1]
+    Dl, Dh, nl, nh = D[ic, ik], D[ic + 1, ik], neg[ic, ik], neg[ic + 1, ik]
+    wl, wh = W[ic, ik], W[ic + 1, ik]
+    found: list[tuple] = []
+    for _ in range(POLE_SPLIT):
+        if ik.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        wm = boundary_eigenvalues(b, fam, mid, kh[ik, None], electrical)[:, 0]
+        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
+        with np.errstate(invalid="ignore"):
+            left = (nm - nl == 1) & (Dl * Dm < 0)
+            right = (nh - nm == 1) & (Dm * Dh < 0)
+        found.append((np.r_[lo[left], mid[right]], np.r_[mid[left], hi[right]], np.r_[Dl[left], Dm[right]],
+                      np.r_[Dm[left], Dh[right]], np.r_[ik[left], ik[right]]))
+        go_left = _pole_inside(wl, wm)                                       # the pole's half
+        keep = ~(left | right) & np.isfinite(Dm)
+        lo, hi = np.where(go_left, lo, mid), np.where(go_left, mid, hi)
+        Dl, Dh = np.where(go_left, Dl, Dm), np.where(go_left, Dm, Dh)
+        nl, nh = np.where(go_left, nl, nm), np.where(go_left, nm, nh)
+        wl, wh = np.where(go_left[:, None], wl, wm), np.where(go_left[:, None], wm, wh)
+        lo, hi, Dl, Dh, nl, nh, wl, wh, ik = (v[keep] for v in (lo, hi, Dl, Dh, nl, nh, wl, wh, ik))
+    if not found:
+        empty = np.zeros(0)
+        return empty, empty, empty, empty, np.zeros(0, dtype=int)
+    return tuple(np.concatenate([f[i] for f in found]) for i in range(5))
+
+
+def floor_unstable(b: Blocks, fam: Family, kh, electrical: str = "free") -> np.ndarray:
+    """True per kh (k,) where the boundary matrix has a negative eigenvalue at the floor speed of the search.
+
+    The impedance of a stable stack is positive definite at low speed (but for the potential's
+    negative block on a free piezoelectric top, :func:`_electric`); another negative eigenvalue there
+    means a mode with omega^2 < 0 (e.g. the surface buckling of a strongly compressed film, which
+    sets in before its bulk instability) or, in principle, a mode slower than the floor
+    (:func:`lowest_speed`). :func:`family_modes` reports no mode in such rows.
+    """
+    kh = np.atleast_1d(np.asarray(kh, dtype=float))
+    c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+    c0 = min(lowest_speed(b), 0.5 * c_lim)
+    w = boundary_eigenvalues(b, fam, np.array([c0]), kh[None, :], electrical)[0]
+    return (w < 0).sum(axis=-1) > _electric(fam, electrical)
+
+
+def _electric(fam: Family, electrical: str) -> int:
+    """Negative eigenvalues of a stable stack's boundary matrix at low speed: the potential's (its block
+    of the generalised impedance is negative definite, E_3j3l = -eps), when it is kept (free top)."""
+    return int(fam.phi is not None and electrical == "free")
+
+
+def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid: int | None = None) -> np.ndarray:
+    """Speeds of every guided mode of one family below its limiting speed, for each kh.
+
+    Parameters
+    ----------
+    b : Blocks
+    fam : Family
+    kh : array_like, shape (k,)
+        Wavenumber times total film thickness (>= 0).
+    electrical : {"free", "metallized"}
+    n_grid : int, optional
+        Speed grid points (default :data:`BASE_GRID` + :data:`GRID_PER_KH` max kh).
+
+    Returns
+    -------
+    ndarray, shape (k, n_modes)
+        Ascending speeds (m/s) per kh, NaN-padded; column j is the family's j-th slowest mode.
+    """
+    kh = np.atleast_1d(np.asarray(kh, dtype=float))
+    if not np.all(np.isfinite(kh)):
+        raise ValueError("family_modes needs finite kh")
+    out = _family_scan(b, fam, kh, electrical, n_grid)
+    # a mode and a pole of Z in one grid cell cancel in the count: where a kh holds fewer modes
+    # than kh on both sides of it (modes are continuous in kh and enter only at the top), rescan it
+    # on a grid four times finer
+    n = np.isfinite(out).sum(axis=1)
+    order = np.argsort(kh, kind="stable")
+    ns = n[order]
+    left = np.maximum.accumulate(ns)
+    right = np.maximum.accumulate(ns[::-1])[::-1]
+    dip = order[(ns < np.minimum(left, right))]
+    if dip.size:
+        n0 = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
+        fine = _family_scan(b, fam, kh[dip], electrical, 4 * n0)
+        if fine.shape[1] > out.shape[1]:
+            out = np.pad(out, ((0, 0), (0, fine.shape[1] - out.shape[1])), constant_values=np.nan)
+        better = np.isfinite(fine).sum(axis=1) > n[dip]
+        out[dip[better]] = np.nan
+        out[dip[better], :fine.shape[1]] = fine[better]
+    return out
+
+
+def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str, n_grid: int | None) -> np.ndarray:
+    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh)."""
+    c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+    n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
+    kh_max = float(np.max(kh, initial=0.0))
+    grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, film_bulk_speeds(b), kh_max)
+    # at a film's bulk speed along x1 its Stroh roots p = 0 coalesce (a Jordan block): det Z is
+    # analytic there but its evaluation is not, and may jump. Fence each such speed with grid
+    # points 1e-9 apart and ignore that one cell.
+    v_x1 = film_x1_speeds(b)
+    v_x1 = v_x1[(v_x1 > grid[0]) & (v_x1 < grid[-1])]
+    near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
+    grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
+    grid, D, neg, W = _scan(b, fam, grid, kh, electrical)
+    # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
+    # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
+    D[:, neg[0] > _electric(fam, electrical)] = np.nan
+    # a mode: the count of negative eigenvalues rises by one (a pole: it falls); two modes in one
+    # cell (near-degenerate) are split by bisecting the cell until each holds one
+    step = neg[1:] - neg[:-1]
+    fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
+    with np.errstate(invalid="ignore"):
+        ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
+    plo, phi_, pfl, pfh, pik = _near_poles(b, fam, grid, D, neg, W, kh, electrical, fenced)
+    unstable_rows = neg[0] > _electric(fam, electrical)
+    keep_p = ~unstable_rows[pik]
+    lo = np.concatenate([grid[ic], plo[keep_p]])
+    hi = np.concatenate([grid[ic + 1], phi_[keep_p]])
+    flo = np.concatenate([D[ic, ik], pfl[keep_p]])
+    fhi = np.concatenate([D[ic + 1, ik], pfh[keep_p]])
+    ik = np.concatenate([ik, pik[keep_p]])
+    if ik.size == 0:
+        return np.full((kh.size, 0), np.nan)
+    roots = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
+    ok = _is_mode(b, fam, roots, kh[ik], electrical)
+    ik, roots = ik[ok], roots[ok]
+    _ = secular  # (the refinement evaluates det Z through :func:`secular`)
+    counts = np.bincount(ik, minlength=kh.size)
+    out = np.full((kh.size, max(int(counts.max(initial=0)), 0)), np.nan)
+    order = np.lexsort((roots, ik))
+    ik, roots = ik[order], roots[order]
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    col = np.arange(ik.size) - start[ik]
+    out[ik, col] = roots
+    return out
+

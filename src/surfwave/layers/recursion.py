@@ -1,0 +1,190 @@
+"""Surface impedance of a layered half-space by the reflection-matrix (stiffness) recursion.
+
+Lab frame x1 propagation, x2 inward normal; the top film's free surface is x2 = 0 and the films
+follow downward, the substrate below them. In a layer of thickness t (in units of 1/k, i.e.
+t = k h) the state [a; b] (displacement/potential and generalised traction on x2 = const,
+divided by ik) is a sum of the 2n partial waves of :func:`surfwave.layers.partial.eigen`:
+
+    [a; b](z) = V_d E_d(z) c_d + V_u E_u(z - t) c_u,   E(z) = diag exp(i p z),  0 <= z <= t,
+
+the "down" waves (Im p >= 0) referred to the layer's top, the "up" ones (Im p <= 0) to its
+bottom, so that every exponential that appears has modulus <= 1 at any thickness. Given the
+impedance below the layer, b = M a at z = t, the up amplitudes follow from the down ones,
+c_u = Rr c_d with Rr = -(B_u - M A_u)^-1 (B_d - M A_d) E_d(t), and at the top
+
+    M_top = (B_d + B_u E_u(-t) Rr) (A_d + A_u E_u(-t) Rr)^-1.
+
+Starting from the substrate's decaying waves (M = B_d A_d^-1) and going up layer by layer gives
+the impedance of the whole stack at its free surface; Z = -i M_top is Hermitian for real speeds
+below the substrate's limiting speed (no energy leaves the stack). A plain product of layer
+transfer matrices exp(i t N) would carry exponentials exp(t |Im p|) and lose the decaying
+information at large kh; this recursion never forms them (tests/layers/test_stability.py).
+
+Boundary conditions at the top: mechanically free; electrically "free" (the vacuum above adds
+-EPS0 to the potential's diagonal: (Z - EPS0 e4 e4^T) a = 0) or "metallized" (phi = 0: the
+mechanical block of Z).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from surfwave.layers.partial import Blocks, Family, eigen
+
+__all__ = ["secular", "top_impedance"]
+
+
+def _layer_eigs(b: Blocks, fam: Family, c: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Eigen-solutions (p, V) of every layer (top first) and the substrate (last) at speeds c (m,)."""
+    ix = np.ix_(fam.idx, fam.idx)
+    mech = fam.mech
+    out = []
+    for layer in range(b.Q.shape[0]):
+        X = b.rho[layer] * c * c / b.sA
+        out.append(eigen(b.Q[layer][ix], b.R[layer][ix], b.T[layer][ix], X, mech))
+    return out
+
+
+def _solve_right(Y: np.ndarray, Xm: np.ndarray) -> np.ndarray:
+    """Y Xm^-1 for stacks of square matrices."""
+    return np.swapaxes(np.linalg.solve(np.swapaxes(Xm, -1, -2), np.swapaxes(Y, -1, -2)), -1, -2)
+
+
+def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=None) -> dict:
+    """Generalised impedance M_top (b = M a at the free surface) of the stack, family ``fam``.
+
+    Parameters
+    ----------
+    b : Blocks
+    fam : Family
+    c : array_like, shape (m,)
+        Phase speeds, m/s (below the family's limiting speed).
+    kh : array_like, shape (m, k) or broadcastable
+        Wavenumber times total film thickness for each speed.
+    keep : bool
+        Also return the per-layer quantities needed for the fields (:mod:`surfwave.layers.fields`).
+    M_sub : ndarray, shape (m, nf, nf), optional
+        The substrate's impedance (default: its decaying partial waves); the leaky continuation
+        (:mod:`surfwave.layers.leaky`) passes the one of its outgoing set. ``c`` and ``kh`` may then
+        be complex.
+
+    Returns
+    -------
+    dict
+        ``M`` (m, k, nf, nf) complex; with ``keep``: ``eigs`` (list of (p, V) per layer and the
+        substrate), ``Rr`` and ``Xm`` (lists, per layer from the top, (m, k, nf, nf)) and ``t``
+        (list of layer thicknesses k h_l, (m, k)).
+    """
+    c = np.atleast_1d(np.asarray(c))
+    c = c.astype(np.result_type(c.dtype, float))
+    kh = np.asarray(kh)
+    kh = kh.astype(np.result_type(kh.dtype, float))
+    kh = np.broadcast_to(kh.reshape(kh.shape + (1,) * (2 - kh.ndim)) if kh.ndim < 2 else kh,
+                         (c.shape[0], np.shape(kh)[-1] if kh.ndim else 1))
+    eigs = _layer_eigs(b, fam, c)
+    nf = len(fam.idx)
+    ps, Vs = eigs[-1]
+    if M_sub is None:
+        with np.errstate(all="ignore"):
+            M = _solve_right(Vs[:, nf:, nf:], Vs[:, :nf, nf:])[:, None]      # (m, 1, nf, nf)
+    else:
+        M = np.asarray(M_sub)[:, None]
+    M = np.broadcast_to(M, kh.shape + (nf, nf))
+    Rrs, Xms, ts = [], [], []
+    for layer in range(len(b.frac) - 1, -1, -1):
+        p, V = eigs[layer]
+        t = kh * b.frac[layer]                                                 # (m, k)
+        Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
+        Ed = np.exp(1j * p[:, None, nf:] * t[..., None])                       # (m, k, nf)
+        Eu = np.exp(-1j * p[:, None, :nf] * t[..., None])
+        if b.electrode_below and b.electrode_below[layer] and fam.phi is not None:
+            # grounded electrode under this layer: phi = 0 there (the normal D jumps by the
+            # electrode's charge), so the conditions are b_mech = M_mm a_mech and a_phi = 0
+            G = _electrode_condition(M, fam.phi)
+            GVu = G[..., :, :nf] @ Au + G[..., :, nf:] @ Bu
+            GVd = G[..., :, :nf] @ Ad + G[..., :, nf:] @ Bd
+        else:
+            GVu, GVd = Bu - M @ Au, Bd - M @ Ad
+        with np.errstate(all="ignore"):
+            Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
+            ER = Eu[..., :, None] * Rr
+            Xm = Ad + Au @ ER
+            M = _solve_right(Bd + Bu @ ER, Xm)
+        if keep:
+            Rrs.append(Rr)
+            Xms.append(Xm)
+            ts.append(t)
+    out: dict[str, Any] = {"M": M}
+    if keep:
+        out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
+    return out
+
+
+def _electrode_condition(M: np.ndarray, ph: int) -> np.ndarray:
+    """Rows G (..., nf, 2 nf) with G [a; b] = 0 at a grounded interface: b_m - M_mm a_m = 0, a_phi = 0."""
+    nf = M.shape[-1]
+    mech = np.array([i for i in range(nf) if i != ph])
+    G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
+    G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
+    G[..., mech, nf + mech] = 1.0
+    G[..., ph, ph] = 1.0
+    return G
+
+
+def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str) -> tuple[np.ndarray, np.ndarray]:
+    """The Hermitian matrix whose singularity is the free-surface condition, and its active components.
+
+    Returns
+    -------
+    Z : ndarray, shape (..., na, na)
+        -i M (made exactly Hermitian), with -EPS0 on the potential for ``"free"``, or the
+        mechanical block for ``"metallized"``.
+    active : ndarray of int, shape (na,)
+        Positions (within the family) of the components kept.
+    """
+    Z = -1j * M
+    Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
+    nf = len(fam.idx)
+    ph = fam.phi
+    if ph is None:
+        return Z, np.arange(nf)
+    if electrical == "metallized":
+        keep = np.array([i for i in range(nf) if i != ph])
+        return Z[..., keep[:, None], keep], keep
+    Z = Z.copy()
+    Z[..., ph, ph] -= b.eps0
+    return Z, np.arange(nf)
+
+
+def boundary_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
+    """Eigenvalues (ascending) of the Hermitian boundary matrix at speeds c (m,) and kh (m, k), (m, k, na).
+
+    Every eigenvalue decreases with c between poles (the impedance of a lossless stack is a
+    reactance), so the number of negative eigenvalues rises by one at each mode and falls by one
+    at each pole; :mod:`surfwave.layers.modes` uses this to tell modes from poles on its grid.
+    """
+    M = top_impedance(b, fam, c, kh)["M"]
+    Z, _ = boundary_matrix(b, fam, M, electrical)
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(Z).all(axis=(-1, -2))
+        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
+    w[bad] = np.nan
+    return w
+
+
+def secular(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
+    """Real secular function det(Z) of the family at speeds c (m,) and kh (m, k): zeros are guided modes.
+
+    Z is Hermitian, so det Z is real; it changes sign at every mode and also at the poles of Z
+    (speeds where the stack with a clamped top has a mode); :mod:`surfwave.layers.modes` tells
+    them apart.
+
+    Returns
+    -------
+    ndarray, shape (m, k), float (NaN where the evaluation failed)
+    """
+    M = top_impedance(b, fam, c, kh)["M"]
+    Z, _ = boundary_matrix(b, fam, M, electrical)
+    with np.errstate(all="ignore"):
+        return np.linalg.det(Z).real

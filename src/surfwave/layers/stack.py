@@ -1,0 +1,347 @@
+"""Resolve a substrate and a list of films into one checked stack of lab-frame tensors.
+
+:func:`resolve_stack` is the single place where the inputs of :func:`surfwave.layered`
+(and of the ``surfwave layered`` command) are read and checked, before anything is computed. It
+reuses the materials databases (:mod:`surfwave.real_crystals.materials`,
+:mod:`surfwave.real_crystals.piezo_materials`, :mod:`surfwave.layers.films`), the validators of
+:mod:`surfwave.validate` and the prestress handling of :func:`surfwave.solvers.stroh.wave_propagation_tensor`,
+so that it can later be replaced by the project's common case-record resolver.
+
+Frames
+------
+The solver works in the project's lab frame: x1 = propagation, x2 = INWARD normal (into the
+substrate), x3 = x1 x x2. The public frame of a film stress is the SAW frame of the issue:
+x1 = propagation, x2' = in-plane normal to it, x3' = OUTWARD normal; hence our x2 = -x3' and
+our x3 = x2' (:data:`SAW_TO_LAB`). A film's crystal axes are given by SAW Euler angles
+(:func:`surfwave.solvers.euler.euler_lab_axes`, default (0, 0, 0): crystal Z along the outward
+normal, crystal X along the propagation).
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from surfwave import validate
+from surfwave.errors import InputError
+from surfwave.solvers.euler import euler_lab_axes
+from surfwave.solvers.orientation import lab_axes
+from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
+from surfwave.solvers.stroh import wave_propagation_tensor
+from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
+
+__all__ = ["GPA", "Layer", "MAX_THICKNESS", "SAW_TO_LAB", "Stack", "isotropic_voigt", "resolve_stack"]
+
+#: GPa -> Pa.
+GPA = 1.0e9
+#: Rows: our lab axes (x1, x2 inward, x3) in the SAW frame (x1, x2' in-plane, x3' outward).
+SAW_TO_LAB = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+#: A film thicker than this (m) is refused: a thickness given in micrometres (e.g. 1.0 for 1 um)
+#: instead of metres. 1 cm is far beyond any deposited film.
+MAX_THICKNESS = 1.0e-2
+#: Largest |stress| in GPa (larger looks like Pa).
+MAX_STRESS_GPA = 1.0e3
+#: Largest |constant| in GPa (larger looks like Pa).
+MAX_GPA = 1.0e5
+_MATERIAL_KEYS = {"name", "voigt", "rho", "piezo", "permittivity", "E", "nu", "conductor"}
+_FILM_KEYS = _MATERIAL_KEYS | {"thickness", "euler", "stress", "material", "electrode_below"}
+
+
+@dataclass(frozen=True, eq=False)
+class Layer:
+    """One layer (or the substrate) in the lab frame, SI units.
+
+    Attributes
+    ----------
+    name : str
+        What the caller called it.
+    A : ndarray, shape (3, 3, 3, 3)
+        Wave-propagation tensor C + sigma delta in the lab frame, Pa.
+    rho : float
+        Density, kg/m^3.
+    e : ndarray, shape (3, 3, 3), or None
+        Piezoelectric stress tensor e_kij, lab frame, C/m^2.
+    eps : ndarray, shape (3, 3), or None
+        Clamped permittivity, lab frame, F/m.
+    thickness : float
+        m (0 for the substrate, which is semi-infinite).
+    sigma : ndarray, shape (3, 3)
+        In-plane prestress in the lab frame, Pa.
+    electrode_below : bool
+        A thin grounded electrode (phi = 0, no mass) on the interface under this film.
+    """
+
+    name: str
+    A: np.ndarray
+    rho: float
+    e: np.ndarray | None
+    eps: np.ndarray | None
+    thickness: float
+    sigma: np.ndarray
+    electrode_below: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class Stack:
+    """A substrate and its films, top film first.
+
+    Attributes
+    ----------
+    substrate : Layer
+    films : tuple of Layer
+        From the top (free surface) down to the substrate.
+    piezo : bool
+        True when any layer carries piezoelectric constants (the potential is then solved in
+        every layer).
+    """
+
+    substrate: Layer
+    films: tuple[Layer, ...]
+    piezo: bool
+
+    @property
+    def total_thickness(self) -> float:
+        """Sum of the film thicknesses, m."""
+        return float(sum(f.thickness for f in self.films))
+
+
+def isotropic_voigt(E, nu) -> np.ndarray:
+    """Voigt stiffness (6, 6) of an isotropic solid from Young's modulus E (GPa) and Poisson's ratio nu.
+
+    Raises
+    ------
+    InputError
+        E <= 0 or non-finite, nu outside (-1, 0.5) (the stiffness would not be positive definite).
+    """
+    E = _number(E, "E (GPa)")
+    nu = _number(nu, "nu")
+    if E <= 0:
+        raise InputError(f"Young's modulus E must be positive (GPa), got {E!r}")
+    if E > MAX_GPA:
+        raise InputError(f"Young's modulus E must be in GPa; got {E:.4g}, which looks like Pa (divide by 1e9)")
+    if not -1.0 < nu < 0.5:
+        raise InputError(f"Poisson's ratio nu must lie in (-1, 0.5) for a stable isotropic solid, got {nu!r}")
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    mu = E / (2 * (1 + nu))
+    C = np.zeros((6, 6))
+    C[:3, :3] = lam
+    C[[0, 1, 2], [0, 1, 2]] = lam + 2 * mu
+    C[[3, 4, 5], [3, 4, 5]] = mu
+    return C
+
+
+def _number(value, what: str) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise InputError(f"{what} must be one number, got {value!r}")
+    v = float(value)
+    if not np.isfinite(v):
+        raise InputError(f"{what} must be finite, got {value!r}")
+    return v
+
+
+def _check_stiffness(C6: np.ndarray, where: str) -> np.ndarray:
+    C6 = validate.stiffness(C6, f"{where} voigt")
+    if np.abs(C6).max() > MAX_GPA:
+        raise InputError(f"{where}: elastic constants must be in GPa; the largest is {np.abs(C6).max():.4g}, "
+                         "which looks like Pa (divide by 1e9)")
+    w = np.linalg.eigvalsh(C6)
+    if w[0] <= 1e-12 * abs(w[-1]):
+        raise InputError(f"{where}: the stiffness is not positive definite (lowest eigenvalue of the Voigt "
+                         f"matrix {w[0]:.4g} GPa): no stable solid")
+    return C6
+
+
+def _material(spec, where: str, film: bool = True) -> dict:
+    """Voigt C (GPa, crystal axes), rho, e (3, 6) or None, eps_r (3, 3) or None from a name or a mapping."""
+    from surfwave.layers.films import lookup
+
+    if isinstance(spec, str):
+        return lookup(spec, where, film=film)
+    if not isinstance(spec, Mapping):
+        raise InputError(f"{where} must be a material name or a mapping (voigt/rho, E/nu/rho, name), got {spec!r}")
+    extra = sorted(set(spec) - _FILM_KEYS)
+    if extra:
+        raise InputError(f"{where}: unknown keys {extra}; accepted: {sorted(_FILM_KEYS)}")
+    name = spec.get("name", spec.get("material"))
+    if name is not None:
+        rec = lookup(str(name), where, film=film)
+        if "rho" in spec:
+            rec["rho"] = validate.density(spec["rho"], f"{where} rho")
+        for key in ("voigt", "E", "nu", "piezo"):
+            if key in spec:
+                raise InputError(f"{where}: material {name!r} given by name: do not also give {key!r}")
+        if "permittivity" in spec:
+            rec["eps_r"] = _eps_r(spec["permittivity"], where)
+        if "conductor" in spec:
+            rec["conductor"] = bool(spec["conductor"])
+        return rec
+    if "voigt" in spec and ("E" in spec or "nu" in spec):
+        raise InputError(f"{where}: give either voigt or E and nu, not both")
+    if "voigt" in spec:
+        C6 = _check_stiffness(spec["voigt"], where)
+        label = "voigt"
+    elif "E" in spec or "nu" in spec:
+        if "E" not in spec or "nu" not in spec:
+            raise InputError(f"{where}: an isotropic material needs both E (GPa) and nu")
+        C6 = _check_stiffness(isotropic_voigt(spec["E"], spec["nu"]), where)
+        label = "isotropic"
+    else:
+        raise InputError(f"{where}: give a material name, voigt (GPa) and rho, or E (GPa), nu and rho")
+    if "rho" not in spec:
+        raise InputError(f"{where}: the density rho (kg/m^3) is missing")
+    rho = validate.density(spec["rho"], f"{where} rho")
+    e6 = None
+    if spec.get("piezo") is not None:
+        e6 = validate.real_array(spec["piezo"], f"{where} piezo")
+        if e6.shape != (3, 6) or not np.all(np.isfinite(e6)):
+            raise InputError(f"{where}: piezo must be a finite 3 x 6 array (C/m^2), got shape {e6.shape}")
+        if "permittivity" not in spec:
+            raise InputError(f"{where}: piezo given without permittivity (relative, 3 x 3)")
+    eps_r = _eps_r(spec["permittivity"], where) if spec.get("permittivity") is not None else None
+    return {"name": label, "voigt": C6, "rho": rho, "e": e6, "eps_r": eps_r,
+            "conductor": bool(spec.get("conductor", False))}
+
+
+def _eps_r(value, where: str) -> np.ndarray:
+    er = validate.real_array(value, f"{where} permittivity")
+    if np.ndim(value) == 0:
+        er = float(er[0]) * np.eye(3)
+    if er.shape != (3, 3) or not np.all(np.isfinite(er)):
+        raise InputError(f"{where}: permittivity must be a number or a finite 3 x 3 array (relative)")
+    if not np.allclose(er, er.T) or np.linalg.eigvalsh(er)[0] < 1.0 - 1e-9:
+        raise InputError(f"{where}: the relative permittivity must be symmetric with eigenvalues >= 1, got "
+                         f"{er.tolist()}")
+    return er
+
+
+def _stress(stress, where: str) -> np.ndarray:
+    """In-plane prestress in our lab frame (3, 3), GPa, from a scalar (equibiaxial) or a 3 x 3 SAW-frame tensor."""
+    if stress is None:
+        return np.zeros((3, 3))
+    s = validate.real_array(stress, f"{where} stress").reshape(np.shape(stress))
+    if not np.all(np.isfinite(s)):
+        raise InputError(f"{where}: stress must be finite, got {stress!r}")
+    if s.size and np.abs(s).max() > MAX_STRESS_GPA:
+        raise InputError(f"{where}: stress must be in GPa; got {np.abs(s).max():.4g}, which looks like Pa "
+                         "(divide by 1e9)")
+    if s.shape == ():
+        sig = float(s) * np.diag([1.0, 1.0, 0.0])                # equibiaxial in the surface plane (SAW frame)
+    elif s.shape == (3, 3):
+        if not np.allclose(s, s.T, rtol=0, atol=1e-12 * max(np.abs(s).max(), 1e-300)):
+            raise InputError(f"{where}: the stress tensor must be symmetric, got {s.tolist()}")
+        sig = s
+    else:
+        raise InputError(f"{where}: stress must be a scalar (equibiaxial) or a 3 x 3 tensor in GPa (x1 "
+                         f"propagation, x2 in-plane, x3 outward normal), got shape {s.shape}")
+    lab = SAW_TO_LAB @ sig @ SAW_TO_LAB.T
+    normal = np.abs(lab[1]).max()
+    if normal > 1e-9 * max(np.abs(lab).max(), 1e-300):
+        raise InputError(f"{where}: the stress loads the surface or an interface (sigma_i3 in the SAW frame must "
+                         f"vanish, got sigma . n = {np.round(SAW_TO_LAB.T @ lab[1], 12).tolist()} GPa)")
+    return lab
+
+
+def _layer(rec: dict, R: np.ndarray, thickness: float, sigma_gpa: np.ndarray, piezo_stack: bool, where: str) -> Layer:
+    C = rotate4(voigt_to_tensor(rec["voigt"]), R) * GPA
+    sigma = sigma_gpa * GPA
+    try:
+        A = wave_propagation_tensor(C, sigma)
+    except InputError as exc:
+        raise InputError(f"{where}: {exc}") from None
+    e = eps = None
+    if piezo_stack:
+        if rec.get("conductor"):
+            raise InputError(f"{where}: a conducting (metal) film in a piezoelectric stack is not supported yet; "
+                             "use electrical='metallized' for a metallized top surface")
+        if rec.get("eps_r") is None:
+            raise InputError(f"{where}: in a piezoelectric stack every layer needs a permittivity (relative); "
+                             f"{rec['name']!r} has none")
+        e6 = np.zeros((3, 6)) if rec.get("e") is None else np.asarray(rec["e"], dtype=float)
+        e = rotate3(piezo_voigt_to_tensor(e6), R)
+        eps = rotate2(np.asarray(rec["eps_r"], dtype=float) * EPS0, R)
+    return Layer(name=str(rec["name"]), A=A, rho=float(rec["rho"]), e=e, eps=eps, thickness=thickness, sigma=sigma)
+
+
+def _euler_axes(euler, where: str) -> np.ndarray:
+    a = validate.real_array(euler, f"{where} euler")
+    if a.shape != (3,):
+        raise InputError(f"{where}: euler must be three angles (phi, theta, psi) in degrees, got shape {a.shape}")
+    return np.asarray(euler_lab_axes(a), dtype=float)
+
+
+def _thickness(value, where: str) -> float:
+    if value is None:
+        raise InputError(f"{where}: the thickness (m) is missing")
+    t = _number(value, f"{where} thickness (m)")
+    if t < 0:
+        raise InputError(f"{where}: the thickness must be >= 0 m, got {t!r}")
+    if t > MAX_THICKNESS:
+        raise InputError(f"{where}: thickness {t!r} m is thicker than {MAX_THICKNESS:g} m; film thicknesses are "
+                         "in metres (1 um = 1e-6)")
+    return t
+
+
+def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str = "(001)", direction="[100]",
+                  stress=None) -> Stack:
+    """Check and resolve a substrate and films into lab-frame tensors (no computation of waves).
+
+    Parameters
+    ----------
+    substrate : str or mapping
+        A material name (elastic, piezoelectric or film database), or a mapping
+        ``{voigt (6, 6) GPa, rho[, piezo (3, 6) C/m^2, permittivity (3, 3) relative]}`` or
+        ``{E (GPa), nu, rho}``, crystal axes.
+    films : sequence of str or mapping
+        From the top down. Each: a material as for ``substrate`` (``name`` or ``material`` for a
+        database entry) plus ``thickness`` (m), optional ``euler`` (SAW Euler angles of the film's
+        crystal axes, degrees; default (0, 0, 0)) and ``stress`` (GPa; scalar: equibiaxial in the
+        surface plane; 3 x 3: SAW frame x1 propagation, x2 in-plane, x3 outward normal) and, in a
+        piezoelectric stack, ``electrode_below`` (a grounded electrode on the interface under it).
+    euler : array_like, shape (3,), optional
+        SAW Euler angles of the substrate (wins over ``surface`` and ``direction``).
+    surface, direction : str
+        Substrate surface "(hkl)" and propagation direction "[uvw]" or angle (degrees).
+    stress : float or array_like (3, 3), optional
+        Substrate prestress, as for a film.
+
+    Returns
+    -------
+    Stack
+
+    Raises
+    ------
+    InputError
+        Unknown names or keys, bad thicknesses (negative, non-finite, above :data:`MAX_THICKNESS`),
+        nu outside (-1, 0.5), a stiffness not positive definite, constants or stresses in Pa,
+        a stress that loads the surface or an interface, missing permittivities in a
+        piezoelectric stack. One line, before anything is computed.
+    """
+    if isinstance(films, (str, Mapping)):
+        films = [films]
+    if not isinstance(films, Sequence):
+        raise InputError(f"films must be a list of mappings (top film first), got {films!r}")
+    sub = _material(substrate, "substrate", film=False)
+    if isinstance(substrate, Mapping) and "thickness" in substrate:
+        raise InputError("the substrate is semi-infinite: do not give it a thickness")
+    R_sub = _euler_axes(euler, "substrate") if euler is not None else np.asarray(lab_axes(surface, direction), float)
+    if R_sub.ndim != 2:
+        raise InputError(f"one propagation direction at a time, got {direction!r}")
+    s_sub = _stress(stress, "substrate")
+    recs = []
+    for i, f in enumerate(films):
+        where = f"film {i} (from the top)"
+        if isinstance(f, str):
+            raise InputError(f"{where}: give a mapping with a thickness, e.g. {{'name': {f!r}, 'thickness': 1e-6}}")
+        rec = _material(f, where)
+        t = _thickness(f.get("thickness"), where)
+        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
+        recs.append((rec, R, t, _stress(f.get("stress"), where), where, f.get("electrode_below", False)))
+    piezo = sub.get("e") is not None or any(r[0].get("e") is not None for r in recs)
+    for r in recs:
+        if not isinstance(r[5], (bool, np.bool_)):
+            raise InputError(f"{r[4]}: electrode_below must be True or False, got {r[5]!r}")
+        if r[5] and not piezo:
+            raise InputError(f"{r[4]}: electrode_below needs a piezoelectric layer or substrate")
+    layers = tuple(replace(_layer(*r[:4], piezo, r[4]), electrode_below=bool(r[5])) for r in recs)
+    return Stack(substrate=_layer(sub, R_sub, 0.0, s_sub, piezo, "substrate"), films=layers, piezo=piezo)

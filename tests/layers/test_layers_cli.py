@@ -1,0 +1,63 @@
+"""The ``surfwave layered`` command: the table holds the API's numbers; bad input is one error line."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import surfwave
+from surfwave.cli import main
+from surfwave.cli_layered import parse_film, parse_kh
+
+
+def test_table_matches_the_api(capsys):
+    """The CLI table prints surfwave.layered's speeds (to the printed 3 decimals) for each label."""
+    assert main(["layered", "--substrate", "Si", "--film", "SiO2:1um", "--kh", "0:2:1"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[1].split() == ["kh", "c_R", "c_L0", "c_S1"]
+    r = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], kh=[0.0, 1.0, 2.0])
+    row = out[4].split()
+    assert float(row[0]) == 2.0
+    assert [float(v) for v in row[1:]] == pytest.approx(list(r["c"][2]), abs=6e-4)
+
+
+def test_json_and_frequency(capsys):
+    """--json gives the record; --frequency gives each mode its own kh (kh c = 2 pi f H)."""
+    assert main(["layered", "--substrate", "Si", "--film", "SiO2:500nm", "--frequency", "1e9", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    c, kh = np.array(r["c"][0], dtype=float), np.array(r["kh"][0], dtype=float)
+    assert c * kh / (2 * np.pi * 5e-7) == pytest.approx(1e9, rel=1e-9)
+
+
+@pytest.mark.parametrize(("argv", "words"), [
+    (["--film", "SiO2:1", "--kh", "1"], "needs a unit"),
+    (["--film", "SiO2:-1um", "--kh", "1"], ">= 0"),
+    (["--film", "SiO2:1um", "--kh", "3:1:0.5"], "STOP >= START"),
+    (["--film", "unobtainium:1um", "--kh", "1"], "unknown material"),
+])
+def test_errors_are_one_line(capsys, argv, words):
+    """Bad input: exit code 2 and one line on stderr naming the problem."""
+    assert main(["layered", "--substrate", "Si", *argv]) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and "\n" not in err
+
+
+def test_parsers():
+    """Film and kh parsing: units and the inclusive sweep."""
+    assert parse_film("Au-poly:50nm:-0.5") == {"name": "Au-poly", "thickness": pytest.approx(5e-8), "stress": -0.5}
+    assert parse_kh(["0:5:0.05"]).size == 101
+
+
+def test_fit_subcommand_reads_a_csv(tmp_path, capsys):
+    """surfwave layered-fit recovers E and nu of fused silica on Si from exact speeds in a CSV (to 1e-4)."""
+    kh = np.linspace(0.5, 5.0, 6)
+    c = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], kh=kh)["c"][:, 0]
+    path = tmp_path / "points.csv"
+    path.write_text("kh,c\n" + "".join(f"{float(k)!r},{float(v)!r}\n" for k, v in zip(kh, c)))
+    assert main(["layered-fit", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(path),
+                 "--fit", "E", "nu", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["values"] == pytest.approx([73.0, 0.17], rel=1e-4)
+    assert main(["layered-fit", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(tmp_path / "none.csv"),
+                 "--fit", "E"]) == 2
