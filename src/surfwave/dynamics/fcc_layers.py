@@ -38,6 +38,7 @@ equilibrium when stressed; the blocks are then those of the bulk-terminated geom
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -47,6 +48,7 @@ from surfwave.model_crystals.lattices import _FCC_HALF_NEIGHBOURS, Crystal, buil
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.solvers.orientation import lab_axes
 from surfwave.validate import as_1d
+from surfwave.vocab import Direction, Loading
 
 _R2 = np.sqrt(2.0) / 2.0
 #: Per (surface, loading, load direction): the lab construction, the crystal plane (hkl)
@@ -194,7 +196,7 @@ def surface_crystal(surface: str, loading: str, potential: str | PairPotential, 
         y = np.ones(3) / np.sqrt(3.0)
         axes = np.array([x, y, np.cross(x, y)])
     else:
-        crystal = build("fcc", loading, potential, ld, s)
+        crystal = build("fcc", cast(Loading, loading), potential, cast(Direction, ld), s)
         axes = lab_axes("(001)", ld)
     cut = _CUTS[(surface, ld)]
     a_lab = (cut["a"] @ axes.T)[None] * crystal.stretch[:, None, :]  # (n, 2, 3) deformed a1, a2

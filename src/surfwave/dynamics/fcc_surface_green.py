@@ -162,7 +162,7 @@ def spectral_density(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, omega: 
     return -2.0 * omega / np.pi * tr.imag
 
 
-def _branch(h00, h01, phi, branch):
+def _branch(h00: np.ndarray, h01: np.ndarray, phi: np.ndarray, branch: np.ndarray) -> np.ndarray:
     """Eigenvalue number ``branch`` (sorted) of the bulk matrix at per-problem phases phi."""
     z = np.exp(1j * phi)[..., None, None]
     m = h00 + h01 * z + herm(h01) / z
@@ -241,7 +241,7 @@ def gaps(edges: np.ndarray, bound: np.ndarray) -> np.ndarray:
     return out
 
 
-def _mu(lam, h00, h00s, h01, index):
+def _mu(lam: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, index: np.ndarray) -> np.ndarray:
     """mu_index(lambda), the sorted eigenvalue of eps_s(lambda) (Hermitised); NaN if not converged."""
     res = decimate(lam.astype(complex), h00, h00s, h01)
     m = res["eps_s"]
