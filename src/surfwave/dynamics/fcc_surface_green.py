@@ -241,11 +241,19 @@ def gaps(edges: np.ndarray, bound: np.ndarray) -> np.ndarray:
     return out
 
 
+def _effective(lam: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray) -> tuple[np.ndarray, dict]:
+    """Hermitised eps_s(lambda) at real lambda (zeros where the decimation failed) and the raw result."""
+    res = decimate(lam.astype(complex), h00, h00s, h01)
+    m = 0.5 * (res["eps_s"] + herm(res["eps_s"]))
+    ok = res["converged"] & np.isfinite(m).all(axis=(-1, -2))
+    res["converged"] = ok
+    return np.where(ok[:, None, None], m, 0.0), res
+
+
 def _mu(lam: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, index: np.ndarray) -> np.ndarray:
     """mu_index(lambda), the sorted eigenvalue of eps_s(lambda) (Hermitised); NaN if not converged."""
-    res = decimate(lam.astype(complex), h00, h00s, h01)
-    m = res["eps_s"]
-    w = np.linalg.eigvalsh(0.5 * (m + herm(m)))
+    m, res = _effective(lam, h00, h00s, h01)
+    w = np.linalg.eigvalsh(m)
     mu = np.take_along_axis(w, index[:, None], axis=-1)[:, 0]
     return np.where(res["converged"], mu, np.nan)
 
@@ -283,9 +291,8 @@ def surface_modes(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, edges: np.
     # f_i at both ends of every gap, all i at once
     ends = np.concatenate([lo[prob, gap], hi[prob, gap]])
     pp = np.concatenate([prob, prob])
-    res = decimate(ends.astype(complex), h00[pp], h00s[pp], h01[pp])
-    m = res["eps_s"]
-    mu = np.linalg.eigvalsh(0.5 * (m + herm(m)))
+    m, res = _effective(ends, h00[pp], h00s[pp], h01[pp])
+    mu = np.linalg.eigvalsh(m)
     f = ends[:, None] - mu
     f = np.where(res["converged"][:, None], f, np.nan)
     f_lo, f_hi = f[: prob.size], f[prob.size:]
@@ -315,8 +322,7 @@ def surface_modes(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, edges: np.
         done[act] = (width <= tol * scale[p[act]]) | (fx == 0) | ~np.isfinite(fx)
     lam = (a * fb - b * fa) / (fb - fa)
     lam = np.where(np.isfinite(lam), lam, 0.5 * (a + b))
-    res = decimate(lam.astype(complex), h00[p], h00s[p], h01[p])
-    m = 0.5 * (res["eps_s"] + herm(res["eps_s"]))
+    m, res = _effective(lam, h00[p], h00s[p], h01[p])
     _, v = np.linalg.eigh(m)
     vec = np.take_along_axis(v, index[:, None, None], axis=-1)[..., 0]
     t = inv(lam[:, None, None] * np.eye(d) - res["eps_b"]) @ herm(h01[p])
@@ -325,5 +331,5 @@ def surface_modes(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, edges: np.
     with np.errstate(all="ignore"):
         decay = np.linalg.norm(np.einsum("mij,mj->mi", t, vec), axis=-1) ** (1.0 / 64.0)
     edge_dist = np.min(np.abs(lam[:, None, None] - edges[p]), axis=(-1, -2))
-    keep = (decay < 1.0 - DECAY_MIN) & (edge_dist > 10 * EDGE_OFFSET * scale[p]) & np.isfinite(lam)
+    keep = (decay < 1.0 - DECAY_MIN) & (edge_dist > 10 * EDGE_OFFSET * scale[p]) & np.isfinite(lam) & res["converged"]
     return {"problem": p[keep], "omega2": lam[keep], "vector": vec[keep], "decay": decay[keep]}

@@ -221,9 +221,10 @@ def surface_phonons(potential: str | PairPotential, loading: str, d_over_d0, *, 
     even = np.einsum("ab,nqij->nqaibj", eye_m, frame[..., :2]).reshape(n, nq, d, 2 * m)
     odd = np.einsum("ab,nqij->nqaibj", eye_m, frame[..., 2:]).reshape(n, nq, d, m)
     edges_full = bulk_band_edges(h00, h01)  # (n, nq, d, 2)
+    bad = (edges_full[..., 0, 0] < -BULK_TOL) | ~stable[:, None]  # no surface answer here
     found = []  # (flat index, omega2, vector, decay, sector)
     flat = np.arange(n * nq).reshape(n, nq)
-    for sel, basis, sector in ((~mirror, full, 0), (mirror, even, 1), (mirror, odd, -1)):
+    for sel, basis, sector in ((~mirror & ~bad, full, 0), (mirror & ~bad, even, 1), (mirror & ~bad, odd, -1)):
         if not sel.any():
             continue
         _, modes = _solve_group(h00[sel], h00s[sel], h01[sel], basis[sel])
@@ -251,7 +252,6 @@ def surface_phonons(potential: str | PairPotential, loading: str, d_over_d0, *, 
     bad_q = edges_full[..., 0, 0] < -BULK_TOL
     q_reason[bad_q] = "projected bulk band has omega^2 < 0 at this q"
     q_reason[~stable] = reason[~stable, None]
-    bad = bad_q | ~stable[:, None]
     for arr in (omega2, decay, pol):
         arr[bad] = np.nan
     edges = np.where(bad[..., None, None], np.nan, edges_full)
