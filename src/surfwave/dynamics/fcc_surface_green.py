@@ -162,11 +162,43 @@ def spectral_density(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, omega: 
     return -2.0 * omega / np.pi * tr.imag
 
 
-def _branch(h00: np.ndarray, h01: np.ndarray, phi: np.ndarray, branch: np.ndarray) -> np.ndarray:
+def eigvalsh_small(m: np.ndarray) -> np.ndarray:
+    """Ascending eigenvalues of Hermitian blocks (..., d, d): closed forms for d <= 3, else LAPACK.
+
+    d = 3 by the trigonometric (Cardano) solution: fast, but near a double eigenvalue its
+    rounding grows to ~sqrt(eps) |m|; used to steer the band-edge search only (the edges
+    are re-evaluated with LAPACK at the phase found).
+    """
+    d = m.shape[-1]
+    if d == 1:
+        return m[..., 0, :].real
+    if d == 2:
+        a, c = m[..., 0, 0].real, m[..., 1, 1].real
+        r = np.sqrt(0.25 * (a - c) ** 2 + np.abs(m[..., 0, 1]) ** 2)
+        return np.stack([0.5 * (a + c) - r, 0.5 * (a + c) + r], axis=-1)
+    if d > 3:
+        return np.linalg.eigvalsh(m)
+    diag = np.stack([m[..., 0, 0].real, m[..., 1, 1].real, m[..., 2, 2].real], axis=-1)
+    q = diag.mean(axis=-1)
+    p1 = np.abs(m[..., 0, 1]) ** 2 + np.abs(m[..., 0, 2]) ** 2 + np.abs(m[..., 1, 2]) ** 2
+    p = np.sqrt((((diag - q[..., None]) ** 2).sum(axis=-1) + 2.0 * p1) / 6.0)
+    with np.errstate(all="ignore"):
+        b = (m - q[..., None, None] * np.eye(3)) / p[..., None, None]
+        det = (b[..., 0, 0] * (b[..., 1, 1] * b[..., 2, 2] - b[..., 1, 2] * b[..., 2, 1])
+               - b[..., 0, 1] * (b[..., 1, 0] * b[..., 2, 2] - b[..., 1, 2] * b[..., 2, 0])
+               + b[..., 0, 2] * (b[..., 1, 0] * b[..., 2, 1] - b[..., 1, 1] * b[..., 2, 0])).real
+        phi = np.arccos(np.clip(0.5 * det, -1.0, 1.0)) / 3.0
+    phi = np.where(p > 0, phi, 0.0)
+    hi = q + 2.0 * p * np.cos(phi)
+    lo = q + 2.0 * p * np.cos(phi + 2.0 * np.pi / 3.0)
+    return np.stack([lo, 3.0 * q - hi - lo, hi], axis=-1)
+
+
+def _branch(h00: np.ndarray, h01: np.ndarray, phi: np.ndarray, branch: np.ndarray, exact: bool = False) -> np.ndarray:
     """Eigenvalue number ``branch`` (sorted) of the bulk matrix at per-problem phases phi."""
     z = np.exp(1j * phi)[..., None, None]
     m = h00 + h01 * z + herm(h01) / z
-    w = np.linalg.eigvalsh(m)
+    w = np.linalg.eigvalsh(m) if exact else eigvalsh_small(m)
     return np.take_along_axis(w, branch[..., None], axis=-1)[..., 0]
 
 
@@ -210,7 +242,9 @@ def bulk_band_edges(h00: np.ndarray, h01: np.ndarray, n_phi: int = N_PHI, n_gold
             f_new = sign * _branch(hb, cb, np.where(left, c_new, e_new), branch)
             fc, fe = np.where(left, f_new, fe), np.where(left, fc, f_new)
             c, e = c_new, e_new
-        out[..., k] = sign * np.minimum(best, np.minimum(fc, fe))
+        at = np.where(fc < fe, c, e)
+        refined = sign * _branch(hb, cb, at, branch, exact=True)  # LAPACK at the phase found
+        out[..., k] = sign * np.minimum(best, refined)
     return out
 
 
