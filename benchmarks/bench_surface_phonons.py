@@ -24,6 +24,7 @@ import json  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
+from typing import Any, Callable  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -34,7 +35,7 @@ from surfwave.dynamics.fcc_surface_phonons import surface_phonons  # noqa: E402
 TARGETS = {"path_spectral": 5.0, "entropy": 1.0, "soft_map": 60.0}
 
 
-def timed(fn, min_time: float = 0.5) -> tuple[object, float]:
+def timed(fn: Callable[[], Any], min_time: float = 0.5) -> tuple[Any, float]:
     """(result, best seconds per call) over repeats until ``min_time`` has passed."""
     best, total = np.inf, 0.0
     while True:
