@@ -14,8 +14,9 @@ band (the (001) [110] case, "supersonic_decoupled" in :func:`surfwave.point`) is
 a true surface mode; off the mirror lines it would be a resonance.
 
 Bulk stability per strain (``bulk_stable``): the bulk omega^2 on a zone mesh of the layered
-crystal (in-plane q grid x normal phase) and the long-wave acoustic tensor
-sum_b Phi_b (n.b)^2 over a Fibonacci sphere of directions. A strain whose bulk is unstable
+crystal (in-plane q grid x normal phase) and the long-wave criterion of :func:`surfwave.point`
+(strong ellipticity of C + sigma over all directions,
+:func:`surfwave.solvers.long_wave.long_wave_stability`). A strain whose bulk is unstable
 gets NaN surface results and a reason; so does a q whose projected bulk band dips below 0.
 """
 from __future__ import annotations
@@ -23,11 +24,12 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.dynamics import fcc_layers as layers
-from surfwave.dynamics.fcc_surface import bond_force_constants
 from surfwave.dynamics.fcc_surface_green import bulk_band_edges, herm, spectral_density, surface_modes
 from surfwave.errors import InputError
+from surfwave.model_crystals.elastic import elastic_constants, stress
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 from surfwave.records import SurfacePhononsResult
+from surfwave.solvers.long_wave import long_wave_stability
 
 #: Default path per surface (labels of :data:`surfwave.dynamics.fcc_layers.SYMMETRY_POINTS`).
 DEFAULT_PATHS = {"(001)": "GXMG", "(111)": "GMKG", "(110)": "GXSYG"}
@@ -35,8 +37,6 @@ DEFAULT_PATHS = {"(001)": "GXMG", "(111)": "GMKG", "(110)": "GXSYG"}
 DEFAULT_PATH_DENSITY = 8.0
 #: Bulk zone mesh of the stability check: in-plane points per axis and normal phases.
 STABILITY_MESH = (16, 16)
-#: Directions of the long-wave bulk check.
-N_DIRECTIONS = 400
 #: omega^2 (K/m) below which the bulk counts as unstable (round-off allowance).
 BULK_TOL = 1e-10
 
@@ -113,14 +113,9 @@ def _bulk_stability(sc: layers.SurfaceCrystal, potential: PairPotential) -> tupl
     z = np.exp(1j * phi).reshape(-1, 1, 1, 1, 1)
     w = np.linalg.eigvalsh(h00[None] + h01[None] * z + herm(h01)[None] / z)
     zone_min = w.min(axis=(0, 2, 3))
-    # long-wave acoustic tensor sum_b Phi_b (n.b)^2 on a Fibonacci sphere
-    k = np.arange(N_DIRECTIONS) + 0.5
-    cz = 1.0 - 2.0 * k / N_DIRECTIONS
-    az = np.pi * (1.0 + np.sqrt(5.0)) * k
-    dirs = np.column_stack([np.sqrt(1 - cz**2) * np.cos(az), np.sqrt(1 - cz**2) * np.sin(az), cz])
-    phis = bond_force_constants(sc.crystal, potential)
-    nb = np.einsum("di,nbi->ndb", dirs, sc.crystal.bonds) ** 2
-    acoustic = np.linalg.eigvalsh(np.einsum("ndb,nbij->ndij", nb, phis)).min(axis=(1, 2))
+    # long-wave: the project's strong-ellipticity search (direction grid + local refinement)
+    bonds = sc.crystal.bonds
+    _, acoustic, _ = long_wave_stability(elastic_constants(bonds, potential), stress(bonds, potential))
     stable = (zone_min > -BULK_TOL) & (acoustic > BULK_TOL)
     reason = np.where(acoustic <= BULK_TOL, "bulk unstable in the long-wave limit (acoustic tensor not positive)",
                       np.where(zone_min <= -BULK_TOL, "bulk unstable at finite wavevector (zone mesh omega^2 < 0)", ""))
