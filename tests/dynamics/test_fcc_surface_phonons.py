@@ -267,3 +267,19 @@ def test_bad_input_is_one_clear_error(kwargs):
     """Reference: the house rule (one InputError before any computation)."""
     with pytest.raises(InputError):
         surface_phonons("lj", "in_plane_hydrostatic", 1.0, **kwargs)
+
+
+def test_band_edges_find_the_deeper_of_two_wells():
+    """Reference: brute force, the lowest bulk branch on 20001 phases. Morse (111) under
+    in-plane tension d/d0 = 1.1905 at q = (0.09375, -0.21875) has two minima in the normal
+    phase, the deeper one narrow and between grid points; a missed well once produced a
+    spurious surface mode at omega^2 = -13 (now: none, and the edge is right)."""
+    sc = layers.surface_crystal("(111)", "in_plane_hydrostatic", "morse", [1.1905])
+    q = np.array([[0.09375, -0.21875]])
+    h00, _, h01 = layers.principal_blocks(layers.plane_blocks(sc, "morse", layers.cartesian_q(sc, q)))
+    edges = bulk_band_edges(h00[0], h01[0])
+    w = np.linalg.eigvalsh(layers.bulk_matrix(h00[0, 0], h01[0, 0], np.linspace(0, 2 * np.pi, 20001)))
+    np.testing.assert_allclose(edges[0, :, 0], w.min(axis=0), atol=1e-7)
+    np.testing.assert_allclose(edges[0, :, 1], w.max(axis=0), atol=1e-7)
+    r = surface_phonons("morse", "in_plane_hydrostatic", 1.1905, surface="(111)", q=q)
+    assert not np.any(r["omega2"] < 0)

@@ -97,7 +97,8 @@ def first_instabilities(potential: str | PairPotential, loading: str, surface: s
         with a surface mode at omega^2 <= 0 while the bulk is still stable (NaN: none before
         the bulk goes); ``first`` per side ("bulk", "surface" or "none"); ``softest_inside``
         per side: (lowest surface omega^2, its reduced q, d/d0) at the last step walked
-        before the first instability.
+        before the first instability; ``soft_mode`` per side: (omega^2, reduced q, d/d0) of
+        the softest surface mode at ``d_surface`` (NaN where the bulk went first).
     """
     def check(d: float) -> tuple[bool, bool]:
         r = surface_check(potential, loading, d, surface, load_direction, n_mesh)
@@ -105,7 +106,7 @@ def first_instabilities(potential: str | PairPotential, loading: str, surface: s
         w2 = r["softest_omega2"][0]
         return bulk_ok, bulk_ok and not (np.isfinite(w2) and w2 <= 0)
 
-    d_bulk, d_surf, first, inside = [], [], [], []
+    d_bulk, d_surf, first, inside, soft = [], [], [], [], []
     for sign, bound in ((-1.0, search[0]), (1.0, search[1])):
         prev, d = 1.0, 1.0 + sign * step
         db = ds = np.nan
@@ -125,7 +126,13 @@ def first_instabilities(potential: str | PairPotential, loading: str, surface: s
             prev, d = d, d + sign * step
         r = surface_check(potential, loading, prev, surface, load_direction, n_mesh)
         inside.append((float(r["softest_omega2"][0]), r["softest_q"][0].tolist(), float(prev)))
+        if kind == "surface":  # the soft mode itself, just past the surface limit
+            r = surface_check(potential, loading, ds, surface, load_direction, n_mesh)
+            soft.append((float(r["softest_omega2"][0]), r["softest_q"][0].tolist(), float(ds)))
+        else:
+            soft.append((np.nan, [np.nan, np.nan], np.nan))
         d_bulk.append(float(db))
         d_surf.append(float(ds))
         first.append(kind)
-    return {"d_bulk": d_bulk, "d_surface": d_surf, "first": first, "softest_inside": inside}
+    return {"d_bulk": d_bulk, "d_surface": d_surf, "first": first, "softest_inside": inside,
+            "soft_mode": soft}

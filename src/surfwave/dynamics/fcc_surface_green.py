@@ -16,13 +16,14 @@ with any leading axes (strain, q, ...) and block size d. Everything here is in o
   rho(omega) = -(2 omega / pi) Im Tr_top G_00(omega^2 + i eta), normalised to 3 (the degrees
   of freedom of one atom) over omega.
 * Bulk bands at fixed q: the eigenvalues of H00 + H01 e^{i phi} + H01^H e^{-i phi} over the
-  phase phi per principal layer; each sorted branch's min and max (a phi grid refined by
-  golden-section search) bound the projected bulk band.
+  phase phi per principal layer; each sorted branch's min and max (a phi grid, its lowest
+  local extrema each refined by golden-section search) bound the projected bulk band.
 * Surface modes: at real lambda = omega^2 outside the bulk band, M(lambda) = eps_s(lambda) is
   Hermitian and decreasing (dM/dlambda = -H01 g^2 H01^H <= 0), so each of its sorted
   eigenvalues mu_i makes f_i = lambda - mu_i(lambda) strictly increasing: each (gap, i) holds
   at most one root, found by bracketing (Illinois false position). The mode's top-layer
-  displacement is mu_i's eigenvector; deeper layers follow U_{P+1} = T U_P with
+  displacement is mu_i's eigenvector (a root is kept only if the decimation converged
+  there and |lambda - mu_i| is at rounding level); deeper layers follow U_{P+1} = T U_P with
   T = (lambda - eps_b)^{-1} H01^H, so the decay per layer is |T^K U_0|^(1/K) (K = 64).
 """
 from __future__ import annotations
@@ -40,6 +41,10 @@ DECAY_MIN = 1e-6
 #: Phase grid of the bulk band edges, refined by golden section.
 N_PHI = 48
 N_GOLDEN = 56
+#: Local extrema of the phase grid refined per branch (several wells, see bulk_band_edges).
+N_WELLS = 3
+#: A root is accepted only if |omega^2 - mu(omega^2)| is below this (relative to the block scale).
+RESIDUAL_TOL = 1e-9
 
 
 def herm(m: np.ndarray) -> np.ndarray:
@@ -202,14 +207,21 @@ def _branch(h00: np.ndarray, h01: np.ndarray, phi: np.ndarray, branch: np.ndarra
     return np.take_along_axis(w, branch[..., None], axis=-1)[..., 0]
 
 
-def bulk_band_edges(h00: np.ndarray, h01: np.ndarray, n_phi: int = N_PHI, n_golden: int = N_GOLDEN) -> np.ndarray:
+def bulk_band_edges(h00: np.ndarray, h01: np.ndarray, n_phi: int = N_PHI, n_golden: int = N_GOLDEN,
+                    n_wells: int = N_WELLS) -> np.ndarray:
     """Min and max over the normal phase of each sorted bulk branch at fixed in-plane q.
+
+    A branch may have several local minima in phi (strongly stressed crystals have narrow
+    deep wells between grid points), so the ``n_wells`` lowest local minima of the grid are
+    each refined by golden-section search (and likewise the maxima).
 
     Parameters
     ----------
     h00, h01 : ndarray, shape (..., d, d)
     n_phi, n_golden : int
         Phase grid over [0, 2 pi) and golden-section steps refining each extremum.
+    n_wells : int
+        Local extrema of the grid refined per branch and kind.
 
     Returns
     -------
@@ -228,23 +240,26 @@ def bulk_band_edges(h00: np.ndarray, h01: np.ndarray, n_phi: int = N_PHI, n_gold
     cb = np.broadcast_to(h01[..., None, :, :], lead + (d, d, d))
     gr = (np.sqrt(5.0) - 1.0) / 2.0
     for k, sign in enumerate((1.0, -1.0)):  # min of w, then min of -w
-        i = np.argmin(sign * w, axis=0)  # (..., d)
-        best = np.take_along_axis(sign * w, i[None], axis=0)[0]
-        a, b = phi[i] - step, phi[i] + step
-        c, e = b - gr * (b - a), a + gr * (b - a)
-        fc, fe = sign * _branch(hb, cb, c, branch), sign * _branch(hb, cb, e, branch)
-        for _ in range(n_golden):
-            left = fc < fe
-            b = np.where(left, e, b)
-            a = np.where(left, a, c)
-            c_new = np.where(left, b - gr * (b - a), e)
-            e_new = np.where(left, c, a + gr * (b - a))
-            f_new = sign * _branch(hb, cb, np.where(left, c_new, e_new), branch)
-            fc, fe = np.where(left, f_new, fe), np.where(left, fc, f_new)
-            c, e = c_new, e_new
-        at = np.where(fc < fe, c, e)
-        refined = sign * _branch(hb, cb, at, branch, exact=True)  # LAPACK at the phase found
-        out[..., k] = sign * np.minimum(best, refined)
+        sw = sign * w
+        local = (sw <= np.roll(sw, 1, axis=0)) & (sw <= np.roll(sw, -1, axis=0))
+        ranked = np.argsort(np.where(local, sw, np.inf), axis=0)[:n_wells]  # (n_wells, ..., d)
+        best = sw.min(axis=0)
+        for i in ranked:
+            a, b = phi[i] - step, phi[i] + step
+            c, e = b - gr * (b - a), a + gr * (b - a)
+            fc, fe = sign * _branch(hb, cb, c, branch), sign * _branch(hb, cb, e, branch)
+            for _ in range(n_golden):
+                left = fc < fe
+                b = np.where(left, e, b)
+                a = np.where(left, a, c)
+                c_new = np.where(left, b - gr * (b - a), e)
+                e_new = np.where(left, c, a + gr * (b - a))
+                f_new = sign * _branch(hb, cb, np.where(left, c_new, e_new), branch)
+                fc, fe = np.where(left, f_new, fe), np.where(left, fc, f_new)
+                c, e = c_new, e_new
+            at = np.where(fc < fe, c, e)
+            best = np.minimum(best, sign * _branch(hb, cb, at, branch, exact=True))  # LAPACK at the phase
+        out[..., k] = sign * best
     return out
 
 
@@ -357,7 +372,8 @@ def surface_modes(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, edges: np.
     lam = (a * fb - b * fa) / (fb - fa)
     lam = np.where(np.isfinite(lam), lam, 0.5 * (a + b))
     m, res = _effective(lam, h00[p], h00s[p], h01[p])
-    _, v = np.linalg.eigh(m)
+    mu_all, v = np.linalg.eigh(m)
+    residual = np.abs(lam - np.take_along_axis(mu_all, index[:, None], axis=-1)[:, 0])
     vec = np.take_along_axis(v, index[:, None, None], axis=-1)[..., 0]
     t = inv(lam[:, None, None] * np.eye(d) - res["eps_b"]) @ herm(h01[p])
     for _ in range(6):
@@ -365,5 +381,6 @@ def surface_modes(h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray, edges: np.
     with np.errstate(all="ignore"):
         decay = np.linalg.norm(np.einsum("mij,mj->mi", t, vec), axis=-1) ** (1.0 / 64.0)
     edge_dist = np.min(np.abs(lam[:, None, None] - edges[p]), axis=(-1, -2))
-    keep = (decay < 1.0 - DECAY_MIN) & (edge_dist > 10 * EDGE_OFFSET * scale[p]) & np.isfinite(lam) & res["converged"]
+    keep = ((decay < 1.0 - DECAY_MIN) & (edge_dist > 10 * EDGE_OFFSET * scale[p]) & np.isfinite(lam)
+            & res["converged"] & (residual <= RESIDUAL_TOL * scale[p]))
     return {"problem": p[keep], "omega2": lam[keep], "vector": vec[keep], "decay": decay[keep]}
