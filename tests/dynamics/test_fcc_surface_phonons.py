@@ -283,3 +283,20 @@ def test_band_edges_find_the_deeper_of_two_wells():
     np.testing.assert_allclose(edges[0, :, 1], w.max(axis=0), atol=1e-7)
     r = surface_phonons("morse", "in_plane_hydrostatic", 1.1905, surface="(111)", q=q)
     assert not np.any(r["omega2"] < 0)
+
+
+@pytest.mark.parametrize("pot, loading, s", [("lj", "in_plane_hydrostatic", 0.97), ("harmonic", "uniaxial", 1.03),
+                                             ("morse", "in_plane_hydrostatic", 1.02)])
+def test_sine_law_along_gamma_x(pot, loading, s):
+    """Reference: Eq. (17)'s c_R along [110] (surfwave.point) and the sine law
+    omega(q) = (2 c_R / a) sin(q a / 2), a the row period along [110]: the sagittal surface mode
+    of FCC (001) along Gamma-X follows it at every q (found here, the analogue of the
+    triangular lattice's Eq. 15), to rounding."""
+    ld = "[110]" if loading == "uniaxial" else None
+    q = np.linspace(0.02, 1.0, 12)[:, None] * np.array([0.5, 0.0])
+    r = surface_phonons(pot, loading, s, q=q, load_direction=ld)
+    w = np.nanmin(np.where(r["sector"][0] == 1, r["omega"][0], np.nan), axis=-1)
+    a = np.linalg.norm(layers.surface_crystal("(001)", loading, pot, [s], ld).cell2d[0, 0])
+    c_r = np.sqrt(surfwave.point("fcc", loading, pot, "[110]", s)["c2_R"][0])
+    qn = np.linalg.norm(r["q_cartesian"][0], axis=-1)
+    np.testing.assert_allclose(w, 2 * c_r / a * np.sin(qn * a / 2), rtol=1e-11)
