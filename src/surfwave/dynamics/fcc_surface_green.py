@@ -112,6 +112,8 @@ def decimate(z: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray,
     out_s, out_b = es.copy(), eb.copy()
     converged = np.zeros(n, bool)
     todo = np.arange(n)
+    seen = np.zeros(n, bool)  # recorded: converged or failed (dropped at the next compaction)
+    tol2 = (_EPS * scale) ** 2
     with np.errstate(all="ignore"):
         for _ in range(max_levels):
             g = inv(zz[todo, None, None] * eye - e)
@@ -123,18 +125,24 @@ def decimate(z: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray,
             e = e + agb + bg @ al
             al = ag @ al
             be = bg @ be
-            small = (np.abs(al).max(axis=(-1, -2)) + np.abs(be).max(axis=(-1, -2))) <= _EPS * scale[todo]
-            bad = ~np.isfinite(es).all(axis=(-1, -2))
-            done = small | bad
-            if done.any():
-                idx = todo[done]
-                out_s[idx], out_b[idx] = es[done], eb[done]
-                converged[idx] = small[done] & ~bad[done]
+            size2 = (al.real**2 + al.imag**2 + be.real**2 + be.imag**2).max(axis=(-1, -2))
+            small = size2 <= tol2[todo]
+            bad = ~np.isfinite(size2) | ~np.isfinite(es).all(axis=(-1, -2))
+            new = (small | bad) & ~seen[todo]
+            if new.any():
+                idx = todo[new]
+                out_s[idx], out_b[idx] = es[new], eb[new]
+                converged[idx] = small[new] & ~bad[new]
+                seen[idx] = True
+            done = seen[todo]
+            if done.all():
+                todo = todo[:0]
+                break
+            if done.sum() > 0.25 * todo.size:  # compact now and then, not at every level
                 keep = ~done
                 todo, e, es, eb, al, be = todo[keep], e[keep], es[keep], eb[keep], al[keep], be[keep]
-            if not todo.size:
-                break
-        out_s[todo], out_b[todo] = es, eb
+        left = ~seen[todo]
+        out_s[todo[left]], out_b[todo[left]] = es[left], eb[left]
     return {"eps_s": out_s.reshape(shape), "eps_b": out_b.reshape(shape), "converged": converged.reshape(lead)}
 
 
