@@ -166,6 +166,8 @@ def draw_all(ds: xr.Dataset, outputs: dict[str, str], scene: str) -> set[str]:
     for key, path in outputs.items():
         kind, pot = key[len("surface_phonons_"):].split("_", 1)
         one = ds.sel(potential=pot)
-        draw[kind](one, path, title=f"{kind}: FCC surface phonons, {pot} (scene {scene})")
+        what = {"dispersion": "surface phonons over the projected bulk bands (grey)",
+                "soft": "lowest surface-mode omega^2 along the path", "entropy": "surface entropy"}[kind]
+        draw[kind](one, path, title=f"FCC {what}, {pot} (scene {scene})")
         done.add(key)
     return done
