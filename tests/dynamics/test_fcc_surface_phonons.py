@@ -300,3 +300,20 @@ def test_sine_law_along_gamma_x(pot, loading, s):
     c_r = np.sqrt(surfwave.point("fcc", loading, pot, "[110]", s)["c2_R"][0])
     qn = np.linalg.norm(r["q_cartesian"][0], axis=-1)
     np.testing.assert_allclose(w, 2 * c_r / a * np.sin(qn * a / 2), rtol=1e-11)
+
+
+@pytest.mark.parametrize("pot, s", [("lj", 0.97), ("morse", 1.05)])
+def test_sine_law_along_gamma_m_of_111(pot, s):
+    """Reference: the general Stroh solver's c_R along Gamma-M of (111) (continuum, same bonds) and
+    the sine law omega = (2 c_R / L) sin(q L / 2), L = pi / |q_M|: the sagittal surface mode
+    follows it at every q, to rounding."""
+    q = np.linspace(0.05, 1.0, 10)[:, None] * np.array([0.5, 0.0])
+    r = surface_phonons(pot, "in_plane_hydrostatic", s, surface="(111)", q=q)
+    w = np.nanmin(np.where(r["sector"][0] == 1, r["omega"][0], np.nan), axis=-1)
+    qc = r["q_cartesian"][0]
+    qn = np.linalg.norm(qc, axis=-1)
+    sc = layers.surface_crystal("(111)", "in_plane_hydrostatic", pot, [s])
+    c2, kind = _stroh_c2(sc, pot, qc[-1] / qn[-1])
+    assert kind in ("surface", "supersonic_decoupled")  # Gamma-M lies on a mirror: sagittal wave
+    length = np.pi / qn[-1]
+    np.testing.assert_allclose(w, 2 * np.sqrt(c2) / length * np.sin(qn * length / 2), rtol=1e-9)
