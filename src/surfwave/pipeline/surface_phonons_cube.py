@@ -16,36 +16,11 @@ import numpy as np
 import xarray as xr
 
 from surfwave.data import cube
+from surfwave.data.variables import CUBES
 from surfwave.dynamics.fcc_layers import LOAD_DIRECTIONS
 from surfwave.dynamics.fcc_surface_entropy import surface_entropy
 from surfwave.dynamics.fcc_surface_phonons import DEFAULT_PATHS, surface_phonons
 
-#: Variables: name -> (long_name, units, inner dims after strain).
-VARIABLES: dict[str, tuple[str, str | None, tuple[str, ...]]] = {
-    "omega": ("surface-mode angular frequency, sign(omega^2) sqrt|omega^2| (negative: imaginary, "
-              "an unstable surface mode), ascending, NaN-padded", "sqrt(K/m)", ("q", "mode")),
-    "decay": ("amplitude ratio of the surface mode between successive lattice planes", "1", ("q", "mode")),
-    "polarisation": ("share of the top plane's |U|^2 along q (longitudinal), the inward normal and "
-                     "q x n (shear horizontal)", "1", ("q", "mode", "component")),
-    "sector": ("mirror sector: +1 sagittal (even), -1 shear horizontal (odd), 0 no mirror", "1", ("q", "mode")),
-    "band_edges": ("projected bulk band: min and max over the normal wavevector of each bulk branch, "
-                   "signed omega", "sqrt(K/m)", ("q", "branch", "edge")),
-    "q_reduced": ("in-plane wavevector in reduced coordinates of the deformed surface reciprocal lattice",
-                  "1", ("q", "axis2")),
-    "q_distance": ("length along the path of high-symmetry points", "rad/d0", ("q",)),
-    "spectral_density": ("spectral density of the top plane's displacements, -(2 omega/pi) Im Tr G_00, "
-                         "integrating to 3 over omega", "(K/m)^-1/2", ("q", "frequency")),
-    "lowest_omega2": ("omega^2 of the lowest surface mode at each q (NaN: none)", "K/m", ("q",)),
-    "softest_omega2": ("lowest surface omega^2 along the path (negative: a soft surface mode)", "K/m", ()),
-    "bulk_stable": ("bulk stable over the zone mesh and in the long-wave limit", None, ()),
-    "reason": ("why values are NaN at this strain (empty if all are valid)", None, ()),
-    "S_surface_exact": ("exact classical harmonic surface entropy per surface atom of the semi-infinite "
-                        "crystal (log-determinant route)", "k_B", ()),
-    "S_surface_exact_error": ("error estimate of S_surface_exact (Richardson over q grids)", "k_B", ()),
-    "S_surface_estimate": ("Eq. (25)-type estimate <ln omega_1 omega_2 omega_3> - <ln omega_R> - "
-                           "2 <ln omega>_bulk (see docs/physics/surface-phonons.md)", "k_B", ()),
-    "bulk_mean_log_omega": ("mean of ln(omega/omega0) over all bulk modes, omega0 = (K/m)^(1/2)", "1", ()),
-}
 #: Branches stored (3 per plane, up to two planes per principal layer: (110)).
 N_BRANCH = 6
 
@@ -120,14 +95,14 @@ def surface_phonons_cube(job: dict[str, Any]) -> xr.Dataset:
     nq = max(b["omega"].shape[1] for b in blocks.values())
     nm = max(b["omega"].shape[2] for b in blocks.values())
     for b in blocks.values():
-        for name, (_, _, dims) in VARIABLES.items():
+        for name, meta in CUBES["surface_phonons"].items():
+            dims = meta["dims"][1:]
             if "q" in dims:
                 b[name] = _pad(b[name], 1, nq)
             if "mode" in dims:
                 b[name] = _pad(b[name], 2, nm)
-    meta = {k: {"long_name": v[0], **({"units": v[1]} if v[1] else {}), "dims": v[2]} for k, v in VARIABLES.items()}
     labels = [cut_label(s, ld) for s, ld in cuts(job)]
-    ds = cube.build(blocks, {"potential": list(job["potentials"]), "cut": labels}, d, meta,
+    ds = cube.build(blocks, {"potential": list(job["potentials"]), "cut": labels}, d, CUBES["surface_phonons"],
                     coords={"q": np.arange(nq), "mode": np.arange(nm),
                             "component": ["longitudinal", "normal", "shear_horizontal"],
                             "branch": np.arange(N_BRANCH), "edge": ["min", "max"], "axis2": ["b1", "b2"],
@@ -135,7 +110,7 @@ def surface_phonons_cube(job: dict[str, Any]) -> xr.Dataset:
     ds = ds.assign_coords(surface=("cut", [s for s, _ in cuts(job)]),
                           load_direction=("cut", [ld or "none" for _, ld in cuts(job)]))
     ds.coords["frequency"].attrs.update(long_name="angular frequency omega of the spectral density",
-                                        units="sqrt(K/m)")
+                                        units="(K/m)^(1/2)")
     for name, long_name in (("q", "index along the sampled path"), ("mode", "surface mode index (ascending omega)"),
                             ("branch", "bulk branch index (ascending)"), ("cut", "surface (and load direction)"),
                             ("surface", "surface plane of the cubic crystal"),
