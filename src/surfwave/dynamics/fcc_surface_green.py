@@ -66,15 +66,17 @@ def inv(m: np.ndarray) -> np.ndarray:
             out[..., 0, 0], out[..., 1, 1] = m[..., 1, 1], m[..., 0, 0]
             out[..., 0, 1], out[..., 1, 0] = -m[..., 0, 1], -m[..., 1, 0]
             return out / det[..., None, None]
-        a = m
-        cof = np.empty_like(m)
-        for i in range(3):
-            for j in range(3):
-                i1, i2 = (i + 1) % 3, (i + 2) % 3
-                j1, j2 = (j + 1) % 3, (j + 2) % 3
-                cof[..., j, i] = a[..., i1, j1] * a[..., i2, j2] - a[..., i1, j2] * a[..., i2, j1]
-        det = (a[..., 0, :] * cof[..., :, 0]).sum(axis=-1)
-        return cof / det[..., None, None]
+        a, b, c = m[..., 0, 0], m[..., 0, 1], m[..., 0, 2]
+        d_, e, f = m[..., 1, 0], m[..., 1, 1], m[..., 1, 2]
+        g, h, i = m[..., 2, 0], m[..., 2, 1], m[..., 2, 2]
+        c00, c10, c20 = e * i - f * h, f * g - d_ * i, d_ * h - e * g
+        det = a * c00 + b * c10 + c * c20
+        out = np.empty_like(m)
+        out[..., 0, 0], out[..., 1, 0], out[..., 2, 0] = c00, c10, c20
+        out[..., 0, 1], out[..., 1, 1], out[..., 2, 1] = c * h - b * i, a * i - c * g, b * g - a * h
+        out[..., 0, 2], out[..., 1, 2], out[..., 2, 2] = b * f - c * e, c * d_ - a * f, a * e - b * d_
+        out /= det[..., None, None]
+        return out
 
 
 def decimate(z: np.ndarray, h00: np.ndarray, h00s: np.ndarray, h01: np.ndarray,
