@@ -67,11 +67,10 @@ def test_cube_and_figures(built):
 
 
 def test_rerun_is_a_no_op_and_bad_surface_fails_first(built, tmp_path):
-    """A second run has nothing to do; (110) with in-plane hydrostatic loading fails the scene
-    check before any job."""
+    """A second run has nothing to do; a uniaxial scene whose load direction does not lie in a
+    surface ((111) with [100]) fails the scene check before any job."""
     out = smk(built, "-n", check=False)
     assert "Nothing to be done" in out.stdout + out.stderr
-    bad = make_workdir(tmp_path, SCENE.replace("loading: uniaxial", "loading: in_plane_hydrostatic")
-                       .replace('"(111)"]', '"(110)"]'))
+    bad = make_workdir(tmp_path, SCENE.replace('directions: ["[110]"]', 'directions: ["[100]"]'))
     out = smk(bad, "-n", check=False)
-    assert out.returncode != 0 and "'(110)' has no in_plane_hydrostatic loading" in out.stdout + out.stderr
+    assert out.returncode != 0 and "'(111)' contains none of the load directions" in out.stdout + out.stderr

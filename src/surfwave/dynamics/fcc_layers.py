@@ -25,6 +25,8 @@ Stressed geometries (d_over_d0 = s is the stretch along the load direction):
   sigma_nn = 0 holds when the six out-of-plane bonds sit at the minimum of phi (r = 1):
   s^2/3 + 2 t^2/3 = 1, so t = sqrt((3 - s^2)/2), 0 < s < sqrt 3, for every potential
   (checked against :func:`surfwave.model_crystals.elastic.stress` in the tests).
+* (110), in-plane hydrostatic: equal in-plane stress along [1-10] (stretch s) and [001], zero
+  normal stress, the two other stretches solved by Newton's method from s = 1.
 * (111) uniaxial along [110] (a close-packed row of the (1-11) plane) and (110) uniaxial
   along [110] (in the (1-10) plane) or [100] (in the (011) plane): the uniaxially stressed
   crystal of :func:`build`, cut along a plane containing the load.
@@ -33,7 +35,7 @@ With sigma.n = 0 and bonds to the neighbouring planes only, the surface plane of
 (111) is in equilibrium at the bulk positions. On (110) the normal bond spanning two planes
 carries the force phi'(r) under stress, so the unrelaxed (110) surface is not in
 equilibrium when stressed; the blocks are then those of the bulk-terminated geometry
-(no relaxation), exact only at zero stress. (110) in-plane hydrostatic is not provided.
+(no relaxation), exact only at zero stress.
 """
 from __future__ import annotations
 
@@ -54,10 +56,12 @@ _R2 = np.sqrt(2.0) / 2.0
 #: Per (surface, loading, load direction): the lab construction, the crystal plane (hkl)
 #: and the undeformed primitive surface vectors a1, a2 (crystal axes, d0).
 _CUTS: dict[tuple[str, str], dict] = {
+    ("(001)", "hydrostatic"): {"plane": (0, 0, 1), "a": _R2 * np.array([[1, 1, 0], [1, -1, 0]], float)},
     ("(001)", "[100]"): {"plane": (0, 0, 1), "a": _R2 * np.array([[1, 1, 0], [1, -1, 0]], float)},
     ("(001)", "[110]"): {"plane": (0, 0, 1), "a": _R2 * np.array([[1, 1, 0], [1, -1, 0]], float)},
     ("(111)", "[110]"): {"plane": (1, -1, 1), "a": _R2 * np.array([[1, 1, 0], [0, -1, -1]], float)},
-    ("(111)", "[111]"): {"plane": (1, 1, 1), "a": _R2 * np.array([[1, -1, 0], [0, 1, -1]], float)},
+    ("(111)", "hydrostatic"): {"plane": (1, 1, 1), "a": _R2 * np.array([[1, -1, 0], [0, 1, -1]], float)},
+    ("(110)", "hydrostatic"): {"plane": (1, 1, 0), "a": np.array([[_R2, -_R2, 0], [0, 0, np.sqrt(2.0)]])},
     ("(110)", "[110]"): {"plane": (1, -1, 0), "a": np.array([[_R2, _R2, 0], [0, 0, np.sqrt(2.0)]])},
     ("(110)", "[100]"): {"plane": (0, 1, 1), "a": np.array([[0, _R2, -_R2], [np.sqrt(2.0), 0, 0]])},
 }
@@ -84,6 +88,7 @@ class SurfaceCrystal:
     Attributes
     ----------
     surface, loading, load_direction : str
+        (``load_direction`` "none" for in-plane hydrostatic loading.)
     d_over_d0 : ndarray, shape (n,)
     crystal : Crystal
         The bulk crystal in its own lab frame (for phonopy and the stress).
@@ -119,11 +124,18 @@ class SurfaceCrystal:
         return int(np.abs(self.steps).max())
 
 
+#: Lab axes (rows, crystal axes) of the crystals built here for in-plane hydrostatic loading.
+_HYDRO_AXES = {
+    "(111)": np.array([[1.0, -1.0, 0.0], [1.0, 1.0, 1.0], [1.0, 1.0, -2.0]])
+    / np.array([np.sqrt(2.0), np.sqrt(3.0), -np.sqrt(6.0)])[:, None],
+    "(110)": np.array([[1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    / np.array([np.sqrt(2.0), np.sqrt(2.0), 1.0])[:, None],
+}
+
+
 def _crystal_111_hydrostatic(s: np.ndarray) -> Crystal:
     """FCC stretched by s in the (111) plane, t = sqrt((3 - s^2)/2) along [111] (module docstring)."""
-    x = np.array([1.0, -1.0, 0.0]) / np.sqrt(2.0)
-    y = np.ones(3) / np.sqrt(3.0)
-    axes = np.array([x, y, np.cross(x, y)])
+    axes = _HYDRO_AXES["(111)"]
     t = np.sqrt((3.0 - s**2) / 2.0)
     stretch = np.column_stack([s, t, s])
     bonds = (_FCC_HALF_NEIGHBOURS @ axes.T)[None] * stretch[:, None, :]
@@ -133,8 +145,59 @@ def _crystal_111_hydrostatic(s: np.ndarray) -> Crystal:
                    np.abs(np.linalg.det(cell)), stretch)
 
 
-def check_request(surface: str, loading: str, load_direction: str | None) -> str:
-    """Validate (surface, loading, load direction); return the load direction used.
+def _stress_diag(bonds0: np.ndarray, stretch: np.ndarray, pot: PairPotential) -> np.ndarray:
+    """V sigma_aa, shape (n, 3), of half bonds (nb, 3) under lab stretches (n, 3)."""
+    r = bonds0[None] * stretch[:, None, :]
+    length = np.linalg.norm(r, axis=-1)
+    return np.einsum("nb,nba->na", pot.dphi(length) / length, r * r)
+
+
+def _crystal_110_hydrostatic(s: np.ndarray, pot: PairPotential, tol: float = 1e-13) -> Crystal:
+    """FCC under equal in-plane stress in (110): stretch s along [1-10], the stretches along [110]
+    (normal, sigma_nn = 0) and [001] (sigma equal to that along [1-10]) by Newton's method with
+    continuation from s = 1 in steps of at most 0.0025 (numerical Jacobian), vectorised over s.
+    The stress-controlled path can end (a limit point of the stress, or a collapse): beyond it
+    there is no such geometry (GeometryError)."""
+    axes = _HYDRO_AXES["(110)"]
+    b0 = _FCC_HALF_NEIGHBOURS @ axes.T
+    t = np.ones((s.size, 2))
+    steps = 1 + int(np.ceil(np.max(np.abs(s - 1.0), initial=0.0) / 0.0025))
+
+    def residual(sk: np.ndarray, tk: np.ndarray) -> np.ndarray:
+        sig = _stress_diag(b0, np.column_stack([sk, tk]), pot)
+        return np.column_stack([sig[:, 1], sig[:, 0] - sig[:, 2]])
+
+    ok = np.ones(s.size, bool)
+    for k in range(1, steps + 1):
+        sk = 1.0 + (s - 1.0) * k / steps
+        for _ in range(50):
+            f = residual(sk, t)
+            if np.all(np.abs(f[ok]) < tol):
+                break
+            jac = np.empty((s.size, 2, 2))
+            for j in range(2):
+                dt = np.zeros_like(t)
+                dt[:, j] = 1e-7
+                jac[:, :, j] = (residual(sk, t + dt) - residual(sk, t - dt)) / 2e-7
+            with np.errstate(all="ignore"):
+                step = np.linalg.solve(jac, f[..., None])[..., 0]
+            t -= np.clip(np.where(np.isfinite(step), step, 0.0), -0.1, 0.1)
+            ok &= np.all(t > 0.05, axis=-1) & np.all(np.isfinite(t), axis=-1)
+        ok &= np.all(np.abs(residual(sk, t)) < 1e3 * tol, axis=-1)
+    if not ok.all():
+        raise GeometryError(f"fcc (110) in_plane_hydrostatic with potential {pot.name!r}: no stretches with "
+                            f"equal in-plane stress and sigma_nn = 0 at d/d0 = {s[~ok][0]:.6g} (the "
+                            "stress-controlled path from d/d0 = 1 ends before it)")
+    stretch = np.column_stack([s, t])
+    bonds = b0[None] * stretch[:, None, :]
+    prim = _R2 * np.array([[0, 1, 1], [1, 0, 1], [1, 1, 0]], float)
+    cell = (prim @ axes.T)[None] * stretch[:, None, :]
+    return Crystal("fcc", "in_plane_hydrostatic", "[1-10]", s, bonds, cell, np.abs(np.linalg.det(cell)), stretch)
+
+
+def check_request(surface: str, loading: str, load_direction: str | None) -> str | None:
+    """Validate (surface, loading, load direction); return the load direction used (None: in-plane
+    hydrostatic).
 
     Raises
     ------
@@ -146,12 +209,9 @@ def check_request(surface: str, loading: str, load_direction: str | None) -> str
     if loading not in LOADINGS:
         raise InputError(f"unknown loading {loading!r}; choose one of {list(LOADINGS)}")
     if loading == "in_plane_hydrostatic":
-        if surface == "(110)":
-            raise InputError("in_plane_hydrostatic loading is not available for the (110) surface; "
-                             "use loading='uniaxial' with load_direction '[110]' or '[100]'")
         if load_direction is not None:
             raise InputError("load_direction applies to uniaxial loading only")
-        return "[111]" if surface == "(111)" else "[100]"
+        return None
     choices = LOAD_DIRECTIONS[surface]
     if load_direction is None:
         return choices[0]
@@ -186,19 +246,25 @@ def surface_crystal(surface: str, loading: str, potential: str | PairPotential, 
     get_potential(potential)
     ld = check_request(surface, loading, load_direction)
     s = as_1d(d_over_d0)
-    if (surface, ld) == ("(111)", "[111]"):
+    pot = get_potential(potential)
+    if ld is None and surface == "(111)":
         bad = s[(s <= 0) | (s >= np.sqrt(3.0))]
         if bad.size:
             raise GeometryError(f"impossible geometry for fcc (111) in_plane_hydrostatic: d/d0 = {bad[0]:.6g} "
                                 "(t^2 = (3 - (d/d0)^2)/2 must be positive, so 0 < d/d0 < sqrt 3)")
         crystal = _crystal_111_hydrostatic(s)
-        x = np.array([1.0, -1.0, 0.0]) / np.sqrt(2.0)
-        y = np.ones(3) / np.sqrt(3.0)
-        axes = np.array([x, y, np.cross(x, y)])
+        axes = _HYDRO_AXES["(111)"]
+    elif ld is None and surface == "(110)":
+        bad = s[s <= 0]
+        if bad.size:
+            raise GeometryError(f"impossible geometry: d/d0 = {bad[0]:.6g} (a stretch must be positive)")
+        crystal = _crystal_110_hydrostatic(s, pot)
+        axes = _HYDRO_AXES["(110)"]
     else:
-        crystal = build("fcc", cast(Loading, loading), potential, cast(Direction, ld), s)
-        axes = lab_axes("(001)", ld)
-    cut = _CUTS[(surface, ld)]
+        lab = ld or "[100]"
+        crystal = build("fcc", cast(Loading, loading), potential, cast(Direction, lab), s)
+        axes = lab_axes("(001)", lab)
+    cut = _CUTS[(surface, ld or "hydrostatic")]
     a_lab = (cut["a"] @ axes.T)[None] * crystal.stretch[:, None, :]  # (n, 2, 3) deformed a1, a2
     normal = np.cross(a_lab[:, 0], a_lab[:, 1])
     area = np.linalg.norm(normal, axis=-1)
@@ -215,7 +281,7 @@ def surface_crystal(surface: str, loading: str, potential: str | PairPotential, 
         raise GeometryError(f"bonds do not join lattice planes of {surface} (internal error)")
     cell2d = np.einsum("nai,nji->naj", a_lab, rot[:, [0, 2]])
     recip2d = 2.0 * np.pi * np.swapaxes(np.linalg.inv(cell2d), -1, -2)
-    return SurfaceCrystal(surface, loading, ld, s, crystal, rot, bonds, steps[0].astype(int),
+    return SurfaceCrystal(surface, loading, ld or "none", s, crystal, rot, bonds, steps[0].astype(int),
                           spacing, cell2d, recip2d)
 
 

@@ -24,9 +24,6 @@ def check_surfaces(where: str, raw: dict, directions: list[str]) -> list[str]:
         if surface not in SURFACES:
             problems.append(f"{where}, key 'surfaces': value {surface!r} is not available for surface_phonons; "
                             f"choose from {list(SURFACES)}")
-        elif raw["loading"] == "in_plane_hydrostatic" and surface == "(110)":
-            problems.append(f"{where}, key 'surfaces': value '(110)' has no in_plane_hydrostatic loading in this "
-                            "model; use loading 'uniaxial'")
         elif raw["loading"] == "uniaxial" and not set(directions) & set(LOAD_DIRECTIONS[surface]):
             problems.append(f"{where}, key 'surfaces': value {surface!r} contains none of the load directions "
                             f"{directions}; it takes {list(LOAD_DIRECTIONS[surface])}")
