@@ -108,3 +108,18 @@ def test_110_finite_q_soft_mode_unseen_by_long_wave():
         c2.append(float(surface_wave(elastic_constants(b, pot) + np.einsum("jl,ik->ijkl", stress(b, pot), np.eye(3)),
                                      1.0)["c"]) ** 2)
     assert min(c2) > 1e-3
+
+
+def test_walk_finds_the_project_bulk_limits():
+    """Reference: surfwave.model_crystals.stability.instability_limits (the analytic long-wave
+    criterion, walked and bisected by the project's own code): the soft-mode walk's bulk limits
+    of LJ (001) in-plane hydrostatic agree to its tolerance, and the tension side reports the
+    X-point surface softening first (test_001_x_point_softens_with_eq17)."""
+    from surfwave.dynamics.fcc_soft_modes import first_instabilities
+    from surfwave.model_crystals.stability import instability_limits
+
+    r = first_instabilities("lj", "in_plane_hydrostatic", "(001)", step=0.075, tol=2e-4, n_mesh=2,
+                            search=(0.85, 1.15))
+    ref = instability_limits("fcc", "in_plane_hydrostatic", "lj", "[100]", kind="long_wave", tol=1e-4)
+    assert abs(r["d_bulk"][0] - ref[0]) < 3e-4 and r["first"][0] == "bulk"
+    assert r["first"][1] == "surface" and r["d_surface"][1] < ref[1]

@@ -140,13 +140,22 @@ def test_zone_boundary_modes_match_thick_slab(surface, loading, pot, s, ld):
     checked = 0
     for i in range(q.shape[0]):
         w, v = _slab_eigs(sc, pot, r["q_cartesian"][0, i], 90)
-        for lam, dec in zip(r["omega2"][0, i], r["decay"][0, i]):
+        qc = r["q_cartesian"][0, i]
+        qh = np.array([qc[0], 0.0, qc[1]]) / np.linalg.norm(qc)
+        frame = np.array([qh, [0.0, 1.0, 0.0], np.cross(qh, [0.0, 1.0, 0.0])])
+        for lam, dec, pol in zip(r["omega2"][0, i], r["decay"][0, i], r["polarisation"][0, i]):
             if not np.isfinite(lam) or dec > 0.8:
                 continue
             j = np.argmin(np.abs(w - lam))
+            if np.min(np.abs(np.delete(w, j) - lam)) > 1e-6:  # non-degenerate: compare polarisation
+                top = np.abs(frame @ v[0, :, j]) ** 2
+                np.testing.assert_allclose(pol, top / top.sum(), atol=1e-8)
             assert w[j] == pytest.approx(lam, rel=1e-9, abs=1e-12)
             amp = np.linalg.norm(v[:, :, j], axis=1)
             assert amp[45:].max() < 1e-3 * amp.max()
+            if 0.2 < dec < 0.8:  # decay per plane: the slab mode's amplitude ratio deep inside
+                ratio = (amp[24:30].sum() / amp[4:10].sum()) ** (1 / 20)
+                assert ratio == pytest.approx(dec, rel=2e-2)
             checked += 1
     assert checked >= q.shape[0]
 
