@@ -37,7 +37,7 @@ import numpy as np
 
 from surfwave.dynamics import fcc_layers as layers
 from surfwave.dynamics.fcc_surface_green import decimate, herm
-from surfwave.dynamics.fcc_surface_phonons import _bulk_stability, surface_phonons
+from surfwave.dynamics.fcc_surface_phonons import bulk_stability, surface_phonons
 from surfwave.errors import InputError
 from surfwave.model_crystals.potentials import PairPotential, get_potential
 
@@ -168,7 +168,7 @@ def surface_entropy(potential: str | PairPotential, loading: str, d_over_d0, *, 
         raise InputError(f"n_grid must be an integer >= 8 divisible by 4, got {n_grid!r}")
     pot = get_potential(potential)
     sc = layers.surface_crystal(surface, loading, pot, d_over_d0, load_direction)
-    stable, _, reason = _bulk_stability(sc, pot)
+    stable, _, reason = bulk_stability(sc, pot)
     fine, half, quarter = (_zone_terms(sc, pot, n_grid // k) for k in (1, 2, 4))
     m = sc.depth
     rich, rich_half = (4.0 * fine["s"] - half["s"]) / 3.0, (4.0 * half["s"] - quarter["s"]) / 3.0

@@ -103,8 +103,22 @@ def _mirror_bases(sc: layers.SurfaceCrystal, qc: np.ndarray) -> tuple[np.ndarray
     return mirror, frame
 
 
-def _bulk_stability(sc: layers.SurfaceCrystal, potential: PairPotential) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Full-zone and long-wave bulk check per strain: (stable (n,), min omega^2 (n,), reason (n,))."""
+def bulk_stability(sc: layers.SurfaceCrystal, potential: PairPotential) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bulk stability of the layered crystal per strain (module docstring).
+
+    Parameters
+    ----------
+    sc : SurfaceCrystal
+    potential : PairPotential
+
+    Returns
+    -------
+    stable : ndarray of bool, shape (n,)
+    min_omega2 : ndarray, shape (n,)
+        Lowest of the zone-mesh omega^2 (K/m) and the lowest acoustic-tensor eigenvalue (K d0^2/m).
+    reason : ndarray of str (object), shape (n,)
+        Empty where stable.
+    """
     nq, nphi = STABILITY_MESH
     g = (np.arange(nq) + 0.5) / nq - 0.5
     qr = np.stack(np.meshgrid(g, g, indexing="ij"), axis=-1).reshape(-1, 2)
@@ -208,7 +222,7 @@ def surface_phonons(potential: str | PairPotential, loading: str, d_over_d0, *, 
     n, nq, m = sc.d_over_d0.size, qr.shape[0], sc.depth
     qc = layers.cartesian_q(sc, qr)
     h00, h00s, h01 = layers.principal_blocks(layers.plane_blocks(sc, pot, qc))
-    stable, bulk_min, reason = _bulk_stability(sc, pot)
+    stable, bulk_min, reason = bulk_stability(sc, pot)
     mirror, frame = _mirror_bases(sc, qc)
     d = 3 * m
     eye_m = np.eye(m)
