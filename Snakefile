@@ -101,6 +101,7 @@ include: "workflow/rules/rayleigh.smk"
 include: "workflow/rules/bulk.smk"
 include: "workflow/rules/dispersion.smk"
 include: "workflow/rules/entropy.smk"
+include: "workflow/rules/surface_phonons.smk"
 include: "workflow/rules/surface_wave.smk"
 include: "workflow/rules/piezo.smk"
 # Figures, report, benchmarks: they define FIGURE_TARGETS and REPORT_TARGETS.

@@ -11,8 +11,9 @@ from __future__ import annotations
 __version__ = "0.1.0"
 
 from surfwave.api import material, point  # noqa: E402
+from surfwave.dynamics.fcc_surface_phonons import surface_phonons  # noqa: E402
 from surfwave.layers.solve import layered  # noqa: E402
 from surfwave.metrology.film import fit_film  # noqa: E402
 from surfwave.solvers.rayleigh import rayleigh_c2  # noqa: E402
 
-__all__ = ["__version__", "fit_film", "layered", "material", "point", "rayleigh_c2"]
+__all__ = ["__version__", "fit_film", "layered", "material", "point", "rayleigh_c2", "surface_phonons"]

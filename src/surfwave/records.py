@@ -247,3 +247,90 @@ class LayeredResult(TypedDict):
     frequency: _Array
     reason: _Array
     power_flow_angle: _Array
+
+
+class SurfacePhononsResult(TypedDict):
+    """Result of :func:`surfwave.surface_phonons`: the semi-infinite prestressed FCC crystal.
+
+    Reduced units (d0 = K = m = 1): omega in sqrt(K/m), omega^2 in K/m, wavevectors in
+    rad/d0. Shapes: n strains, n_q wavevectors, n_modes surface modes (the most found at
+    any point; NaN-padded), m planes per principal layer (1 for (001), (111); 2 for (110)).
+
+    Attributes
+    ----------
+    surface, loading, load_direction, potential : str
+        What was computed.
+    d_over_d0 : ndarray, shape (n,)
+        Stretch along the load direction (1).
+    q : ndarray, shape (n_q, 2)
+        Reduced coordinates of the deformed primitive surface reciprocal lattice (1).
+    q_cartesian : ndarray, shape (n, n_q, 2)
+        In-plane wavevector along (e1, e3) of the surface frame (e1 along a1), rad/d0.
+    q_distance : ndarray, shape (n, n_q)
+        Cumulative length along the sampled q, rad/d0.
+    path_labels : list of str
+        High-symmetry labels of a path (empty for explicit q); ``path_index`` (len,) their rows.
+    omega, omega2 : ndarray, shape (n, n_q, n_modes)
+        Surface modes, ascending; ``omega`` = sign(omega^2) sqrt|omega^2| (negative: an
+        imaginary frequency, an unstable surface mode). NaN: no further mode, or see
+        ``q_reason``.
+    decay : ndarray, shape (n, n_q, n_modes)
+        Asymptotic amplitude ratio between successive planes (1; < 1).
+    polarisation : ndarray, shape (n, n_q, n_modes, 3)
+        Share of |U|^2 of the top plane along q^ (longitudinal), the inward normal and
+        q^ x n (shear horizontal) (1; rows sum to 1).
+    sector : ndarray of int8, shape (n, n_q, n_modes)
+        +1 sagittal (even under the mirror through q and n), -1 shear horizontal (odd),
+        0 no mirror at this q.
+    band_edges, band_edges_omega2 : ndarray, shape (n, n_q, 3 m, 2)
+        [min, max] of each bulk branch over the normal wavevector (projected bulk band),
+        in signed omega and in omega^2.
+    softest_q : ndarray, shape (n, 2)
+        Reduced q of the lowest surface omega^2 among the sampled q (NaN: no surface mode).
+    softest_omega2 : ndarray, shape (n,)
+        That omega^2, K/m (negative: a soft surface mode).
+    bulk_stable : ndarray of bool, shape (n,)
+        Bulk stable over the zone mesh and in the long-wave limit.
+    bulk_min_omega2 : ndarray, shape (n,)
+        Lowest bulk omega^2 of that check (long-wave: the lowest acoustic-tensor eigenvalue,
+        K d0^2/m), K/m.
+    reason, q_reason : ndarray of str (object), shapes (n,) and (n, n_q)
+        Why results are NaN (empty where they are not).
+    layer_spacing : ndarray, shape (n,)
+        Plane spacing h, d0.
+    spectral_density : ndarray, shape (n, n_q, n_omega), only with ``omega``
+        Top plane's -(2 omega/pi) Im Tr G_00(omega^2 + i eta), per sqrt(K/m); integrates to 3.
+    omega_grid : ndarray, shape (n_omega,); eta : float
+        The frequencies and broadening (K/m) used.
+    """
+
+    surface: str
+    loading: str
+    load_direction: str
+    potential: str
+    d_over_d0: _Array
+    q: _Array
+    q_cartesian: _Array
+    q_distance: _Array
+    path_labels: list
+    path_index: _Array
+    omega: _Array
+    omega2: _Array
+    decay: _Array
+    polarisation: _Array
+    sector: _Array
+    band_edges: _Array
+    band_edges_omega2: _Array
+    softest_q: _Array
+    softest_omega2: _Array
+    bulk_stable: _Array
+    bulk_min_omega2: _Array
+    reason: _Array
+    q_reason: _Array
+    layer_spacing: _Array
+    spectral_density: NotRequired[_Array]
+    omega_grid: NotRequired[_Array]
+    eta: NotRequired[float]
+
+
+__all__ += ["SurfacePhononsResult"]

@@ -411,6 +411,95 @@ CUBES: dict[str, dict[str, dict[str, Any]]] = {
             "dims": ("strain",),
         },
     },
+    # surface_phonons.nc: semi-infinite FCC surface phonons, soft modes, surface entropy
+    # (surfwave.pipeline.surface_phonons_cube; surfwave.dynamics.fcc_surface_phonons)
+    "surface_phonons": {
+        "omega": {
+            "long_name": "surface-mode angular frequency, sign(omega^2) sqrt|omega^2| (negative: "
+                         "imaginary, an unstable surface mode), ascending, NaN-padded",
+            "units": "(K/m)^(1/2)",
+            "dims": ("strain", "q", "mode"),
+        },
+        "decay": {
+            "long_name": "amplitude ratio of the surface mode between successive lattice planes",
+            "units": "1",
+            "dims": ("strain", "q", "mode"),
+        },
+        "polarisation": {
+            "long_name": "share of the top plane's |U|^2 along q (longitudinal), the inward normal and q "
+                         "x n (shear horizontal)",
+            "units": "1",
+            "dims": ("strain", "q", "mode", "component"),
+        },
+        "sector": {
+            "long_name": "mirror sector: +1 sagittal (even), -1 shear horizontal (odd), 0 no mirror",
+            "units": "1",
+            "dims": ("strain", "q", "mode"),
+        },
+        "band_edges": {
+            "long_name": "projected bulk band: min and max over the normal wavevector of each bulk "
+                         "branch, signed omega",
+            "units": "(K/m)^(1/2)",
+            "dims": ("strain", "q", "branch", "edge"),
+        },
+        "q_reduced": {
+            "long_name": "in-plane wavevector in reduced coordinates of the deformed surface reciprocal "
+                         "lattice",
+            "units": "1",
+            "dims": ("strain", "q", "axis2"),
+        },
+        "q_distance": {
+            "long_name": "length along the path of high-symmetry points",
+            "units": "rad/d0",
+            "dims": ("strain", "q"),
+        },
+        "spectral_density": {
+            "long_name": "spectral density of the top plane's displacements, -(2 omega/pi) Im Tr G_00, "
+                         "integrating to 3 over omega",
+            "units": "(K/m)^(-1/2)",
+            "dims": ("strain", "q", "frequency"),
+        },
+        "lowest_omega2": {
+            "long_name": "omega^2 of the lowest surface mode at each q (NaN: none)",
+            "units": "K/m",
+            "dims": ("strain", "q"),
+        },
+        "softest_omega2": {
+            "long_name": "lowest surface omega^2 along the path (negative: a soft surface mode)",
+            "units": "K/m",
+            "dims": ("strain",),
+        },
+        "bulk_stable": {
+            "long_name": "bulk stable over the zone mesh and in the long-wave limit",
+            "dims": ("strain",),
+        },
+        "reason": {
+            "long_name": "why values are NaN at this strain (empty if all are valid)",
+            "dims": ("strain",),
+        },
+        "S_surface_exact": {
+            "long_name": "exact classical harmonic surface entropy per surface atom of the semi-infinite "
+                         "crystal (log-determinant route)",
+            "units": "k_B",
+            "dims": ("strain",),
+        },
+        "S_surface_exact_error": {
+            "long_name": "error estimate of S_surface_exact (Richardson over q grids)",
+            "units": "k_B",
+            "dims": ("strain",),
+        },
+        "S_surface_estimate": {
+            "long_name": "Eq. (25)-type estimate <ln omega_1 omega_2 omega_3> - <ln omega_R> - 2 <ln "
+                         "omega>_bulk (see docs/physics/surface-phonons.md)",
+            "units": "k_B",
+            "dims": ("strain",),
+        },
+        "bulk_mean_log_omega": {
+            "long_name": "mean of ln(omega/omega0) over all bulk modes, omega0 = (K/m)^(1/2)",
+            "units": "1",
+            "dims": ("strain",),
+        },
+    },
     # surface_wave.nc of a real-crystal scene (surfwave.real_crystals.sweep; dims set by the builder)
     "surface_wave": {
         "c_R": {"long_name": "surface-wave speed (real part for a pseudo surface wave)", "units": "m s-1"},

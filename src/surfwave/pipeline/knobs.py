@@ -41,7 +41,7 @@ class Knob:
 
 
 def _table() -> dict[str, dict[str, Knob]]:
-    from surfwave.dynamics import entropy, triangular_surface
+    from surfwave.dynamics import entropy, fcc_surface_entropy, fcc_surface_phonons, triangular_surface
 
     return {
         "symmetry": {
@@ -83,6 +83,20 @@ def _table() -> dict[str, dict[str, Knob]]:
             "tol": Knob(_keyword_default(entropy.surface_entropy, "tol"), 1.0e-10, 1.0e-2,
                         "absolute quadrature error in k_B: rounding limits the error "
                         "estimate to a few 1e-12, so a tolerance below 1e-10 cannot be met"),
+        },
+        "surface_phonons": {
+            "path_density": Knob(fcc_surface_phonons.DEFAULT_PATH_DENSITY, 0.5, 200.0,
+                                 "q points per rad/d0 along the path of high-symmetry points: each "
+                                 "point costs ~3 ms per strain (benchmarks/bench_surface_phonons.py)"),
+            "n_omega": Knob(200, 10, 4000, "frequencies of the spectral density; cost and cube size "
+                                           "grow linearly"),
+            "omega_max": Knob(3.5, 0.1, 100.0, "top of the spectral-density grid, sqrt(K/m) (the bulk "
+                                               "band ends at 2 sqrt 2 = 2.83 at zero stress)"),
+            "eta": Knob(1.0e-2, 1.0e-8, 1.0, "broadening of the spectral density in omega^2 (K/m): below "
+                                              "the grid spacing squared the peaks are missed between points"),
+            "entropy_grid": Knob(fcc_surface_entropy.N_GRID, 8, 512,
+                                 "reduced-q grid (n x n, with n/2 and n/4 for Richardson) of the exact "
+                                 "surface entropy: error ~1e-5 k_B at 64, cost ~ n^2"),
         },
         # real-crystal scenes ($defs/crystal_scene)
         "surface_wave": {

@@ -35,6 +35,7 @@ from surfwave.pipeline.config_messages import name_problems, rest_problems, sche
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid, theta_grid  # noqa: F401 (public)
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
+from surfwave.pipeline.surface_phonons_scenes import DEFAULT_SURFACES, check_surfaces
 
 #: The schema shipped with the workflow (repository layout; pass a path to override).
 SCHEMA_PATH = Path(__file__).resolve().parents[3] / "workflow" / "schemas" / "config.schema.yaml"
@@ -48,9 +49,12 @@ CUBES = {
     "displacements": "displacements.nc",
     "entropy": "entropy.nc",
     "surface_wave": "surface_wave.nc",
+    "surface_phonons": "surface_phonons.nc",
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
+#: Quantities that exist only for the FCC lattice (surfwave.dynamics.fcc_surface_phonons).
+FCC_ONLY = ("surface_phonons",)
 #: A number with an exponent that PyYAML (YAML 1.1) reads as text: "1.0e8", "1e8", "1e-3"
 #: without a dot or a sign after e. YAML 1.2 (and every user) reads them as floats.
 _YAML12_FLOAT = re.compile(r"^[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)[eE][-+]?[0-9]+$")
@@ -229,6 +233,10 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
             problems.append(
                 f"{where}, key 'quantities': value {q!r} needs lattice 'triangular', not {lattice!r}"
             )
+        if q in FCC_ONLY and lattice != "fcc":
+            problems.append(f"{where}, key 'quantities': value {q!r} needs lattice 'fcc', not {lattice!r}")
+    if "surface_phonons" in raw["quantities"]:
+        problems += check_surfaces(where, raw, good_dirs)
     d = None
     try:
         d = expand_grid(raw["d_over_d0"], f"{where}, key 'd_over_d0'")
@@ -263,6 +271,8 @@ def _check_scene(name: str, raw: dict) -> tuple[dict | None, list[str]]:
         "quantities": list(raw["quantities"]),
         "accuracy": copy.deepcopy(raw["accuracy"]),
         **({"angles": angles} if angles is not None else {}),
+        **({"surfaces": list(raw.get("surfaces", DEFAULT_SURFACES))}
+           if "surfaces" in raw or "surface_phonons" in raw["quantities"] else {}),
     }, []
 
 
@@ -403,10 +413,11 @@ _STAGE_KEYS = {
     "displacements": ("lattice", "loading", "potentials", "directions", "d_over_d0", "theta"),
     "entropy": ("lattice", "loading", "potentials", "directions", "d_over_d0"),
     "surface_wave": ("materials", "surfaces", "angles", "directions", "stress", "loading", "toec"),
+    "surface_phonons": ("lattice", "loading", "potentials", "directions", "d_over_d0", "surfaces"),
 }
 _STAGE_ACCURACY = {"crystal": "symmetry", "bulk": "bulk", "dispersion": "dispersion",
                    "displacements": "displacements", "entropy": "entropy",
-                   "surface_wave": "surface_wave"}
+                   "surface_wave": "surface_wave", "surface_phonons": "surface_phonons"}
 
 
 def job_params(scene: dict, stage: str) -> dict[str, Any]:

@@ -34,6 +34,7 @@ OUTPUT_NEEDS = {
     "acoustoelastic": (("surface_wave",), ("report.acoustoelastic",)),
     "piezo_angles": (("surface_wave",), ("plots.piezo",)),
     "piezo_stress": (("surface_wave",), ("plots.piezo",)),
+    "surface_phonons": (("surface_phonons",), ("plots.surface_phonons",)),
     "summary": ((), ("report.summary",)),  # reads every cube of the scene but crystal.nc
 }
 
@@ -126,6 +127,8 @@ def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
         out.update({f"displacements_{p}": f"fig3_displacements_{p}.png" for p in pots})
     if "entropy" in q:
         out["entropy"] = "entropy_vs_strain.png"
+    if "surface_phonons" in q:
+        out.update(surface_phonons_outputs(pots))
     if s.get("kind") == "crystal" and "surface_wave" in q:
         if len(s["angles"]) >= 3:
             out["surface_wave_angles"] = "surface_wave_angles.png"
@@ -136,6 +139,17 @@ def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
         out.update(piezo_outputs(s))
     if name not in paper_scenes():
         out["summary"] = "summary.md"
+    return out
+
+
+def surface_phonons_outputs(potentials) -> dict[str, str]:
+    """Figures of a surface_phonons cube, per potential: dispersion over the bulk bands at
+    three strains, the soft-mode map, the surface entropy against strain."""
+    out = {}
+    for p in potentials:
+        out.update({f"surface_phonons_dispersion_{p}": f"surface_phonons_dispersion_{p}.png",
+                    f"surface_phonons_soft_{p}": f"surface_phonons_soft_modes_{p}.png",
+                    f"surface_phonons_entropy_{p}": f"surface_phonons_entropy_{p}.png"})
     return out
 
 

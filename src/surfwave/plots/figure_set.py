@@ -104,6 +104,11 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         entropy_vs_strain(cube("entropy"), outputs["entropy"],
                           title=f"surface entropy, triangular lattice (scene {scene})")
         done.add("entropy")
+    phonon_figs = {k: v for k, v in outputs.items() if k.startswith("surface_phonons_")}
+    if phonon_figs:  # surfwave.pipeline.targets.surface_phonons_outputs
+        from surfwave.plots.surface_phonons import draw_all
+
+        done.update(draw_all(cube("surface_phonons"), phonon_figs, scene))
     if "surface_wave_angles" in outputs:
         from surfwave.plots.surface_wave import speeds_vs_angle
 
