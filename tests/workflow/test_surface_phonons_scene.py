@@ -29,7 +29,7 @@ scenes:
     potentials: [lj]
     directions: ["[110]"]
     d_over_d0: [0.98, 1.02]
-    quantities: [surface_phonons]
+    quantities: [elastic, surface_phonons]   # elastic.nc: a cube the interface checker knows
     surfaces: ["(001)", "(111)"]
     accuracy:
       surface_phonons: {path_density: 2.0, n_omega: 20, entropy_grid: 8}
