@@ -22,9 +22,16 @@ _LABELS = {"G": "$\\bar\\Gamma$", "X": "$\\bar X$", "M": "$\\bar M$", "K": "$\\b
 _SECTOR_COLOURS = {1: "tab:red", -1: "tab:blue", 0: "k"}
 
 
-def three_strains(d: np.ndarray) -> list[int]:
-    """Indices of the first, middle and last strain (fewer if the grid is shorter)."""
-    return sorted({0, (d.size - 1) // 2, d.size - 1})
+def three_strains(d: np.ndarray, computed: np.ndarray | None = None) -> list[int]:
+    """Indices of three strains to draw: the smallest, the one nearest d/d0 = 1 and the largest
+    of those with an answer (``computed``, shape like ``d``; all strains when none has one),
+    fewer if there are fewer.
+
+    >>> three_strains(np.array([0.9, 0.95, 1.0, 1.05, 1.1]), np.array([False, True, True, True, False]))
+    [1, 2, 3]
+    """
+    ok = np.flatnonzero(computed) if computed is not None and np.any(computed) else np.arange(d.size)
+    return sorted({int(ok[0]), int(ok[np.argmin(np.abs(d[ok] - 1.0))]), int(ok[-1])})
 
 
 def _path_axis(ax, ds: xr.Dataset, cut: str, x: np.ndarray) -> None:
@@ -49,7 +56,8 @@ def plot_dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """
     cuts = [str(c) for c in ds["cut"].values]
     d = ds["d_over_d0"].values
-    cols = three_strains(d)
+    other = [dim for dim in ds["band_edges"].dims if dim != "strain"]
+    cols = three_strains(d, np.isfinite(ds["band_edges"]).any(other).values)   # strains whose bulk is stable
     fig, axes = plt.subplots(len(cuts), len(cols), figsize=(3.6 * len(cols), 3.0 * len(cuts)),
                              squeeze=False, sharey=True)
     for r, cut in enumerate(cuts):
