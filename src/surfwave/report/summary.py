@@ -14,6 +14,7 @@ from typing import Iterable
 import numpy as np
 
 from surfwave.data.cube import open_cube
+from surfwave.report.soft_modes import soft_mode_lines
 
 
 def _range(values) -> str:
@@ -50,8 +51,9 @@ def cube_lines(path: str | Path) -> list[str]:
         reasons = Counter(str(r) for r in np.ravel(ds["reason"].values) if str(r))
         for reason, n in reasons.most_common(3):
             out.append(f"- {n} points: {reason}")
+    soft = soft_mode_lines(ds)   # surface_phonons.nc: the soft-surface-mode claim
     ds.close()
-    return out + [""]
+    return out + [""] + soft
 
 
 def scene_summary(cube_paths: Iterable[str | Path], scene: str) -> str:
