@@ -57,7 +57,7 @@ def plot_dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     cuts = [str(c) for c in ds["cut"].values]
     d = ds["d_over_d0"].values
     other = [dim for dim in ds["band_edges"].dims if dim != "strain"]
-    cols = three_strains(d, np.isfinite(ds["band_edges"]).any(other).values)   # strains whose bulk is stable
+    cols = three_strains(d, ds["band_edges"].notnull().any(other).values)   # strains whose bulk is stable
     fig, axes = plt.subplots(len(cuts), len(cols), figsize=(3.6 * len(cols), 3.0 * len(cuts)),
                              squeeze=False, sharey=True)
     for r, cut in enumerate(cuts):
