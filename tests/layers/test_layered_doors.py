@@ -18,6 +18,7 @@ import surfwave
 from surfwave.errors import InputError
 from surfwave.layers import solve
 from surfwave.real_crystals.piezo_materials import get_piezo_material
+from surfwave.solvers.boundary import FREE, METALLIZED, Metallized
 from surfwave.solvers.tensors import cubic_voigt
 
 SI = cubic_voigt(165.7, 63.9, 79.6)
@@ -151,3 +152,38 @@ def test_a_good_substrate_is_the_same_answer(mkw, sub, lkw):
     assert np.isfinite(ref)
     assert bare["c"][0, 0] == pytest.approx(ref, rel=1e-13, abs=0)
     np.testing.assert_allclose(zero["c"][:, 0], ref, rtol=1e-13, atol=0)
+
+
+@pytest.mark.parametrize("boundary", [FREE, METALLIZED])
+def test_the_stack_form_of_a_boundary_is_its_half_space_form(boundary):
+    """A boundary's two forms are one condition: on a 4 x 4 impedance with the potential last and
+    EPS0 = 1 (the half-space convention), stack_matrix(-i M) equals -i secular_matrix(M), on a
+    random complex M (reference: the half-space form, used by the piezoelectric solvers checked in
+    tests/solvers/)."""
+    rng = np.random.default_rng(3)
+    M = rng.normal(size=(5, 4, 4)) + 1j * rng.normal(size=(5, 4, 4))
+    Zb, active = boundary.stack_matrix(-1j * M, 3, 1.0)
+    np.testing.assert_array_equal(Zb, -1j * boundary.secular_matrix(M))
+    assert active.tolist() == ([0, 1, 2, 3] if boundary.keeps_potential else [0, 1, 2])
+
+
+class _Grounded(Metallized):
+    """A condition the layered code has never seen by name: metallized physics under another name."""
+
+    name = "grounded-test"
+
+
+def test_the_layered_solver_asks_the_boundary_object():
+    """surfwave.layered takes a Boundary object as electrical=, and a new subclass needs no edit of
+    the layered code: a metallized condition under another name gives the metallized speeds
+    exactly (reference: electrical="metallized", itself checked against the metallized half-space,
+    tests/layers/test_layers_physics.py), and K^2 the same."""
+    film = [{"name": "SiO2", "thickness": 1e-6, "permittivity": 3.8}]
+    ref = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.5, 2.0], electrical="metallized")
+    obj = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.5, 2.0], electrical=METALLIZED)
+    new = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.5, 2.0], electrical=_Grounded())
+    for r in (obj, new):
+        for key in ("c", "K2", "group_velocity"):
+            np.testing.assert_array_equal(r[key], ref[key])
+    free = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.5, 2.0], electrical=FREE)
+    assert np.all(free["c"][:, 0] > ref["c"][:, 0])                # the metallized top is slower

@@ -23,6 +23,7 @@ from surfwave.layers.modes import film_x1_speeds
 from surfwave.layers.partial import scaled_blocks
 from surfwave.layers.solve import _kh_values, layered
 from surfwave.layers.stack import resolve_stack
+from surfwave.solvers.boundary import as_boundary
 
 __all__ = ["dispersion_cube"]
 
@@ -55,10 +56,10 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
     """
     kh = _kh_values(kh)
     s = np.atleast_1d(np.asarray(film_stress, dtype=float))
-    el = [str(e) for e in electrical]
+    el = [as_boundary(e).name for e in electrical]
     if s.ndim != 1 or s.size == 0 or not np.all(np.isfinite(s)):
         raise InputError(f"film_stress must be a list of finite GPa values, got {film_stress!r}")
-    if not el or any(e not in ("free", "metallized") for e in el) or len(set(el)) != len(el):
+    if not el or len(set(el)) != len(el):
         raise InputError(f"electrical must list distinct 'free'/'metallized', got {electrical!r}")
     runs: dict[tuple[int, int], dict[str, Any]] = {}
     for i, sig in enumerate(s):
