@@ -290,7 +290,7 @@ def _substrate_axes(euler, surface: str, direction) -> tuple[np.ndarray, str]:
         which = direction if isinstance(direction, str) else validate.angle_values(direction, "direction")
         R = np.asarray(lab_axes(surface, which), float)
     if R.ndim != 2:
-        raise InputError(f"one propagation direction at a time, got {direction!r}")
+        raise InputError(f"substrate: one propagation direction at a time, got {direction!r}")
     return R, str(surface)
 
 
