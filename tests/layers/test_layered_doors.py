@@ -187,3 +187,21 @@ def test_the_layered_solver_asks_the_boundary_object():
             np.testing.assert_array_equal(r[key], ref[key])
     free = surfwave.layered("LiNbO3", film, euler=(0, 38, 0), kh=[0.5, 2.0], electrical=FREE)
     assert np.all(free["c"][:, 0] > ref["c"][:, 0])                # the metallized top is slower
+
+
+def test_two_faults_the_same_first_refusal(no_mode_search):
+    """A substrate with two faults (NaN Euler angle and constants in Pa) is refused for the same one
+    by both doors: the orientation is checked before the constants, as surfwave.material does."""
+    api = _refusal(lambda: surfwave.material(voigt=SI * 1e9, rho=2329.0, euler=NAN_EULER))
+    lay = _refusal(lambda: surfwave.layered({"voigt": SI * 1e9, "rho": 2329.0}, [], euler=NAN_EULER, kh=[1.0]))
+    assert lay == "substrate: " + api and "finite" in api
+
+
+def test_the_cube_refuses_a_film_stress_in_pa_before_any_run(no_mode_search):
+    """dispersion_cube: a film stress of 2000 GPa is refused with the one Pa bound's words before
+    the first stack is solved (before, the valid stresses were solved first)."""
+    from surfwave.layers.cube import dispersion_cube
+
+    text = _refusal(lambda: dispersion_cube("Si", [{"name": "SiO2", "thickness": 1e-6}], [1.0],
+                                            film_stress=[0.0, 2000.0]))
+    assert text == _refusal(lambda: surfwave.material("Si", stress=2000.0)).replace("stress", "film_stress", 1)

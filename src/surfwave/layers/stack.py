@@ -345,19 +345,21 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         films = [films]
     if not isinstance(films, Sequence):
         raise InputError(f"films must be a list of mappings (top film first), got {films!r}")
+    R_sub, plane = _substrate_axes(euler, surface, direction)    # orientation, constants, stress: material()'s order
     sub = _material(substrate, "substrate", film=False)
     if isinstance(substrate, Mapping) and "thickness" in substrate:
         raise InputError("the substrate is semi-infinite: do not give it a thickness")
-    R_sub, plane = _substrate_axes(euler, surface, direction)
     s_sub = _stress(stress, "substrate", plane)
     recs = []
     for i, f in enumerate(films):
         where = f"film {i} (from the top)"
         if isinstance(f, str):
             raise InputError(f"{where}: give a mapping with a thickness, e.g. {{'name': {f!r}, 'thickness': 1e-6}}")
+        if not isinstance(f, Mapping):
+            raise InputError(f"{where} must be a mapping (a material and its thickness), got {f!r}")
+        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
         rec = _material(f, where)
         t = _thickness(f.get("thickness"), where)
-        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
         sig = _stress(f.get("stress"), where, "of the film and its interfaces")
         recs.append((rec, R, t, sig, where, f.get("electrode_below", False)))
     piezo = sub.get("e") is not None or any(r[0].get("e") is not None for r in recs)

@@ -168,7 +168,7 @@ def unknown_name(name: object, database: Database, extra: Sequence[CatalogEntry]
         every known name, by database. No argument syntax of one interface (Python or command
         line) is suggested: the caller adds it where it knows it.
     """
-    kind = "material" if database == "elastic" else "piezoelectric material"
+    kind = {"elastic": "material", "piezoelectric": "piezoelectric material", "film": "film material"}[database]
     key = name_key(name)
     other = [e for e in catalog() if e.database != database and key in {name_key(s) for s in (e.name, *e.aliases)}]
     if other:
