@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from surfwave.layers.partial import Blocks, Family, eigen
-from surfwave.solvers.boundary import Boundary, as_boundary
+from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, as_boundary
 
 __all__ = ["secular", "top_impedance"]
 
@@ -101,10 +101,11 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
         Ed = np.exp(1j * p[:, None, nf:] * t[..., None])                       # (m, k, nf)
         Eu = np.exp(-1j * p[:, None, :nf] * t[..., None])
-        if b.electrode_below and b.electrode_below[layer] and fam.phi is not None:
-            # grounded electrode under this layer: phi = 0 there (the normal D jumps by the
-            # electrode's charge), so the conditions are b_mech = M_mm a_mech and a_phi = 0
-            G = _electrode_condition(M, fam.phi)
+        electrode = METALLIZED if b.electrode_below and b.electrode_below[layer] else FREE
+        G = electrode.interface_rows(M, fam.phi) if fam.phi is not None else None
+        if G is not None:
+            # an electrode under this layer (surfwave.solvers.boundary.Metallized.interface_rows:
+            # phi = 0 there, the mechanical state continuous)
             GVu = G[..., :, :nf] @ Au + G[..., :, nf:] @ Bu
             GVd = G[..., :, :nf] @ Ad + G[..., :, nf:] @ Bd
         else:
@@ -122,17 +123,6 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
     return out
-
-
-def _electrode_condition(M: np.ndarray, ph: int) -> np.ndarray:
-    """Rows G (..., nf, 2 nf) with G [a; b] = 0 at a grounded interface: b_m - M_mm a_m = 0, a_phi = 0."""
-    nf = M.shape[-1]
-    mech = np.array([i for i in range(nf) if i != ph])
-    G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
-    G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
-    G[..., mech, nf + mech] = 1.0
-    G[..., ph, ph] = 1.0
-    return G
 
 
 def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str | Boundary) -> tuple[np.ndarray, np.ndarray]:

@@ -5,8 +5,8 @@ vanishes at a surface wave (the secular equation) and says what it leaves of the
 displacement (u1, u2, u3, phi) at the surface. The solvers ask the object
 (:func:`surfwave.solvers.leaky.leaky_wave`, :func:`surfwave.solvers.piezo.piezo_surface_wave`,
 and the top surface of a layered stack: :func:`surfwave.layers.recursion.boundary_matrix`,
-:mod:`surfwave.layers.modes`, :mod:`surfwave.layers.fields`) instead of comparing condition
-names, so that another condition (e.g. the surface impedance of a layer stack on the
+:mod:`surfwave.layers.modes`, :mod:`surfwave.layers.fields`; a thin electrode on an interface
+under a film: :meth:`Boundary.interface_rows`) instead of comparing condition names, so that another condition (e.g. the surface impedance of a layer stack on the
 substrate) is one more subclass of :class:`Boundary`.
 
 Conventions: the impedance M = B A^-1 of the decaying partial waves is (m, 4, 4) with the
@@ -92,6 +92,24 @@ class Boundary(ABC):
             Positions (within the family) of the components kept.
         """
 
+    def interface_rows(self, M: np.ndarray, phi: int) -> np.ndarray | None:
+        """The condition on an interface under a film of a layered stack (a thin electrode, no mass).
+
+        Parameters
+        ----------
+        M : ndarray, shape (..., nf, nf), complex
+            Impedance of what lies below the interface (b = M a there).
+        phi : int
+            Position of the potential among the nf components.
+
+        Returns
+        -------
+        ndarray, shape (..., nf, 2 nf), or None
+            Rows G with G [a; b] = 0 at the interface; None (the default) where the condition
+            puts nothing on an interface (continuity, b = M a: no electrode).
+        """
+        return None
+
     def __str__(self) -> str:
         """The condition's name."""
         return self.name
@@ -134,6 +152,17 @@ class Metallized(Boundary):
     def stack_matrix(self, Z: np.ndarray, phi: int, eps0: float) -> tuple[np.ndarray, np.ndarray]:  # noqa: D102
         keep = np.array([i for i in range(Z.shape[-1]) if i != phi])
         return Z[..., keep[:, None], keep], keep
+
+    def interface_rows(self, M: np.ndarray, phi: int) -> np.ndarray:
+        """A grounded electrode on the interface: phi = 0 there (the normal D jumps by the electrode's
+        charge), the mechanical state continuous: b_m - M_mm a_m = 0 and a_phi = 0."""
+        nf = M.shape[-1]
+        mech = np.array([i for i in range(nf) if i != phi])
+        G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
+        G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
+        G[..., mech, nf + mech] = 1.0
+        G[..., phi, phi] = 1.0
+        return G
 
 
 #: The two conditions, one instance each.
