@@ -6,8 +6,9 @@ displacement (u1, u2, u3, phi) at the surface. The solvers ask the object
 (:func:`surfwave.solvers.leaky.leaky_wave`, :func:`surfwave.solvers.piezo.piezo_surface_wave`,
 and the top surface of a layered stack: :func:`surfwave.layers.recursion.boundary_matrix`,
 :mod:`surfwave.layers.modes`, :mod:`surfwave.layers.fields`; a thin electrode on an interface
-under a film: :meth:`Boundary.interface_rows`) instead of comparing condition names, so that another condition (e.g. the surface impedance of a layer stack on the
-substrate) is one more subclass of :class:`Boundary`.
+under a film: :meth:`Boundary.interface_rows`) instead of comparing condition names, so that
+another condition (e.g. the surface impedance of a layer stack on the substrate) is one more
+subclass of :class:`Boundary`.
 
 Conventions: the impedance M = B A^-1 of the decaying partial waves is (m, 4, 4) with the
 electric row and column last, scaled so that EPS0 = 1 (:mod:`surfwave.solvers.leaky`). A purely
