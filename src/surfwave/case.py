@@ -39,10 +39,12 @@ from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import stress_model
 from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, surface_wave_conditions
+from surfwave.real_crystals.toec import born_lowest, born_reason
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
-from surfwave.solvers.tensors import rotate2
+from surfwave.solvers.tensors import rotate2, voigt_to_tensor
 
-__all__ = ["INTERNAL_KEYS", "Case", "check_constants", "check_stress", "make_case", "material_result", "solve"]
+__all__ = ["INTERNAL_KEYS", "Case", "born_reason_natural", "check_constants", "check_stress", "make_case",
+           "material_result", "solve"]
 
 #: Keys of the one path's per-point output that stay inside the library (the state's bookkeeping).
 INTERNAL_KEYS = ("ok", "F", "axes")
@@ -136,17 +138,42 @@ def check_constants(constants: Constants, toec: bool) -> None:
         raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
 
 
-def check_stress(stress, axes: np.ndarray, where: str) -> np.ndarray:
+def born_reason_natural(constants: Constants) -> str:
+    """Why the natural-state stiffness is not Born-stable, in the one wording; "" when it is.
+
+    The criterion and the words of the stressed-state check
+    (:func:`surfwave.real_crystals.toec.born_lowest`, :func:`surfwave.real_crystals.toec.born_reason`)
+    at zero stress, where Wallace's B is C: the lowest eigenvalue of the Voigt matrix must be
+    positive (a value within 1e-12 of the largest counts as zero). :func:`surfwave.material`
+    answers such a crystal with NaN and this reason (after "no stressed state: "); a door that
+    cannot answer per point (the layered solver) refuses it with the same words.
+
+    Examples
+    --------
+    >>> from surfwave.solvers.tensors import cubic_voigt
+    >>> born_reason_natural(Constants(cubic_voigt(50.0, -80.0, 30.0), 5000.0))
+    "stressed crystal not Born-stable (lowest eigenvalue of Wallace's B = C* + stress terms: -110 GPa)"
+    """
+    C = voigt_to_tensor(constants.voigt)
+    lowest = float(born_lowest(C, np.zeros((3, 3))))
+    if lowest > 1e-12 * float(np.abs(constants.voigt).max(initial=0.0)):
+        return ""
+    return born_reason(lowest)
+
+
+def check_stress(stress, axes: np.ndarray, where: str, *, frame: str = "crystal axes") -> np.ndarray:
     """The prestress (m, 3, 3) in GPa: numbers, finite, the Pa guard, symmetric, sigma . n = 0.
 
     Parameters
     ----------
     stress : array_like, shape (m, 3, 3) or (3, 3)
-        Cauchy stress, crystal axes, GPa.
+        Cauchy stress, GPa, in the axes ``frame`` names.
     axes : ndarray, shape (m, 3, 3)
-        Lab axes (row 1: the inward normal).
+        Lab axes in the same frame (row 1: the inward normal).
     where : str
         The surface in words (the message names it).
+    frame : str
+        The axes of ``stress`` in words (the message names them).
     """
     s = validate.gpa_stress(stress)
     if s.shape[-2:] != (3, 3):
@@ -164,7 +191,7 @@ def check_stress(stress, axes: np.ndarray, where: str) -> np.ndarray:
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         raise InputError(f"prestress must lie in the surface plane {where}: its traction sigma . n = "
-                         f"{np.round(traction[k], 12).tolist()} GPa (crystal axes) is not zero")
+                         f"{np.round(traction[k], 12).tolist()} GPa ({frame}) is not zero")
     return s
 
 

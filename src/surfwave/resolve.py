@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from surfwave import validate
-from surfwave.case import Case, make_case
+from surfwave.case import Case, check_constants, make_case
 from surfwave.errors import InputError
 from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
 from surfwave.real_crystals.piezo_materials import (
@@ -48,7 +48,8 @@ from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.orientation import lab_axes, reference_direction, surface_normal
 from surfwave.solvers.tensors import cubic_voigt
 
-__all__ = ["DEFAULT_DIRECTION", "DEFAULT_SURFACE", "find_crystal", "piezo_wanted", "prestress", "resolve_material"]
+__all__ = ["CONSTANT_KEYS", "DEFAULT_DIRECTION", "DEFAULT_SURFACE", "find_crystal", "piezo_wanted", "prestress",
+           "resolve_constants", "resolve_material"]
 
 #: Orientation of :func:`surfwave.material` when none is given: (001) surface, [100] direction.
 DEFAULT_SURFACE, DEFAULT_DIRECTION = "(001)", "[100]"
@@ -194,6 +195,77 @@ def _constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, cut, cut_ma
     return Constants(C6, rho, C3, e6, er), explicit_toec or toec is True
 
 
+#: The keys of a mapping of constants (:func:`resolve_constants`): :func:`surfwave.material`'s names.
+CONSTANT_KEYS = ("C11", "C12", "C44", "rho", "voigt", "toec", "piezo", "permittivity")
+
+
+def resolve_constants(crystal=None, C12=None, C44=None, rho=None, *, voigt=None, toec=None, piezo=None,
+                      permittivity=None, piezoelectric: bool | None = None) -> Constants:
+    """The checked natural-state constants of a crystal, asked as :func:`surfwave.material` asks them.
+
+    The constants step of :func:`resolve_material` on its own, for a door that has its own
+    orientation and stress (the layered solver's substrate and films): the same names and
+    aliases of both databases, the same refusals in the same words, and the checks of
+    :func:`surfwave.case.check_constants` (units and the Pa guard, density bounds, piezoelectric
+    magnitudes, eps_r >= 1, the third-order set).
+
+    Parameters
+    ----------
+    crystal : str, Material, PiezoMaterial, float, mapping or None
+        A name of either database, a record, C11 (GPa), or a mapping of :data:`CONSTANT_KEYS`
+        (``{"voigt": ..., "rho": ...}``; the other arguments must then be left out).
+    C12, C44, rho, voigt, toec, piezo, permittivity
+        As in :func:`surfwave.material` (GPa, kg/m^3, C/m^2, relative).
+    piezoelectric : bool or None
+        None decides by :func:`piezo_wanted` (a name found only in the piezoelectric database,
+        or ``piezo=``/``permittivity=`` given); True takes the piezoelectric record of a name
+        found in both databases (and e = 0, eps_r = 1 for an elastic crystal); False the
+        elastic record.
+
+    Returns
+    -------
+    Constants
+        ``voigt`` (6, 6) GPa, ``rho`` kg/m^3, ``toec`` (6, 6, 6) GPa or None, ``piezo`` (3, 6)
+        C/m^2 and ``permittivity`` (3, 3) or None.
+
+    Raises
+    ------
+    InputError
+        The refusal of :func:`surfwave.material` for the same constants, word for word.
+
+    Examples
+    --------
+    >>> c = resolve_constants({"voigt": np.diag([3.0, 3, 3, 1, 1, 1]) * 100, "rho": 3000})
+    >>> c.rho, c.piezo is None, resolve_constants("LiNbO3").piezo.shape
+    (3000.0, True, (3, 6))
+    >>> resolve_constants(168.4e9, 121.4, 75.4, 8960)
+    Traceback (most recent call last):
+    ...
+    surfwave.errors.InputError: elastic constants must be in GPa; the largest is 1.684e+11, which looks like Pa (divide by 1e9)
+    """  # noqa: E501 (a doctest's expected message)
+    if isinstance(crystal, Mapping):
+        if any(v is not None for v in (C12, C44, rho, voigt, toec, piezo, permittivity)):
+            raise InputError("constants given as a mapping: give every constant in it")
+        extra = sorted(set(crystal) - set(CONSTANT_KEYS))
+        if extra:
+            raise InputError(f"unknown keys {extra} in the constants; accepted: {list(CONSTANT_KEYS)}")
+        kw = dict(crystal)
+        crystal, C12, C44, rho = (kw.get(k) for k in ("C11", "C12", "C44", "rho"))
+        voigt, toec, piezo, permittivity = (kw.get(k) for k in ("voigt", "toec", "piezo", "permittivity"))
+    constants, use_toec = _route_constants(crystal, C12, C44, rho, voigt, toec, piezo, permittivity, piezoelectric)
+    check_constants(constants, use_toec)
+    return constants
+
+
+def _route_constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, piezoelectric: bool | None,
+                     cut=None, cut_material=None) -> tuple[Constants, bool]:
+    """(unchecked constants, whether toec is used) of the elastic or the piezoelectric route."""
+    if piezoelectric or (piezoelectric is None and piezo_wanted(C11, piezo, permittivity)):
+        return _constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, cut, cut_material)
+    C6, rho, C3 = _elastic_constants(C11, C12, C44, rho, voigt, toec)
+    return Constants(C6, rho, C3), C3 is not None
+
+
 def _euler_values(euler) -> np.ndarray:
     """Euler angles (phi, theta, psi) in degrees as a float array (3,) or (m, 3), checked
     (:func:`surfwave.validate.euler_angles`, the guard of every door)."""
@@ -269,12 +341,10 @@ def resolve_material(C11=None, C12=None, C44=None, rho=None, direction=None, str
     if leaky is not None and not isinstance(leaky, (bool, np.bool_)):
         raise InputError(f"leaky must be None, True or False, got {leaky!r}")
     orient = _orientation(surface, direction, angle, euler, cut)
-    if piezoelectric or (piezoelectric is None and piezo_wanted(C11, piezo, permittivity, euler, cut, electrical)):
-        constants, use_toec = _constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, cut,
-                                         orient["cut_material"])
-    else:
-        C6, rho, C3 = _elastic_constants(C11, C12, C44, rho, voigt, toec)
-        constants, use_toec = Constants(C6, rho, C3), C3 is not None
+    if piezoelectric is None:
+        piezoelectric = piezo_wanted(C11, piezo, permittivity, euler, cut, electrical)
+    constants, use_toec = _route_constants(C11, C12, C44, rho, voigt, toec, piezo, permittivity, piezoelectric,
+                                           cut, orient["cut_material"])
     sigma = prestress(stress, orient["axes"])
     return make_case(constants, orient["axes"], sigma, electrical=electrical, toec=use_toec, leaky=leaky,
                      where=orient["where"], angle=orient["angle"], euler=orient["euler"], scalar=orient["scalar"])

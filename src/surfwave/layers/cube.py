@@ -17,12 +17,14 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from surfwave import validate
 from surfwave.data.variables import CUBES, LAYERED_COORDS
 from surfwave.errors import InputError
 from surfwave.layers.modes import film_x1_speeds
 from surfwave.layers.partial import scaled_blocks
 from surfwave.layers.solve import _kh_values, layered
 from surfwave.layers.stack import resolve_stack
+from surfwave.solvers.boundary import Boundary, as_boundary
 
 __all__ = ["dispersion_cube"]
 
@@ -44,7 +46,7 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
     kh : array_like, shape (n,)
     film_stress : sequence of float
         Equibiaxial stresses (GPa) given to every film in turn.
-    electrical : sequence of {"free", "metallized"}
+    electrical : sequence of {"free", "metallized"} or Boundary
         Conditions of the top surface (piezoelectric stacks; elastic stacks take "free" only).
 
     Returns
@@ -54,18 +56,19 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
         provenance attributes (the workflow script adds them with :func:`surfwave.data.cube.provenance`).
     """
     kh = _kh_values(kh)
-    s = np.atleast_1d(np.asarray(film_stress, dtype=float))
-    el = [str(e) for e in electrical]
+    s = np.atleast_1d(validate.gpa_stress(film_stress, "film_stress"))   # the one Pa bound, before any run
+    bounds = [as_boundary(e) for e in ([electrical] if isinstance(electrical, (str, Boundary)) else electrical)]
+    el = [b.name for b in bounds]
     if s.ndim != 1 or s.size == 0 or not np.all(np.isfinite(s)):
         raise InputError(f"film_stress must be a list of finite GPa values, got {film_stress!r}")
-    if not el or any(e not in ("free", "metallized") for e in el) or len(set(el)) != len(el):
+    if not el or len(set(el)) != len(el):
         raise InputError(f"electrical must list distinct 'free'/'metallized', got {electrical!r}")
     runs: dict[tuple[int, int], dict[str, Any]] = {}
     for i, sig in enumerate(s):
         fs = [{**dict(f), "stress": float(sig)} for f in films]
-        for j, e in enumerate(el):
+        for j in range(len(bounds)):
             runs[i, j] = dict(layered(substrate, fs, euler=euler, surface=surface, direction=direction, kh=kh,
-                                      electrical=e, stress=stress, leaky=leaky))
+                                      electrical=bounds[j], stress=stress, leaky=leaky))
     labels: dict[str, list[float]] = {}
     for r in runs.values():
         for row_c, row_l in zip(r["c"], r["mode"]):

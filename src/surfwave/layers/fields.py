@@ -25,6 +25,7 @@ import numpy as np
 
 from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import boundary_matrix, top_impedance
+from surfwave.solvers.boundary import Boundary, as_boundary
 
 __all__ = ["mode_fields"]
 
@@ -47,7 +48,7 @@ def _overlap(p, e0, et, t) -> np.ndarray:
     return np.where(np.abs(D * tt) < 1e-3, series, exact)
 
 
-def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=None) -> dict:
+def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "free", depth=None) -> dict:
     """Group velocity and (optionally) the depth profile of modes of one family.
 
     Parameters
@@ -56,7 +57,8 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
     fam : Family
     c, kh : array_like, shape (m,)
         Speeds (m/s) and kh of m modes.
-    electrical : {"free", "metallized"}
+    electrical : str or Boundary
+        The top's electrical condition (:func:`surfwave.solvers.boundary.as_boundary`).
     depth : array_like, shape (d,), optional
         Depths below the free surface in units of the total film thickness (kh * depth = k x2);
         with it the profile U (m, d, nf) is returned (normalised to max |u| = 1).
@@ -84,7 +86,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str = "free", depth=N
     num = np.zeros(m)
     num3 = np.zeros(m)
     den = np.zeros(m)
-    if fam.phi is not None and electrical == "free":
+    if fam.phi is not None and as_boundary(electrical).vacuum:         # the field's energy above the top
         num -= 0.5 * b.eps0 * np.abs(a[:, fam.phi]) ** 2
     depth = None if depth is None else np.asarray(depth, dtype=float)
     U = None if depth is None else np.zeros((m, depth.size, nf), dtype=complex)

@@ -18,8 +18,9 @@ import yaml
 
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
+from surfwave.real_crystals.catalog import CatalogEntry, name_key, unknown_name
 
-__all__ = ["available_films", "hill_average", "lookup"]
+__all__ = ["available_films", "film_catalog", "hill_average", "lookup"]
 
 
 @lru_cache(maxsize=1)
@@ -93,19 +94,32 @@ def hill_average(C6) -> tuple[float, float]:
     return 0.5 * (Kv + Kr), 0.5 * (Gv + Gr)
 
 
+def film_catalog() -> list[CatalogEntry]:
+    """The film database as catalog entries (database ``"film"``), for the one did-you-mean
+    (:func:`surfwave.real_crystals.catalog.unknown_name`)."""
+    rows = []
+    for n, rec in _film_db().items():
+        iso = rec["voigt"][0, 3] == 0 and np.isclose(rec["voigt"][0, 0], rec["voigt"][2, 2])
+        rows.append(CatalogEntry(n, "film", rec["aliases"], "isotropic" if iso else "anisotropic", rec["rho"], False))
+    return rows
+
+
 def lookup(name: str, where: str = "material", *, film: bool = True) -> dict:
     """The record of a named material: ``name``, ``voigt`` (6, 6) GPa, ``rho``, ``e`` (3, 6) or None, ``eps_r``.
 
     A film name is looked up in ``films.yaml`` first (so "SiO2" is fused silica for a film), a
     substrate name in the crystal databases first (so "SiO2" is alpha-quartz for a substrate).
+    A crystal is resolved by :func:`surfwave.resolve.resolve_constants` (the names, aliases and
+    checks of :func:`surfwave.material`), its piezoelectric record where it has one (GaAs).
 
     Raises
     ------
     InputError
-        An unknown name (the known names of every database listed).
+        An unknown name: the message of :func:`surfwave.material` (did you mean, the known
+        crystals), the film database added to both, after ``where``.
     """
-    from surfwave.real_crystals.materials import available_materials, get_material
-    from surfwave.real_crystals.piezo_materials import available_piezo_materials, get_piezo_material
+    from surfwave.real_crystals.materials import get_material
+    from surfwave.resolve import find_crystal, resolve_constants
 
     key = str(name).strip()
     if film:
@@ -113,7 +127,10 @@ def lookup(name: str, where: str = "material", *, film: bool = True) -> dict:
         if hit is not None:
             return hit
     if key.casefold().endswith("-poly"):
-        m = get_material(key[:-5])
+        try:
+            m = get_material(key[:-5])
+        except InputError as exc:
+            raise InputError(f"{where}: {exc}") from None
         K, G = hill_average(m.voigt)
         lam = K - 2 * G / 3
         C = np.zeros((6, 6))
@@ -121,27 +138,28 @@ def lookup(name: str, where: str = "material", *, film: bool = True) -> dict:
         C[[0, 1, 2], [0, 1, 2]] = lam + 2 * G
         C[[3, 4, 5], [3, 4, 5]] = G
         return {"name": f"{m.name}-poly", "voigt": C, "rho": m.rho, "e": None, "eps_r": None, "conductor": False}
-    try:
-        p = get_piezo_material(key)
-        return {"name": p.name, "voigt": np.array(p.voigt, dtype=float), "rho": p.rho,
-                "e": np.array(p.e, dtype=float), "eps_r": np.array(p.eps_r, dtype=float), "conductor": False}
-    except InputError:
-        pass
-    try:
-        m = get_material(key)
-    except InputError:
+    elastic, piezo = find_crystal(key)
+    if elastic is None and piezo is None:
         hit = _from_film_db(key)
         if hit is not None:
             return hit
-        known = sorted(set(available_films()) | set(available_piezo_materials()) | set(available_materials()))
-        raise InputError(f"{where}: unknown material {name!r}; known: {', '.join(known)} (or '<cubic>-poly')") from None
-    return {"name": m.name, "voigt": np.array(m.voigt, dtype=float), "rho": m.rho, "e": None, "eps_r": None,
+        unknown = unknown_name(key, "elastic", extra=film_catalog())
+        raise InputError(f"{where}: {unknown} (or '<cubic>-poly', the isotropic average of a cubic crystal)")
+    try:
+        c = resolve_constants(key, piezoelectric=piezo is not None)
+    except InputError as exc:
+        raise InputError(f"{where}: {exc}") from None
+    rec = piezo if piezo is not None else elastic
+    assert rec is not None
+    return {"name": rec.name, "voigt": c.voigt, "rho": c.rho, "e": c.piezo, "eps_r": c.permittivity,
             "conductor": False}
 
 
 def _from_film_db(key: str) -> dict | None:
+    """The record of a film-database name or alias (matched as every crystal name is: :func:`name_key`)."""
+    want = name_key(key)
     for n, rec in _film_db().items():
-        if key.casefold() in (n.casefold(), *(a.casefold() for a in rec["aliases"])):
+        if want in (name_key(n), *(name_key(a) for a in rec["aliases"])):
             return {"name": n, "voigt": rec["voigt"].copy(), "rho": rec["rho"], "e": None,
                     "eps_r": None if rec["eps_r"] is None else rec["eps_r"].copy(), "conductor": False}
     return None

@@ -19,6 +19,7 @@ from surfwave.layers.fields import mode_fields
 from surfwave.layers.modes import family_modes, lowest_speed
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.stack import Stack
+from surfwave.solvers.boundary import Boundary
 
 __all__ = ["at_frequency"]
 
@@ -53,26 +54,29 @@ def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: n
     return out
 
 
-def at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
+def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies).
 
     K^2 of a piezoelectric stack compares the free and metallized speeds of the same mode label at
     the same frequency.
     """
+    from surfwave.layers.solve import k2_pair
+
     out = _at_frequency(stack, frequency, electrical=electrical, leaky=leaky)
     if stack.piezo and stack.total_thickness > 0 and out["c"].size:
-        other = _at_frequency(stack, frequency, electrical="metallized" if electrical == "free" else "free")
+        pair, free = k2_pair(electrical)
+        other = _at_frequency(stack, frequency, electrical=pair)
         for i in range(out["c"].shape[0]):
             lab = {str(m): j for j, m in enumerate(other["mode"][i]) if m}
             for j, m in enumerate(out["mode"][i]):
                 if m and str(m) in lab:
                     c_o = other["c"][i, lab[str(m)]]
-                    cf, cm = (out["c"][i, j], c_o) if electrical == "free" else (c_o, out["c"][i, j])
+                    cf, cm = (out["c"][i, j], c_o) if free else (c_o, out["c"][i, j])
                     out["K2"][i, j] = 2.0 * (cf - cm) / cf
     return out
 
 
-def _at_frequency(stack: Stack, frequency, *, electrical: str = "free", leaky: bool = False) -> dict:
+def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False) -> dict:
     """:func:`at_frequency` for one electrical condition (K2 left NaN)."""
     from surfwave.layers.solve import MAX_KH, REASON_NONE, _empty, _merge, assemble, unstable_reason
 

@@ -24,6 +24,7 @@ import numpy as np
 
 from surfwave.layers.partial import Blocks, Family, eigen
 from surfwave.layers.recursion import top_impedance
+from surfwave.solvers.boundary import Boundary, as_boundary
 
 __all__ = ["DB_PER_DELTA", "leaky_continuation", "leaky_roots"]
 
@@ -79,18 +80,12 @@ def _one_real_pair(b: Blocks, fam: Family, c) -> np.ndarray:
     return real.sum(axis=-1) == 2
 
 
-def _F(b: Blocks, fam: Family, c, WH, electrical: str) -> np.ndarray:
+def _F(b: Blocks, fam: Family, c, WH, electrical: str | Boundary) -> np.ndarray:
     """det of the boundary matrix at complex speeds c (m,) and omega H (m,) (kh = omega H / c)."""
     M = top_impedance(b, fam, c, (WH / c)[:, None], M_sub=substrate_outgoing(b, fam, c))["M"][:, 0]
     Z = -1j * M
-    ph = fam.phi
-    if ph is not None:
-        if electrical == "metallized":
-            keep = np.array([i for i in range(len(fam.idx)) if i != ph])
-            Z = Z[:, keep[:, None], keep]
-        else:
-            Z = Z.copy()
-            Z[:, ph, ph] -= b.eps0
+    if fam.phi is not None:
+        Z, _ = as_boundary(electrical).stack_matrix(Z, fam.phi, b.eps0)
     with np.errstate(all="ignore"):
         return np.linalg.det(Z)
 
@@ -119,7 +114,7 @@ def _secant(b, fam, c0, c1, WH, electrical):
     return out, ok
 
 
-def leaky_roots(b: Blocks, fam: Family, kh: np.ndarray, electrical: str = "free") -> list[np.ndarray]:
+def leaky_roots(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary = "free") -> list[np.ndarray]:
     """Complex speeds (m/s, Im c < 0) of the leaky modes of one family at each real kh = Re(k) H.
 
     Returns
@@ -166,7 +161,7 @@ def leaky_roots(b: Blocks, fam: Family, kh: np.ndarray, electrical: str = "free"
     return out
 
 
-def leaky_continuation(sol: dict, kh: np.ndarray, electrical: str, cs, vgs, k2s, att):
+def leaky_continuation(sol: dict, kh: np.ndarray, electrical: str | Boundary, cs, vgs, k2s, att):
     """Append each family's leaky modes after its guided ones (phase speed, attenuation; v_g and K2 NaN).
 
     Returns

@@ -22,6 +22,7 @@ import numpy as np
 
 from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, secular, top_impedance
+from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
 
 __all__ = ["C_TOL", "family_modes", "label", "lowest_speed"]
@@ -107,7 +108,7 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
     return g[(g > c_lo) & (g < c_lim)]
 
 
-def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim: float) -> np.ndarray:
+def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary, c_lim: float) -> np.ndarray:
     """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
@@ -154,7 +155,7 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str, c_lim
     return out
 
 
-def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
+def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
     """True where Z(c, kh) is singular and bounded (a mode), False at a pole."""
     M = top_impedance(b, fam, c, kh[:, None])["M"][:, 0]
     Z, _ = boundary_matrix(b, fam, M, electrical)
@@ -163,7 +164,7 @@ def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str) -> np.ndarray:
         & (w.max(axis=-1) < 1e6)
 
 
-def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str, rounds: int = 6):
+def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
     """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
     cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
     bisected (``rounds`` times)."""
@@ -199,7 +200,7 @@ def _pole_inside(wl: np.ndarray, wr: np.ndarray) -> np.ndarray:
         return (wr > wl + tol).any(axis=-1)
 
 
-def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str, skip) -> tuple:
+def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str | Boundary, skip) -> tuple:
     """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
 
     A cell whose count does not change but which holds a pole (:func:`_pole_inside`) holds a mode
@@ -244,7 +245,7 @@ def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str, sk
     return tuple(np.concatenate([f[i] for f in found]) for i in range(5))
 
 
-def floor_unstable(b: Blocks, fam: Family, kh, electrical: str = "free") -> np.ndarray:
+def floor_unstable(b: Blocks, fam: Family, kh, electrical: str | Boundary = "free") -> np.ndarray:
     """True per kh (k,) where the boundary matrix has a negative eigenvalue at the floor speed of the search.
 
     The impedance of a stable stack is positive definite at low speed (but for the potential's
@@ -260,13 +261,14 @@ def floor_unstable(b: Blocks, fam: Family, kh, electrical: str = "free") -> np.n
     return (w < 0).sum(axis=-1) > _electric(fam, electrical)
 
 
-def _electric(fam: Family, electrical: str) -> int:
+def _electric(fam: Family, electrical: str | Boundary) -> int:
     """Negative eigenvalues of a stable stack's boundary matrix at low speed: the potential's (its block
     of the generalised impedance is negative definite, E_3j3l = -eps), when it is kept (free top)."""
-    return int(fam.phi is not None and electrical == "free")
+    return int(fam.phi is not None and as_boundary(electrical).keeps_potential)
 
 
-def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid: int | None = None) -> np.ndarray:
+def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "free",
+                 n_grid: int | None = None) -> np.ndarray:
     """Speeds of every guided mode of one family below its limiting speed, for each kh.
 
     Parameters
@@ -275,7 +277,8 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     fam : Family
     kh : array_like, shape (k,)
         Wavenumber times total film thickness (>= 0).
-    electrical : {"free", "metallized"}
+    electrical : str or Boundary
+        The top's electrical condition (:func:`surfwave.solvers.boundary.as_boundary`).
     n_grid : int, optional
         Speed grid points (default :data:`BASE_GRID` + :data:`GRID_PER_KH` max kh).
 
@@ -308,7 +311,7 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str = "free", n_grid
     return out
 
 
-def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str, n_grid: int | None) -> np.ndarray:
+def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary, n_grid: int | None) -> np.ndarray:
     """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh)."""
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))

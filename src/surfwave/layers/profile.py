@@ -13,12 +13,13 @@ from surfwave.layers.fields import mode_fields
 from surfwave.layers.modes import family_modes
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.stack import resolve_stack
+from surfwave.solvers.boundary import Boundary
 
 __all__ = ["mode_profile"]
 
 
 def mode_profile(substrate, films, kh, depth, *, mode: str = "R", euler=None, surface: str = "(001)",
-                 direction="[100]", electrical: str = "free", stress=None) -> dict:
+                 direction="[100]", electrical: str | Boundary = "free", stress=None) -> dict:
     """Fields of one guided mode against depth.
 
     Parameters

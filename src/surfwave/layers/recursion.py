@@ -20,9 +20,11 @@ below the substrate's limiting speed (no energy leaves the stack). A plain produ
 transfer matrices exp(i t N) would carry exponentials exp(t |Im p|) and lose the decaying
 information at large kh; this recursion never forms them (tests/layers/test_stability.py).
 
-Boundary conditions at the top: mechanically free; electrically "free" (the vacuum above adds
--EPS0 to the potential's diagonal: (Z - EPS0 e4 e4^T) a = 0) or "metallized" (phi = 0: the
-mechanical block of Z).
+Boundary conditions at the top: mechanically free; electrically a
+:class:`surfwave.solvers.boundary.Boundary` (or its name), which turns Z into the matrix of the
+secular equation (:meth:`~surfwave.solvers.boundary.Boundary.stack_matrix`): free (the vacuum
+above adds -EPS0 to the potential's diagonal: (Z - EPS0 e4 e4^T) a = 0) or metallized (phi = 0:
+the mechanical block of Z).
 """
 from __future__ import annotations
 
@@ -31,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from surfwave.layers.partial import Blocks, Family, eigen
+from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, as_boundary
 
 __all__ = ["secular", "top_impedance"]
 
@@ -98,10 +101,11 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
         Ed = np.exp(1j * p[:, None, nf:] * t[..., None])                       # (m, k, nf)
         Eu = np.exp(-1j * p[:, None, :nf] * t[..., None])
-        if b.electrode_below and b.electrode_below[layer] and fam.phi is not None:
-            # grounded electrode under this layer: phi = 0 there (the normal D jumps by the
-            # electrode's charge), so the conditions are b_mech = M_mm a_mech and a_phi = 0
-            G = _electrode_condition(M, fam.phi)
+        electrode = METALLIZED if b.electrode_below and b.electrode_below[layer] else FREE
+        G = electrode.interface_rows(M, fam.phi) if fam.phi is not None else None
+        if G is not None:
+            # an electrode under this layer (surfwave.solvers.boundary.Metallized.interface_rows:
+            # phi = 0 there, the mechanical state continuous)
             GVu = G[..., :, :nf] @ Au + G[..., :, nf:] @ Bu
             GVd = G[..., :, :nf] @ Ad + G[..., :, nf:] @ Bd
         else:
@@ -121,43 +125,35 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
     return out
 
 
-def _electrode_condition(M: np.ndarray, ph: int) -> np.ndarray:
-    """Rows G (..., nf, 2 nf) with G [a; b] = 0 at a grounded interface: b_m - M_mm a_m = 0, a_phi = 0."""
-    nf = M.shape[-1]
-    mech = np.array([i for i in range(nf) if i != ph])
-    G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
-    G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
-    G[..., mech, nf + mech] = 1.0
-    G[..., ph, ph] = 1.0
-    return G
-
-
-def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str) -> tuple[np.ndarray, np.ndarray]:
+def boundary_matrix(b: Blocks, fam: Family, M: np.ndarray, electrical: str | Boundary) -> tuple[np.ndarray, np.ndarray]:
     """The Hermitian matrix whose singularity is the free-surface condition, and its active components.
+
+    Parameters
+    ----------
+    b : Blocks
+    fam : Family
+    M : ndarray, shape (..., nf, nf), complex
+        The stack's impedance (:func:`top_impedance`).
+    electrical : str or Boundary
+        The top's condition (:func:`surfwave.solvers.boundary.as_boundary`).
 
     Returns
     -------
     Z : ndarray, shape (..., na, na)
-        -i M (made exactly Hermitian), with -EPS0 on the potential for ``"free"``, or the
-        mechanical block for ``"metallized"``.
+        -i M (made exactly Hermitian), turned by the boundary's
+        :meth:`~surfwave.solvers.boundary.Boundary.stack_matrix` (free: -EPS0 on the potential;
+        metallized: the mechanical block).
     active : ndarray of int, shape (na,)
         Positions (within the family) of the components kept.
     """
     Z = -1j * M
     Z = 0.5 * (Z + np.conj(np.swapaxes(Z, -1, -2)))
-    nf = len(fam.idx)
-    ph = fam.phi
-    if ph is None:
-        return Z, np.arange(nf)
-    if electrical == "metallized":
-        keep = np.array([i for i in range(nf) if i != ph])
-        return Z[..., keep[:, None], keep], keep
-    Z = Z.copy()
-    Z[..., ph, ph] -= b.eps0
-    return Z, np.arange(nf)
+    if fam.phi is None:
+        return Z, np.arange(len(fam.idx))
+    return as_boundary(electrical).stack_matrix(Z, fam.phi, b.eps0)
 
 
-def boundary_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
+def boundary_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "free") -> np.ndarray:
     """Eigenvalues (ascending) of the Hermitian boundary matrix at speeds c (m,) and kh (m, k), (m, k, na).
 
     Every eigenvalue decreases with c between poles (the impedance of a lossless stack is a
@@ -173,7 +169,7 @@ def boundary_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str = "free"
     return w
 
 
-def secular(b: Blocks, fam: Family, c, kh, electrical: str = "free") -> np.ndarray:
+def secular(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "free") -> np.ndarray:
     """Real secular function det(Z) of the family at speeds c (m,) and kh (m, k): zeros are guided modes.
 
     Z is Hermitian, so det Z is real; it changes sign at every mode and also at the poles of Z

@@ -19,6 +19,7 @@ from surfwave.layers.modes import family_modes, floor_unstable, label
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
+from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, Free, as_boundary
 
 __all__ = ["MAX_KH", "layered", "solve_stack"]
 
@@ -38,7 +39,7 @@ def _kh_values(kh) -> np.ndarray:
     return a
 
 
-def _family_solution(b: Blocks, fam: Family, kh: np.ndarray, electrical: str) -> tuple[np.ndarray, ...]:
+def _family_solution(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary) -> tuple[np.ndarray, ...]:
     """Speeds, group velocities and power-flow angles (k, n_f) of one family."""
     c = family_modes(b, fam, kh, electrical=electrical)
     vg = np.full(c.shape, np.nan)
@@ -50,7 +51,7 @@ def _family_solution(b: Blocks, fam: Family, kh: np.ndarray, electrical: str) ->
     return c, vg, pf
 
 
-def solve_stack(stack: Stack, kh, electrical: str = "free") -> dict:
+def solve_stack(stack: Stack, kh, electrical: str | Boundary = "free") -> dict:
     """Modes of a resolved stack at each kh, per family (no input checks beyond kh).
 
     Returns
@@ -99,7 +100,7 @@ def _merge(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray
 
 
 def layered(substrate, films=(), *, euler=None, surface: str = "(001)", direction="[100]", kh=None,
-            frequency=None, electrical: str = "free", stress=None, leaky: bool = False) -> LayeredResult:
+            frequency=None, electrical: str | Boundary = "free", stress=None, leaky: bool = False) -> LayeredResult:
     """Every guided mode of films on a crystal substrate, under in-plane prestress.
 
     Parameters
@@ -124,8 +125,9 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         Wavenumber times the total film thickness, in [0, :data:`MAX_KH`].
     frequency : array_like, shape (n,), optional
         Frequencies (Hz) instead of ``kh``: each mode then has its own kh = 2 pi f H / c.
-    electrical : {"free", "metallized"}
-        Top surface of a piezoelectric stack (``c`` is reported for this condition).
+    electrical : {"free", "metallized"} or Boundary
+        Top surface of a piezoelectric stack (``c`` is reported for this condition): a
+        :class:`surfwave.solvers.boundary.Boundary` or its name.
     stress : float or array_like (3, 3), optional
         Substrate prestress, GPa, same conventions as a film's.
     leaky : bool
@@ -156,10 +158,9 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     4917.858
     """
     stack = resolve_stack(substrate, films, euler=euler, surface=surface, direction=direction, stress=stress)
-    if electrical not in ("free", "metallized"):
-        raise InputError(f"electrical must be 'free' or 'metallized', got {electrical!r}")
-    if electrical == "metallized" and not stack.piezo:
-        raise InputError("electrical='metallized' needs a piezoelectric layer or substrate")
+    boundary = as_boundary(electrical)
+    if not isinstance(boundary, Free) and not stack.piezo:
+        raise InputError(f"electrical={boundary.name!r} needs a piezoelectric layer or substrate")
     if not isinstance(leaky, (bool, np.bool_)):
         raise InputError(f"leaky must be True or False, got {leaky!r}")
     if (kh is None) == (frequency is None):
@@ -167,8 +168,8 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     if frequency is not None:
         from surfwave.layers.frequency import at_frequency
 
-        return cast(LayeredResult, at_frequency(stack, frequency, electrical=electrical, leaky=bool(leaky)))
-    return cast(LayeredResult, assemble(stack, _kh_values(kh), electrical, bool(leaky)))
+        return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky)))
+    return cast(LayeredResult, assemble(stack, _kh_values(kh), boundary, bool(leaky)))
 
 
 def unstable_reason(stack: Stack) -> str:
@@ -200,7 +201,16 @@ def _empty(kh: np.ndarray, c_limit: float, reason: str) -> dict:
             "reason": np.full(kh.size, reason, dtype=object), "power_flow_angle": nan.copy()}
 
 
-def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict:
+def k2_pair(electrical: str | Boundary) -> tuple[Boundary, bool]:
+    """The other condition of the K^2 pair (free, metallized) and whether ``electrical`` is the free one.
+
+    K^2 = 2 (c_free - c_metallized) / c_free needs both; the solved condition is one of them.
+    """
+    free = isinstance(as_boundary(electrical), Free)
+    return (METALLIZED if free else FREE), free
+
+
+def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bool) -> dict:
     """The result record for a resolved stack at kh (n,) (all NaN with the reason if a layer is unstable)."""
     why = unstable_reason(stack)
     if why:
@@ -209,14 +219,14 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str, leaky: bool) -> dict
     fams, cs, vgs = sol["families"], sol["c"], sol["group_velocity"]
     k2s = [np.full(c.shape, np.nan) for c in cs]
     if stack.piezo:
-        other = "metallized" if electrical == "free" else "free"
+        other, free = k2_pair(electrical)
         for f, fam in enumerate(fams):
             if fam.phi is None:
                 k2s[f] = np.zeros(cs[f].shape)
                 continue
             c2 = family_modes(sol["blocks"], fam, kh, electrical=other)
             n = min(c2.shape[1], cs[f].shape[1])
-            cf, cm = (cs[f], c2) if electrical == "free" else (c2, cs[f])
+            cf, cm = (cs[f], c2) if free else (c2, cs[f])
             k2 = np.full(cs[f].shape, np.nan)
             k2[:, :n] = 2.0 * (cf[:, :n] - cm[:, :n]) / cf[:, :n]
             k2s[f] = k2

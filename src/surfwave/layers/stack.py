@@ -1,11 +1,18 @@
 """Resolve a substrate and a list of films into one checked stack of lab-frame tensors.
 
 :func:`resolve_stack` is the single place where the inputs of :func:`surfwave.layered`
-(and of the ``surfwave layered`` command) are read and checked, before anything is computed. It
-reuses the materials databases (:mod:`surfwave.real_crystals.materials`,
-:mod:`surfwave.real_crystals.piezo_materials`, :mod:`surfwave.layers.films`), the validators of
-:mod:`surfwave.validate` and the prestress handling of :func:`surfwave.solvers.stroh.wave_propagation_tensor`,
-so that it can later be replaced by the project's common case-record resolver.
+(and of the ``surfwave layered`` command) are read and checked, before anything is computed.
+Everything a layer shares with a crystal of :func:`surfwave.material` goes through the one door
+of the real-crystal questions, so the same input gives the same refusal in the same words
+(after the layer's name, "substrate: ..."): names and aliases of both crystal databases with
+their did-you-mean (:mod:`surfwave.real_crystals.catalog`, the film database added), constants
+(:func:`surfwave.resolve.resolve_constants`: units and the one Pa bound, density bounds,
+piezoelectric magnitudes, eps_r >= 1), Born stability of C
+(:func:`surfwave.case.born_reason_natural`), Euler angles and directions
+(:func:`surfwave.validate.euler_angles`, :func:`surfwave.validate.angle_values`), stress units
+and sigma . n = 0 at the surface and at every interface (:func:`surfwave.validate.gpa_stress`,
+:func:`surfwave.case.check_stress`). What only a layer has stays here: thickness in metres,
+isotropic {E, nu, rho} with -1 < nu < 0.5, the film list, electrodes and conductors.
 
 Frames
 ------
@@ -18,13 +25,16 @@ normal, crystal X along the propagation).
 """
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from surfwave import validate
+from surfwave.case import born_reason_natural, check_stress
 from surfwave.errors import InputError
+from surfwave.resolve import resolve_constants
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
@@ -40,10 +50,12 @@ SAW_TO_LAB = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
 #: A film thicker than this (m) is refused: a thickness given in micrometres (e.g. 1.0 for 1 um)
 #: instead of metres. 1 cm is far beyond any deposited film.
 MAX_THICKNESS = 1.0e-2
-#: Largest |stress| in GPa (larger looks like Pa).
-MAX_STRESS_GPA = 1.0e3
-#: Largest |constant| in GPa (larger looks like Pa).
-MAX_GPA = 1.0e5
+#: Largest |stress| in GPa (larger looks like Pa): the one bound, :data:`surfwave.validate.MAX_STRESS_GPA`.
+MAX_STRESS_GPA = validate.MAX_STRESS_GPA
+#: Largest |constant| in GPa (larger looks like Pa): the one bound, :data:`surfwave.validate.MAX_CONSTANT_GPA`.
+MAX_GPA = validate.MAX_CONSTANT_GPA
+#: The axes of a layer's stress as given (the message of a loaded surface names them).
+SAW_FRAME = "SAW frame: x1 propagation, x2 in-plane, x3 outward normal"
 _MATERIAL_KEYS = {"name", "voigt", "rho", "piezo", "permittivity", "E", "nu", "conductor"}
 _FILM_KEYS = _MATERIAL_KEYS | {"thickness", "euler", "stress", "material", "electrode_below"}
 
@@ -118,8 +130,7 @@ def isotropic_voigt(E, nu) -> np.ndarray:
     nu = _number(nu, "nu")
     if E <= 0:
         raise InputError(f"Young's modulus E must be positive (GPa), got {E!r}")
-    if E > MAX_GPA:
-        raise InputError(f"Young's modulus E must be in GPa; got {E:.4g}, which looks like Pa (divide by 1e9)")
+    validate.gpa_constants(E, "Young's modulus E")
     if not -1.0 < nu < 0.5:
         raise InputError(f"Poisson's ratio nu must lie in (-1, 0.5) for a stable isotropic solid, got {nu!r}")
     lam = E * nu / ((1 + nu) * (1 - 2 * nu))
@@ -140,20 +151,35 @@ def _number(value, what: str) -> float:
     return v
 
 
-def _check_stiffness(C6: np.ndarray, where: str) -> np.ndarray:
-    C6 = validate.stiffness(C6, f"{where} voigt")
-    if np.abs(C6).max() > MAX_GPA:
-        raise InputError(f"{where}: elastic constants must be in GPa; the largest is {np.abs(C6).max():.4g}, "
-                         "which looks like Pa (divide by 1e9)")
-    w = np.linalg.eigvalsh(C6)
-    if w[0] <= 1e-12 * abs(w[-1]):
-        raise InputError(f"{where}: the stiffness is not positive definite (lowest eigenvalue of the Voigt "
-                         f"matrix {w[0]:.4g} GPa): no stable solid")
-    return C6
+@contextmanager
+def _at(where: str) -> Iterator[None]:
+    """Prefix an InputError of the one door's checks with the layer it concerns ("substrate: ...")."""
+    try:
+        yield
+    except InputError as exc:
+        raise InputError(f"{where}: {exc}") from None
+
+
+def _eps_matrix(value):
+    """A relative permittivity as given, a number standing for eps_r times the identity."""
+    if np.ndim(value) == 0 and not isinstance(value, (bool, np.bool_, str)):
+        return float(validate.real_array(value, "permittivity (eps_r)")[0]) * np.eye(3)
+    return value
+
+
+def _checked_eps(e6, value, where: str) -> np.ndarray:
+    """eps_r (3, 3) of a layer, checked with its e (zeros when None) by :func:`surfwave.validate.piezo_constants`."""
+    with _at(where):
+        return validate.piezo_constants(np.zeros((3, 6)) if e6 is None else e6, _eps_matrix(value))[1]
 
 
 def _material(spec, where: str, film: bool = True) -> dict:
-    """Voigt C (GPa, crystal axes), rho, e (3, 6) or None, eps_r (3, 3) or None from a name or a mapping."""
+    """Voigt C (GPa, crystal axes), rho, e (3, 6) or None, eps_r (3, 3) or None from a name or a mapping.
+
+    Names: :func:`surfwave.layers.films.lookup`; constants: :func:`surfwave.resolve.resolve_constants`
+    (the checks and words of :func:`surfwave.material`), then Born stability of C
+    (:func:`surfwave.case.born_reason_natural`), refused here: a layer has no per-point answer.
+    """
     from surfwave.layers.films import lookup
 
     if isinstance(spec, str):
@@ -167,79 +193,63 @@ def _material(spec, where: str, film: bool = True) -> dict:
     if name is not None:
         rec = lookup(str(name), where, film=film)
         if "rho" in spec:
-            rec["rho"] = validate.density(spec["rho"], f"{where} rho")
+            with _at(where):
+                rec["rho"] = validate.density(spec["rho"])
         for key in ("voigt", "E", "nu", "piezo"):
             if key in spec:
                 raise InputError(f"{where}: material {name!r} given by name: do not also give {key!r}")
         if "permittivity" in spec:
-            rec["eps_r"] = _eps_r(spec["permittivity"], where)
+            rec["eps_r"] = _checked_eps(rec.get("e"), spec["permittivity"], where)
         if "conductor" in spec:
             rec["conductor"] = bool(spec["conductor"])
         return rec
     if "voigt" in spec and ("E" in spec or "nu" in spec):
         raise InputError(f"{where}: give either voigt or E and nu, not both")
     if "voigt" in spec:
-        C6 = _check_stiffness(spec["voigt"], where)
-        label = "voigt"
+        voigt, label = spec["voigt"], "voigt"
     elif "E" in spec or "nu" in spec:
         if "E" not in spec or "nu" not in spec:
             raise InputError(f"{where}: an isotropic material needs both E (GPa) and nu")
-        C6 = _check_stiffness(isotropic_voigt(spec["E"], spec["nu"]), where)
-        label = "isotropic"
+        with _at(where):
+            voigt, label = isotropic_voigt(spec["E"], spec["nu"]), "isotropic"
     else:
         raise InputError(f"{where}: give a material name, voigt (GPa) and rho, or E (GPa), nu and rho")
     if "rho" not in spec:
         raise InputError(f"{where}: the density rho (kg/m^3) is missing")
-    rho = validate.density(spec["rho"], f"{where} rho")
-    e6 = None
-    if spec.get("piezo") is not None:
-        e6 = validate.real_array(spec["piezo"], f"{where} piezo")
-        if e6.shape != (3, 6) or not np.all(np.isfinite(e6)):
-            raise InputError(f"{where}: piezo must be a finite 3 x 6 array (C/m^2), got shape {e6.shape}")
-        if "permittivity" not in spec:
-            raise InputError(f"{where}: piezo given without permittivity (relative, 3 x 3)")
-    eps_r = _eps_r(spec["permittivity"], where) if spec.get("permittivity") is not None else None
-    return {"name": label, "voigt": C6, "rho": rho, "e": e6, "eps_r": eps_r,
-            "conductor": bool(spec.get("conductor", False))}
+    e6, eps = spec.get("piezo"), spec.get("permittivity")
+    if e6 is not None and eps is None:
+        raise InputError(f"{where}: piezo given without permittivity (relative, 3 x 3)")
+    with _at(where):
+        c = resolve_constants(voigt=voigt, rho=spec["rho"], piezo=None if eps is None and e6 is None else
+                              (np.zeros((3, 6)) if e6 is None else e6),
+                              permittivity=None if eps is None else _eps_matrix(eps))
+        born = born_reason_natural(c)
+        if born:
+            raise InputError(born)
+    return {"name": label, "voigt": c.voigt, "rho": c.rho, "e": None if e6 is None else c.piezo,
+            "eps_r": c.permittivity, "conductor": bool(spec.get("conductor", False))}
 
 
-def _eps_r(value, where: str) -> np.ndarray:
-    er = validate.real_array(value, f"{where} permittivity")
-    if np.ndim(value) == 0:
-        er = float(er[0]) * np.eye(3)
-    if er.shape != (3, 3) or not np.all(np.isfinite(er)):
-        raise InputError(f"{where}: permittivity must be a number or a finite 3 x 3 array (relative)")
-    if not np.allclose(er, er.T) or np.linalg.eigvalsh(er)[0] < 1.0 - 1e-9:
-        raise InputError(f"{where}: the relative permittivity must be symmetric with eigenvalues >= 1, got "
-                         f"{er.tolist()}")
-    return er
+def _stress(stress, where: str, surface: str) -> np.ndarray:
+    """In-plane prestress in our lab frame (3, 3), GPa, from a scalar (equibiaxial) or a 3 x 3 SAW-frame tensor.
 
-
-def _stress(stress, where: str) -> np.ndarray:
-    """In-plane prestress in our lab frame (3, 3), GPa, from a scalar (equibiaxial) or a 3 x 3 SAW-frame tensor."""
+    Units, finiteness, symmetry and sigma . n = 0 by the one door's checks
+    (:func:`surfwave.validate.gpa_stress`, :func:`surfwave.case.check_stress`); ``surface``
+    names the plane in the message.
+    """
     if stress is None:
         return np.zeros((3, 3))
-    s = validate.real_array(stress, f"{where} stress").reshape(np.shape(stress))
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"{where}: stress must be finite, got {stress!r}")
-    if s.size and np.abs(s).max() > MAX_STRESS_GPA:
-        raise InputError(f"{where}: stress must be in GPa; got {np.abs(s).max():.4g}, which looks like Pa "
-                         "(divide by 1e9)")
-    if s.shape == ():
-        sig = float(s) * np.diag([1.0, 1.0, 0.0])                # equibiaxial in the surface plane (SAW frame)
-    elif s.shape == (3, 3):
-        if not np.allclose(s, s.T, rtol=0, atol=1e-12 * max(np.abs(s).max(), 1e-300)):
-            raise InputError(f"{where}: the stress tensor must be symmetric, got {s.tolist()}")
-        sig = s
-    else:
-        raise InputError(f"{where}: stress must be a scalar (equibiaxial) or a 3 x 3 tensor in GPa (x1 "
-                         f"propagation, x2 in-plane, x3 outward normal), got shape {s.shape}")
-    lab = SAW_TO_LAB @ sig @ SAW_TO_LAB.T
-    normal = np.abs(lab[1]).max()
-    if normal > 1e-9 * max(np.abs(lab).max(), 1e-300):
-        raise InputError(f"{where}: the stress loads the surface or an interface (sigma_i3 in the SAW frame must "
-                         f"vanish, got sigma . n = {np.round(SAW_TO_LAB.T @ lab[1], 12).tolist()} GPa)")
-    return lab
+    with _at(where):
+        s = validate.gpa_stress(stress)
+        if s.shape == ():
+            sig = float(s) * np.diag([1.0, 1.0, 0.0])            # equibiaxial in the surface plane (SAW frame)
+        elif s.shape == (3, 3):
+            sig = s
+        else:
+            raise InputError(f"stress must be a scalar (equibiaxial) or a 3 x 3 tensor in GPa ({SAW_FRAME}), got "
+                             f"shape {s.shape}")
+        check_stress(sig, SAW_TO_LAB[None], surface, frame=SAW_FRAME)   # row 1: the inward normal, SAW frame
+    return SAW_TO_LAB @ sig @ SAW_TO_LAB.T
 
 
 def _layer(rec: dict, R: np.ndarray, thickness: float, sigma_gpa: np.ndarray, piezo_stack: bool, where: str) -> Layer:
@@ -264,10 +274,24 @@ def _layer(rec: dict, R: np.ndarray, thickness: float, sigma_gpa: np.ndarray, pi
 
 
 def _euler_axes(euler, where: str) -> np.ndarray:
-    a = validate.real_array(euler, f"{where} euler")
-    if a.shape != (3,):
-        raise InputError(f"{where}: euler must be three angles (phi, theta, psi) in degrees, got shape {a.shape}")
+    """Lab axes (3, 3) of SAW Euler angles (degrees), checked by :func:`surfwave.validate.euler_angles`."""
+    with _at(where):
+        a = validate.euler_angles(euler)
+        if a.shape != (3,):
+            raise InputError(f"euler must be three angles (phi, theta, psi) in degrees, got shape {a.shape}")
     return np.asarray(euler_lab_axes(a), dtype=float)
+
+
+def _substrate_axes(euler, surface: str, direction) -> tuple[np.ndarray, str]:
+    """Lab axes (3, 3) of the substrate and its surface in words (as :func:`surfwave.material` names it)."""
+    if euler is not None:
+        return _euler_axes(euler, "substrate"), "of the Euler angles"
+    with _at("substrate"):
+        which = direction if isinstance(direction, str) else validate.angle_values(direction, "direction")
+        R = np.asarray(lab_axes(surface, which), float)
+    if R.ndim != 2:
+        raise InputError(f"substrate: one propagation direction at a time, got {direction!r}")
+    return R, str(surface)
 
 
 def _thickness(value, where: str) -> float:
@@ -321,22 +345,23 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
         films = [films]
     if not isinstance(films, Sequence):
         raise InputError(f"films must be a list of mappings (top film first), got {films!r}")
+    R_sub, plane = _substrate_axes(euler, surface, direction)    # orientation, constants, stress: material()'s order
     sub = _material(substrate, "substrate", film=False)
     if isinstance(substrate, Mapping) and "thickness" in substrate:
         raise InputError("the substrate is semi-infinite: do not give it a thickness")
-    R_sub = _euler_axes(euler, "substrate") if euler is not None else np.asarray(lab_axes(surface, direction), float)
-    if R_sub.ndim != 2:
-        raise InputError(f"one propagation direction at a time, got {direction!r}")
-    s_sub = _stress(stress, "substrate")
+    s_sub = _stress(stress, "substrate", plane)
     recs = []
     for i, f in enumerate(films):
         where = f"film {i} (from the top)"
         if isinstance(f, str):
             raise InputError(f"{where}: give a mapping with a thickness, e.g. {{'name': {f!r}, 'thickness': 1e-6}}")
+        if not isinstance(f, Mapping):
+            raise InputError(f"{where} must be a mapping (a material and its thickness), got {f!r}")
+        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
         rec = _material(f, where)
         t = _thickness(f.get("thickness"), where)
-        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
-        recs.append((rec, R, t, _stress(f.get("stress"), where), where, f.get("electrode_below", False)))
+        sig = _stress(f.get("stress"), where, "of the film and its interfaces")
+        recs.append((rec, R, t, sig, where, f.get("electrode_below", False)))
     piezo = sub.get("e") is not None or any(r[0].get("e") is not None for r in recs)
     for r in recs:
         if not isinstance(r[5], (bool, np.bool_)):

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -34,7 +35,7 @@ from surfwave.errors import InputError
 
 __all__ = ["CatalogEntry", "catalog", "name_key", "suggest", "unknown_name"]
 
-Database = Literal["elastic", "piezoelectric"]
+Database = Literal["elastic", "piezoelectric", "film"]
 
 #: Closeness (difflib ratio of the normalised names) a suggestion needs.
 CUTOFF = 0.6
@@ -48,7 +49,9 @@ class CatalogEntry:
     ----------
     name : str
         Canonical name in its database (``"Cu"``, ``"LiNbO3-Warner1967"``).
-    database : {"elastic", "piezoelectric"}
+    database : {"elastic", "piezoelectric", "film"}
+        "film": the isotropic film database of the layered solver
+        (:func:`surfwave.layers.films.film_catalog`), never in :func:`catalog`.
     aliases : tuple of str
         Other names that find it (as written in the database file).
     symmetry : str
@@ -96,16 +99,16 @@ def catalog() -> list[CatalogEntry]:
     return rows
 
 
-def _spellings() -> dict[str, tuple[str, str]]:
-    """Normalised key -> (spelling as written, canonical name), over both databases."""
+def _spellings(extra: Sequence[CatalogEntry] = ()) -> dict[str, tuple[str, str]]:
+    """Normalised key -> (spelling as written, canonical name), over both databases (and ``extra``)."""
     table: dict[str, tuple[str, str]] = {}
-    for e in catalog():
+    for e in (*catalog(), *extra):
         for spelling in (e.name, *e.aliases):
             table.setdefault(name_key(spelling), (spelling, e.name))
     return table
 
 
-def suggest(name: object, n: int = 3) -> list[str]:
+def suggest(name: object, n: int = 3, extra: Sequence[CatalogEntry] = ()) -> list[str]:
     """The known crystals closest to a mistyped name, over every name and alias of both databases.
 
     Parameters
@@ -114,6 +117,8 @@ def suggest(name: object, n: int = 3) -> list[str]:
         What the user typed.
     n : int
         At most this many suggestions (distinct crystals).
+    extra : sequence of CatalogEntry
+        More entries to search (a door that also knows the film database passes it).
 
     Returns
     -------
@@ -122,7 +127,7 @@ def suggest(name: object, n: int = 3) -> list[str]:
         canonical name (``"copper (Cu)"``, ``"LiNbO3 (LiNbO3-Warner1967)"``).
         Empty when nothing is close (difflib ratio below :data:`CUTOFF`).
     """
-    table = _spellings()
+    table = _spellings(extra)
     out: dict[str, str] = {}
     for key in difflib.get_close_matches(name_key(name), list(table), n=5 * n, cutoff=CUTOFF):
         spelling, canonical = table[key]
@@ -141,7 +146,7 @@ def _cut_of(name: object) -> str | None:
     return f"{c.name} (Euler {c.euler}, constants {c.material})"
 
 
-def unknown_name(name: object, database: Database) -> InputError:
+def unknown_name(name: object, database: Database, extra: Sequence[CatalogEntry] = ()) -> InputError:
     """The error for a crystal name that ``database`` does not hold: where it is, or what is close.
 
     Parameters
@@ -150,6 +155,10 @@ def unknown_name(name: object, database: Database) -> InputError:
         The name looked up.
     database : {"elastic", "piezoelectric"}
         The database that was asked.
+    extra : sequence of CatalogEntry
+        More entries the asking door knows (the film database of the layered solver): searched
+        for the did-you-mean and listed after the others; without them the message is the one
+        every crystal lookup raises.
 
     Returns
     -------
@@ -159,7 +168,7 @@ def unknown_name(name: object, database: Database) -> InputError:
         every known name, by database. No argument syntax of one interface (Python or command
         line) is suggested: the caller adds it where it knows it.
     """
-    kind = "material" if database == "elastic" else "piezoelectric material"
+    kind = {"elastic": "material", "piezoelectric": "piezoelectric material", "film": "film material"}[database]
     key = name_key(name)
     other = [e for e in catalog() if e.database != database and key in {name_key(s) for s in (e.name, *e.aliases)}]
     if other:
@@ -168,10 +177,10 @@ def unknown_name(name: object, database: Database) -> InputError:
     cut = _cut_of(name)
     if cut is not None:
         return InputError(f"unknown {kind} {name!r}: it names a SAW cut, {cut}, not a crystal")
-    close = suggest(name)
+    close = suggest(name, extra=extra)
     hint = f" (did you mean {' or '.join(close)}?)" if close else ""
     by_db: dict[str, list[str]] = {}
-    for e in catalog():
+    for e in (*catalog(), *extra):
         by_db.setdefault(e.database, []).append(e.name)
     known = "; ".join(f"{db}: {', '.join(names)}" for db, names in by_db.items())
     return InputError(f"unknown {kind} {name!r}{hint}; known materials: {known}")

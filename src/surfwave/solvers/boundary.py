@@ -3,9 +3,12 @@
 A boundary turns the surface impedance of the half space into the matrix whose determinant
 vanishes at a surface wave (the secular equation) and says what it leaves of the generalised
 displacement (u1, u2, u3, phi) at the surface. The solvers ask the object
-(:func:`surfwave.solvers.leaky.leaky_wave`, :func:`surfwave.solvers.piezo.piezo_surface_wave`)
-instead of comparing condition names, so that another condition (e.g. the surface impedance
-of a layer stack on the substrate) is one more subclass of :class:`Boundary`.
+(:func:`surfwave.solvers.leaky.leaky_wave`, :func:`surfwave.solvers.piezo.piezo_surface_wave`,
+and the top surface of a layered stack: :func:`surfwave.layers.recursion.boundary_matrix`,
+:mod:`surfwave.layers.modes`, :mod:`surfwave.layers.fields`; a thin electrode on an interface
+under a film: :meth:`Boundary.interface_rows`) instead of comparing condition names, so that
+another condition (e.g. the surface impedance of a layer stack on the substrate) is one more
+subclass of :class:`Boundary`.
 
 Conventions: the impedance M = B A^-1 of the decaying partial waves is (m, 4, 4) with the
 electric row and column last, scaled so that EPS0 = 1 (:mod:`surfwave.solvers.leaky`). A purely
@@ -46,6 +49,9 @@ class Boundary(ABC):
 
     name: ClassVar[str]
     vacuum: ClassVar[bool]
+    #: True where the potential at the surface is an unknown of the secular equation (its
+    #: component is kept by :meth:`secular_matrix` and :meth:`stack_matrix`).
+    keeps_potential: ClassVar[bool]
 
     @abstractmethod
     def secular_matrix(self, M: np.ndarray) -> np.ndarray:
@@ -64,6 +70,47 @@ class Boundary(ABC):
             k components of (u1, u2, u3, phi), the others vanish.
         """
 
+    @abstractmethod
+    def stack_matrix(self, Z: np.ndarray, phi: int, eps0: float) -> tuple[np.ndarray, np.ndarray]:
+        """The same condition on the top of a layered stack, in its Hermitian form.
+
+        Parameters
+        ----------
+        Z : ndarray, shape (..., nf, nf), complex
+            -i M, M the generalised surface impedance of one decoupled family of a layered stack
+            (:func:`surfwave.layers.recursion.top_impedance`), Hermitian for real speeds below
+            the substrate's limit.
+        phi : int
+            Position of the potential among the family's nf components.
+        eps0 : float
+            The vacuum permittivity in the stack's scaling.
+
+        Returns
+        -------
+        Zb : ndarray, shape (..., na, na)
+            The matrix whose singularity is a guided mode (a new array; Z is not modified).
+        active : ndarray of int, shape (na,)
+            Positions (within the family) of the components kept.
+        """
+
+    def interface_rows(self, M: np.ndarray, phi: int) -> np.ndarray | None:
+        """The condition on an interface under a film of a layered stack (a thin electrode, no mass).
+
+        Parameters
+        ----------
+        M : ndarray, shape (..., nf, nf), complex
+            Impedance of what lies below the interface (b = M a there).
+        phi : int
+            Position of the potential among the nf components.
+
+        Returns
+        -------
+        ndarray, shape (..., nf, 2 nf), or None
+            Rows G with G [a; b] = 0 at the interface; None (the default) where the condition
+            puts nothing on an interface (continuity, b = M a: no electrode).
+        """
+        return None
+
     def __str__(self) -> str:
         """The condition's name."""
         return self.name
@@ -79,6 +126,7 @@ class Free(Boundary):
 
     name = "free"
     vacuum = True
+    keeps_potential = True
 
     def secular_matrix(self, M: np.ndarray) -> np.ndarray:  # noqa: D102 (documented on the base)
         M = M.copy()
@@ -86,15 +134,36 @@ class Free(Boundary):
             M[:, 3, 3] -= 1j
         return M
 
+    def stack_matrix(self, Z: np.ndarray, phi: int, eps0: float) -> tuple[np.ndarray, np.ndarray]:  # noqa: D102
+        Z = Z.copy()
+        Z[..., phi, phi] -= eps0                     # the vacuum above: -EPS0 on the potential's diagonal
+        return Z, np.arange(Z.shape[-1])
+
 
 class Metallized(Boundary):
     """A perfectly conducting, grounded film: traction-free, phi = 0 (the mechanical 3 x 3 block)."""
 
     name = "metallized"
     vacuum = False
+    keeps_potential = False
 
     def secular_matrix(self, M: np.ndarray) -> np.ndarray:  # noqa: D102 (documented on the base)
         return M[:, :3, :3].copy()
+
+    def stack_matrix(self, Z: np.ndarray, phi: int, eps0: float) -> tuple[np.ndarray, np.ndarray]:  # noqa: D102
+        keep = np.array([i for i in range(Z.shape[-1]) if i != phi])
+        return Z[..., keep[:, None], keep], keep
+
+    def interface_rows(self, M: np.ndarray, phi: int) -> np.ndarray:
+        """A grounded electrode on the interface: phi = 0 there (the normal D jumps by the electrode's
+        charge), the mechanical state continuous: b_m - M_mm a_m = 0 and a_phi = 0."""
+        nf = M.shape[-1]
+        mech = np.array([i for i in range(nf) if i != phi])
+        G = np.zeros(M.shape[:-2] + (nf, 2 * nf), dtype=complex)
+        G[..., mech[:, None], mech[None, :]] = -M[..., mech[:, None], mech[None, :]]
+        G[..., mech, nf + mech] = 1.0
+        G[..., phi, phi] = 1.0
+        return G
 
 
 #: The two conditions, one instance each.
