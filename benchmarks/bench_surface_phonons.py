@@ -125,8 +125,8 @@ def main(outdir: str) -> Path:
         "path_spectral": (f"`surfwave.surface_phonons`, LJ in-plane hydrostatic (001), d/d0 = 1: surface modes, "
                           f"band edges and the top plane's spectral density, {N_Q} q on G-X-M-G x {N_OMEGA} omega",
                           "q x omega per call", f"{N_Q} x {N_OMEGA}",
-                          f"spectral density finite at {np.isfinite(res['spectral_density']).mean():.3g} of the "
-                          "points (accuracy: tests/dynamics/test_fcc_surface_phonons.py, against finite slabs)"),
+                          f"spectral density finite at {100 * np.isfinite(res['spectral_density']).mean():.3g} % of "
+                          "the points (accuracy: tests/dynamics/test_fcc_surface_phonons.py, against finite slabs)"),
         "entropy": ("exact surface entropy `surface_entropy` (surface log-determinant of the static slab matrix, Richardson over the q grid), "
                     "LJ in-plane hydrostatic (001), one strain, no estimate", "strains per call", "1",
                     f"S = {float(ent['S_surface_exact'][0]):.8f} k_B, its own (Richardson) error estimate "
