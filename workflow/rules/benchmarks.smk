@@ -45,6 +45,22 @@ BENCH_MODULES = {
         "api",
         "solvers.stroh",
     ),
+    "layered": (
+        "layers.solve",
+        "layers.modes",
+        "layers.partial",
+        "layers.recursion",
+        "layers.fields",
+        "layers.stack",
+        "layers.films",
+    ),
+    "surface_phonons": (
+        "dynamics.fcc_surface_phonons",
+        "dynamics.fcc_surface_green",
+        "dynamics.fcc_surface_entropy",
+        "dynamics.fcc_layers",
+        "dynamics.fcc_surface",
+    ),
 }
 BENCH_METHODS = [
     name

@@ -1,4 +1,4 @@
-"""The disba side of benchmarks/bench_layered_disba.py (run with an interpreter that has disba).
+"""The disba side of benchmarks/compare/layered_vs_disba.py (run by it under $DISBA_PYTHON, which has disba).
 
 Reads a JSON job on stdin: layers (thickness km, vp, vs km/s, density g/cm^3; last = half-space),
 periods (s), modes, waves, repeats; prints JSON: per (wave, mode) the phase speeds (km/s, NaN where

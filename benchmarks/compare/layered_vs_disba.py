@@ -1,15 +1,22 @@
 """surfwave.layered against disba (an established isotropic layered-media code from PyPI): speed at equal accuracy.
 
-Usage: DISBA_PYTHON=/path/to/python-with-disba python benchmarks/bench_layered_disba.py
+Not a `make bench` benchmark: disba (Dunkin's fast delta matrix, numba) is not in the locked
+environment (it is no dependency), so its side runs in ``benchmarks/compare/disba_side.py`` under
+the interpreter of a throwaway virtual environment given as ``$DISBA_PYTHON``. From the
+repository root (``.venv`` is the project's environment, ``make env``)::
 
-disba (Dunkin's fast delta matrix, numba) is installed in a throwaway environment only (not a
-dependency); its side runs in ``benchmarks/disba_side.py`` under $DISBA_PYTHON. Stack: a 1 km
-(disba) = 1 um (surfwave) isotropic layer (E 73 GPa, nu 0.17, rho 2200 kg/m^3) on an isotropic
-half-space (E 400 GPa, nu 0.25, rho 3500 kg/m^3); 200 periods. The same dimensionless problem in
-both: kh = 2 pi H / (c T), so surfwave is asked at f = 1e9 / T Hz with H = 1e-6 m. Compared: the
-fundamental Rayleigh and Love modes and their first overtones; accuracy as the largest relative
-difference of the phase speeds; surfwave's own accuracy is ~1e-11 (Love closed form,
-tests/layers), so the difference measures disba's. CPU time on one core, min over REPEATS.
+    python3 -m venv /tmp/disba-venv
+    /tmp/disba-venv/bin/pip install disba==0.7.0
+    DISBA_PYTHON=/tmp/disba-venv/bin/python .venv/bin/python benchmarks/compare/layered_vs_disba.py [OUTDIR]
+
+It prints the table (OUTDIR, if given, receives ``layered_vs_disba.json``); then
+``rm -rf /tmp/disba-venv``. Stack: a 1 km (disba) = 1 um (surfwave) isotropic layer (E 73 GPa,
+nu 0.17, rho 2200 kg/m^3) on an isotropic half-space (E 400 GPa, nu 0.25, rho 3500 kg/m^3);
+200 periods. The same dimensionless problem in both: kh = 2 pi H / (c T), so surfwave is asked at
+f = 1e9 / T Hz with H = 1e-6 m. Compared: the fundamental Rayleigh and Love modes and their first
+overtones; accuracy as the largest relative difference of the phase speeds; surfwave's own
+accuracy is ~1e-11 (Love closed form, tests/layers), so the difference measures disba's. CPU time
+on one core, min over REPEATS.
 """
 from __future__ import annotations
 
@@ -43,7 +50,7 @@ def main() -> int:
     """Run both codes on the same stack and print speed and agreement."""
     py = os.environ.get("DISBA_PYTHON")
     if not py:
-        print("set DISBA_PYTHON to an interpreter with disba installed (e.g. a venv under /tmp)")
+        print(__doc__)  # how to make the throwaway environment and run
         return 1
     vp1, vs1 = _speeds(FILM)
     vp2, vs2 = _speeds(HALF)
@@ -85,7 +92,7 @@ def main() -> int:
         out["curves"][key] = {"disba_seconds": disba[key]["seconds"], "max_rel_diff": diff, "one_only": only}
     if len(sys.argv) > 1:
         Path(sys.argv[1]).mkdir(parents=True, exist_ok=True)
-        (Path(sys.argv[1]) / "bench_layered_disba.json").write_text(json.dumps(out, indent=1))
+        (Path(sys.argv[1]) / "layered_vs_disba.json").write_text(json.dumps(out, indent=1))
     return 0
 
 
