@@ -654,15 +654,87 @@ def _solve(sc, XL, d, electrical, tol):
     """Secant in w from every local minimum of |det| of the scan ``sc`` (:func:`_scan`) for one
     electrical condition; the least-attenuated root wins.
 
-    Returns X (m,) complex, chosen p (m, d) (radiating first), polarisation (m, d),
-    evaluations (m,), reasons (m,).
+    Parameters
+    ----------
+    sc : dict
+        The real-speed scan of the m points (:func:`_scan`).
+    XL : ndarray, shape (m, 2)
+        Scaled limiting X of the slowest and second sheet.
+    d : int
+        3 (elastic) or 4 (piezoelectric).
+    electrical : Boundary
+        The electrical condition.
+    tol : float
+        Relative accuracy of X.
+
+    Returns
+    -------
+    tuple of ndarray
+        X (m,) complex scaled roots, chosen p (m, d) (radiating first), polarisation (m, d),
+        evaluations (m,) int, reasons (m,) object str.
     """
-    N0, tg, xig, idx, pc, nreal = (sc[k] for k in ("N0", "tg", "xig", "idx", "pc", "nreal"))
-    m = N0.shape[0]
-    # 1. real scan: |det| with the outgoing choice at each grid speed
+    m = sc["N0"].shape[0]
     fg, _ = _condition(sc["Mg"], d, electrical)
-    af = np.where(nreal == 2, np.abs(fg).reshape(m, SCAN), np.inf)
-    # 2. local minima of |det| (grid points where the slowest sheet has one real pair)
+    af = np.where(sc["nreal"] == 2, np.abs(fg).reshape(m, SCAN), np.inf)
+    rows, kg, t = _real_axis_starts(af, fg, sc["tg"])
+    cand = _candidates_from(sc, XL, rows, t, kg, fg, d, electrical, tol)
+    conv_row = np.zeros(m, dtype=bool)
+    conv_row[rows[cand["converged"]]] = True
+    has_row = np.zeros(m, dtype=bool)
+    has_row[rows] = True
+    fin = np.isfinite(af)
+    extra_its = np.zeros(m)
+    stuck = np.nonzero(has_row & ~conv_row & fin.any(axis=1))[0]     # minima, but no search converged
+    low_rows = np.nonzero(~conv_row & fin.any(axis=1))[0]             # no search converged (or no minimum)
+    for probe, prows in ((_probe_above, stuck), (_probe_below, low_rows)):
+        if prows.size:
+            prow, keep, extra = probe(sc, XL, prows, fin, fg, d, electrical, tol)
+            extra_its += np.bincount(prow, weights=extra["its"], minlength=m)
+            cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
+            rows = np.concatenate([rows, prow[keep]])
+    best = _best_candidates(rows, cand, m)
+    reason = np.full(m, REASON_NOMIN, dtype=object)
+    X = np.full(m, np.nan + 0j)
+    p_out = np.full((m, d), np.nan + 0j)
+    u = np.full((m, d), np.nan + 0j)
+    nit = np.full(m, SCAN)
+    has = best >= 0
+    b = best[has]
+    why, pch = cand["why"], cand["p"]
+    reason[has] = why[b]
+    X[has] = cand["X"][b]
+    nit[has] += (np.bincount(rows, weights=cand["its"], minlength=m) + extra_its)[has].astype(int)
+    rest = np.take_along_axis(pch[b, 1:], np.argsort(pch[b, 1:].imag, axis=1), axis=1)
+    p_out[has] = np.concatenate([pch[b, :1], rest], axis=1)
+    u[has] = _root_polarisation(cand["xi"][b], cand["idx"][b], d, electrical)
+    return X, p_out, u, nit, reason
+
+
+def _real_axis_starts(af, fg, tg) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Start points of the secant searches: one per local minimum of |det| over the real scan.
+
+    Parameters
+    ----------
+    af : ndarray, shape (m, SCAN)
+        |det| of the outgoing choice at the grid speeds, inf where the slowest sheet does not
+        have exactly one real pair of Stroh roots.
+    fg : ndarray, shape (m SCAN,), complex
+        The boundary function at the grid speeds.
+    tg : ndarray, shape (SCAN,)
+        The grid in w (radians).
+
+    Returns
+    -------
+    rows : ndarray, shape (n,), int
+        Point of each search.
+    kg : ndarray, shape (n,), int
+        Flat grid index (row * SCAN + column) of the last accepted point of each search.
+    t : ndarray, shape (n,), complex
+        First trial point in w: the root of the parabola through the three grid values around
+        the minimum, or a small step off the real axis where that fails.
+    """
+    m = af.shape[0]
+    # local minima of |det| (grid points where the slowest sheet has one real pair)
     loc = np.zeros((m, SCAN), dtype=bool)
     loc[:, 1:-1] = (af[:, 1:-1] < af[:, :-2]) & (af[:, 1:-1] < af[:, 2:]) & np.isfinite(af[:, 1:-1])
     # the top grid point too (the root may lie between it and v_L2): fit around its neighbour
@@ -681,61 +753,133 @@ def _solve(sc, XL, d, electrical, tol):
         dt = -2 * f0 / den
     fallback = ~np.isfinite(dt) | (np.abs(dt) > 3 * h)
     t = t1 + np.where(fallback, 1e-3 * (t1 - 1j * tg[0]), dt)
-    cand = _candidates(N0, XL, rows, t, t1, fg[k], pc[k], _dp_dx(xig[k], idx[k], d), d, electrical, tol)
-    # 2b. points where no search converged: the branch may have left the window through v_L2,
-    # out of reach from the real-axis minima; searches from w = pi/2 + i y (real X above X_L2,
-    # X = X_L1 + (X_L2 - X_L1) cosh^2 y), continued from the highest grid point with a single
-    # real pair, find such roots. Kept: roots above v_L2 (REASON_ABOVE after the same validation)
-    # and verified roots of the window that are not grazing (below); other probes that drift back
-    # into the window are the real-axis search's business
-    extra_its = np.zeros(m)
-    conv_row = np.zeros(m, dtype=bool)
-    conv_row[rows[cand["converged"]]] = True
-    has_row = np.zeros(m, dtype=bool)
-    has_row[rows] = True
-    fin = np.isfinite(af)
-    stuck = np.nonzero(has_row & ~conv_row & fin.any(axis=1))[0]
-    if stuck.size:
-        top = SCAN - 1 - np.argmax(fin[stuck, ::-1], axis=1)
-        prow = np.repeat(stuck, PROBE_Y.size)
-        kp = prow * SCAN + np.repeat(top, PROBE_Y.size)
-        tp = 0.5 * np.pi + 1j * np.tile(PROBE_Y, stuck.size)
-        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
-                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
-        extra_its = np.bincount(prow, weights=extra["its"], minlength=m)
-        # also a verified root of the window that is not a grazing near-double root: delta >
-        # PROBE_DELTA, or every decaying wave with Im p > PROBE_DECAY (rotated Y LiNbO3 free near 41Y-X:
-        # a nearly real root above the top grid point, delta down to 0 at -49.42 deg, Im p >= 0.038,
-        # whose real-axis search wandered off; not Pb (111) 30 deg's real root with Im p = 3e-6)
-        good = extra["converged"] & (extra["why"] == "") & (
-            (extra["delta"] > PROBE_DELTA) | np.all(extra["p"][:, 1:].imag > PROBE_DECAY, axis=1))
-        keep = (extra["why"] == REASON_ABOVE) | good
-        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
-        rows = np.concatenate([rows, prow[keep]])
-    # 2c. points where no search from the real axis converged (or there was no minimum): the branch
-    # may run toward v_L1 with Im w comparable to Re w (Re X - X_L1 << |Im X|), where |det| over real
-    # speeds is monotone. Searches from w = u - i y (PROBE_U x PROBE_Y1, Im X < 0), continued from the
-    # lowest grid point with a single real pair, find it; kept are verified roots with delta >
-    # PROBE_DELTA and roots that left the window through v_L1 (REASON_LOW), after the same validation
-    low_rows = np.nonzero(~conv_row & fin.any(axis=1))[0]
-    if low_rows.size:
-        bot = np.argmax(fin[low_rows], axis=1)
-        starts = (PROBE_U[:, None] - 1j * PROBE_Y1[None, :]).reshape(-1)
-        prow = np.repeat(low_rows, starts.size)
-        kp = prow * SCAN + np.repeat(bot, starts.size)
-        tp = np.tile(starts, low_rows.size)
-        extra = _candidates(N0, XL, prow, tp, tg[kp % SCAN].astype(complex), fg[kp], pc[kp],
-                            _dp_dx(xig[kp], idx[kp], d), d, electrical, tol)
-        extra_its += np.bincount(prow, weights=extra["its"], minlength=m)
-        keep = extra["converged"] & (((extra["why"] == "") & (extra["delta"] > PROBE_DELTA))
-                                     | (extra["why"] == REASON_LOW))
-        cand = {key: np.concatenate([cand[key], extra[key][keep]]) for key in cand}
-        rows = np.concatenate([rows, prow[keep]])
-    why, Xc, delta_c, pch, ich, its = (cand[key] for key in ("why", "X", "delta", "p", "idx", "its"))
-    xiall = cand["xi"]
-    # 3. per point: the least-attenuated good candidate, else the reason of the first converged
-    # search (it names what was found), else of the first one
-    score = np.where(why == "", delta_c, np.inf)
+    return rows, k, t
+
+
+def _candidates_from(sc, XL, rows, t, kg, fg, d, electrical, tol) -> dict:
+    """:func:`_candidates` of searches starting at ``t`` and continued from the grid points ``kg``.
+
+    Parameters
+    ----------
+    sc : dict
+        The scan (:func:`_scan`).
+    XL : ndarray, shape (m, 2)
+    rows, kg : ndarray, shape (n,), int
+        Point and flat grid index (row * SCAN + column) of each search.
+    t : ndarray, shape (n,), complex
+        First trial points in w.
+    fg : ndarray, shape (m SCAN,), complex
+        The boundary function at the grid speeds.
+    d : int
+    electrical : Boundary
+    tol : float
+
+    Returns
+    -------
+    dict
+        As :func:`_candidates`.
+    """
+    return _candidates(sc["N0"], XL, rows, t, sc["tg"][kg % SCAN].astype(complex), fg[kg], sc["pc"][kg],
+                       _dp_dx(sc["xig"][kg], sc["idx"][kg], d), d, electrical, tol)
+
+
+def _probe_above(sc, XL, stuck, fin, fg, d, electrical, tol) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Searches from w = pi/2 + i y for points whose real-axis searches all failed.
+
+    The branch may have left the window through v_L2, out of reach from the real-axis minima;
+    searches from w = pi/2 + i y (real X above X_L2, X = X_L1 + (X_L2 - X_L1) cosh^2 y,
+    y in :data:`PROBE_Y`), continued from the highest grid point with a single real pair, find
+    such roots. Kept: roots above v_L2 (REASON_ABOVE after the same validation) and verified
+    roots of the window that are not grazing: delta > PROBE_DELTA, or every decaying wave with
+    Im p > PROBE_DECAY (rotated Y LiNbO3 free near 41Y-X: a nearly real root above the top grid
+    point, delta down to 0 at -49.42 deg, Im p >= 0.038, whose real-axis search wandered off;
+    not Pb (111) 30 deg's real root with Im p = 3e-6). Other probes that drift back into the
+    window are the real-axis search's business.
+
+    Parameters
+    ----------
+    sc : dict
+        The scan (:func:`_scan`).
+    XL : ndarray, shape (m, 2)
+    stuck : ndarray, shape (k,), int
+        The points to probe.
+    fin : ndarray of bool, shape (m, SCAN)
+        Grid points where the slowest sheet has one real pair.
+    fg : ndarray, shape (m SCAN,), complex
+    d : int
+    electrical : Boundary
+    tol : float
+
+    Returns
+    -------
+    prow : ndarray, shape (k PROBE_Y.size,), int
+        Point of each probe.
+    keep : ndarray of bool, same shape
+        Probes whose candidate is kept.
+    extra : dict
+        :func:`_candidates` of every probe.
+    """
+    top = SCAN - 1 - np.argmax(fin[stuck, ::-1], axis=1)
+    prow = np.repeat(stuck, PROBE_Y.size)
+    kp = prow * SCAN + np.repeat(top, PROBE_Y.size)
+    tp = 0.5 * np.pi + 1j * np.tile(PROBE_Y, stuck.size)
+    extra = _candidates_from(sc, XL, prow, tp, kp, fg, d, electrical, tol)
+    good = extra["converged"] & (extra["why"] == "") & (
+        (extra["delta"] > PROBE_DELTA) | np.all(extra["p"][:, 1:].imag > PROBE_DECAY, axis=1))
+    keep = (extra["why"] == REASON_ABOVE) | good
+    return prow, keep, extra
+
+
+def _probe_below(sc, XL, low_rows, fin, fg, d, electrical, tol) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Searches from w = u - i y for points where no real-axis search converged (or there was no minimum).
+
+    The branch may run toward v_L1 with Im w comparable to Re w (Re X - X_L1 << |Im X|), where
+    |det| over real speeds is monotone. Searches from w = u - i y (PROBE_U x PROBE_Y1,
+    Im X < 0), continued from the lowest grid point with a single real pair, find it; kept are
+    verified roots with delta > PROBE_DELTA and roots that left the window through v_L1
+    (REASON_LOW), after the same validation.
+
+    Parameters
+    ----------
+    As :func:`_probe_above` (``low_rows``: the points to probe).
+
+    Returns
+    -------
+    prow : ndarray, shape (k PROBE_U.size PROBE_Y1.size,), int
+    keep : ndarray of bool, same shape
+    extra : dict
+        As :func:`_probe_above`.
+    """
+    bot = np.argmax(fin[low_rows], axis=1)
+    starts = (PROBE_U[:, None] - 1j * PROBE_Y1[None, :]).reshape(-1)
+    prow = np.repeat(low_rows, starts.size)
+    kp = prow * SCAN + np.repeat(bot, starts.size)
+    tp = np.tile(starts, low_rows.size)
+    extra = _candidates_from(sc, XL, prow, tp, kp, fg, d, electrical, tol)
+    keep = extra["converged"] & (((extra["why"] == "") & (extra["delta"] > PROBE_DELTA))
+                                 | (extra["why"] == REASON_LOW))
+    return prow, keep, extra
+
+
+def _best_candidates(rows, cand, m) -> np.ndarray:
+    """Per point: the least-attenuated good candidate, else the first converged search (its
+    reason names what was found), else the first one.
+
+    Parameters
+    ----------
+    rows : ndarray, shape (n,), int
+        Point of each candidate.
+    cand : dict
+        The candidates (:func:`_candidates`, concatenated).
+    m : int
+        Number of points.
+
+    Returns
+    -------
+    ndarray, shape (m,), int
+        Index of the chosen candidate, -1 where a point has none.
+    """
+    score = np.where(cand["why"] == "", cand["delta"], np.inf)
     key = np.where(cand["converged"], 0, 1)
     best = np.full(m, -1)
     bscore = np.full(m, np.inf)
@@ -744,20 +888,28 @@ def _solve(sc, XL, d, electrical, tol):
         r = rows[c]
         if best[r] < 0 or score[c] < bscore[r] or (score[c] == bscore[r] == np.inf and key[c] < bkey[r]):
             best[r], bscore[r], bkey[r] = c, score[c], key[c]
-    reason = np.full(m, REASON_NOMIN, dtype=object)
-    X = np.full(m, np.nan + 0j)
-    p_out = np.full((m, d), np.nan + 0j)
-    u = np.full((m, d), np.nan + 0j)
-    nit = np.full(m, SCAN)
-    has = best >= 0
-    b = best[has]
-    reason[has] = why[b]
-    X[has] = Xc[b]
-    nit[has] += (np.bincount(rows, weights=its, minlength=m) + extra_its)[has].astype(int)
-    rest = np.take_along_axis(pch[b, 1:], np.argsort(pch[b, 1:].imag, axis=1), axis=1)
-    p_out[has] = np.concatenate([pch[b, :1], rest], axis=1)
-    # polarisation: null vector of the boundary condition at the root
-    _, M = _boundary(xiall[b], ich[b], d, electrical)
+    return best
+
+
+def _root_polarisation(xi, idx, d, electrical) -> np.ndarray:
+    """Surface polarisation at the roots: the null vector of the boundary condition.
+
+    Parameters
+    ----------
+    xi : ndarray, shape (k, 2d, 2d), complex
+        Stroh eigenvectors at the roots.
+    idx : ndarray, shape (k, d), int
+        The chosen partial waves.
+    d : int
+    electrical : Boundary
+
+    Returns
+    -------
+    ndarray, shape (k, d), complex
+        (u1, u2, u3[, phi]) with unit mechanical norm, phase such that the largest
+        displacement component is real and positive; NaN where the condition is not finite.
+    """
+    _, M = _boundary(xi, idx, d, electrical)
     fin = np.all(np.isfinite(M), axis=(1, 2))
     w: np.ndarray = np.full(M.shape[:2], np.nan + 0j)
     if fin.any():
@@ -768,5 +920,4 @@ def _solve(sc, XL, d, electrical, tol):
     w = w / np.where(nm > 0, nm, 1)[:, None]
     big = np.take_along_axis(w, np.argmax(np.abs(w[:, :3]), axis=1)[:, None], axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        u[has] = w * (np.abs(big) / big)
-    return X, p_out, u, nit, reason
+        return w * (np.abs(big) / big)
