@@ -347,9 +347,7 @@ def _times_basis(X: np.ndarray) -> np.ndarray:
 
 def _voigt_vec(s) -> np.ndarray:
     """The six independent components of symmetric tensors, shape (..., 3, 3) -> (..., 6)."""
-    i = [p[0] for p in VOIGT_PAIRS]
-    j = [p[1] for p in VOIGT_PAIRS]
-    return s[..., i, j]
+    return s[..., _VI, _VJ]
 
 
 def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None, *, tol: float = DEFAULT_TOL,
@@ -391,7 +389,10 @@ def _checked_sigma(sigma: ArrayLike) -> np.ndarray:
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
         raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
-    if not np.allclose(sigma, np.swapaxes(sigma, -1, -2), atol=1e-12, rtol=0):
+    sigma_t = np.swapaxes(sigma, -1, -2)         # np.allclose(sigma, sigma_t, atol=1e-12, rtol=0), cheaper
+    with np.errstate(invalid="ignore"):                  # inf - inf: compared as equal below, as allclose does
+        symmetric = np.all((np.abs(sigma - sigma_t) <= 1e-12) | (sigma == sigma_t))
+    if not symmetric:
         raise InputError("sigma must be symmetric (a Cauchy stress)")
     if not np.all(np.isfinite(sigma)):
         raise InputError("sigma must be finite")
