@@ -31,7 +31,8 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         Output key -> path, keys as :func:`surfwave.pipeline.targets.scene_outputs` names
         them (``speeds``, ``table1_md``/``_csv``/``_png``, ``dispersion_<potential>``,
         ``theta_c``, ``displacements_<potential>``, ``entropy``, ``surface_wave_angles``,
-        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``summary``).
+        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``layered_dispersion``,
+        ``layered_k2``, ``layered_stress``, ``summary``).
     cubes : mapping
         Cube name (``elastic``, ``dispersion``, ...) -> path of the scene's cube.
     scene : str
@@ -122,6 +123,14 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         for key, draw in (("piezo_angles", piezo.speeds_vs_euler), ("piezo_stress", piezo.speeds_vs_stress)):
             if key in outputs:
                 draw(cube("surface_wave"), outputs[key], title=f"scene {scene}")
+                done.add(key)
+    if any(k.startswith("layered_") for k in outputs):
+        from surfwave.plots import layered
+
+        for key, draw in (("layered_dispersion", layered.dispersion), ("layered_k2", layered.coupling),
+                          ("layered_stress", layered.stress_shift)):
+            if key in outputs:
+                draw(cube("dispersion_layered"), outputs[key], title=f"scene {scene}")
                 done.add(key)
     if "summary" in outputs:
         from surfwave.report.summary import write_summary

@@ -1,0 +1,175 @@
+"""Figures of layered scenes (``dispersion_layered.nc`` of the ``layered`` rule).
+
+:func:`dispersion` draws the phase speed of every mode against kh, one panel per substrate
+orientation, with the substrate's limiting speed and the films' bulk speeds along the propagation
+marked. :func:`coupling` draws K^2 against kh (piezoelectric stacks). :func:`stress_shift` draws,
+for a film-stress sweep, the modes against kh for each stress and the shift of each mode's speed
+from the unstressed (or least stressed) film.
+
+Examples
+--------
+>>> from surfwave.data.cube import open_cube
+>>> dispersion(open_cube("results/sio2_on_si/dispersion_layered.nc"), "a.png")   # doctest: +SKIP
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+from surfwave.plots.output import savefig  # noqa: E402
+
+#: Names of a film's three bulk sheets along x1 (ascending speed).
+SHEETS = ("slow shear", "fast shear", "longitudinal")
+KH = r"$kh$ (wavenumber $\times$ total film thickness)"
+
+
+def _reference(ds: xr.Dataset) -> int:
+    """Index of the film stress nearest zero (the unstressed film where the grid has it)."""
+    return int(np.argmin(np.abs(ds["film_stress"].values)))
+
+
+def _panels(n: int, width: float = 5.6, height: float = 4.2):
+    fig, axes = plt.subplots(1, n, figsize=(width * n, height), layout="constrained", squeeze=False)
+    return fig, list(axes[0])
+
+
+def _modes(ax, sub: xr.Dataset, var: str, scale: float = 1.0) -> None:
+    """One line per mode of ``sub`` (dims kh, mode) that has a value anywhere, labelled."""
+    kh = sub["kh"].values
+    for mode in sub["mode"].values:
+        y = sub[var].sel(mode=mode).values * scale
+        if np.isfinite(y).any():
+            ax.plot(kh, y, "-", marker="." if kh.size < 30 else None, ms=3, lw=1.4, label=str(mode))
+
+
+def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
+    """Phase speed of every mode against kh, per orientation, at the film stress nearest zero.
+
+    The substrate's limiting speed is a dashed black line; each film's bulk speeds along x1
+    (``film_bulk_speed``) are dotted grey lines labelled on the right.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``dispersion_layered`` cube (dims orientation, film_stress, electrical, kh, mode).
+    path : path
+        PNG written.
+    title : str
+        Figure title (the scene).
+    """
+    i = _reference(ds)
+    el = str(ds["electrical"].values[0])
+    fig, axes = _panels(ds.sizes["orientation"])
+    bulk = ds["film_bulk_speed"].values
+    for ax, orient in zip(axes, ds["orientation"].values):
+        sub = ds.sel(orientation=orient).isel(film_stress=i).sel(electrical=el)
+        _modes(ax, sub, "c")
+        c_lim = float(sub["c_limit"])
+        c = sub["c"].values
+        top = max(np.nanmax(c) if np.isfinite(c).any() else c_lim, c_lim) * 1.06
+        bottom = (np.nanmin(c) if np.isfinite(c).any() else c_lim) * 0.94
+        marks = [(v, f"film {f} {SHEETS[s]}") for f in range(bulk.shape[0]) for s, v in enumerate(bulk[f])]
+        shown = [(v, lab) for v, lab in marks if bottom <= v <= top * 1.15]
+        top = max([top] + [v * 1.02 for v, _ in shown])
+        ax.axhline(c_lim, color="k", ls="--", lw=1.2, label="substrate limit")
+        for v, lab in shown:
+            ax.axhline(v, color="0.55", ls=":", lw=1.0)
+            ax.annotate(lab, (1.0, v), xycoords=("axes fraction", "data"), xytext=(-3, 2),
+                        textcoords="offset points", ha="right", va="bottom", fontsize=7, color="0.35")
+        ax.set_ylim(bottom, top)
+        ax.set_xlim(float(ds["kh"].min()), float(ds["kh"].max()))
+        ax.set_xlabel(KH)
+        ax.set_ylabel("phase speed c (m/s)")
+        ax.set_title(f"substrate {orient}", fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, title="mode", title_fontsize=8, loc="lower left")
+    sig = float(ds["film_stress"].values[i])
+    fig.suptitle(f"{title}\nfilm stress {sig:g} GPa, {el} surface".strip(), fontsize=11)
+    return savefig(fig, path)
+
+
+def coupling(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
+    """K^2 (percent) of every mode against kh, per orientation, at the film stress nearest zero.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``dispersion_layered`` cube of a piezoelectric stack.
+    path : path
+        PNG written.
+    title : str
+        Figure title (the scene).
+    """
+    i = _reference(ds)
+    el = str(ds["electrical"].values[0])
+    fig, axes = _panels(ds.sizes["orientation"])
+    for ax, orient in zip(axes, ds["orientation"].values):
+        sub = ds.sel(orientation=orient).isel(film_stress=i).sel(electrical=el)
+        _modes(ax, sub, "K2", scale=100.0)
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xlim(float(ds["kh"].min()), float(ds["kh"].max()))
+        ax.set_xlabel(KH)
+        ax.set_ylabel(r"$K^2 = 2(c_\mathrm{free} - c_\mathrm{metallized})/c_\mathrm{free}$ (%)")
+        ax.set_title(f"substrate {orient}", fontsize=10)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, title="mode", title_fontsize=8)
+    fig.suptitle(f"{title}\nelectromechanical coupling, film stress {float(ds['film_stress'].values[i]):g} GPa"
+                 .strip(), fontsize=11)
+    return savefig(fig, path)
+
+
+def stress_shift(ds: xr.Dataset, path: str | Path, title: str = "", max_modes: int = 3) -> Path:
+    """For a film-stress sweep: every mode against kh per stress (left) and the shift of the lowest
+    ``max_modes`` modes from the film stress nearest zero (right), first orientation and electrical.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``dispersion_layered`` cube with two or more film stresses.
+    path : path
+        PNG written.
+    title : str
+        Figure title (the scene).
+    max_modes : int
+        Modes whose shift is drawn (lowest mean speed first).
+    """
+    sub = ds.isel(orientation=0, electrical=0)
+    i = _reference(ds)
+    stresses = ds["film_stress"].values
+    cmap = plt.get_cmap("coolwarm")
+    norm = plt.Normalize(-np.abs(stresses).max(), np.abs(stresses).max())
+    modes = [m for m in sub["mode"].values if np.isfinite(sub["c"].sel(mode=m).values).any()][:max_modes]
+    styles = ("-", "--", ":", "-.")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6), layout="constrained")
+    kh = sub["kh"].values
+    for j, sig in enumerate(stresses):
+        colour = cmap(norm(sig))
+        for mode in sub["mode"].values:
+            left.plot(kh, sub["c"].isel(film_stress=j).sel(mode=mode).values, color=colour, lw=1.2)
+        for k, mode in enumerate(modes):
+            shift = (sub["c"].isel(film_stress=j) - sub["c"].isel(film_stress=i)).sel(mode=mode).values
+            right.plot(kh, shift, color=colour, ls=styles[k % len(styles)], lw=1.3)
+    left.axhline(float(sub["c_limit"].isel(film_stress=i)), color="k", ls="--", lw=1.0, label="substrate limit")
+    left.set_ylabel("phase speed c (m/s)")
+    left.legend(fontsize=8, loc="lower left")
+    ref = float(stresses[i])
+    right.set_ylabel(f"c(film stress) - c({ref:g} GPa) (m/s)")
+    right.axhline(0.0, color="k", lw=0.6)
+    for k, mode in enumerate(modes):
+        right.plot([], [], color="0.3", ls=styles[k % len(styles)], label=f"mode {mode}")
+    right.legend(fontsize=8, loc="best")
+    for ax in (left, right):
+        ax.set_xlabel(KH)
+        ax.set_xlim(float(kh.min()), float(kh.max()))
+        ax.grid(alpha=0.3)
+    bar = fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=[left, right], pad=0.01)
+    bar.set_label("equibiaxial film stress (GPa, < 0 compression)")
+    fig.suptitle(f"{title}\nsubstrate {ds['orientation'].values[0]}, {sub['electrical'].values} surface".strip(),
+                 fontsize=11)
+    return savefig(fig, path)
