@@ -48,6 +48,21 @@ def _modes(ax, sub: xr.Dataset, var: str, scale: float = 1.0) -> None:
             ax.plot(kh, y, "-", marker="." if kh.size < 30 else None, ms=3, lw=1.4, label=str(mode))
 
 
+def bulk_marks(bulk: np.ndarray) -> list[tuple[float, str]]:
+    """(speed, label) of each film's bulk sheets (``film_bulk_speed``, shape (n_film, 3), m/s);
+    sheets within 0.1 % of each other (isotropic shear) share one label."""
+    marks: list[tuple[float, str]] = []
+    for f, speeds in enumerate(np.asarray(bulk, dtype=float)):
+        names = list(SHEETS)
+        if abs(speeds[1] - speeds[0]) <= 1e-3 * speeds[1]:
+            names[0] = names[1] = "shear"
+        for s, v in enumerate(speeds):
+            lab = f"film {f} {names[s]}" if bulk.shape[0] > 1 else f"film {names[s]}"
+            if np.isfinite(v) and not any(lab == m[1] for m in marks):
+                marks.append((float(v), lab))
+    return marks
+
+
 def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """Phase speed of every mode against kh, per orientation, at the film stress nearest zero.
 
@@ -74,7 +89,7 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         c = sub["c"].values
         top = max(np.nanmax(c) if np.isfinite(c).any() else c_lim, c_lim) * 1.06
         bottom = (np.nanmin(c) if np.isfinite(c).any() else c_lim) * 0.94
-        marks = [(v, f"film {f} {SHEETS[s]}") for f in range(bulk.shape[0]) for s, v in enumerate(bulk[f])]
+        marks = bulk_marks(bulk)
         shown = [(v, lab) for v, lab in marks if bottom <= v <= top * 1.15]
         top = max([top] + [v * 1.02 for v, _ in shown])
         ax.axhline(c_lim, color="k", ls="--", lw=1.2, label="substrate limit")
@@ -88,7 +103,7 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         ax.set_ylabel("phase speed c (m/s)")
         ax.set_title(f"substrate {orient}", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, title="mode", title_fontsize=8, loc="lower left")
+        ax.legend(fontsize=8, title="mode", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     sig = float(ds["film_stress"].values[i])
     fig.suptitle(f"{title}\nfilm stress {sig:g} GPa, {el} surface".strip(), fontsize=11)
     return savefig(fig, path)
@@ -118,7 +133,7 @@ def coupling(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         ax.set_ylabel(r"$K^2 = 2(c_\mathrm{free} - c_\mathrm{metallized})/c_\mathrm{free}$ (%)")
         ax.set_title(f"substrate {orient}", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, title="mode", title_fontsize=8)
+        ax.legend(fontsize=8, title="mode", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(f"{title}\nelectromechanical coupling, film stress {float(ds['film_stress'].values[i]):g} GPa"
                  .strip(), fontsize=11)
     return savefig(fig, path)
@@ -155,6 +170,11 @@ def stress_shift(ds: xr.Dataset, path: str | Path, title: str = "", max_modes: i
         for k, mode in enumerate(modes):
             shift = (sub["c"].isel(film_stress=j) - sub["c"].isel(film_stress=i)).sel(mode=mode).values
             right.plot(kh, shift, color=colour, ls=styles[k % len(styles)], lw=1.3)
+    for mode in sub["mode"].values:  # each mode named at its first point (the reference stress)
+        y = sub["c"].isel(film_stress=i).sel(mode=mode).values
+        ok = np.flatnonzero(np.isfinite(y))
+        if ok.size:
+            left.annotate(str(mode), (kh[ok[0]], y[ok[0]]), xytext=(2, 4), textcoords="offset points", fontsize=8)
     left.axhline(float(sub["c_limit"].isel(film_stress=i)), color="k", ls="--", lw=1.0, label="substrate limit")
     left.set_ylabel("phase speed c (m/s)")
     left.legend(fontsize=8, loc="lower left")
