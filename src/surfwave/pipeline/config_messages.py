@@ -103,6 +103,7 @@ def _unknown_keys(err, path: list, schema: dict | None) -> str:
     for key in extra:
         note = suggest(key, props)
         owners = [k for k, keys in others.items() if key in keys]
+        owners = [k for k in owners if k != "layered_scene"] if len(owners) > 1 else owners  # shared keys
         if owners:
             note = " (a key of " + " and ".join(f"{KINDS[k][0]}s, which have {KINDS[k][1]}" for k in owners) + ")"
         elif not note:
