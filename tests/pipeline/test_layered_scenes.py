@@ -28,7 +28,7 @@ BAD = [  # (changes to GOOD, the key the message names, a fragment of the resolv
     ({"films": [{"E": 70.0, "nu": 0.5, "rho": 2200.0, "thickness": 1e-6}]}, "scene 's'",  # layer not named
      "Poisson's ratio nu must lie in (-1, 0.5)"),
     ({"kh": [0.5, -1.0]}, "key 'kh'", "kh must lie in [0, "),
-    ({"electrical": ["free", "metallized"]}, "key 'electrical'", "needs a piezoelectric layer"),
+    ({"electrical": ["metallized"]}, "key 'electrical'", "needs a piezoelectric layer"),
     ({"orientations": [{"cut": "ST-X quartz"}]}, "key 'cut'", "is a cut of SiO2, not of the substrate 'Si'"),
     ({"films": [{**SIO2, "stress": 0.5}]}, "key 'films[0]/stress'", "with 'film_stress'"),
 ]
@@ -73,6 +73,7 @@ def test_validate_config_dispatches_and_expands():
     assert set(scene_outputs(scenes, "stack")) == {"layered_dispersion", "layered_stress", "summary"}
     love = scenes["love"]
     assert love["piezo"] and love["orientations"][0]["euler"] == [0.0, 132.75, 0.0]
+    assert love["electrical"] == ["free", "metallized"]  # the default; an elastic stack gets [free]
     assert "layered_k2" in scene_outputs(scenes, "love")
     job = layered_job_params(love)
     assert job["stage"] == "layered" and job["orientations"] == love["orientations"]

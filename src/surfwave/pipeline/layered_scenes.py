@@ -26,6 +26,7 @@ import xarray as xr
 
 from surfwave.errors import InputError
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
+from surfwave.vocab import ELECTRICAL
 
 #: Solver points (orientations x film stresses x electrical x kh) of one layered scene at most
 #: (one point costs about 0.1-1 ms per mode on one core).
@@ -128,7 +129,7 @@ def _expand(name: str, raw: dict) -> dict:
     stresses = [float(s) for s in expand_grid(raw.get("film_stress", [0.0]), f"{where}, key 'film_stress'")]
     if len(set(stresses)) != len(stresses):
         raise SceneError(f"{where}, key 'film_stress': a stress is listed twice ({stresses})")
-    electrical = list(raw.get("electrical", ["free"]))
+    electrical = list(raw.get("electrical", ELECTRICAL))
     n = len(orients) * len(stresses) * len(electrical) * kh.size
     if n > min(MAX_LAYERED_POINTS, MAX_POINTS):
         raise SceneError(f"{where}: {n} points (orientations x film_stress x electrical x kh) exceed the limit "
@@ -143,8 +144,11 @@ def _expand(name: str, raw: dict) -> dict:
                 at = [f"orientation {o['label']!r}"] * (len(orients) > 1) + [f"film_stress {s:g} GPa"] * bool(s)
                 raise SceneError(f"{where}{' (' + ', '.join(at) + ')' if at else ''}: {exc}") from None
             piezo = piezo or stack.piezo
+    if not piezo and electrical == list(ELECTRICAL):  # the default: an elastic stack has one surface condition
+        electrical = ["free"]
     if "metallized" in electrical and not piezo:
-        raise SceneError(f"{where}, key 'electrical': value 'metallized' needs a piezoelectric layer or substrate")
+        raise SceneError(f"{where}, key 'electrical': value 'metallized' needs a piezoelectric layer or substrate "
+                         "(an elastic stack takes free only)")
     return {
         "name": name,
         "kind": "layered",
