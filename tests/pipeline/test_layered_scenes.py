@@ -30,7 +30,9 @@ BAD = [  # (changes to GOOD, the key the message names, a fragment of the resolv
     ({"kh": [0.5, -1.0]}, "key 'kh'", "kh must lie in [0, "),
     ({"electrical": ["metallized"]}, "key 'electrical'", "needs a piezoelectric layer"),
     ({"orientations": [{"cut": "ST-X quartz"}]}, "key 'cut'", "is a cut of SiO2, not of the substrate 'Si'"),
-    ({"films": [{**SIO2, "stress": 0.5}]}, "key 'films[0]/stress'", "with 'film_stress'"),
+    ({"films": [SIO2, {**SIO2, "stress": SURFACE_LOAD}]}, "film 1 (from the top)",
+     "the stress loads the surface or an interface"),
+    ({"films": [{**SIO2, "stress": 0.5}], "film_stress": [0, 1]}, "key 'film_stress'", "every film gives its own"),
 ]
 
 

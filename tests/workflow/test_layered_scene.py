@@ -34,6 +34,11 @@ scenes:
     orientations: [{euler: [0, 0, 90]}]
     kh: [0.5, 1.5]
     electrical: [free, metallized]
+  tiny_two:
+    substrate: Si
+    films: [{material: Si3N4, thickness: 0.2e-6, stress: 0.8}, {material: fused-SiO2, thickness: 0.5e-6}]
+    kh: [1.0, 2.0]
+    film_stress: [-0.5, 0.0]
 """
 DIMS = ("orientation", "film_stress", "electrical", "kh", "mode")
 
@@ -84,11 +89,17 @@ def test_cube_equals_the_library_and_passes_the_checker(layered_built):
                                kh=[0.5, 1.5], electrical=el)
         _same_as_library(pz.sel(orientation="Euler (0, 0, 90)", film_stress=0.0, electrical=el), ref)
     assert np.nanmax(pz.K2.values) > 0
+    two = open_cube(res / "tiny_two" / "dispersion_layered.nc")  # the top film keeps its own 0.8 GPa
+    for sig in (-0.5, 0.0):
+        ref = surfwave.layered("Si", [{"name": "Si3N4", "thickness": 0.2e-6, "stress": 0.8},
+                                      {"name": "fused-SiO2", "thickness": 0.5e-6, "stress": sig}], kh=[1.0, 2.0])
+        _same_as_library(two.sel(orientation="(001)[100]", film_stress=sig, electrical="free"), ref)
+    assert "films [0] keep theirs" in two.film_stress.attrs["long_name"]
     if CHECKER is not None:  # the checker's own rules for a cube file (it has no entry for this name yet)
         spec = importlib.util.spec_from_file_location("check_cubes", CHECKER)
         checker = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(checker)
-        for scene in ("tiny_stack", "tiny_piezo"):
+        for scene in ("tiny_stack", "tiny_piezo", "tiny_two"):
             assert checker.check_file(res / scene / "dispersion_layered.nc", DIMS, ["c", "c_limit", "K2"]) == []
 
 

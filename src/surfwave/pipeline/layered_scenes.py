@@ -113,10 +113,6 @@ def _expand(name: str, raw: dict) -> dict:
 
     where = f"scene {name!r}"
     substrate, films = copy.deepcopy(raw["substrate"]), copy.deepcopy(list(raw["films"]))
-    for i, f in enumerate(films):
-        if isinstance(f, dict) and "stress" in f:
-            raise SceneError(f"{where}, key 'films[{i}]/stress': a layered scene gives the films' residual stress "
-                             "with 'film_stress' (GPa, equibiaxial, every film; one axis of the cube)")
     orients = [_orientation(f"{where}, key 'orientations[{i}]'", o, substrate)
                for i, o in enumerate(raw.get("orientations") or [{}])]
     labels = [o["label"] for o in orients]
@@ -129,6 +125,10 @@ def _expand(name: str, raw: dict) -> dict:
     stresses = [float(s) for s in expand_grid(raw.get("film_stress", [0.0]), f"{where}, key 'film_stress'")]
     if len(set(stresses)) != len(stresses):
         raise SceneError(f"{where}, key 'film_stress': a stress is listed twice ({stresses})")
+    swept = [i for i, f in enumerate(films) if not isinstance(f, dict) or f.get("stress") is None]
+    if "film_stress" in raw and not swept:
+        raise SceneError(f"{where}, key 'film_stress': every film gives its own 'stress', so the sweep would "
+                         "stress none; remove 'film_stress' or a film's 'stress'")
     electrical = list(raw.get("electrical", ELECTRICAL))
     n = len(orients) * len(stresses) * len(electrical) * kh.size
     if n > min(MAX_LAYERED_POINTS, MAX_POINTS):
@@ -138,8 +138,9 @@ def _expand(name: str, raw: dict) -> dict:
     for o in orients:  # every point through the resolver of surfwave.layered, before any job
         for s in stresses:
             try:
-                stack = resolve_stack(substrate, [{**f, "stress": s} for f in films], stress=raw.get("stress"),
-                                      **stack_kwargs(o))
+                stack = resolve_stack(substrate, [f if i not in swept else {**f, "stress": s}
+                                                  for i, f in enumerate(films)],
+                                      stress=raw.get("stress"), **stack_kwargs(o))
             except InputError as exc:
                 at = [f"orientation {o['label']!r}"] * (len(orients) > 1) + [f"film_stress {s:g} GPa"] * bool(s)
                 raise SceneError(f"{where}{' (' + ', '.join(at) + ')' if at else ''}: {exc}") from None
@@ -193,7 +194,7 @@ def scene_cube(job: dict) -> xr.Dataset:
 
     parts = [dispersion_cube(job["substrate"], job["films"], np.asarray(job["kh"], dtype=float),
                              film_stress=job["film_stress"], electrical=job["electrical"], leaky=job["leaky"],
-                             stress=job["stress"], **stack_kwargs(o))
+                             stress=job["stress"], keep_film_stress=True, **stack_kwargs(o))
              for o in job["orientations"]]
     labels = [o["label"] for o in job["orientations"]]
     if len(parts) == 1:
@@ -206,4 +207,8 @@ def scene_cube(job: dict) -> xr.Dataset:
         mean = ds["c"].mean(dim=[d for d in ds["c"].dims if d != "mode"]).values
         ds = ds.isel(mode=np.lexsort((ds["mode"].values, np.nan_to_num(mean, nan=np.inf))))
     ds["orientation"] = ("orientation", np.array(labels, dtype=str), dict(ORIENTATION_ATTRS))
+    own = [i for i, f in enumerate(job["films"]) if isinstance(f, dict) and f.get("stress") is not None]
+    if own:  # those films keep the stress the scene gives them (the scene attribute)
+        ds["film_stress"].attrs["long_name"] = ("equibiaxial in-plane residual stress of every film without its "
+                                                f"own stress (films {own} keep theirs)")
     return ds
