@@ -39,13 +39,15 @@ def _panels(n: int, width: float = 5.6, height: float = 4.2):
     return fig, list(axes[0])
 
 
-def _modes(ax, sub: xr.Dataset, var: str, scale: float = 1.0) -> None:
-    """One line per mode of ``sub`` (dims kh, mode) that has a value anywhere, labelled."""
+def _modes(ax, sub: xr.Dataset, var: str, scale: float = 1.0, modes=None) -> None:
+    """One line per mode of ``sub`` (dims kh, mode) that has a value anywhere, labelled; a mode's
+    colour is its place in ``sub["mode"]`` (the same in every figure of a cube), only ``modes`` drawn."""
     kh = sub["kh"].values
-    for mode in sub["mode"].values:
+    for j, mode in enumerate(sub["mode"].values):
         y = sub[var].sel(mode=mode).values * scale
-        if np.isfinite(y).any():
-            ax.plot(kh, y, "-", marker="." if kh.size < 30 else None, ms=3, lw=1.4, label=str(mode))
+        if np.isfinite(y).any() and (modes is None or str(mode) in modes):
+            ax.plot(kh, y, "-", color=f"C{j % 10}", marker="." if kh.size < 30 else None, ms=3, lw=1.4,
+                    label=str(mode))
 
 
 def bulk_marks(bulk: np.ndarray) -> list[tuple[float, str]]:
@@ -126,7 +128,12 @@ def coupling(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     fig, axes = _panels(ds.sizes["orientation"])
     for ax, orient in zip(axes, ds["orientation"].values):
         sub = ds.sel(orientation=orient).isel(film_stress=i).sel(electrical=el)
-        _modes(ax, sub, "K2", scale=100.0)
+        peak = abs(sub["K2"]).max("kh", skipna=True).fillna(0.0)
+        zero = [str(m) for m in sub["mode"].values if sub["c"].sel(mode=m).notnull().any() and peak.sel(mode=m) < 1e-8]
+        _modes(ax, sub, "K2", scale=100.0, modes=[str(m) for m in sub["mode"].values if str(m) not in zero])
+        if zero:  # uncoupled modes (e.g. shear-horizontal ones of a decoupled family): named, not drawn
+            ax.text(0.98, 0.97, f"K$^2$ = 0: {', '.join(zero)}", transform=ax.transAxes, ha="right", va="top",
+                    fontsize=8, color="0.3")
         ax.axhline(0.0, color="k", lw=0.6)
         ax.set_xlim(float(ds["kh"].min()), float(ds["kh"].max()))
         ax.set_xlabel(KH)
