@@ -92,13 +92,25 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         top = max(np.nanmax(c) if np.isfinite(c).any() else c_lim, c_lim) * 1.06
         bottom = (np.nanmin(c) if np.isfinite(c).any() else c_lim) * 0.94
         marks = bulk_marks(bulk)
-        shown = [(v, lab) for v, lab in marks if bottom <= v <= top * 1.15]
+        shown = [(v, lab) for v, lab in marks if bottom * 0.9 <= v <= top * 1.15]
         top = max([top] + [v * 1.02 for v, _ in shown])
+        bottom = min([bottom] + [v * 0.98 for v, _ in shown])
         ax.axhline(c_lim, color="k", ls="--", lw=1.2, label="substrate limit")
-        for v, lab in shown:
-            ax.axhline(v, color="0.55", ls=":", lw=1.0)
-            ax.annotate(lab, (1.0, v), xycoords=("axes fraction", "data"), xytext=(-3, 2),
-                        textcoords="offset points", ha="right", va="bottom", fontsize=7, color="0.35")
+        groups: list[list[tuple[float, str]]] = []  # marks closer than 3.5 % of the axis share one label
+        for v, lab in sorted(shown):
+            if groups and v - groups[-1][-1][0] < 0.035 * (top - bottom):
+                groups[-1].append((v, lab))
+            else:
+                groups.append([(v, lab)])
+        for group in groups:
+            for v, _ in group:
+                ax.axhline(v, color="0.55", ls=":", lw=1.0)
+            v = group[-1][0]
+            lab = group[0][1] if len(group) == 1 else " / ".join(g[1] for g in group)
+            below = 0 <= c_lim - v < 0.02 * c_lim  # just under the limit's line: label under the mark
+            ax.annotate(lab, (1.0, v), xycoords=("axes fraction", "data"), xytext=(-3, -2 if below else 2),
+                        textcoords="offset points", ha="right", va="top" if below else "bottom", fontsize=7,
+                        color="0.35")
         ax.set_ylim(bottom, top)
         ax.set_xlim(float(ds["kh"].min()), float(ds["kh"].max()))
         ax.set_xlabel(KH)
