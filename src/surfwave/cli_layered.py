@@ -228,3 +228,25 @@ def run_fit(args) -> int:
     if r["message"]:
         print(f"# {r['message']}")
     return 0
+
+
+def scene_row(name: str, sc: dict, built: bool, paper: bool, outputs: list[str]) -> dict:
+    """JSON row of ``surfwave scenes`` for a layered scene (surfwave.pipeline.layered_scenes)."""
+    def span(v):
+        return [min(v), max(v), len(v)]
+
+    films = [f"{f.get('material', f.get('name', 'film'))}:{f['thickness']:g}m" for f in sc["films"]]
+    return {"scene": name, "kind": "layered", "built_by_all": built, "paper": paper,
+            "substrate": sc["substrate"] if isinstance(sc["substrate"], str) else "mapping", "films": films,
+            "orientations": [o["label"] for o in sc["orientations"]], "kh": span(sc["kh"]),
+            "film_stress": span(sc["film_stress"]), "electrical": sc["electrical"], "leaky": sc["leaky"],
+            "quantities": sc["quantities"], "accuracy": sc["accuracy"], "outputs": outputs}
+
+
+def scene_text(r: dict) -> str:
+    """Two lines of ``surfwave scenes`` for a layered scene row."""
+    (klo, khi, nk), (slo, shi, ns) = r["kh"], r["film_stress"]
+    return (f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
+            f"{' / '.join(r['films'])} on {r['substrate']} {', '.join(r['orientations'])}, kh {klo:g}..{khi:g} "
+            f"({nk}), film stress {slo:g}..{shi:g} GPa ({ns}), {'/'.join(r['electrical'])} -> "
+            f"{', '.join(r['quantities'])}\n{'':18}figures and tables: {', '.join(r['outputs']) or 'none'}")

@@ -32,7 +32,8 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         Output key -> path, keys as :func:`surfwave.pipeline.targets.scene_outputs` names
         them (``speeds``, ``table1_md``/``_csv``/``_png``, ``dispersion_<potential>``,
         ``theta_c``, ``displacements_<potential>``, ``entropy``, ``surface_wave_angles``,
-        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``summary``).
+        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``layered_dispersion``,
+        ``layered_k2``, ``layered_stress``, ``summary``).
     cubes : mapping
         Cube name (``elastic``, ``dispersion``, ...) -> path of the scene's cube.
     scene : str
@@ -199,6 +200,22 @@ def _piezo(job: _Job) -> set[str]:
     return done
 
 
+def _layered(job: _Job) -> set[str]:
+    """Layered stacks: dispersion (``layered_dispersion``), K^2 against kh (``layered_k2``) and
+    the film-stress shift (``layered_stress``)."""
+    if not any(k.startswith("layered_") for k in job.outputs):
+        return set()
+    from surfwave.plots import layered
+
+    done = set()
+    for key, draw in (("layered_dispersion", layered.dispersion), ("layered_k2", layered.coupling),
+                      ("layered_stress", layered.stress_shift)):
+        if key in job.outputs:
+            draw(job.cube("dispersion_layered"), job.outputs[key], title=f"scene {job.scene}")
+            done.add(key)
+    return done
+
+
 def _summary(job: _Job) -> set[str]:
     """The scene's summary page (``summary``) over all its cubes."""
     if "summary" not in job.outputs:
@@ -211,4 +228,4 @@ def _summary(job: _Job) -> set[str]:
 
 #: The drawers, in the order the outputs are written (the summary last).
 _DRAWERS: tuple[Callable[[_Job], set[str]], ...] = (_speeds, _table1, _dispersion, _entropy, _surface_phonons,
-                                                    _real_crystals, _piezo, _summary)
+                                                    _real_crystals, _piezo, _layered, _summary)
