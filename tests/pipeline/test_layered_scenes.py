@@ -24,14 +24,14 @@ BAD = [  # (changes to GOOD, the key the message names, a fragment of the resolv
     ({"films": [{**SIO2, "thickness": -1.0e-6}]}, "film 0 (from the top)", "thickness must be >= 0 m"),
     ({"films": [{**SIO2, "thickness": 1.0}]}, "film 0 (from the top)", "in metres (1 um = 1e-6)"),
     ({"films": [{"material": "SiO3", "thickness": 1e-6}]}, "film 0 (from the top)", "unknown material 'SiO3'"),
-    ({"stress": SURFACE_LOAD}, "substrate", "the stress loads the surface or an interface"),
+    ({"stress": SURFACE_LOAD}, "substrate", "prestress must lie in the surface plane (001)"),
     ({"films": [{"E": 70.0, "nu": 0.5, "rho": 2200.0, "thickness": 1e-6}]}, "scene 's'",  # layer not named
      "Poisson's ratio nu must lie in (-1, 0.5)"),
     ({"kh": [0.5, -1.0]}, "key 'kh'", "kh must lie in [0, "),
     ({"electrical": ["metallized"]}, "key 'electrical'", "needs a piezoelectric layer"),
     ({"orientations": [{"cut": "ST-X quartz"}]}, "key 'cut'", "is a cut of SiO2, not of the substrate 'Si'"),
     ({"films": [SIO2, {**SIO2, "stress": SURFACE_LOAD}]}, "film 1 (from the top)",
-     "the stress loads the surface or an interface"),
+     "prestress must lie in the surface plane of the film and its interfaces"),
     ({"films": [{**SIO2, "stress": 0.5}], "film_stress": [0, 1]}, "key 'film_stress'", "every film gives its own"),
 ]
 

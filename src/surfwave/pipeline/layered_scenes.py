@@ -19,12 +19,13 @@ Examples
 from __future__ import annotations
 
 import copy
+import warnings
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from surfwave.errors import InputError
+from surfwave.errors import ConstantsNote, InputError
 from surfwave.pipeline.grids import MAX_POINTS, SceneError, expand_grid
 from surfwave.vocab import ELECTRICAL
 
@@ -138,9 +139,11 @@ def _expand(name: str, raw: dict) -> dict:
     for o in orients:  # every point through the resolver of surfwave.layered, before any job
         for s in stresses:
             try:
-                stack = resolve_stack(substrate, [f if i not in swept else {**f, "stress": s}
-                                                  for i, f in enumerate(films)],
-                                      stress=raw.get("stress"), **stack_kwargs(o))
+                with warnings.catch_warnings():   # a constant set's note belongs to the job's log, not the check
+                    warnings.simplefilter("ignore", ConstantsNote)
+                    stack = resolve_stack(substrate, [f if i not in swept else {**f, "stress": s}
+                                                      for i, f in enumerate(films)],
+                                          stress=raw.get("stress"), **stack_kwargs(o))
             except InputError as exc:
                 at = [f"orientation {o['label']!r}"] * (len(orients) > 1) + [f"film_stress {s:g} GPa"] * bool(s)
                 raise SceneError(f"{where}{' (' + ', '.join(at) + ')' if at else ''}: {exc}") from None
