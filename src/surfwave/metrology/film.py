@@ -206,11 +206,11 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         desc = (f"Love mode{'s' if len(distinct) > 1 else ''} {', '.join(str(m) for m in distinct)} "
                 "(SH, isotropic film on isotropic substrate, closed form)")
     elif model == "layered":
-        films = [film] if isinstance(film, Mapping) else list(film)
+        films: list[Mapping[str, Any]] = [film] if isinstance(film, Mapping) else list(film)
         opts = dict(layered_options or {})
         for m in distinct:
             checked = layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)
-        films = checked.films  # a film given by name, written as explicit constants
+        films = [*checked.films]  # a film given by name, as explicit constants
 
         def one(m: Any) -> Any:
             return layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)
