@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import surfwave
 from surfwave.errors import InputError
 from surfwave.layers.sensitivity import family_prefix
 from surfwave.metrology.fit import finite_difference_jacobian
@@ -56,3 +57,19 @@ def test_family_labels():
     with pytest.raises(InputError, match="leaky"):
         family_prefix("R~")
     assert not hasattr(layered_model("Si", [FILM], ["E"], leaky=True), "jacobian")
+
+
+def test_one_family_search_equals_layered():
+    """The fit's forward model at kh searches only the measured modes' families (layers.solve.mode_speeds): its
+    speeds equal those of the full surfwave.layered solve, bit for bit, NaN where the mode is absent, for a
+    two-film stack (reference: the labelled columns of surfwave.layered's record)."""
+    films = [FILM, {"E": 200.0, "nu": 0.24, "rho": 3200.0, "thickness": 3e-7}]
+    kh = np.linspace(0.2, 5.0, 9)
+    full = surfwave.layered("Si", films, kh=kh)
+    labels = ["R", "S1", "L0", "L1"] * 2 + ["R"]
+    model = layered_model("Si", films, ["E"], mode=labels)
+    got = model({"E": FILM["E"]}, kh)
+    ref = np.array([row_c[list(row_l).index(lab)] if lab in list(row_l) else np.nan
+                    for row_c, row_l, lab in zip(full["c"], full["mode"], labels)])
+    np.testing.assert_array_equal(got, ref)
+    assert np.isnan(ref).any() and np.isfinite(ref).sum() >= 6

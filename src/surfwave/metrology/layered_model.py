@@ -165,11 +165,37 @@ class LayeredModel:
         xs = np.atleast_1d(np.asarray(x, dtype=float))
         if not isinstance(self.mode, (int, np.integer, str)) and len(self.mode) != xs.size:
             raise InputError(f"a mode per point needs {len(self.mode)} points, got {xs.size}")
-        where = {"kh": xs} if self.variable == "kh" else {"frequency": xs}
-        result = solver(self.substrate, self.stack(params), **where, **self.options)
-        c, labels = select_mode(result, self.mode, xs.size, labels=True)
+        if self._one_family_search(solver):
+            from surfwave.layers.solve import mode_speeds
+            from surfwave.layers.stack import resolve_stack
+
+            stack = resolve_stack(self.substrate, self.stack(params),
+                                  **{k: self.options[k] for k in _STACK_OPTIONS if k in self.options})
+            if self.options.get("electrical", "free") == "metallized" and not stack.piezo:
+                raise InputError("electrical='metallized' needs a piezoelectric layer or substrate")
+            modes = self.mode if isinstance(self.mode, str) else list(self.mode)
+            c = mode_speeds(stack, xs, modes, self.options.get("electrical", "free"))
+            labels = np.where(np.isfinite(c), np.broadcast_to(np.asarray(modes, dtype=object), c.shape), "")
+        else:
+            where = {"kh": xs} if self.variable == "kh" else {"frequency": xs}
+            result = solver(self.substrate, self.stack(params), **where, **self.options)
+            c, labels = select_mode(result, self.mode, xs.size, labels=True)
         self._last = (self._key(params, xs), c, labels)
         return c
+
+    def _one_family_search(self, solver: Any) -> bool:
+        """Whether a call may search only the measured modes' families (same numbers as the full solve).
+
+        Guided modes named by label, at kh, with the library's own solver (not a stand-in) and
+        valid options; otherwise the full :func:`surfwave.layered` call (which also checks them).
+        """
+        from surfwave.layers.solve import layered
+
+        modes = [self.mode] if isinstance(self.mode, (str, int, np.integer)) else list(self.mode)
+        return (solver is layered and self.variable == "kh" and not self.options.get("leaky", False)
+                and self.options.get("electrical", "free") in ("free", "metallized")
+                and set(self.options) <= {*_STACK_OPTIONS, "electrical", "leaky"}
+                and all(isinstance(m, str) and not m.endswith("~") for m in modes))
 
     @staticmethod
     def _key(params: Mapping[str, float], xs: np.ndarray) -> bytes:
