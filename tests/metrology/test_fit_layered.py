@@ -9,6 +9,7 @@ over the noise scale the truth lies within 2 sigma of both parameters in about 9
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import surfwave
 
@@ -41,3 +42,18 @@ def test_e_and_rho_not_separable_is_said():
                           sigma=1e-3 * c, check_linearity=False)
     assert any("E and rho are not separable" in w for w in r["warnings"]), r["warnings"]
     assert abs(r["correlation"][0, 1]) > 0.99
+
+
+def test_trial_step_outside_the_domain_is_no_answer():
+    """A negative modulus is one InputError at the starting values, but NaN (no answer, which the fitter
+    penalises) once the model has solved a valid stack: a trial step or a profile check one sigma below a poorly
+    known E must not end the fit."""
+    from surfwave.errors import InputError
+    from surfwave.metrology.layered_model import layered_model
+
+    kh = np.array([0.5, 1.0])
+    model = layered_model("Si", [FILM], ["E"], mode="R")
+    with pytest.raises(InputError, match="positive"):
+        model({"E": -5.0}, kh)
+    assert np.all(np.isfinite(model({"E": 73.0}, kh)))
+    assert np.all(np.isnan(model({"E": -5.0}, kh)))

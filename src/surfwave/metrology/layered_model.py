@@ -129,7 +129,9 @@ class LayeredModel:
 
     Build it with :func:`layered_model`. Calling it sets the named parameters of
     ``films[layer]``, calls :func:`surfwave.layered` once for all ``x`` and returns the chosen
-    mode's phase speed (m/s), shape (n,), NaN where that mode does not exist.
+    mode's phase speed (m/s), shape (n,), NaN where that mode does not exist. A bad stack at the
+    first call is an InputError; after one valid call, parameters outside the physical domain (a
+    fitter's trial step to a negative modulus) give NaN instead.
 
     Without ``leaky`` it also has ``jacobian(params, x, names) -> (n, m)``: dc/dp of the
     chosen guided modes by implicit differentiation of the secular equation
@@ -144,6 +146,7 @@ class LayeredModel:
         self.layer, self.mode, self.variable = layer, mode, variable
         self.options = dict(options)
         self._last: tuple[bytes, np.ndarray, np.ndarray] | None = None
+        self._valid_once = False  # after one valid stack, parameters outside the domain give NaN
         if not self.options.get("leaky", False):
             self.jacobian = self._jacobian
 
@@ -165,6 +168,20 @@ class LayeredModel:
         xs = np.atleast_1d(np.asarray(x, dtype=float))
         if not isinstance(self.mode, (int, np.integer, str)) and len(self.mode) != xs.size:
             raise InputError(f"a mode per point needs {len(self.mode)} points, got {xs.size}")
+        try:
+            c, labels = self._solve(solver, params, xs)
+        except InputError:
+            if not self._valid_once:
+                raise
+            # a trial step of the fitter (or its profile check) left the physical domain (a negative
+            # modulus, a stiffness not positive definite): no answer there, as for a missing mode
+            c, labels = np.full(xs.size, np.nan), np.full(xs.size, "", dtype=object)
+        self._valid_once = True
+        self._last = (self._key(params, xs), c, labels)
+        return c
+
+    def _solve(self, solver: Any, params: Mapping[str, float], xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(c, labels) of the chosen modes at the points xs."""
         if self._one_family_search(solver):
             from surfwave.layers.solve import mode_speeds
             from surfwave.layers.stack import resolve_stack
@@ -180,8 +197,7 @@ class LayeredModel:
             where = {"kh": xs} if self.variable == "kh" else {"frequency": xs}
             result = solver(self.substrate, self.stack(params), **where, **self.options)
             c, labels = select_mode(result, self.mode, xs.size, labels=True)
-        self._last = (self._key(params, xs), c, labels)
-        return c
+        return c, labels
 
     def _one_family_search(self, solver: Any) -> bool:
         """Whether a call may search only the measured modes' families (same numbers as the full solve).
