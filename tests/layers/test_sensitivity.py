@@ -36,6 +36,22 @@ def test_implicit_sensitivities_match_finite_differences(names, mode, variable, 
         np.testing.assert_allclose(J[:, j], fd[:, j], rtol=0, atol=1e-6 * np.abs(fd[:, j]).max())
 
 
+@pytest.mark.parametrize("electrical", ["free", "metallized"])
+def test_piezoelectric_stack_sensitivities(electrical):
+    """A SiO2-like film on LiNbO3 (SAW Euler angles 0, 38, 0; one coupled family with the potential, mode M0):
+    with a free top (the vacuum's -eps0 on the potential) and a metallized one, dc/dp of E, rho and the film's
+    stress equals central differences of solved speeds to 1e-6 of each column's largest entry."""
+    film = {"E": 73.0, "nu": 0.17, "rho": 2200.0, "thickness": 5e-7, "permittivity": 3.9}
+    names = ["E", "rho", "stress"]
+    model = layered_model("LiNbO3", [film], names, mode="M0", euler=(0, 38, 0), electrical=electrical)
+    p = {"E": 73.0, "rho": 2200.0, "stress": 0.2}
+    kh = np.array([0.3, 1.0, 2.0])
+    J = model.jacobian(p, kh, names)
+    fd = finite_difference_jacobian(model, p, kh, names)
+    for j in range(len(names)):
+        np.testing.assert_allclose(J[:, j], fd[:, j], rtol=0, atol=1e-6 * np.abs(fd[:, j]).max())
+
+
 def test_named_film_thickness_sensitivity():
     """A film by name is written as explicit constants (fused silica: isotropic E, nu, rho from the film
     database); with the mode given as a column the family comes from the solver's label; dc/dh at fixed
