@@ -15,6 +15,8 @@ or frequency in Hz. :func:`surfwave.layered` is imported when the model is first
 module imports without it. A film given by name (``{"name": "SiO2", "thickness": 1e-6}``) whose
 free parameters it does not spell out is first written as explicit constants
 (:func:`explicit_film`: E and nu if the database's stiffness is isotropic, else ``voigt``; rho).
+Modes named by label at kh are solved by their families' search alone
+(:func:`surfwave.layers.solve.mode_speeds`: the same numbers as :func:`surfwave.layered`).
 
 Sensitivities: the model's :meth:`LayeredModel.jacobian` gives dc/dp of the guided modes by
 implicit differentiation of the layered solver's secular equation
