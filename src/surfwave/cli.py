@@ -513,7 +513,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
                "scenes": _cmd_scenes, "cache": _cmd_cache, "fit-film": cli_fit.run,
-               "layered": cli_layered.run, "layered-fit": cli_layered.run_fit}[args.command]
+               "layered": cli_layered.run}[args.command]
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_note
