@@ -27,7 +27,7 @@ def test_document_tables_are_the_generated_ones():
 
 def test_other_sets_records_match_the_solvers():
     """``other_sets: {set: [v_free, v_met, K2 %, att_free, att_met]}`` to the printed digits."""
-    cuts = pm._read()["cuts"]
+    cuts = pm.read_database()["cuts"]
     n = 0
     for name, entry in cuts.items():
         for material, rec in entry.get("other_sets", {}).items():

@@ -212,7 +212,7 @@ def cached_points(
     hits = len(d) - len(missing_idx)
     _record(root, kind, hits=hits, misses=len(missing_idx), label=name, seconds=seconds)
     if label is not None:
-        bar._write(summary_line(bar.label, len(d), hits, len(missing_idx), seconds) + "\n")
+        bar.write(summary_line(bar.label, len(d), hits, len(missing_idx), seconds) + "\n")
     names = list(found[ids[0][0]])
     return {k: np.stack([found[digest][k] for digest, _ in ids]) for k in names}
 

@@ -64,7 +64,7 @@ class Progress:
             self._bar(elapsed)
         elif not self.tty and now - self._last_log >= self.log_every:
             self._last_log = now
-            self._write(f"{self.label}: {self.done}/{self.total} points in {_fmt_seconds(elapsed)}"
+            self.write(f"{self.label}: {self.done}/{self.total} points in {_fmt_seconds(elapsed)}"
                         f"{self._eta(elapsed)}\n")
 
     def _eta(self, elapsed: float) -> str:
@@ -75,18 +75,19 @@ class Progress:
     def _bar(self, elapsed: float) -> None:
         width = 30
         filled = int(width * self.done / max(self.total, 1))
-        self._write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] "
+        self.write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] "
                     f"{self.done}/{self.total} {_fmt_seconds(elapsed)}{self._eta(elapsed)}   ")
         self._drawn = True
 
     def close(self) -> float:
         """End the bar (newline on a terminal); return the seconds elapsed."""
         if self._drawn:
-            self._write("\n")
+            self.write("\n")
             self._drawn = False
         return time.perf_counter() - self.start
 
-    def _write(self, text: str) -> None:
+    def write(self, text: str) -> None:
+        """Write ``text`` to the progress stream and flush it (a closed stream is ignored)."""
         try:
             self.stream.write(text)
             self.stream.flush()

@@ -225,7 +225,9 @@ def check_piezo_record(voigt: ArrayLike, e: ArrayLike, eps_r: ArrayLike, rho: fl
                          f"eps_r = {eps.tolist()}")
 
 
-def _read() -> dict:
+def read_database() -> dict:
+    """The piezoelectric database as stored (piezoelectric.yaml: ``materials``, ``cuts``,
+    ``references``), read afresh; :func:`get_piezo_material` and :func:`get_cut` give checked records."""
     text = resources.files("surfwave.real_crystals").joinpath("piezoelectric.yaml").read_text(encoding="utf-8")
     return yaml.load(text, Loader=SAFE_LOADER)
 
@@ -303,7 +305,7 @@ def _lookup(items: dict, kind: str) -> dict[str, str]:
 
 @lru_cache(maxsize=1)
 def _database() -> tuple[dict, dict, dict, dict]:
-    raw = _read()
+    raw = read_database()
     refs = {str(k): " ".join(str(v).split()) for k, v in raw["references"].items()}
     mats = {str(n): _build(str(n), e, refs) for n, e in raw["materials"].items()}
     cut_refs = {str(k): " ".join(str(v).split()) for k, v in raw["cut_references"].items()}

@@ -74,7 +74,7 @@ def other_sets(cut: str) -> list[str]:
     (the ``other_sets`` of the cut's entry in piezoelectric.yaml)."""
     from surfwave.real_crystals import piezo_materials as pm
 
-    entry = pm._read()["cuts"][pm.get_cut(cut).name]
+    entry = pm.read_database()["cuts"][pm.get_cut(cut).name]
     return [str(k) for k in entry.get("other_sets", {})]
 
 

@@ -232,7 +232,7 @@ TRACK_STEPS = 8
 TRACK_SEPARATION = 1e-6
 
 
-def _pmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def pmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Product of stacked polynomials, ascending coefficients (..., k) x (..., l) -> (..., k + l - 1)."""
     out = np.zeros(np.broadcast_shapes(a.shape[:-1], b.shape[:-1]) + (a.shape[-1] + b.shape[-1] - 1,))
     for i in range(a.shape[-1]):
@@ -257,13 +257,13 @@ def stroh_polynomial_parts(Q: np.ndarray, R: np.ndarray, T: np.ndarray) -> np.nd
     parts[:, d, 0] = (-1.0) ** d
     parts[:, d - 1, :3] = (-1.0) ** (d - 1) * tr
     if d == 2:
-        parts[:, 0] = _pmul(G[:, 0, 0], G[:, 1, 1]) - _pmul(G[:, 0, 1], G[:, 1, 0])
+        parts[:, 0] = pmul(G[:, 0, 0], G[:, 1, 1]) - pmul(G[:, 0, 1], G[:, 1, 0])
         return parts
 
     def minor(i, j, k, l):                                         # G_ik G_jl - G_il G_jk
-        return _pmul(G[:, i, k], G[:, j, l]) - _pmul(G[:, i, l], G[:, j, k])
+        return pmul(G[:, i, k], G[:, j, l]) - pmul(G[:, i, l], G[:, j, k])
     m12, m02, m01 = minor(1, 2, 1, 2), minor(1, 2, 0, 2), minor(1, 2, 0, 1)
-    parts[:, 0] = _pmul(G[:, 0, 0], m12) - _pmul(G[:, 0, 1], m02) + _pmul(G[:, 0, 2], m01)
+    parts[:, 0] = pmul(G[:, 0, 0], m12) - pmul(G[:, 0, 1], m02) + pmul(G[:, 0, 2], m01)
     parts[:, 1, :5] = -(m12 + minor(0, 2, 0, 2) + minor(0, 1, 0, 1))
     return parts
 
@@ -371,7 +371,7 @@ def lowest_eigenpair(Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return lam, u
 
 
-def _monic(roots: np.ndarray) -> np.ndarray:
+def monic(roots: np.ndarray) -> np.ndarray:
     """Ascending coefficients c (m, d + 1) of prod_j (z - roots_j), roots (m, d); c_d = 1."""
     c = np.zeros(roots.shape[:-1] + (roots.shape[-1] + 1,), dtype=complex)
     c[..., 0] = 1.0
@@ -450,7 +450,7 @@ def impedance(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, deriva
     upper = np.take_along_axis(upper, np.lexsort((upper.real, np.round(upper.imag / scale, 9)), axis=-1),
                                axis=-1)
     # W = f(N), f(z) = prod_j (z - conj p_j) = sum_k c_k z^k: real powers of the real N
-    c = _monic(lower)
+    c = monic(lower)
     W = c[:, 0, None, None] * np.eye(2 * d) + c[:, 1, None, None] * N
     Nk = N
     for k in range(2, d + 1):

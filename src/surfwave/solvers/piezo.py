@@ -38,7 +38,7 @@ from surfwave.errors import InputError
 from surfwave.solvers import piezo_search as search
 from surfwave.solvers.boundary import as_boundary
 from surfwave.solvers.euler import euler_lab_axes  # noqa: F401  (re-exported: SAW Euler angles -> lab axes)
-from surfwave.solvers.impedance import _monic
+from surfwave.solvers.impedance import monic
 from surfwave.solvers.piezo_stroh import (  # noqa: F401  (re-exported: the public building blocks)
     generalised_blocks,
     generalised_tensor,
@@ -81,7 +81,7 @@ def _flux(Q, R, E, r, a0, free, eps0, p) -> np.ndarray:
     K1 = N[:, :4, :4] + N[:, :4, 4:] @ M
     B = 1j * K1
     mA = 1j * np.conj(np.swapaxes(K1, -1, -2))                     # -A = -(i K1)^H
-    g = _monic(1j * np.conj(p))                                     # ascending, g_4 = 1
+    g = monic(1j * np.conj(p))                                     # ascending, g_4 = 1
     gB = g[:, 0, None, None] * np.eye(4) + g[:, 1, None, None] * B
     Bk = B
     for k in range(2, 5):

@@ -13,7 +13,7 @@ import itertools
 import numpy as np
 from numpy.typing import ArrayLike
 
-from surfwave.solvers.impedance import _monic, _pmul, lowest_eigenvalue_step, track_roots
+from surfwave.solvers.impedance import lowest_eigenvalue_step, monic, pmul, track_roots
 
 #: Wave-normal grid and refinement of the limiting-speed search.
 LIMIT_GRID = 48
@@ -248,7 +248,7 @@ def _minor(G: np.ndarray, rows: tuple, cols: tuple, cache: dict) -> np.ndarray:
         else:
             out: np.ndarray | float = 0.0
             for j, c in enumerate(cols):
-                term = _pmul(G[:, rows[0], c], _minor(G, rows[1:], cols[:j] + cols[j + 1:], cache))
+                term = pmul(G[:, rows[0], c], _minor(G, rows[1:], cols[:j] + cols[j + 1:], cache))
                 out = out + term if j % 2 == 0 else out - term
             cache[key] = out
     return cache[key]
@@ -319,7 +319,7 @@ def impedance(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, p_gues
         subsonic[miss] = (lo.imag[:, -1] < -1e-10 * scale) & (upm.imag[:, 0] > 1e-10 * scale)
         up[miss] = upm
     up = np.take_along_axis(up, np.argsort(up.imag, axis=-1), axis=-1)
-    c = _monic(np.conj(up))
+    c = monic(np.conj(up))
     # W = sum_k c_k N^k, real and imaginary parts in real arithmetic (mixed complex x real
     # broadcasting is several times slower in numpy)
     cr, ci = c.real[:, :, None, None], c.imag[:, :, None, None]

@@ -319,7 +319,7 @@ def _select_flat(comp: np.ndarray, unit: np.ndarray, rtol: float = 1e-7) -> tupl
     return Xr * unit, has
 
 
-def _select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
+def select_root(a, b, c, d, f, rtol: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
     """The admissible root X = rho c_R^2 of Eq. (17) and whether one exists, any shape.
 
     The five components broadcast together; see :func:`_select_flat` for the rule.

@@ -444,7 +444,7 @@ def _roots(Ah: np.ndarray, Q: np.ndarray, R: np.ndarray, T: np.ndarray, XL: np.n
     if e17.any():
         a, b, c, dd, f = (Ah[e17, 0, 0, 0, 0], Ah[e17, 0, 1, 0, 1], Ah[e17, 1, 0, 1, 0],
                           Ah[e17, 1, 1, 1, 1], Ah[e17, 1, 1, 0, 0])
-        Xr, has = rayleigh._select_root(a, b, c, dd, f)
+        Xr, has = rayleigh.select_root(a, b, c, dd, f)
         X[e17] = np.where(has, Xr, np.nan)
         found[e17] = has
         method[e17] = "eq17"
