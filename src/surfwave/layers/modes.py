@@ -108,14 +108,25 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
     return g[(g > c_lo) & (g < c_lim)]
 
 
-def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary, c_lim: float) -> np.ndarray:
-    """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
+def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary,
+            c_lim: float) -> tuple[np.ndarray, np.ndarray]:
+    """Safeguarded secant iteration on all brackets at once; converged speeds (m,) and Z's eigenvalues there.
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
     the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
     halve the bracket nor make a small secant step), falls back to bisection. The iteration runs
     in t = sqrt(1 - c^2 / c_lim^2), in which det Z is smooth up to the limit (in c it has a
-    square-root branch point there).
+    square-root branch point there). A secant step from the latest point shorter than the
+    tolerance ends the iteration at its end point without evaluating det Z there; the
+    eigenvalues returned are then those at the latest evaluated point (within the tolerance,
+    relative 4e-15, of the root), which is all :func:`_mode_eigenvalues_ok` needs.
+
+    Returns
+    -------
+    c : ndarray, shape (m,)
+        Converged speeds, m/s.
+    w : ndarray, shape (m, na)
+        Ascending eigenvalues of the boundary matrix Z at (or within the tolerance of) each speed.
     """
     def to_t(c):
         return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
@@ -123,11 +134,20 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
     def to_c(t):
         return c_lim * np.sqrt(1.0 - t * t)
 
+    def evaluate(x, rows):
+        M = top_impedance(b, fam, to_c(x), kh[rows, None])["M"]
+        Z, _ = boundary_matrix(b, fam, M, electrical)
+        Z = Z[:, 0]
+        with np.errstate(all="ignore"):
+            return np.linalg.det(Z).real, Z          # as :func:`secular`
+
     a, fa, z, fz = to_t(lo), flo.copy(), to_t(hi), fhi.copy()           # bracket ends (a, z)
     x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()            # the two latest points
+    Z1: np.ndarray | None = None                                         # Z at x1 (once evaluated)
     width = np.abs(z - a)
     idx = np.arange(a.size)
     out = 0.5 * (lo + hi)
+    got: list[tuple[np.ndarray, np.ndarray]] = []                        # (bracket indices, eig Z there)
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
@@ -141,27 +161,74 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         x = np.where(bis, 0.5 * (left + right), x)
         if it % 4 == 3:
             width = right - left
-        fx = secular(b, fam, to_c(x), kh[idx, None], electrical)[:, 0]
+        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+        if Z1 is not None:
+            # converged: the secant step from the latest evaluated point x1 is below the tolerance;
+            # x is then taken without evaluating det Z there when Z at x1 tells a mode from a pole
+            # with a margin (else x is evaluated, as any other point)
+            pre = np.flatnonzero((np.abs(x - x1) <= tol) & ~bis)
+            w1 = _eigvalsh(Z1[pre])
+            clear = _mode_margin(w1) != 0
+            pre, w1 = pre[clear], w1[clear]
+            out[idx[pre]] = to_c(x[pre])
+            got.append((idx[pre], w1))
+            keep = np.ones(idx.size, dtype=bool)
+            keep[pre] = False
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1 = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1))
+            if idx.size == 0:
+                break
+        fx, Zx = evaluate(x, idx)
         side_a = np.sign(fx) == np.sign(fa)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
-        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
         done = (np.abs(x - x1) <= tol) & ~bis | (np.abs(z - a) <= tol) | (fx == 0) | ~np.isfinite(fx)
-        x0, f0, x1, f1 = x1, f1, x, fx
+        x0, f0, x1, f1, Z1 = x1, f1, x, fx, Zx
         out[idx[done]] = to_c(x[done])
+        got.append((idx[done], _eigvalsh(Zx[done])))
         keep = ~done
-        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+        idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1 = (
+            v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1))
     out[idx] = to_c(x1)
-    return out
+    if Z1 is not None:
+        got.append((idx, _eigvalsh(Z1)))
+    if not got:
+        return out, np.zeros((out.size, 0))
+    w = np.concatenate([g[1] for g in got])
+    w_out = np.empty((out.size, w.shape[-1]))
+    w_out[np.concatenate([g[0] for g in got])] = w
+    return out, w_out
 
 
-def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
-    """True where Z(c, kh) is singular and bounded (a mode), False at a pole."""
-    M = top_impedance(b, fam, c, kh[:, None])["M"][:, 0]
-    Z, _ = boundary_matrix(b, fam, M, electrical)
-    w = np.abs(np.linalg.eigvalsh(Z))
-    return np.isfinite(w).all(axis=-1) & (w.min(axis=-1) <= 1e-7 * np.maximum(w.max(axis=-1), 1e-3)) \
-        & (w.max(axis=-1) < 1e6)
+def _eigvalsh(Z: np.ndarray) -> np.ndarray:
+    """Ascending eigenvalues of Hermitian matrices (..., na, na); NaN rows where Z is not finite."""
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(Z).all(axis=(-1, -2))
+        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
+    w[bad] = np.nan
+    return w
+
+
+def _mode_eigenvalues_ok(w: np.ndarray) -> np.ndarray:
+    """True where eigenvalues w (..., na) of Z say singular and bounded (a mode), False at a pole."""
+    return _mode_margin(w, 1.0) > 0
+
+
+def _mode_margin(w: np.ndarray, margin: float = 10.0) -> np.ndarray:
+    """+1 where eigenvalues w (..., na) of Z are those of a mode, -1 of a pole, with this margin; else 0.
+
+    A mode: Z singular (smallest |w| <= 1e-7 x the largest, or 1e-10) and bounded (largest |w| < 1e6).
+    With ``margin`` m > 1 the decision must hold with every threshold moved by the factor m against
+    it (the refinement's shortcut, :func:`_refine`); ``margin`` 1 is the plain test.
+    """
+    w = np.abs(w)
+    fin = np.isfinite(w).all(axis=-1)
+    with np.errstate(invalid="ignore"):
+        lo, hi = w.min(axis=-1, initial=np.inf), w.max(axis=-1, initial=0.0)
+        small = 1e-7 * np.maximum(hi, 1e-3)
+        mode = fin & (lo * margin <= small) & (hi * margin < 1e6)
+        pole = ~fin | (lo > small * margin) | (hi >= 1e6 * margin)
+    return np.where(mode, 1, np.where(pole, -1, 0))
 
 
 def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
@@ -344,8 +411,8 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     ik = np.concatenate([ik, pik[keep_p]])
     if ik.size == 0:
         return np.full((kh.size, 0), np.nan)
-    roots = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
-    ok = _is_mode(b, fam, roots, kh[ik], electrical)
+    roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
+    ok = _mode_eigenvalues_ok(w_root)
     ik, roots = ik[ok], roots[ok]
     _ = secular  # (the refinement evaluates det Z through :func:`secular`)
     counts = np.bincount(ik, minlength=kh.size)
