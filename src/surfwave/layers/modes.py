@@ -231,11 +231,56 @@ def _mode_margin(w: np.ndarray, margin: float = 10.0) -> np.ndarray:
     return np.where(mode, 1, np.where(pole, -1, 0))
 
 
+def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
+    """Ascending eigenvalues of Hermitian matrices Z (..., n, n): closed forms for n <= 3, else LAPACK.
+
+    n = 3: the trigonometric solution of the (real) characteristic cubic of the shifted matrix
+    Z - tr(Z)/3; where two eigenvalues nearly coincide (|cos 3 phi| > 1 - 1e-6, where the arccos
+    loses digits) and where Z is not finite, LAPACK's eigvalsh. Absolute error ~ 1e-13 |Z| (what
+    the grid scan needs: signs, products, the Foster test at 1e-9); NaN rows where Z is not finite.
+    """
+    n = Z.shape[-1]
+    if n > 3 or n == 0:
+        return _eigvalsh(Z)
+    a = Z[..., 0, 0].real
+    if n == 1:
+        return a[..., None].copy()
+    b = Z[..., 1, 1].real
+    if n == 2:
+        m, h = 0.5 * (a + b), np.hypot(0.5 * (a - b), np.abs(Z[..., 0, 1]))
+        return np.stack([m - h, m + h], axis=-1)
+    c = Z[..., 2, 2].real
+    d, e, f = Z[..., 0, 1], Z[..., 1, 2], Z[..., 0, 2]
+    m = (a + b + c) / 3.0
+    a1, b1, c1 = a - m, b - m, c - m
+    d2, e2, f2 = d.real ** 2 + d.imag ** 2, e.real ** 2 + e.imag ** 2, f.real ** 2 + f.imag ** 2
+    p = (a1 * a1 + b1 * b1 + c1 * c1 + 2.0 * (d2 + e2 + f2)) / 6.0
+    q = 0.5 * (a1 * b1 * c1 - a1 * e2 - b1 * f2 - c1 * d2 + 2.0 * (d * e * np.conj(f)).real)
+    with np.errstate(all="ignore"):
+        sp = np.sqrt(p)
+        r = np.where(p > 0, q / (p * sp), 0.0)
+        phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
+        hi = m + 2.0 * sp * np.cos(phi)
+        lo = m + 2.0 * sp * np.cos(phi + 2.0 * np.pi / 3.0)
+        w = np.stack([lo, 3.0 * m - hi - lo, hi], axis=-1)
+    hard = ~(np.abs(r) <= 1.0 - 1e-6) & (p > 0) | ~np.isfinite(w).all(axis=-1)
+    if hard.any():
+        w[hard] = _eigvalsh(Z[hard])
+    return w
+
+
+def _grid_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
+    """:func:`surfwave.layers.recursion.boundary_eigenvalues` for the grid scan (closed-form eigenvalues)."""
+    M = top_impedance(b, fam, c, kh)["M"]
+    Z, _ = boundary_matrix(b, fam, M, electrical)
+    return _hermitian_eigenvalues(Z)
+
+
 def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
     """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
     cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
     bisected (``rounds`` times)."""
-    w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
+    w = _grid_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
     D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
     D[~np.isfinite(w).all(axis=-1)] = np.nan
     for _ in range(rounds):
@@ -246,7 +291,7 @@ def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: 
         if cells.size == 0:
             break
         mid = 0.5 * (grid[cells] + grid[cells + 1])
-        wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
+        wm = _grid_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
         Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
         Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
         w = np.insert(w, cells + 1, wm, axis=0)

@@ -93,7 +93,8 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             M = _solve_right(Vs[:, nf:, nf:], Vs[:, :nf, nf:])[:, None]      # (m, 1, nf, nf)
     else:
         M = np.asarray(M_sub)[:, None]
-    M = np.broadcast_to(M, kh.shape + (nf, nf))
+    # M stays (m, 1, nf, nf) while it depends on c only (the substrate's): the first film's
+    # interface solve is then done once per speed and shared by every kh
     Rrs, Xms, ts = [], [], []
     for layer in range(len(b.frac) - 1, -1, -1):
         p, V = eigs[layer]
@@ -111,7 +112,10 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         else:
             GVu, GVd = Bu - M @ Au, Bd - M @ Ad
         with np.errstate(all="ignore"):
-            Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
+            if GVu.shape[-3] == 1 < t.shape[-1]:
+                Rr = -np.linalg.solve(GVu, GVd) * Ed[..., None, :]     # (GVu^-1 GVd) diag(Ed)
+            else:
+                Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
             ER = Eu[..., :, None] * Rr
             Xm = Ad + Au @ ER
             M = _solve_right(Bd + Bu @ ER, Xm)
@@ -119,7 +123,7 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             Rrs.append(Rr)
             Xms.append(Xm)
             ts.append(t)
-    out: dict[str, Any] = {"M": M}
+    out: dict[str, Any] = {"M": np.broadcast_to(M, kh.shape + (nf, nf))}
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
     return out
