@@ -144,6 +144,7 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
     a, fa, z, fz = to_t(lo), flo.copy(), to_t(hi), fhi.copy()           # bracket ends (a, z)
     x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()            # the two latest points
     Z1: np.ndarray | None = None                                         # Z at x1 (once evaluated)
+    s1, s0 = np.full(a.size, np.inf), np.full(a.size, np.inf)            # the secant steps to x1 and x0
     width = np.abs(z - a)
     idx = np.arange(a.size)
     out = 0.5 * (lo + hi)
@@ -166,7 +167,12 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
             # converged: the secant step from the latest evaluated point x1 is below the tolerance;
             # x is then taken without evaluating det Z there when Z at x1 tells a mode from a pole
             # with a margin (else x is evaluated, as any other point)
-            pre = np.flatnonzero((np.abs(x - x1) <= tol) & ~bis)
+            # (or, once the secant converges superlinearly, steps s < s1 < s0, where the next step
+            # predicted from them, C s s1 with C ~ s / (s1 s0), is below tol / 1000)
+            s = np.abs(x - x1)
+            with np.errstate(all="ignore"):
+                fast = (s < s1) & (s1 < s0) & (1e3 * s * s <= tol * s0) & np.isfinite(s0)
+            pre = np.flatnonzero(((s <= tol) | fast) & ~bis)
             w1 = _eigvalsh(Z1[pre])
             clear = _mode_margin(w1) != 0
             pre, w1 = pre[clear], w1[clear]
@@ -174,8 +180,8 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
             got.append((idx[pre], w1))
             keep = np.ones(idx.size, dtype=bool)
             keep[pre] = False
-            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1 = (
-                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1))
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1, s1, s0 = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1, s1, s0))
             if idx.size == 0:
                 break
         fx, Zx = evaluate(x, idx)
@@ -183,12 +189,13 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
         done = (np.abs(x - x1) <= tol) & ~bis | (np.abs(z - a) <= tol) | (fx == 0) | ~np.isfinite(fx)
+        s0, s1 = s1, np.where(bis, np.inf, np.abs(x - x1))
         x0, f0, x1, f1, Z1 = x1, f1, x, fx, Zx
         out[idx[done]] = to_c(x[done])
         got.append((idx[done], _eigvalsh(Zx[done])))
         keep = ~done
-        idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1 = (
-            v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1))
+        idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0 = (
+            v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0))
     out[idx] = to_c(x1)
     if Z1 is not None:
         got.append((idx, _eigvalsh(Z1)))
