@@ -134,6 +134,9 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
     def to_c(t):
         return c_lim * np.sqrt(1.0 - t * t)
 
+    def tol_at(x):
+        return C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+
     def evaluate(x, rows):
         M = top_impedance(b, fam, to_c(x), kh[rows, None])["M"]
         Z, _ = boundary_matrix(b, fam, M, electrical)
@@ -155,6 +158,19 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
             x = x1 - f1 * (x1 - x0) / (f1 - f0)
+        if Z1 is not None:
+            # converged at x1 (the latest evaluated point, always a bracket end): the secant step from it
+            # is below the tolerance but leaves the bracket (rounding, |det Z| at the level of its
+            # noise); without this a bisection would follow, and a tail of steps halving the bracket
+            edge = np.flatnonzero(np.isfinite(x) & (np.abs(x - x1) <= tol_at(x1)) & ((x <= left) | (x >= right)))
+            out[idx[edge]] = to_c(x1[edge])
+            got.append((idx[edge], _eigvalsh(Z1[edge])))
+            keep = np.ones(idx.size, dtype=bool)
+            keep[edge] = False
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, left, right, Z1, s1, s0 = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, left, right, Z1, s1, s0))
+            if idx.size == 0:
+                break
         # bisection where the secant leaves the bracket or, every fourth step, where the last
         # four steps did not shrink it by half and the secant step is not small (stalled iteration)
         slow = (it % 4 == 3) & (right - left > 0.5 * width) & (np.abs(x - x1) > 1e-3 * (right - left))
@@ -162,7 +178,7 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         x = np.where(bis, 0.5 * (left + right), x)
         if it % 4 == 3:
             width = right - left
-        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+        tol = tol_at(x)
         if Z1 is not None:
             # converged: the secant step from the latest evaluated point x1 is below the tolerance;
             # x is then taken without evaluating det Z there when Z at x1 tells a mode from a pole
