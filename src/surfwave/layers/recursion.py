@@ -85,7 +85,11 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
     kh = kh.astype(np.result_type(kh.dtype, float))
     kh = np.broadcast_to(kh.reshape(kh.shape + (1,) * (2 - kh.ndim)) if kh.ndim < 2 else kh,
                          (c.shape[0], np.shape(kh)[-1] if kh.ndim else 1))
-    eigs = _layer_eigs(b, fam, c)
+    uc, inv = np.unique(c, return_inverse=True)
+    if uc.size < c.size:                       # repeated speeds (e.g. bisection of one cell at many kh)
+        eigs = [(p[inv], V[inv]) for p, V in _layer_eigs(b, fam, uc)]
+    else:
+        eigs = _layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
     if M_sub is None:
