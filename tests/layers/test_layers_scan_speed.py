@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from surfwave.layers.modes import _hermitian_eigenvalues
 from surfwave.layers.partial import families, scaled_blocks
@@ -51,3 +52,21 @@ def test_per_speed_interface_solve_equals_per_kh_solve():
             ref = top_impedance(b, fam, c, np.full((c.size, 1), k), M_sub=None)["M"][:, 0]
             assert np.allclose(M[:, j], ref, rtol=1e-13, atol=1e-13 * np.abs(ref).max())
         assert np.allclose(M[:, 0], Ms, rtol=1e-13, atol=1e-13 * np.abs(Ms).max())
+
+
+def test_every_love_mode_at_large_kh():
+    """Reference: the Love equation of an isotropic layer on an isotropic half-space (Aki & Richards,
+    sec. 7.2; brentq, tests/layers/test_layers_physics.love_closed_form): at large kh the SH family has
+    many steep branches, where a refinement that ends without a last evaluation must still keep every
+    mode (count = branches below the substrate's shear speed; speeds to 1e-11)."""
+    from test_layers_physics import FAST, SIO2, _iso, love_closed_form
+
+    import surfwave
+    kh = np.array([30.0, 50.0, 80.0])
+    r = surfwave.layered(FAST, [{**SIO2, "thickness": 1e-6}], kh=kh)
+    ratio = np.sqrt(_iso(FAST)[0] / FAST["rho"] / (_iso(SIO2)[0] / SIO2["rho"]) - 1)
+    for i, k in enumerate(kh):
+        love = r["c"][i][np.char.startswith(r["mode"][i].astype(str), "L")]
+        assert len(love) == int(np.floor(k * ratio / np.pi)) + 1
+        for n in (0, len(love) // 2, len(love) - 1):
+            assert love[n] == pytest.approx(love_closed_form(k, n), rel=1e-11)

@@ -180,17 +180,18 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
             width = right - left
         tol = tol_at(x)
         if Z1 is not None:
-            # converged: the secant step from the latest evaluated point x1 is below the tolerance;
-            # x is then taken without evaluating det Z there when Z at x1 tells a mode from a pole
-            # with a margin (else x is evaluated, as any other point)
+            # converged: the secant step from the latest evaluated point x1 is below the tolerance
             # (or, once the secant converges superlinearly, steps s < s1 < s0, where the next step
-            # predicted from them, C s s1 with C ~ s / (s1 s0), is below tol / 1000)
+            # predicted from them, C s s1 with C ~ s / (s1 s0), is below tol / 1000). x is then taken
+            # without evaluating det Z there when Z at x1 is already that of a mode with a 10x margin
+            # (the smallest |eigenvalue| only falls from x1 to the root); a pole, or a doubtful
+            # case, is evaluated at x as any other point
             s = np.abs(x - x1)
             with np.errstate(all="ignore"):
                 fast = (s < s1) & (s1 < s0) & (1e3 * s * s <= tol * s0) & np.isfinite(s0)
             pre = np.flatnonzero(((s <= tol) | fast) & ~bis)
             w1 = _eigvalsh(Z1[pre])
-            clear = _mode_margin(w1) != 0
+            clear = _mode_margin(w1) > 0
             pre, w1 = pre[clear], w1[clear]
             out[idx[pre]] = to_c(x[pre])
             got.append((idx[pre], w1))
