@@ -121,8 +121,9 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             else:
                 Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
             ER = Eu[..., :, None] * Rr
-            Xm = Ad + Au @ ER
-            M = _solve_right(Bd + Bu @ ER, Xm)
+            XY = V[:, None, :, nf:] + V[:, None, :, :nf] @ ER               # [A_d; B_d] + [A_u; B_u] ER
+            Xm = XY[..., :nf, :]
+            M = _solve_right(XY[..., nf:, :], Xm)
         if keep:
             Rrs.append(Rr)
             Xms.append(Xm)
