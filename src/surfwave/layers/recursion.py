@@ -128,7 +128,9 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             Rrs.append(Rr)
             Xms.append(Xm)
             ts.append(t)
-    out: dict[str, Any] = {"M": np.broadcast_to(M, kh.shape + (nf, nf))}
+    if M.shape[:-2] != kh.shape:
+        M = np.broadcast_to(M, kh.shape + (nf, nf))
+    out: dict[str, Any] = {"M": M}
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
     return out
