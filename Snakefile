@@ -104,6 +104,7 @@ include: "workflow/rules/entropy.smk"
 include: "workflow/rules/surface_phonons.smk"
 include: "workflow/rules/surface_wave.smk"
 include: "workflow/rules/piezo.smk"
+include: "workflow/rules/layered.smk"
 # Figures, report, benchmarks: they define FIGURE_TARGETS and REPORT_TARGETS.
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/report.smk"

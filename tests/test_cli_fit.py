@@ -107,6 +107,30 @@ def test_layered_model_through_the_cli(tmp_path, capsys, monkeypatch):
     assert seen[0] == "iso" and abs(r["values"]["E"] - 73.0) < 1e-6
 
 
+def test_layered_database_film_through_the_cli(tmp_path, capsys):
+    """--model layered --film SiO2:1um (a database film, as `surfwave layered` takes it) recovers E and nu of
+    fused silica on Si from exact Rayleigh speeds that surfwave.layered computed (to 1e-4), with the
+    sensitivities by implicit differentiation; a bad second film, or two films for the Love model, is one error
+    line."""
+    import surfwave
+
+    kh = np.linspace(0.5, 5.0, 6)
+    c = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], kh=kh)["c"][:, 0]
+    data = tmp_path / "points.csv"
+    data.write_text("kh,c_m_s\n" + "".join(f"{float(k)!r},{float(v)!r}\n" for k, v in zip(kh, c)))
+    assert main(["fit-film", "--model", "layered", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(data),
+                 "--free", "E", "nu", "--mode", "R", "--json"]) == 0
+    r = json.loads(capsys.readouterr().out)
+    assert r["values"]["E"] == pytest.approx(73.0, rel=1e-4) and r["values"]["nu"] == pytest.approx(0.17, rel=1e-4)
+    assert r["success"]
+    assert main(["fit-film", "--model", "layered", "--substrate", "Si", "--film", "SiO2:1um", "--film", "SiO2:1",
+                 "--data", str(data), "--free", "E"]) == 2
+    assert "needs a unit" in capsys.readouterr().err
+    assert main(["fit-film", "--model", "love", "--substrate", "mu=66,rho=2650", "--film", "mu=28,rho=2200",
+                 "--film", "mu=28,rho=2200", "--data", str(data), "--free", "mu"]) == 2
+    assert "takes one --film" in capsys.readouterr().err
+
+
 def test_mode_column(tmp_path, capsys):
     """A mode column fits points of Love modes 0 and 1 together."""
     kh0, kh1 = np.linspace(0.3, 8, 12), np.linspace(4.0, 8, 8)

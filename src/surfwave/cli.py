@@ -409,6 +409,10 @@ def _cmd_scenes(args) -> int:
             rows.append(cli_piezo.scene_row(name, sc, name in run, name in paper,
                                             list(scene_outputs(scenes, name).values())))
             continue
+        if sc.get("kind") == "layered":  # films on a substrate: orientations x film stress x electrical x kh
+            rows.append(cli_layered.scene_row(name, sc, name in run, name in paper,
+                                              list(scene_outputs(scenes, name).values())))
+            continue
         if sc.get("kind") == "crystal":  # real crystals: materials x surfaces x angles [x stress]
             a, st = sc["angles"], sc["stress"] or [0.0]
             rows.append({"scene": name, "built_by_all": name in run, "paper": name in paper,
@@ -434,6 +438,9 @@ def _cmd_scenes(args) -> int:
     for r in rows:
         if r.get("kind") == "piezo":
             print(cli_piezo.scene_text(r))
+            continue
+        if r.get("kind") == "layered":
+            print(cli_layered.scene_text(r))
             continue
         if "materials" in r:
             (alo, ahi, na), (slo, shi, ns) = r["angles"], r["stress"]
@@ -506,7 +513,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     handler = {"point": _cmd_point, "material": _cmd_material, "potentials": _cmd_potentials,
                "scenes": _cmd_scenes, "cache": _cmd_cache, "fit-film": cli_fit.run,
-               "layered": cli_layered.run, "layered-fit": cli_layered.run_fit}[args.command]
+               "layered": cli_layered.run}[args.command]
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _show_note

@@ -30,14 +30,18 @@ default, or in m/s).
 Stack: --film and --substrate as KEY=VALUE lists. Love model (shear-horizontal guided wave, one
 isotropic film on an isotropic substrate, closed form): mu (GPa) or E (GPa) and nu, rho
 (kg/m^3), and the film's thickness (m; needed with frequency data). Layered model (any guided
-mode, through surfwave.layered): --substrate a material name or KEY=VALUE (E, nu, rho); --film
-E, nu, rho, thickness, stress (GPa, equibiaxial). Free parameters (--free): Love mu or E/nu,
-rho, thickness, substrate_mu, substrate_rho; layered E, nu, rho, thickness, stress.
+mode, through surfwave.layered, sensitivities by implicit differentiation of its secular
+equation): --substrate a material name or KEY=VALUE (E, nu, rho); --film E, nu, rho, thickness,
+stress (GPa, equibiaxial) as KEY=VALUE, or a database film NAME:THICKNESS[:STRESS] as for
+`surfwave layered` (its constants are the starting values); repeat --film from the top down and
+pick the fitted one with --layer. Free parameters (--free): Love mu or E/nu, rho, thickness,
+substrate_mu, substrate_rho; layered E, nu, rho, thickness, stress.
 
 examples:
   surfwave fit-film --data points.csv --film mu=30,rho=2200,thickness=1e-6 --substrate mu=66.25,rho=2650 --free mu rho
   surfwave fit-film --data points.csv --film E=70,nu=0.17,rho=2200,thickness=1e-6 --substrate mu=66.25,rho=2650 \\
       --free E thickness --bounds E=40:120 --figure fit.png
+  surfwave fit-film --model layered --data points.csv --substrate Si --film SiO2:1um --free E nu --mode R
 """
 
 _UNITS = {"mu": "GPa", "E": "GPa", "substrate_mu": "GPa", "stress": "GPa", "nu": "1", "rho": "kg/m^3",
@@ -53,8 +57,9 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     fp.add_argument("--data", required=True, type=Path, metavar="CSV",
                     help="measured points: columns kh or frequency_Hz, c_m_s[, sigma_m_s]")
-    fp.add_argument("--film", required=True, metavar="KEY=VALUE,...",
-                    help="the film: starting values of the free parameters, values of the fixed ones")
+    fp.add_argument("--film", required=True, action="append", metavar="KEY=VALUE,...|NAME:THICKNESS[:STRESS]",
+                    help="the film: starting values of the free parameters, values of the fixed ones (layered: "
+                    "also a database film NAME:THICKNESS[:STRESS]; repeat from the top down)")
     fp.add_argument("--substrate", required=True, metavar="KEY=VALUE,...|NAME",
                     help="the substrate: KEY=VALUE list (mu or E, nu; rho), or a material name (layered model)")
     fp.add_argument("--free", required=True, nargs="+", metavar="NAME", help="the parameters to fit")
@@ -62,6 +67,11 @@ def add_parser(sub: Any) -> argparse.ArgumentParser:
                     help="love: closed-form SH guided wave (default); layered: a mode of surfwave.layered")
     fp.add_argument("--mode", default="0",
                     help="the measured mode: Love mode number (0 = fundamental); layered: column or label")
+    fp.add_argument("--layer", type=int, default=0, help="layered: which --film is fitted (0 = top)")
+    fp.add_argument("--surface", default="(001)", help="layered: substrate surface (hkl) (default (001))")
+    fp.add_argument("--direction", default="[100]", help="layered: propagation direction [uvw] or angle, degrees")
+    fp.add_argument("--euler", nargs=3, type=float, metavar=("PHI", "THETA", "PSI"),
+                    help="layered: SAW Euler angles of the substrate, degrees (instead of --surface/--direction)")
     fp.add_argument("--bounds", nargs="+", default=[], metavar="NAME=LOW:HIGH",
                     help="bounds of free parameters (default: physical limits)")
     fp.add_argument("--noise", choices=["relative", "absolute"], default="relative",
@@ -122,6 +132,15 @@ def read_points(path: Path) -> tuple[Literal["kh", "frequency"], np.ndarray, np.
     return variable, a[:, 0], a[:, 1], (a[:, 2] if a.shape[1] == 3 else None), modes
 
 
+def _film(text: str, layered: bool) -> dict[str, Any]:
+    """One --film: KEY=VALUE,... or (layered model) a database film NAME:THICKNESS[:STRESS]."""
+    if layered and "=" not in text:
+        from surfwave.cli_layered import parse_film
+
+        return parse_film(text)
+    return dict(parse_pairs(text, "--film"))
+
+
 def _bounds(items: list[str]) -> dict[str, tuple[float, float]]:
     out = {}
     for item in items:
@@ -145,14 +164,26 @@ def run(args: argparse.Namespace) -> int:
     from surfwave.metrology.film import fit_film
 
     variable, x, c, sigma, modes = read_points(args.data)
-    film = parse_pairs(args.film, "--film")
-    layered_sub = args.model == "layered" and "=" not in args.substrate
+    layered = args.model == "layered"
+    films = [_film(text, layered) for text in args.film]
+    if not layered and len(films) != 1:
+        raise InputError(f"--model love takes one --film, got {len(films)}; use --model layered")
+    layered_sub = layered and "=" not in args.substrate
     substrate: Any = args.substrate.strip() if layered_sub else parse_pairs(args.substrate, "--substrate")
     mode: Any = int(args.mode) if args.mode.lstrip("-").isdigit() else args.mode
     if modes is not None:
         mode = modes
-    r = fit_film(x, c, model=args.model, film=film, substrate=substrate, free=args.free, sigma=sigma,
-                 variable=variable, mode=mode, bounds=_bounds(args.bounds), noise=args.noise)
+    options: dict[str, Any] = {}
+    if layered:
+        direction: str | float = args.direction
+        try:
+            direction = float(args.direction)
+        except ValueError:
+            pass
+        options = {"surface": args.surface, "direction": direction, "euler": args.euler}
+    r = fit_film(x, c, model=args.model, film=films if layered else films[0], substrate=substrate, free=args.free,
+                 sigma=sigma, variable=variable, mode=mode, layer=args.layer, bounds=_bounds(args.bounds),
+                 noise=args.noise, layered_options=options)
     if args.figure is not None:
         from surfwave.plots.fit import plot_fit
 

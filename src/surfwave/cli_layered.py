@@ -30,14 +30,6 @@ examples:
   surfwave layered --substrate Si --film Au-poly:100nm --frequency 1e8 5e8 1e9 --json
 """
 
-FIT_EPILOG = """\
-The CSV has a header row naming its columns: kh or frequency, then c, optionally sigma.
-
-examples:
-  surfwave layered-fit --substrate Si --film SiO2:1um --data points.csv --fit E nu
-  surfwave layered-fit --substrate Si --film SiO2:1um --data points.csv --fit E thickness --mode R --json
-"""
-
 _UNITS = {"nm": 1e-9, "um": 1e-6, "µm": 1e-6, "mm": 1e-3, "m": 1.0}
 #: Most kh values of one sweep.
 MAX_KH_POINTS = 100000
@@ -67,23 +59,6 @@ def add_parser(sub, parser_class) -> argparse.ArgumentParser:
     lp.add_argument("--leaky", action="store_true", help="also continue modes above c_limit as leaky waves")
     lp.add_argument("--group", action="store_true", help="also print the group velocities")
     lp.add_argument("--json", action="store_true", help="print the result record as JSON")
-    fp = sub.add_parser(
-        "layered-fit", help="fit film parameters to measured speeds of one mode (thin-film metrology)",
-        description="Least-squares fit of film parameters (E, nu, rho, thickness, stress, Cij) to measured phase "
-        "speeds of one mode, with 1-sigma uncertainties and correlations.",
-        epilog=FIT_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    fp.add_argument("--substrate", required=True, help="substrate material name")
-    fp.add_argument("--film", action="append", default=[], metavar="NAME:THICKNESS[:STRESS]",
-                    help="a film with its starting values (repeat from the top down)")
-    fp.add_argument("--data", required=True, help="CSV with a header: kh or frequency (Hz), c (m/s)[, sigma (m/s)]")
-    fp.add_argument("--fit", nargs="+", required=True, metavar="PARAM",
-                    help="parameters: E nu rho thickness stress Cij, or FILM.KEY (film index from the top)")
-    fp.add_argument("--mode", default="R", help="label of the measured mode (default R)")
-    fp.add_argument("--surface", default="(001)")
-    fp.add_argument("--direction", default="[100]")
-    fp.add_argument("--euler", nargs=3, type=float, metavar=("PHI", "THETA", "PSI"))
-    fp.add_argument("--json", action="store_true", help="print the fit as JSON")
     return lp
 
 
@@ -187,44 +162,23 @@ def format_table(r, *, group: bool = False, by: str = "kh") -> str:
     return "\n".join(lines)
 
 
-def read_points(path: str) -> dict:
-    """The measured points of a CSV file: ``kh`` or ``frequency``, ``c`` and optionally ``sigma`` (arrays)."""
-    try:
-        raw = np.genfromtxt(path, delimiter=",", names=True, dtype=float, encoding="utf-8")
-    except (OSError, ValueError) as exc:
-        raise InputError(f"--data {path!r}: cannot read a CSV with a header row ({exc})") from None
-    names = set(raw.dtype.names or ())
-    if "c" not in names or len(names & {"kh", "frequency"}) != 1:
-        raise InputError(f"--data {path!r}: needs columns c and one of kh or frequency, got {sorted(names)}")
-    data = {k: np.atleast_1d(raw[k]) for k in ("kh", "frequency", "c", "sigma") if k in names}
-    return data
+def scene_row(name: str, sc: dict, built: bool, paper: bool, outputs: list[str]) -> dict:
+    """JSON row of ``surfwave scenes`` for a layered scene (surfwave.pipeline.layered_scenes)."""
+    def span(v):
+        return [min(v), max(v), len(v)]
+
+    films = [f"{f.get('material', f.get('name', 'film'))}:{f['thickness']:g}m" for f in sc["films"]]
+    return {"scene": name, "kind": "layered", "built_by_all": built, "paper": paper,
+            "substrate": sc["substrate"] if isinstance(sc["substrate"], str) else "mapping", "films": films,
+            "orientations": [o["label"] for o in sc["orientations"]], "kh": span(sc["kh"]),
+            "film_stress": span(sc["film_stress"]), "electrical": sc["electrical"], "leaky": sc["leaky"],
+            "quantities": sc["quantities"], "accuracy": sc["accuracy"], "outputs": outputs}
 
 
-def run_fit(args) -> int:
-    """Handler of ``surfwave layered-fit``: fit and print values, uncertainties and correlations."""
-    from surfwave.layers.fit import fit_film
-
-    films = [parse_film(f) for f in args.film]
-    data = read_points(args.data)
-    direction: str | float = args.direction
-    try:
-        direction = float(args.direction)
-    except ValueError:
-        pass
-    r = fit_film(args.substrate, films, data, args.fit, mode=args.mode, surface=args.surface,
-                 direction=direction, euler=args.euler)
-    if args.json:
-        out = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in r.items()}
-        json.dump(out, sys.stdout)
-        print()
-        return 0
-    print(f"# mode {args.mode}: chi^2 = {r['chi2']:.4g} with {r['dof']} degrees of freedom"
-          + ("" if r["converged"] else " (NOT converged)"))
-    for name, v, u in zip(r["names"], r["values"], r["uncertainty"]):
-        print(f"{name:>12} = {v:.6g} +- {u:.3g}")
-    print("# correlations")
-    for name, row in zip(r["names"], r["correlation"]):
-        print(f"{name:>12} " + " ".join(f"{x:+.4f}" for x in row))
-    if r["message"]:
-        print(f"# {r['message']}")
-    return 0
+def scene_text(r: dict) -> str:
+    """Two lines of ``surfwave scenes`` for a layered scene row."""
+    (klo, khi, nk), (slo, shi, ns) = r["kh"], r["film_stress"]
+    return (f"{'*' if r['built_by_all'] else ' '}{'P' if r['paper'] else ' '} {r['scene']:<14} "
+            f"{' / '.join(r['films'])} on {r['substrate']} {', '.join(r['orientations'])}, kh {klo:g}..{khi:g} "
+            f"({nk}), film stress {slo:g}..{shi:g} GPa ({ns}), {'/'.join(r['electrical'])} -> "
+            f"{', '.join(r['quantities'])}\n{'':18}figures and tables: {', '.join(r['outputs']) or 'none'}")

@@ -45,7 +45,7 @@ from surfwave.real_crystals.piezo_materials import (
 from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
 from surfwave.real_crystals.toec import cubic_toec
 from surfwave.solvers.euler import euler_lab_axes
-from surfwave.solvers.orientation import lab_axes, reference_direction, surface_normal
+from surfwave.solvers.orientation import lab_axes, reference_direction, surface_frame, surface_normal
 from surfwave.solvers.tensors import cubic_voigt
 
 __all__ = ["CONSTANT_KEYS", "DEFAULT_DIRECTION", "DEFAULT_SURFACE", "find_crystal", "piezo_wanted", "prestress",
@@ -299,8 +299,12 @@ def _orientation(surface, direction, angle, euler, cut) -> dict:
     R = lab_axes(surface, which)
     scalar = R.ndim == 2
     R = R.reshape(-1, 3, 3)
-    ref = reference_direction(surface)
-    ang = np.degrees(np.arctan2(R[:, 0] @ np.cross(surface_normal(surface), ref), R[:, 0] @ ref))
+    if isinstance(surface, str):      # the surface's frame, computed once per surface
+        _, ref, nr = surface_frame(surface)
+    else:
+        ref = reference_direction(surface)
+        nr = np.cross(surface_normal(surface), ref)
+    ang = np.degrees(np.arctan2(R[:, 0] @ nr, R[:, 0] @ ref))
     return {"axes": R, "scalar": scalar, "euler": None, "angle": ang, "cut_material": None, "where": surface}
 
 

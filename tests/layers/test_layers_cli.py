@@ -47,17 +47,3 @@ def test_parsers():
     """Film and kh parsing: units and the inclusive sweep."""
     assert parse_film("Au-poly:50nm:-0.5") == {"name": "Au-poly", "thickness": pytest.approx(5e-8), "stress": -0.5}
     assert parse_kh(["0:5:0.05"]).size == 101
-
-
-def test_fit_subcommand_reads_a_csv(tmp_path, capsys):
-    """surfwave layered-fit recovers E and nu of fused silica on Si from exact speeds in a CSV (to 1e-4)."""
-    kh = np.linspace(0.5, 5.0, 6)
-    c = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], kh=kh)["c"][:, 0]
-    path = tmp_path / "points.csv"
-    path.write_text("kh,c\n" + "".join(f"{float(k)!r},{float(v)!r}\n" for k, v in zip(kh, c)))
-    assert main(["layered-fit", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(path),
-                 "--fit", "E", "nu", "--json"]) == 0
-    r = json.loads(capsys.readouterr().out)
-    assert r["values"] == pytest.approx([73.0, 0.17], rel=1e-4)
-    assert main(["layered-fit", "--substrate", "Si", "--film", "SiO2:1um", "--data", str(tmp_path / "none.csv"),
-                 "--fit", "E"]) == 2

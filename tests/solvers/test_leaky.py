@@ -23,6 +23,7 @@ import surfwave
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_materials import get_cut, lab_tensors
 from surfwave.solvers import leaky as L
+from surfwave.solvers import leaky_search as LS
 from surfwave.solvers import orientation, tensors
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.leaky import EPS0, leaky_wave
@@ -34,7 +35,7 @@ LT = get_cut("36Y-X").material
 
 def _partial_waves(Q, R, T, X, d):
     """Stroh roots p (m, 2d) and eigenvectors (m, 2d, 2d) at X (m,) from the scaled blocks."""
-    return L._roots_at(L._stroh_base(Q, R, T, d), X, d)
+    return LS._roots_at(LS._stroh_base(Q, R, T, d), X, d)
 
 
 def rotated(material, phi, theta, psi):
@@ -102,7 +103,7 @@ def test_outgoing_root_has_positive_group_velocity():
         XL = L._limits(Q, R, T, d)
         X = np.array([0.5 * (XL[0, 0] + XL[0, 1])])
         p, xi = _partial_waves(Q, R, T, X, d)
-        out = p[0, L._choose_real(p, xi, d)[0, 0]]
+        out = p[0, LS._choose_real(p, xi, d)[0, 0]]
         assert abs(out.imag) < 1e-8
         h = 1e-7 * X
         p2, _ = _partial_waves(Q, R, T, X + h, d)
@@ -115,7 +116,7 @@ def _min_abs_det(Q, R, T, XL, d, electrical, t0, width):
     def f(t):
         X = np.array([XL[0, 0] + (XL[0, 1] - XL[0, 0]) * t * t])
         p, xi = _partial_waves(Q, R, T, X, d)
-        return abs(L._boundary(xi, L._choose_real(p, xi, d), d, electrical)[0][0])
+        return abs(LS._boundary(xi, LS._choose_real(p, xi, d), d, electrical)[0][0])
     lo, hi = t0 - width, t0 + width
     g = 0.5 * (np.sqrt(5) - 1)
     for _ in range(80):
@@ -152,9 +153,9 @@ def test_second_route_real_minimum_of_det(case):
 
     def f(X):
         p, xi = _partial_waves(Q, R, T, np.array([X]), d)
-        idx, ok = L._track(p_root[None], p)
+        idx, ok = LS._track(p_root[None], p)
         assert ok[0]
-        return L._boundary(xi, idx, d, el)[0][0]
+        return LS._boundary(xi, idx, d, el)[0][0]
     h = 1e-4 * abs(X0.imag) + 1e-7 * abs(X0)
     f1 = (f(X0 + h) - f(X0 - h)) / (2 * h)
     f2 = (f(X0 + h) - 2 * f(X0) + f(X0 - h)) / h ** 2
@@ -215,7 +216,7 @@ def test_yz_linbo3_vacuum_sign_free_above_metallized():
     idx = np.argsort(-p.imag, axis=1)[:, :4]
     v = {}
     for el in ("free", "metallized"):
-        f = np.abs(L._boundary(xi, idx, 4, el)[0])
+        f = np.abs(LS._boundary(xi, idx, 4, el)[0])
         v[el] = np.sqrt(X[np.argmin(f)] * s[0] / rho)
     assert v["free"] == pytest.approx(3488.0, rel=5e-3)
     assert v["metallized"] == pytest.approx(3404.0, rel=5e-3)

@@ -42,6 +42,8 @@ BENCH_MODULES = {
         "metrology.love",
         "metrology.film",
         "metrology.layered_model",
+        "layers.sensitivity",
+        "layers.solve",
         "api",
         "solvers.stroh",
     ),

@@ -1,5 +1,6 @@
 """Films on a crystal substrate: every guided mode, prestress, leaky modes, film metrology.
 
-Public entry points: :func:`surfwave.layered` (:mod:`surfwave.layers.solve`) and
-:func:`surfwave.fit_film` (:mod:`surfwave.layers.fit`). Physics: docs/physics/layered.md.
+Public entry point: :func:`surfwave.layered` (:mod:`surfwave.layers.solve`); sensitivities dc/dp of
+its guided modes by implicit differentiation (:mod:`surfwave.layers.sensitivity`), which the film
+fit :func:`surfwave.fit_film` (:mod:`surfwave.metrology`) uses. Physics: docs/physics/layered.md.
 """

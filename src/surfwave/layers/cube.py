@@ -35,7 +35,7 @@ COORDS = LAYERED_COORDS
 
 def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0,), electrical=("free",),
                     leaky: bool = False, euler=None, surface: str = "(001)", direction="[100]",
-                    stress=None) -> xr.Dataset:
+                    stress=None, keep_film_stress: bool = False) -> xr.Dataset:
     """All modes of a stack over film stresses x electrical conditions x kh, as a labelled Dataset.
 
     Parameters
@@ -48,6 +48,9 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
         Equibiaxial stresses (GPa) given to every film in turn.
     electrical : sequence of {"free", "metallized"} or Boundary
         Conditions of the top surface (piezoelectric stacks; elastic stacks take "free" only).
+    keep_film_stress : bool
+        True: a film that gives its own ``stress`` keeps it, and ``film_stress`` is given only to
+        the films without one (False: every film's stress is replaced).
 
     Returns
     -------
@@ -65,7 +68,8 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
         raise InputError(f"electrical must list distinct 'free'/'metallized', got {electrical!r}")
     runs: dict[tuple[int, int], dict[str, Any]] = {}
     for i, sig in enumerate(s):
-        fs = [{**dict(f), "stress": float(sig)} for f in films]
+        fs = [dict(f) if keep_film_stress and f.get("stress") is not None else {**dict(f), "stress": float(sig)}
+              for f in films]
         for j in range(len(bounds)):
             runs[i, j] = dict(layered(substrate, fs, euler=euler, surface=surface, direction=direction, kh=kh,
                                       electrical=bounds[j], stress=stress, leaky=leaky))

@@ -21,7 +21,7 @@ from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, Free, as_boundary
 
-__all__ = ["MAX_KH", "layered", "solve_stack"]
+__all__ = ["MAX_KH", "layered", "mode_speeds", "solve_stack"]
 
 #: Largest kh accepted (the speed grid grows with kh; beyond this the film is a half-space).
 MAX_KH = 1000.0
@@ -170,6 +170,53 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
 
         return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky)))
     return cast(LayeredResult, assemble(stack, _kh_values(kh), boundary, bool(leaky)))
+
+
+def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarray:
+    """Speeds of named guided modes only: the search of their families alone, no group velocity or K^2.
+
+    The numbers are those of :func:`layered` for the same labels (the same family search and the
+    same unstable rows); a fit evaluating one mode many times saves the other families' searches.
+
+    Parameters
+    ----------
+    stack : Stack
+    kh : array_like, shape (n,)
+        Wavenumber x total film thickness.
+    labels : str or sequence of str, length n
+        The mode of every point (or one for all): "R", "S1", "L0", "M2", ... (guided modes).
+    electrical : {"free", "metallized"}
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Phase speed, m/s; NaN where the mode does not exist (or the stack is unstable).
+    """
+    kh = _kh_values(kh)
+    which = np.broadcast_to(np.asarray(labels, dtype=object), kh.shape)
+    out = np.full(kh.size, np.nan)
+    if unstable_reason(stack):
+        return out
+    b = scaled_blocks(stack)
+    fams = families(b)
+    buckled = np.zeros(kh.size, dtype=bool)
+    for fam in fams:
+        buckled |= floor_unstable(b, fam, kh, electrical)
+    prefix = np.array([_prefix(str(lab)) for lab in which], dtype=object)
+    for fam in fams:
+        if not (prefix == fam.prefix).any():
+            continue
+        c = family_modes(b, fam, kh, electrical=electrical)  # all kh: the grid of layered()
+        for j in range(c.shape[1]):
+            hit = which == label(fam.prefix, j)
+            out[hit] = c[hit, j]
+    out[buckled] = np.nan
+    return out
+
+
+def _prefix(text: str) -> str:
+    """Family prefix of a guided mode's label ("" for a leaky or unknown one: no such mode)."""
+    return "" if text.endswith("~") else {"R": "R", "S": "R", "L": "L", "M": "M"}.get(text[:1], "")
 
 
 def unstable_reason(stack: Stack) -> str:

@@ -92,13 +92,17 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
     model : {"love", "layered"}
         ``"love"``: the shear-horizontal guided (Love) wave of one isotropic film on an
         isotropic substrate, closed form with exact sensitivities (fast). ``"layered"``: a
-        guided mode of any stack through :func:`surfwave.layered` (sensitivities by central
+        guided mode of any stack through :func:`surfwave.layered`, with sensitivities by
+        implicit differentiation of its secular equation
+        (:func:`surfwave.layers.sensitivity.mode_sensitivities`; leaky modes: central
         differences).
     film : mapping or sequence of mapping
         The film (or the films, top down) with the starting values of the free parameters and
         the values of the fixed ones. Love: {mu (GPa), rho (kg/m^3)} or {E (GPa), nu, rho},
         plus ``thickness`` (m; needed for frequency data). Layered: as :func:`surfwave.layered`
-        takes films (``voigt`` or E/nu, ``rho``, ``thickness``, ``euler``, ``stress`` in GPa).
+        takes films (``voigt`` or E/nu, ``rho``, ``thickness``, ``euler``, ``stress`` in GPa; or
+        a film by ``name``, e.g. {"name": "SiO2", "thickness": 1e-6}, whose database constants
+        are the starting values).
     substrate : str or mapping
         Love: an isotropic {mu, rho} or {E, nu, rho}. Layered: as :func:`surfwave.layered`
         (a material name or a mapping).
@@ -127,9 +131,10 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         Without sigma: equal relative (default) or absolute uncertainty of every point.
     jacobian_updates : {"auto", "exact", "broyden"}
         How the fitter refreshes the sensitivities between iterations
-        (:func:`surfwave.metrology.fit.fit`); ``auto``: exact for the Love model (they are
-        analytic), Broyden updates between finite-difference Jacobians for the layered model
-        (each finite-difference Jacobian costs 2 x the free parameters solver calls).
+        (:func:`surfwave.metrology.fit.fit`); ``auto``: exact whenever the forward model has
+        its own sensitivities (the Love model; the layered model's guided modes), Broyden
+        updates between finite-difference Jacobians otherwise (leaky layered modes: each
+        finite-difference Jacobian costs 2 x the free parameters solver calls).
     check_linearity : bool
         Check the linear uncertainties by holding each parameter one sigma off and refitting the
         others (8 model calls per free parameter); a warning gives the profile's range where
@@ -201,10 +206,11 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         desc = (f"Love mode{'s' if len(distinct) > 1 else ''} {', '.join(str(m) for m in distinct)} "
                 "(SH, isotropic film on isotropic substrate, closed form)")
     elif model == "layered":
-        films = [film] if isinstance(film, Mapping) else list(film)
+        films: list[Mapping[str, Any]] = [film] if isinstance(film, Mapping) else list(film)
         opts = dict(layered_options or {})
         for m in distinct:
-            layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)  # checks
+            checked = layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)
+        films = [*checked.films]  # a film given by name, as explicit constants
 
         def one(m: Any) -> Any:
             return layered_model(substrate, films, free, layer=layer, mode=m, variable=variable, **opts)
@@ -226,7 +232,7 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
     context = (f"from {len(distinct)} modes ({kind}modes {', '.join(map(str, distinct))}) at {span}"
                if len(distinct) > 1 else f"from one mode ({kind}mode {distinct[0]}) at {span}")
     if jacobian_updates == "auto":
-        jacobian_updates = "exact" if model == "love" else "broyden"
+        jacobian_updates = "exact" if hasattr(fwd, "jacobian") else "broyden"
     result = fit(fwd, xa, c, params, free=free, bounds={n: limits[n] for n in free if n in limits},
                  sigma=sigma, noise=noise, jacobian_updates=jacobian_updates, check_linearity=check_linearity,
                  context=context, x_name="kh" if variable == "kh" else "frequency_Hz", description=desc,

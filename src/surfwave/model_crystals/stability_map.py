@@ -64,33 +64,101 @@ def stability_map(
     grid = DEFAULT_GRID if d_over_d0 is None else np.asarray(d_over_d0, float)
     knobs: dict[str, Any] = dict(supercell=supercell, displacement=displacement, zone_mesh=zone_mesh)
     shape = (len(potentials), len(loadings), len(directions))
-    state = np.full(shape + (grid.size,), -1, np.int8)
-    fields = {k: np.full(shape + (grid.size,), np.nan) for k in ("min_omega2", "min_c2_phonopy")}
-    flags = {
-        k: np.zeros(shape + (grid.size,), bool)
-        for k in ("stable_long_wave", "stable_full_zone", "stable_zone_mesh")
-    }
-    qmin = np.full(shape + (grid.size, 3), np.nan)
-    limits = np.full(shape + (2, 2), np.nan)
-    geom = np.full(shape + (2,), np.nan)
+    arrays = _empty_map(shape, grid.size)
     for idx in np.ndindex(shape):
-        pot, load, d = potentials[idx[0]], loadings[idx[1]], directions[idx[2]]
-        scan = stability_scan("fcc", load, pot, d, grid, **knobs)
-        built = np.array([("GeometryError" not in r) for r in scan["reason"]])
-        flags["stable_long_wave"][idx] = scan["stable_long_wave"]
-        flags["stable_full_zone"][idx] = scan["stable_full_zone"]
-        flags["stable_zone_mesh"][idx] = scan["min_omega2"] > -TOLERANCE
-        fields["min_omega2"][idx] = scan["min_omega2"]
-        fields["min_c2_phonopy"][idx] = scan["min_c2_phonopy"]
-        qmin[idx] = scan["min_omega2_q"]
-        state[idx] = np.where(
-            ~built, -1, np.where(~scan["stable_long_wave"], 0, np.where(~scan["stable_full_zone"], 1, 2))
+        _fill_case(arrays, idx, potentials[idx[0]], loadings[idx[1]], directions[idx[2]], grid, knobs, tol)
+    return _map_dataset(arrays, potentials, loadings, directions, grid, knobs, tol)
+
+
+def _empty_map(shape: tuple[int, int, int], n: int) -> dict[str, np.ndarray]:
+    """The map's arrays before any case is scanned (state -1, flags False, values NaN).
+
+    Parameters
+    ----------
+    shape : tuple of int
+        (potential, loading, direction) sizes.
+    n : int
+        Number of strain points.
+
+    Returns
+    -------
+    dict of ndarray
+        ``state`` (*shape, n) int8; ``stable_long_wave``, ``stable_full_zone``,
+        ``stable_zone_mesh`` (*shape, n) bool; ``min_omega2`` (K/m) and ``min_c2_phonopy``
+        (K d0^2/m) (*shape, n); ``min_omega2_q`` (*shape, n, 3) rad/d0; ``d_limit`` (*shape, 2
+        kind, 2 side); ``d_geometry_limit`` (*shape, 2 side).
+    """
+    out: dict[str, np.ndarray] = {"state": np.full(shape + (n,), -1, np.int8)}
+    out.update({k: np.full(shape + (n,), np.nan) for k in ("min_omega2", "min_c2_phonopy")})
+    out.update({k: np.zeros(shape + (n,), bool) for k in ("stable_long_wave", "stable_full_zone", "stable_zone_mesh")})
+    out["min_omega2_q"] = np.full(shape + (n, 3), np.nan)
+    out["d_limit"] = np.full(shape + (2, 2), np.nan)
+    out["d_geometry_limit"] = np.full(shape + (2,), np.nan)
+    return out
+
+
+def _fill_case(arrays: dict[str, np.ndarray], idx: tuple[int, ...], pot: str | PairPotential, load: Loading,
+               d: Direction, grid: np.ndarray, knobs: dict[str, Any], tol: float) -> None:
+    """Scan one (potential, loading, direction) case and write it into ``arrays`` at ``idx``.
+
+    Parameters
+    ----------
+    arrays : dict of ndarray
+        From :func:`_empty_map` (written in place).
+    idx : tuple of int
+        (potential, loading, direction) index of the case.
+    pot, load, d
+        The case.
+    grid : ndarray, shape (n,)
+        d/d0 values.
+    knobs : dict
+        Phonopy knobs (``supercell``, ``displacement``, ``zone_mesh``).
+    tol : float
+        Bisection tolerance of the limits, in d/d0.
+    """
+    scan = stability_scan("fcc", load, pot, d, grid, **knobs)
+    built = np.array([("GeometryError" not in r) for r in scan["reason"]])
+    arrays["stable_long_wave"][idx] = scan["stable_long_wave"]
+    arrays["stable_full_zone"][idx] = scan["stable_full_zone"]
+    arrays["stable_zone_mesh"][idx] = scan["min_omega2"] > -TOLERANCE
+    arrays["min_omega2"][idx] = scan["min_omega2"]
+    arrays["min_c2_phonopy"][idx] = scan["min_c2_phonopy"]
+    arrays["min_omega2_q"][idx] = scan["min_omega2_q"]
+    arrays["state"][idx] = np.where(
+        ~built, -1, np.where(~scan["stable_long_wave"], 0, np.where(~scan["stable_full_zone"], 1, 2))
+    )
+    for k, kind in enumerate(_KINDS):
+        arrays["d_limit"][idx + (k,)] = instability_limits(
+            "fcc", load, pot, d, kind, tol=tol, **(knobs if k else {})
         )
-        for k, kind in enumerate(_KINDS):
-            limits[idx + (k,)] = instability_limits(
-                "fcc", load, pot, d, kind, tol=tol, **(knobs if k else {})
-            )
-        geom[idx] = geometry_limit("fcc", load, pot, d, tol=tol)
+    arrays["d_geometry_limit"][idx] = geometry_limit("fcc", load, pot, d, tol=tol)
+
+
+def _map_dataset(arrays: dict[str, np.ndarray], potentials: Sequence[str | PairPotential],
+                 loadings: Sequence[Loading], directions: Sequence[Direction], grid: np.ndarray,
+                 knobs: dict[str, Any], tol: float) -> xr.Dataset:
+    """Label the arrays of :func:`_empty_map` as the map's Dataset (CF attributes, coordinates).
+
+    Parameters
+    ----------
+    arrays : dict of ndarray
+        Filled by :func:`_fill_case` (shapes in :func:`_empty_map`).
+    potentials, loadings, directions : sequence
+        Coordinates of the first three dims.
+    grid : ndarray, shape (n,)
+        d/d0 values.
+    knobs : dict
+        Phonopy knobs, stored as attributes.
+    tol : float
+        Bisection tolerance of the limits, stored with ``d_limit``.
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`stability_map`.
+    """
+    state, qmin, limits, geom = (arrays[k] for k in ("state", "min_omega2_q", "d_limit", "d_geometry_limit"))
+    supercell, displacement, zone_mesh = knobs["supercell"], knobs["displacement"], knobs["zone_mesh"]
     dims = ("potential", "loading", "direction")
     ds = xr.Dataset(
         {
@@ -106,7 +174,7 @@ def stability_map(
             ),
             "stable_long_wave": (
                 dims + ("strain",),
-                flags["stable_long_wave"],
+                arrays["stable_long_wave"],
                 {
                     "long_name": "acoustic tensor Q(n) positive for every direction n (analytic, Eq. A11)",
                     "units": "1",
@@ -114,7 +182,7 @@ def stability_map(
             ),
             "stable_full_zone": (
                 dims + ("strain",),
-                flags["stable_full_zone"],
+                arrays["stable_full_zone"],
                 {
                     "long_name": "no imaginary phonon frequency: zone mesh and long-wave limit (phonopy)",
                     "units": "1",
@@ -122,7 +190,7 @@ def stability_map(
             ),
             "stable_zone_mesh": (
                 dims + ("strain",),
-                flags["stable_zone_mesh"],
+                arrays["stable_zone_mesh"],
                 {
                     "long_name": "no imaginary phonon frequency on the zone mesh alone (Gamma excluded)",
                     "units": "1",
@@ -130,7 +198,7 @@ def stability_map(
             ),
             "min_omega2": (
                 dims + ("strain",),
-                fields["min_omega2"],
+                arrays["min_omega2"],
                 {"long_name": "lowest omega^2 on the zone mesh (refined when negative)", "units": "K / m"},
             ),
             "min_omega2_q": (
@@ -140,7 +208,7 @@ def stability_map(
             ),
             "min_c2_phonopy": (
                 dims + ("strain",),
-                fields["min_c2_phonopy"],
+                arrays["min_c2_phonopy"],
                 {
                     "long_name": "lowest acoustic-tensor eigenvalue over all directions (phonopy)",
                     "units": "K d0^2 / m",

@@ -33,6 +33,7 @@ KINDS: dict[str, tuple[str, str, str]] = {
                       "materials and surfaces (and angles or directions)"),
     "piezo_scene": ("piezoelectric scene", "'materials' with 'cuts' or 'euler'",
                     "materials and either cuts or euler"),
+    "layered_scene": ("layered scene", "'substrate'", "substrate, films and kh"),
 }
 #: JSON types as a user reads them.
 _TYPE_WORDS = {"array": "a list", "object": "a mapping", "number": "a number", "integer": "an integer",
@@ -69,6 +70,8 @@ def join(messages: list[str]) -> str:
 
 def scene_kind(raw: Any) -> str:
     """The schema definition a scene is checked against (a key of :data:`KINDS`)."""
+    if isinstance(raw, dict) and "substrate" in raw:
+        return "layered_scene"
     if isinstance(raw, dict) and "materials" in raw:
         return "piezo_scene" if ("cuts" in raw or "euler" in raw) else "crystal_scene"
     return "scene"
@@ -100,6 +103,7 @@ def _unknown_keys(err, path: list, schema: dict | None) -> str:
     for key in extra:
         note = suggest(key, props)
         owners = [k for k, keys in others.items() if key in keys]
+        owners = [k for k in owners if k != "layered_scene"] if len(owners) > 1 else owners  # shared keys
         if owners:
             note = " (a key of " + " and ".join(f"{KINDS[k][0]}s, which have {KINDS[k][1]}" for k in owners) + ")"
         elif not note:
@@ -267,7 +271,7 @@ def rest_problems(name: str, raw: dict, errors: list, unknown: dict[str, set],
                 return []
     required = {"scene": ("lattice", "loading", "potentials", "d_over_d0", "quantities", "theta", "accuracy"),
                 "crystal_scene": ("materials", "surfaces", "loading", "toec", "quantities", "accuracy"),
-                "piezo_scene": ("materials",)}
+                "piezo_scene": ("materials",), "layered_scene": ("substrate", "films", "kh")}
     kind = scene_kind(rest)
     if kind != scene_kind(raw) or any(k not in rest for k in required[kind]):
         return []
@@ -292,7 +296,7 @@ def name_problems(name: str, raw: dict) -> tuple[list[str], dict[str, set]]:
     unknown: dict[str, set] = {}
     lookups: dict[str, dict[str, Callable[[str], object]]] = {
         "scene": {"potentials": get_potential}, "crystal_scene": {"materials": get_material},
-        "piezo_scene": {"materials": get_piezo_material, "cuts": get_cut}}
+        "piezo_scene": {"materials": get_piezo_material, "cuts": get_cut}, "layered_scene": {}}
     keys = lookups[kind]
     problems = []
     for key, lookup in keys.items():

@@ -197,7 +197,7 @@ def expected_cost(scenes: dict, names: Iterable[str], announce: float = ANNOUNCE
     lines = []
     for name in names:
         sc = scenes[name]
-        if sc.get("kind") in ("crystal", "piezo"):  # real-crystal scenes: about a second per thousand points
+        if sc.get("kind") in ("crystal", "piezo", "layered"):  # real crystals, stacks: ~1 s per thousand points
             continue
         n_pot, n_d = len(sc["potentials"]), len(sc["d_over_d0"])
         for stage in ("bulk", "dispersion", "entropy"):

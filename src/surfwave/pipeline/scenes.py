@@ -34,6 +34,7 @@ from surfwave.pipeline.config_messages import join as _join
 from surfwave.pipeline.config_messages import name_problems, rest_problems, schema_message
 from surfwave.pipeline.crystal_scenes import check_crystal_scene, fcc_angles
 from surfwave.pipeline.grids import DECIMALS, MAX_POINTS, SceneError, check_points, expand_grid, theta_grid  # noqa: F401 (public)
+from surfwave.pipeline.layered_scenes import check_layered_scene, is_layered_scene
 from surfwave.pipeline.piezo_scenes import check_piezo_scene, is_piezo_scene
 from surfwave.pipeline.surface_phonons_scenes import DEFAULT_SURFACES, check_surfaces
 
@@ -50,6 +51,7 @@ CUBES = {
     "entropy": "entropy.nc",
     "surface_wave": "surface_wave.nc",
     "surface_phonons": "surface_phonons.nc",
+    "dispersion_layered": "dispersion_layered.nc",
 }
 #: Quantities that exist only for the triangular lattice (row-by-row lattice dynamics).
 TRIANGULAR_ONLY = ("dispersion", "displacements", "entropy")
@@ -282,6 +284,8 @@ def _scene_check(name: str, raw: dict, sources: dict[str, list[str]] | None) -> 
     if is_piezo_scene(raw):  # cuts or Euler angles (surfwave.pipeline.piezo_scenes)
         where = _key_dir(name, "toec_file", sources) if "toec_file" in raw else None
         check = partial(check_piezo_scene, base_dir=where)
+    if is_layered_scene(raw):  # films on a substrate (surfwave.pipeline.layered_scenes)
+        check = check_layered_scene
     return check(name, raw)
 
 
@@ -398,7 +402,7 @@ def targets(scenes: dict[str, dict], names, results: str = "results") -> list[st
     """The cube paths the named scenes ask for (crystal.nc always; one cube per quantity)."""
     out = []
     for name in names:
-        if scenes[name].get("kind") not in ("crystal", "piezo"):  # real crystals: no model-lattice cell
+        if scenes[name].get("kind") not in ("crystal", "piezo", "layered"):  # real crystals: no model-lattice cell
             out.append(f"{results}/{name}/crystal.nc")
         out += [f"{results}/{name}/{CUBES[q]}" for q in scenes[name]["quantities"]]
     return out

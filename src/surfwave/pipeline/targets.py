@@ -35,6 +35,9 @@ OUTPUT_NEEDS = {
     "piezo_angles": (("surface_wave",), ("plots.piezo",)),
     "piezo_stress": (("surface_wave",), ("plots.piezo",)),
     "surface_phonons": (("surface_phonons",), ("plots.surface_phonons",)),
+    "layered_dispersion": (("dispersion_layered",), ("plots.layered",)),
+    "layered_k2": (("dispersion_layered",), ("plots.layered",)),
+    "layered_stress": (("dispersion_layered",), ("plots.layered",)),
     "summary": ((), ("report.summary",)),  # reads every cube of the scene but crystal.nc
 }
 
@@ -53,6 +56,9 @@ REPORT_ENTRIES = {
     "acoustoelastic_md": ("acoustoelastic.rst", "Real crystals"),
     "piezo_angles": ("piezo_vs_angle.rst", "Piezoelectric crystals"),
     "piezo_stress": ("piezo_vs_stress.rst", "Piezoelectric crystals"),
+    "layered_dispersion": ("layered.rst", "Layered stacks"),
+    "layered_k2": ("layered.rst", "Layered stacks"),
+    "layered_stress": ("layered.rst", "Layered stacks"),
 }
 #: SLURM group of a scene's figures job (profiles/slurm names the groups of the cube rules):
 #: the figures ride in the job of the first cube stage listed here that they read. Each of
@@ -64,6 +70,7 @@ FIGURE_GROUPS = {
     "displacements": "scene_displacements",
     "bulk": "scene_bulk",
     "surface_wave": "scene_crystal",
+    "dispersion_layered": "scene_layered",
 }
 
 
@@ -137,6 +144,8 @@ def scene_outputs(scenes: dict, name: str) -> dict[str, str]:
                        acoustoelastic_md="acoustoelastic.md", acoustoelastic_csv="acoustoelastic.csv")
     if s.get("kind") == "piezo" and "surface_wave" in q:
         out.update(piezo_outputs(s))
+    if s.get("kind") == "layered" and "dispersion_layered" in q:
+        out.update(layered_outputs(s))
     if name not in paper_scenes():
         out["summary"] = "summary.md"
     return out
@@ -161,6 +170,17 @@ def piezo_outputs(s: dict) -> dict[str, str]:
         out["piezo_angles"] = "piezo_vs_angle.png"
     if len(s.get("stress") or []) >= 2:
         out["piezo_stress"] = "piezo_vs_stress.png"
+    return out
+
+
+def layered_outputs(s: dict) -> dict[str, str]:
+    """Figures of a layered scene: ``dispersion_layered.png`` always, ``k2_layered.png`` for a
+    piezoelectric stack, ``dispersion_layered_vs_stress.png`` with two or more film stresses."""
+    out = {"layered_dispersion": "dispersion_layered.png"}
+    if s.get("piezo"):
+        out["layered_k2"] = "k2_layered.png"
+    if len(s.get("film_stress") or []) >= 2:
+        out["layered_stress"] = "dispersion_layered_vs_stress.png"
     return out
 
 

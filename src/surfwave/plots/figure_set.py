@@ -12,8 +12,9 @@ Examples
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from typing import Any, NamedTuple
 
 
 def _suffixed(outputs: Mapping[str, str], prefix: str) -> dict[str, str]:
@@ -31,7 +32,8 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
         Output key -> path, keys as :func:`surfwave.pipeline.targets.scene_outputs` names
         them (``speeds``, ``table1_md``/``_csv``/``_png``, ``dispersion_<potential>``,
         ``theta_c``, ``displacements_<potential>``, ``entropy``, ``surface_wave_angles``,
-        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``summary``).
+        ``surface_wave_vs_stress``, ``acoustoelastic_md``/``_csv``, ``layered_dispersion``,
+        ``layered_k2``, ``layered_stress``, ``summary``).
     cubes : mapping
         Cube name (``elastic``, ``dispersion``, ...) -> path of the scene's cube.
     scene : str
@@ -53,39 +55,79 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
     """
     from surfwave.data.cube import open_cube
 
-    done: set[str] = set()
-    opened: dict = {}
+    opened: dict[str, Any] = {}
 
-    def cube(name):  # opened once, read variable by variable (large scenes stay small)
+    def cube(name: str) -> Any:  # opened once, read variable by variable (large scenes stay small)
         if name not in opened:
             opened[name] = open_cube(cubes[name], load=False)
         return opened[name]
 
-    if "speeds" in outputs:
-        from surfwave.plots.speeds import LOADING_TITLES, fig2
+    job = _Job(outputs, cubes, cube, scene, spec, paper_values)
+    done: set[str] = set()
+    for draw in _DRAWERS:
+        done |= draw(job)
+    for ds in opened.values():
+        ds.close()
+    unknown = set(outputs) - done
+    if unknown:
+        raise KeyError(f"draw_figure_set does not know how to write {sorted(unknown)}")
+    return [Path(outputs[k]) for k in outputs]
 
-        loading = LOADING_TITLES.get(spec["loading"], spec["loading"])
-        fig2(cube("elastic"), cube("rayleigh"), outputs["speeds"],
-             title=f"{spec['lattice'].upper()} (001) surface, {loading} (scene {scene})")
-        done.add("speeds")
-    if "table1_md" in outputs:
-        from surfwave.plots.speeds import table1_figure
-        from surfwave.report.reproduction import table1
 
-        table1(cubes["elastic"], cubes["rayleigh"], outputs["table1_md"], outputs["table1_csv"],
-               paper_values_path=paper_values)
-        table1_figure(outputs["table1_csv"], outputs["table1_png"])
-        done.update({"table1_md", "table1_csv", "table1_png"})
+class _Job(NamedTuple):
+    """What every drawer of :func:`draw_figure_set` reads: its arguments and the cube opener."""
+
+    outputs: Mapping[str, str]
+    cubes: Mapping[str, str]
+    cube: Callable[[str], Any]      # cube name -> the opened (lazily loaded) Dataset
+    scene: str
+    spec: Mapping
+    paper_values: str | Path | None
+
+
+def _speeds(job: _Job) -> set[str]:
+    """Fig. 2 (``speeds``): squared speeds against strain of an FCC lattice scene."""
+    if "speeds" not in job.outputs:
+        return set()
+    from surfwave.plots.speeds import LOADING_TITLES, fig2
+
+    loading = LOADING_TITLES.get(job.spec["loading"], job.spec["loading"])
+    fig2(job.cube("elastic"), job.cube("rayleigh"), job.outputs["speeds"],
+         title=f"{job.spec['lattice'].upper()} (001) surface, {loading} (scene {job.scene})")
+    return {"speeds"}
+
+
+def _table1(job: _Job) -> set[str]:
+    """Table I as Markdown, CSV and PNG (``table1_md``, ``table1_csv``, ``table1_png``)."""
+    if "table1_md" not in job.outputs:
+        return set()
+    from surfwave.plots.speeds import table1_figure
+    from surfwave.report.reproduction import table1
+
+    out = job.outputs
+    table1(job.cubes["elastic"], job.cubes["rayleigh"], out["table1_md"], out["table1_csv"],
+           paper_values_path=job.paper_values)
+    table1_figure(out["table1_csv"], out["table1_png"])
+    return {"table1_md", "table1_csv", "table1_png"}
+
+
+def _dispersion(job: _Job) -> set[str]:
+    """Triangular-lattice dispersion per potential (``dispersion_<potential>``), the critical
+    angles (``theta_c``) and the displacements per potential (``displacements_<potential>``)."""
+    outputs, scene = job.outputs, job.scene
     dispersion, displacements = _suffixed(outputs, "dispersion"), _suffixed(outputs, "displacements")
-    if dispersion or "theta_c" in outputs or displacements:
-        from surfwave.plots.dispersion import plot_dispersion, plot_displacements, plot_theta_c
-        from surfwave.plots.labels import potential_label
+    if not (dispersion or "theta_c" in outputs or displacements):
+        return set()
+    from surfwave.plots.dispersion import plot_dispersion, plot_displacements, plot_theta_c
+    from surfwave.plots.labels import potential_label
+
+    done = set()
     for pot, path in dispersion.items():
-        plot_dispersion(cube("dispersion").sel(potential=pot), path,
+        plot_dispersion(job.cube("dispersion").sel(potential=pot), path,
                         title=f"triangular lattice, {potential_label(pot)} (scene {scene})")
         done.add(f"dispersion_{pot}")
     if "theta_c" in outputs:
-        ds = cube("dispersion")
+        ds = job.cube("dispersion")
         pots = [str(p) for p in ds["potential"].values]
         plot_theta_c([ds.sel(potential=p) for p in pots], outputs["theta_c"],
                      title=f"triangular lattice (scene {scene})", potential_labels=pots)
@@ -93,49 +135,97 @@ def draw_figure_set(outputs: Mapping[str, str], cubes: Mapping[str, str], scene:
     if displacements:
         from surfwave.plots.speeds import FIG3_ROWS, FIG3_THETA, nearest_indices
 
-        ds = cube("displacements")
+        ds = job.cube("displacements")
         ds = ds.isel(theta=nearest_indices(ds["theta"].values, FIG3_THETA), row=slice(0, FIG3_ROWS))
         for pot, path in displacements.items():
             plot_displacements(ds, path, potential=pot)
             done.add(f"displacements_{pot}")
-    if "entropy" in outputs:
-        from surfwave.plots.entropy import entropy_vs_strain
+    return done
 
-        entropy_vs_strain(cube("entropy"), outputs["entropy"],
-                          title=f"surface entropy, triangular lattice (scene {scene})")
-        done.add("entropy")
-    phonon_figs = {k: v for k, v in outputs.items() if k.startswith("surface_phonons_")}
-    if phonon_figs:  # surfwave.pipeline.targets.surface_phonons_outputs
-        from surfwave.plots.surface_phonons import draw_all
 
-        done.update(draw_all(cube("surface_phonons"), phonon_figs, scene))
+def _entropy(job: _Job) -> set[str]:
+    """Surface entropy against strain (``entropy``)."""
+    if "entropy" not in job.outputs:
+        return set()
+    from surfwave.plots.entropy import entropy_vs_strain
+
+    entropy_vs_strain(job.cube("entropy"), job.outputs["entropy"],
+                      title=f"surface entropy, triangular lattice (scene {job.scene})")
+    return {"entropy"}
+
+
+def _surface_phonons(job: _Job) -> set[str]:
+    """FCC surface phonons: dispersion, soft-mode map and entropy per potential
+    (``surface_phonons_*``, :func:`surfwave.pipeline.targets.surface_phonons_outputs`)."""
+    phonon_figs = {k: v for k, v in job.outputs.items() if k.startswith("surface_phonons_")}
+    if not phonon_figs:
+        return set()
+    from surfwave.plots.surface_phonons import draw_all
+
+    return set(draw_all(job.cube("surface_phonons"), phonon_figs, job.scene))
+
+
+def _real_crystals(job: _Job) -> set[str]:
+    """Real-crystal speeds against angle (``surface_wave_angles``) and against stress
+    (``surface_wave_vs_stress``) with the acoustoelastic table (``acoustoelastic_md``/``_csv``)."""
+    outputs, title = job.outputs, f"scene {job.scene}"
+    done = set()
     if "surface_wave_angles" in outputs:
         from surfwave.plots.surface_wave import speeds_vs_angle
 
-        speeds_vs_angle(cube("surface_wave"), outputs["surface_wave_angles"], title=f"scene {scene}")
+        speeds_vs_angle(job.cube("surface_wave"), outputs["surface_wave_angles"], title=title)
         done.add("surface_wave_angles")
     if "surface_wave_vs_stress" in outputs:
         from surfwave.plots.surface_wave import speeds_vs_stress
         from surfwave.report.acoustoelastic import write_table
 
-        speeds_vs_stress(cube("surface_wave"), outputs["surface_wave_vs_stress"], title=f"scene {scene}")
-        write_table(cube("surface_wave"), outputs["acoustoelastic_md"], outputs["acoustoelastic_csv"])
+        speeds_vs_stress(job.cube("surface_wave"), outputs["surface_wave_vs_stress"], title=title)
+        write_table(job.cube("surface_wave"), outputs["acoustoelastic_md"], outputs["acoustoelastic_csv"])
         done.update({"surface_wave_vs_stress", "acoustoelastic_md", "acoustoelastic_csv"})
-    if "piezo_angles" in outputs or "piezo_stress" in outputs:
-        from surfwave.plots import piezo
+    return done
 
-        for key, draw in (("piezo_angles", piezo.speeds_vs_euler), ("piezo_stress", piezo.speeds_vs_stress)):
-            if key in outputs:
-                draw(cube("surface_wave"), outputs[key], title=f"scene {scene}")
-                done.add(key)
-    if "summary" in outputs:
-        from surfwave.report.summary import write_summary
 
-        write_summary(list(cubes.values()), outputs["summary"], scene)
-        done.add("summary")
-    for ds in opened.values():
-        ds.close()
-    unknown = set(outputs) - done
-    if unknown:
-        raise KeyError(f"draw_figure_set does not know how to write {sorted(unknown)}")
-    return [Path(outputs[k]) for k in outputs]
+def _piezo(job: _Job) -> set[str]:
+    """Piezoelectric crystals: speeds and K^2 against Euler angle (``piezo_angles``) and stress
+    (``piezo_stress``)."""
+    if "piezo_angles" not in job.outputs and "piezo_stress" not in job.outputs:
+        return set()
+    from surfwave.plots import piezo
+
+    done = set()
+    for key, draw in (("piezo_angles", piezo.speeds_vs_euler), ("piezo_stress", piezo.speeds_vs_stress)):
+        if key in job.outputs:
+            draw(job.cube("surface_wave"), job.outputs[key], title=f"scene {job.scene}")
+            done.add(key)
+    return done
+
+
+def _layered(job: _Job) -> set[str]:
+    """Layered stacks: dispersion (``layered_dispersion``), K^2 against kh (``layered_k2``) and
+    the film-stress shift (``layered_stress``)."""
+    if not any(k.startswith("layered_") for k in job.outputs):
+        return set()
+    from surfwave.plots import layered
+
+    done = set()
+    for key, draw in (("layered_dispersion", layered.dispersion), ("layered_k2", layered.coupling),
+                      ("layered_stress", layered.stress_shift)):
+        if key in job.outputs:
+            draw(job.cube("dispersion_layered"), job.outputs[key], title=f"scene {job.scene}")
+            done.add(key)
+    return done
+
+
+def _summary(job: _Job) -> set[str]:
+    """The scene's summary page (``summary``) over all its cubes."""
+    if "summary" not in job.outputs:
+        return set()
+    from surfwave.report.summary import write_summary
+
+    write_summary(list(job.cubes.values()), job.outputs["summary"], job.scene)
+    return {"summary"}
+
+
+#: The drawers, in the order the outputs are written (the summary last).
+_DRAWERS: tuple[Callable[[_Job], set[str]], ...] = (_speeds, _table1, _dispersion, _entropy, _surface_phonons,
+                                                    _real_crystals, _piezo, _layered, _summary)

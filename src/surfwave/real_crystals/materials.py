@@ -18,7 +18,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from importlib import resources
 from typing import Callable, Literal
 
@@ -74,14 +74,17 @@ class Material:
     temperature: float = 300.0
     aliases: tuple = field(default_factory=tuple)
 
-    @property
+    @cached_property
     def toec_voigt(self) -> np.ndarray | None:
-        """Third-order constants as a Voigt array, shape (6, 6, 6), GPa (None if unknown)."""
+        """Third-order constants as a Voigt array, shape (6, 6, 6), GPa (None if unknown); built
+        once per record, read-only (like ``voigt``)."""
         if self.toec is None:
             return None
         from surfwave.real_crystals.toec import cubic_toec
 
-        return cubic_toec(**self.toec)
+        C3 = cubic_toec(**self.toec)
+        C3.setflags(write=False)
+        return C3
 
 
 def _read() -> dict:

@@ -49,6 +49,13 @@ DEFAULT_TOL = 1e-9
 _BASIS = np.zeros((6, 3, 3))
 for _a, (_i, _j) in enumerate(VOIGT_PAIRS):
     _BASIS[_a, _i, _j] = _BASIS[_a, _j, _i] = 1.0
+# The one non-zero (= 1) entry of each row (and, _BASIS being symmetric, column) of _BASIS[a]: index
+# 3 where the row is zero. X @ _BASIS[a] is X's columns picked by it (and _BASIS[a] @ X X's rows), a
+# zero column (row) appended to X standing for 3: the same numbers as the matrix products, without
+# their cost (a product with 1 and sums with +0 are exact).
+_BASIS_PICK = np.where(_BASIS.any(axis=-1), np.argmax(_BASIS, axis=-1), 3)     # (6, 3)
+_PICK_ROWS = np.broadcast_to(np.arange(3)[None, :, None], (6, 3, 3))
+_PICK_COLS = np.broadcast_to(_BASIS_PICK[:, None, :], (6, 3, 3))
 
 
 def cubic_toec(C111: ArrayLike, C112: ArrayLike, C123: ArrayLike, C144: ArrayLike, C155: ArrayLike,
@@ -206,7 +213,12 @@ def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.
     """
     F = np.asarray(F, dtype=float)
     C2 = _as_c2(C2)
-    K = C2 if C3 is None else _tangent(C2, _as_c3(C3), lagrangian_strain(F))
+    return _push_forward(F, C2 if C3 is None else _tangent(C2, _as_c3(C3), lagrangian_strain(F)))
+
+
+def _push_forward(F: np.ndarray, K: np.ndarray) -> np.ndarray:
+    """F_ip F_jq F_kr F_ls K_pqrs / J, shape (..., 3, 3, 3, 3): :func:`stressed_constants` from the
+    tangent K = C2 + C3 : eta (GPa) at F."""
     out = np.einsum("...ip,...pqrs->...iqrs", F, K)
     out = np.einsum("...jq,...iqrs->...ijrs", F, out)
     out = np.einsum("...kr,...ijrs->...ijks", F, out)
@@ -302,7 +314,7 @@ def _stress_parts(F, C2, C3) -> tuple[np.ndarray, dict]:
     J = np.linalg.det(F)
     Ft = np.swapaxes(F, -1, -2)
     sigma = F @ T @ Ft / J[..., None, None]
-    return sigma, {"F": F, "Ft": Ft, "T": T, "J": J, "K": K, "sigma": sigma}
+    return sigma, {"F": F, "Ft": Ft, "T": T, "J": J, "K": K, "sigma": sigma, "eta": eta}
 
 
 def _jacobian(parts: dict, rows=None) -> np.ndarray:
@@ -310,23 +322,32 @@ def _jacobian(parts: dict, rows=None) -> np.ndarray:
     (all when None) from :func:`_stress_parts` (each point's numbers do not depend on the others)."""
     F, Ft, T, J, K, sigma = (parts[k] if rows is None else parts[k][rows] for k in ("F", "Ft", "T", "J", "K", "sigma"))
     Finv = np.linalg.inv(F)
-    F1, Ft1, T1 = F[..., None, :, :], Ft[..., None, :, :], T[..., None, :, :]
+    F1, Ft1 = F[..., None, :, :], Ft[..., None, :, :]
     dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
-    FtdF = Ft1 @ dF
+    FtdF = _times_basis(Ft)                                    # Ft @ dF
     deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
     K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
     dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
-    dFTFt = dF @ T1 @ Ft1
+    dFTFt = np.swapaxes(_times_basis(np.swapaxes(T, -1, -2)), -1, -2).copy() @ Ft1     # (dF @ T) @ Ft
     term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
     trace = np.einsum("...ij,...bji->...b", Finv, dF)
     return term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
 
 
+def _times_basis(X: np.ndarray) -> np.ndarray:
+    """X @ _BASIS[a] for the six symmetric basis tensors, (..., 3, 3) -> (..., 6, 3, 3), by picking columns.
+
+    Each column of _BASIS[a] holds one 1 or none, so each entry of the product is one entry of X
+    or 0: the values of the matrix product (a product with 1 and sums with +0 are exact), as a
+    C-contiguous array like the product's.
+    """
+    Xp = np.concatenate([X, np.zeros(X.shape[:-1] + (1,))], axis=-1)      # column 3 = 0
+    return Xp[..., _PICK_ROWS, _PICK_COLS]
+
+
 def _voigt_vec(s) -> np.ndarray:
     """The six independent components of symmetric tensors, shape (..., 3, 3) -> (..., 6)."""
-    i = [p[0] for p in VOIGT_PAIRS]
-    j = [p[1] for p in VOIGT_PAIRS]
-    return s[..., i, j]
+    return s[..., _VI, _VJ]
 
 
 def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None, *, tol: float = DEFAULT_TOL,
@@ -358,15 +379,50 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
         ``F`` (..., 3, 3), ``eta`` (..., 3, 3), ``ok`` (...,) bool, ``reason`` (...,) str
         ("" where ok), ``iterations`` (...,) int, ``residual`` (...,) GPa.
     """
+    sol, _ = _deformation(_checked_sigma(sigma), _as_c2(C2), np.zeros((3,) * 6) if C3 is None else _as_c3(C3),
+                          tol, max_iterations)
+    return sol
+
+
+def _checked_sigma(sigma: ArrayLike) -> np.ndarray:
+    """sigma as a float array, shape (..., 3, 3), symmetric and finite (InputError otherwise)."""
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
         raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
-    if not np.allclose(sigma, np.swapaxes(sigma, -1, -2), atol=1e-12, rtol=0):
+    sigma_t = np.swapaxes(sigma, -1, -2)         # np.allclose(sigma, sigma_t, atol=1e-12, rtol=0), cheaper
+    with np.errstate(invalid="ignore"):                  # inf - inf: compared as equal below, as allclose does
+        symmetric = np.all((np.abs(sigma - sigma_t) <= 1e-12) | (sigma == sigma_t))
+    if not symmetric:
         raise InputError("sigma must be symmetric (a Cauchy stress)")
     if not np.all(np.isfinite(sigma)):
         raise InputError("sigma must be finite")
-    C2 = _as_c2(C2)
-    C3 = np.zeros((3,) * 6) if C3 is None else _as_c3(C3)
+    return sigma
+
+
+def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
+                 max_iterations: int) -> tuple[dict, np.ndarray]:
+    """:func:`deformation_for_stress` on checked input, and the tangent C2 + C3 : eta at its F.
+
+    Parameters
+    ----------
+    sigma : ndarray, shape (..., 3, 3)
+        Checked Cauchy stress, GPa, crystal axes.
+    C2 : ndarray, shape (3, 3, 3, 3)
+        Natural-state constants, GPa.
+    C3 : ndarray, shape (3, 3, 3, 3, 3, 3)
+        Brugger third-order constants, GPa.
+    tol : float
+        Largest accepted stress residual, GPa.
+    max_iterations : int
+
+    Returns
+    -------
+    sol : dict
+        As :func:`deformation_for_stress`.
+    K : ndarray, shape (n, 3, 3, 3, 3)
+        C2 + C3 : eta (GPa) at the last F of the iteration, n points flattened (the same
+        numbers as :func:`_tangent` of the returned ``eta`` where ``ok``).
+    """
     shape = sigma.shape[:-2]
     target = _voigt_vec(sigma).reshape(-1, 6)
     n = target.shape[0]
@@ -406,9 +462,9 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
                 if not todo.any():
                     break
             F[active] = F_a
-        eta = lagrangian_strain(F)
+        eta, K = parts["eta"], parts["K"]           # F has not moved since this last evaluation
         J = np.linalg.det(F)
-        K_min = np.linalg.eigvalsh(tensor_to_voigt(_tangent(C2, C3, eta)))[..., 0]
+        K_min = np.linalg.eigvalsh(tensor_to_voigt(K))[..., 0]
     reason = np.full(n, "", dtype=object)
     ok = done.copy()
     reason[~done] = [f"no homogeneous state of the third-order model found for this stress (Newton stalled at "
@@ -425,7 +481,7 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
     eta[~ok] = np.nan
     return {"F": F.reshape(shape + (3, 3)), "eta": eta.reshape(shape + (3, 3)),
             "ok": ok.reshape(shape), "reason": reason.astype(str).reshape(shape),
-            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}
+            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}, K
 
 
 def stressed_state(C2: ArrayLike, C3: ArrayLike | None, sigma: ArrayLike, rho0: float, *,
@@ -474,9 +530,11 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
         ok = np.ones(shape, dtype=bool)
         reason = np.full(shape, "", dtype=object)
     else:
-        sol = deformation_for_stress(sigma, C2, C3, tol=tol)
+        # the constants converted once; C* from the tangent the deformation solve ends with
+        # (the same numbers as stressed_constants(C2, C3, F), without recomputing them)
+        sol, K = _deformation(_checked_sigma(sigma), C2, _as_c3(C3), tol, MAX_ITERATIONS)
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
-        C_star = stressed_constants(C2, C3, F)
+        C_star = _push_forward(F, K.reshape(shape + (3, 3, 3, 3)))
         rho = float(rho0) / np.linalg.det(F)
     born = born_lowest(np.nan_to_num(C_star), sigma)
     lost = ok & ~(born > 0)

@@ -29,6 +29,7 @@ array([ 0.4082,  0.4082, -0.8165])
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from typing import Sequence
 
 import numpy as np
@@ -95,6 +96,12 @@ def parse_plane(text: str) -> np.ndarray:
 
 
 def _normal(surface) -> np.ndarray:
+    if isinstance(surface, str):
+        return surface_frame(surface)[0]
+    return _plane_normal(surface)
+
+
+def _plane_normal(surface) -> np.ndarray:
     hkl = parse_plane(surface) if isinstance(surface, str) else np.asarray(surface)
     hkl = np.asarray(hkl, dtype=float)
     if hkl.shape != (3,) or not np.all(np.isfinite(hkl)) or not hkl.any():
@@ -102,17 +109,8 @@ def _normal(surface) -> np.ndarray:
     return hkl / np.linalg.norm(hkl)
 
 
-def surface_normal(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
-    """Unit inward normal x2 = (h, k, l)/|(h, k, l)| of "(hkl)", crystal axes, shape (3,)."""
-    return _normal(surface)
-
-
-def reference_direction(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
-    """Unit reference direction (angle 0) of a surface, crystal axes, shape (3,).
-
-    (001): [100]; (110): [001]; (111): [1-10]; rule for any (hkl) in the module docstring.
-    """
-    n = _normal(surface)
+def _reference(n: np.ndarray) -> np.ndarray:
+    """Unit reference direction of the surface of unit normal n (rule in the module docstring)."""
     if abs(abs(n[2]) - 1.0) < 1e-12:
         r = np.array([1.0, 0.0, 0.0])
     elif abs(n[2]) < 1e-12:
@@ -120,6 +118,39 @@ def reference_direction(surface: str | Sequence[float] | np.ndarray) -> np.ndarr
     else:
         r = np.cross(n, [0.0, 0.0, 1.0])
     return r / np.linalg.norm(r)
+
+
+@lru_cache(maxsize=256)
+def surface_frame(surface: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Unit normal n, reference direction r and n x r of a surface "(hkl)", each shape (3,), crystal axes.
+
+    Computed once per surface string (the same numbers as :func:`surface_normal`,
+    :func:`reference_direction` and ``np.cross(n, r)``); the arrays are read-only.
+
+    Raises
+    ------
+    InputError
+        Not a surface "(hkl)" with three integers, or the zero vector.
+    """
+    n = _plane_normal(surface)
+    r = _reference(n)
+    nr = np.cross(n, r)
+    for v in (n, r, nr):
+        v.setflags(write=False)
+    return n, r, nr
+
+
+def surface_normal(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
+    """Unit inward normal x2 = (h, k, l)/|(h, k, l)| of "(hkl)", crystal axes, shape (3,)."""
+    return _normal(surface).copy()
+
+
+def reference_direction(surface: str | Sequence[float] | np.ndarray) -> np.ndarray:
+    """Unit reference direction (angle 0) of a surface, crystal axes, shape (3,).
+
+    (001): [100]; (110): [001]; (111): [1-10]; rule for any (hkl) in the module docstring.
+    """
+    return surface_frame(surface)[1].copy() if isinstance(surface, str) else _reference(_normal(surface))
 
 
 def _frames(x1: np.ndarray, n: np.ndarray) -> np.ndarray:
@@ -169,7 +200,11 @@ def lab_axes(surface: str | Sequence[float] | np.ndarray, direction: str | Array
     theta = np.asarray(direction, dtype=float)
     if not np.all(np.isfinite(theta)):
         raise InputError(f"angle must be finite degrees, got {direction!r}")
-    r = reference_direction(surface)
+    if isinstance(surface, str):
+        _, r, nr = surface_frame(surface)
+    else:
+        r = reference_direction(surface)
+        nr = np.cross(n, r)
     t = np.radians(theta)[..., None]
-    x1 = np.cos(t) * r + np.sin(t) * np.cross(n, r)
+    x1 = np.cos(t) * r + np.sin(t) * nr
     return _frames(x1, n)

@@ -292,13 +292,65 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
     >>> round(float(r["c"]), 6), str(r["wave_type"])    # sqrt(2 - 2/sqrt 3)
     (0.919402, 'surface')
     """
+    Af, rho_f, scale, shape = _checked_input(A, rho)
+    Ah = Af / scale[:, None, None, None, None]
+    Q, R, T = imp.stroh_blocks(Ah)
+    mir, eq17 = _mirror_points(Ah, mirror, shape)
+    Tpd = np.linalg.eigvalsh(T)[:, 0] > 0
+    XL, _ = imp.limiting_x(Q, R, T)
+    stable = Tpd & (XL > 0)
+    XL = np.where(stable, XL, np.nan)
+    X, found, method, pol, decay = _roots(Ah, Q, R, T, XL, stable, mir, eq17, tol)
+    wave_type, reason = _classify(X, XL, found, stable, Tpd, mir)
+    pol, decay, depth = _mode_shapes(Q, R, T, X, found, mir, pol, decay)
+    rho_s = scale / rho_f
+    out = {
+        "c": np.sqrt(X * rho_s),
+        "c_imag": np.where(found, 0.0, np.nan),
+        "c_limit": np.sqrt(XL * rho_s),
+        "wave_type": wave_type,
+        "reason": reason,
+        "polarisation": pol,
+        "decay": decay,
+        "penetration_depth": depth,
+        "mirror": mir,
+        "method": method,
+    }
+    return {k: (v.reshape(shape + v.shape[1:]) if v.ndim > 1 else v.reshape(shape)) for k, v in out.items()}
+
+
+def _checked_input(A: ArrayLike, rho: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[int, ...]]:
+    """The solver's input checks (shape, finite values, major symmetry, rho > 0), flattened.
+
+    Parameters
+    ----------
+    A : array_like, shape (..., d, d, d, d), d = 2 or 3
+        Wave-propagation tensor, any units.
+    rho : float or array_like broadcastable to A.shape[:-4]
+        Density.
+
+    Returns
+    -------
+    Af : ndarray, shape (n, d, d, d, d)
+        A flattened over its leading axes (n points), same units.
+    rho_f : ndarray, shape (n,)
+        Density per point.
+    scale : ndarray, shape (n,)
+        max |A| per point (units of A), > 0.
+    shape : tuple of int
+        A.shape[:-4], the shape of the results.
+
+    Raises
+    ------
+    InputError
+        Wrong shape, non-finite values, A = 0 at a point, A without major symmetry, rho <= 0.
+    """
     A = np.asarray(A, dtype=float)
     d = A.shape[-1] if A.ndim >= 4 else 0
     if A.ndim < 4 or A.shape[-4:] != (d,) * 4 or d not in (2, 3):
         raise InputError(f"A must have shape (..., d, d, d, d) with d = 2 or 3, got {A.shape}")
     shape = A.shape[:-4]
     Af = A.reshape((-1,) + (d,) * 4)
-    n = Af.shape[0]
     rho_f = np.broadcast_to(np.asarray(rho, dtype=float), shape).reshape(-1)
     if not np.all(np.isfinite(Af)):
         raise InputError("A contains non-finite values")
@@ -312,9 +364,30 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
         k = int(np.argmax(asym))
         raise InputError(f"A lacks the major symmetry A_ijkl = A_klij: |A - A^T| = {asym[k]:.3g} of max|A| "
                          f"at point {k}")
-    Ah = Af / scale[:, None, None, None, None]
-    Q, R, T = imp.stroh_blocks(Ah)
+    return Af, rho_f, scale, shape
 
+
+def _mirror_points(Ah: np.ndarray, mirror: ArrayLike | None, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Which points have a mirror sagittal plane, and which of those Eq. (17) solves.
+
+    Parameters
+    ----------
+    Ah : ndarray, shape (n, d, d, d, d)
+        A / max|A| (dimensionless), lab frame.
+    mirror : None or bool array_like broadcastable to ``shape``
+        The caller's answer; None: detected from ``Ah`` (odd-in-3 components below
+        :data:`SYMMETRY_TOL`; always True for d = 2).
+    shape : tuple of int
+        Leading shape of the caller's A (n = its product).
+
+    Returns
+    -------
+    mir : ndarray of bool, shape (n,)
+        Sagittal plane x1 x2 is a mirror (x3 motion decouples).
+    eq17 : ndarray of bool, shape (n,)
+        Mirror points whose sagittal problem is orthotropic and of the S form (Eq. 17 applies).
+    """
+    n, d = Ah.shape[0], Ah.shape[-1]
     if mirror is None:
         mir = np.ones(n, dtype=bool) if d == 2 else _relative_max(Ah, _odd_components(d, 2), 1.0) <= SYMMETRY_TOL
     else:
@@ -323,13 +396,39 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
     ortho = _relative_max(Ah[:, :2, :2, :2, :2], _odd_components(2, 0), 1.0) <= SYMMETRY_TOL
     sform = (np.abs(Ah[:, 0, 1, 0, 1] - Ah[:, 0, 1, 1, 0]) <= SYMMETRY_TOL) & \
             (np.abs(Ah[:, 0, 1, 0, 1] - Ah[:, 1, 0, 0, 1]) <= SYMMETRY_TOL)
-    eq17 = mir & ortho & sform
+    return mir, mir & ortho & sform
 
-    Tpd = np.linalg.eigvalsh(T)[:, 0] > 0
-    XL, _ = imp.limiting_x(Q, R, T)
-    stable = Tpd & (XL > 0)
-    XL = np.where(stable, XL, np.nan)
 
+def _roots(Ah: np.ndarray, Q: np.ndarray, R: np.ndarray, T: np.ndarray, XL: np.ndarray, stable: np.ndarray,
+           mir: np.ndarray, eq17: np.ndarray, tol: float
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The surface-wave roots: coupled search off mirrors, Eq. (17) or the sagittal search on them.
+
+    Parameters
+    ----------
+    Ah : ndarray, shape (n, d, d, d, d)
+        A / max|A|, lab frame (dimensionless).
+    Q, R, T : ndarray, shape (n, d, d)
+        Stroh blocks of ``Ah`` (:func:`impedance.stroh_blocks`).
+    XL : ndarray, shape (n,)
+        Scaled limiting X = rho v_L^2 / max|A| (NaN where not ``stable``).
+    stable, mir, eq17 : ndarray of bool, shape (n,)
+        Points with a stable crystal, a mirror sagittal plane, Eq. (17) applicable.
+    tol : float
+        Relative accuracy of X.
+
+    Returns
+    -------
+    X : ndarray, shape (n,)
+        Scaled root X / max|A| (NaN where none).
+    found : ndarray of bool, shape (n,)
+    method : ndarray of object, shape (n,)
+        "eq17" or "stroh".
+    pol, decay : ndarray, shape (n, d), complex
+        Off-mirror points with a root: the search's surface displacement and Stroh roots p
+        (NaN elsewhere; the mirror points' are made by :func:`_mode_shapes`).
+    """
+    n, d = Ah.shape[0], Ah.shape[-1]
     X = np.full(n, np.nan)
     found = np.zeros(n, dtype=bool)
     method = np.full(n, "stroh", dtype=object)
@@ -354,17 +453,62 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
     if sag.any():
         XL2[sag], _ = imp.limiting_x(Q2[sag], R2[sag], T2[sag])
         X[sag], found[sag] = _root_search(Q2[sag], R2[sag], T2[sag], XL2[sag], tol)[:2]
+    return X, found, method, pol, decay
 
+
+def _classify(X: np.ndarray, XL: np.ndarray, found: np.ndarray, stable: np.ndarray, Tpd: np.ndarray,
+              mir: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Wave type and reason of every point from its root (:data:`surfwave.vocab.WAVE_TYPES`).
+
+    Parameters
+    ----------
+    X, XL : ndarray, shape (n,)
+        Scaled root and limiting X (NaN where none).
+    found, stable, Tpd, mir : ndarray of bool, shape (n,)
+        Root found; stable crystal; T positive definite; mirror sagittal plane.
+
+    Returns
+    -------
+    wave_type, reason : ndarray of object (str), shape (n,)
+        "surface", "supersonic_decoupled", "pseudo" or "none"; "" where a wave was found.
+    """
     supersonic = found & mir & (X >= XL * (1 - 1e-12))
     pseudo = stable & ~found & ~mir
     wave_type = np.where(found, np.where(supersonic, "supersonic_decoupled", "surface"),
                          np.where(pseudo, "pseudo", "none")).astype(object)
-    reason = np.full(n, "", dtype=object)
+    reason = np.full(X.shape[0], "", dtype=object)
     reason[~found] = np.where(mir[~found], REASON_NOROOT_MIRROR, REASON_PSEUDO)
     reason[~stable] = REASON_UNSTABLE
     reason[~Tpd] = REASON_T
+    return wave_type, reason
 
-    # polarisation and decay constants at the root
+
+def _mode_shapes(Q: np.ndarray, R: np.ndarray, T: np.ndarray, X: np.ndarray, found: np.ndarray,
+                 mir: np.ndarray, pol: np.ndarray, decay: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Polarisation, decay constants and penetration depth at the roots.
+
+    Parameters
+    ----------
+    Q, R, T : ndarray, shape (n, d, d)
+        Scaled Stroh blocks.
+    X : ndarray, shape (n,)
+        Scaled roots.
+    found, mir : ndarray of bool, shape (n,)
+    pol, decay : ndarray, shape (n, d), complex
+        From :func:`_roots` (filled in place at the mirror points).
+
+    Returns
+    -------
+    pol : ndarray, shape (n, d), complex
+        Unit surface displacement, phase of :func:`surface_wave` (NaN where no root).
+    decay : ndarray, shape (n, d), complex
+        Stroh roots p of the partial waves (NaN where no root; a mirror point's third one is
+        the decoupled SH wave's, NaN where it does not decay).
+    depth : ndarray, shape (n,)
+        1 / (2 pi min Im p), wavelengths (NaN where no root).
+    """
+    n, d = X.shape[0], Q.shape[-1]
     depth = np.full(n, np.nan)
     full = found & ~mir
     if full.any():
@@ -372,6 +516,7 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
         depth[full] = 1.0 / (2 * np.pi * decay[full].imag.min(axis=-1))
     sagf = found & mir
     if sagf.any():
+        Q2, R2, T2 = Q[:, :2, :2], R[:, :2, :2], T[:, :2, :2]
         ev = imp.impedance(Q2[sagf], R2[sagf], T2[sagf], X[sagf])
         pol[sagf, :2] = _null_vector(ev["Z"])
         decay[sagf, :2] = ev["p"]
@@ -384,21 +529,7 @@ def surface_wave(A: ArrayLike, rho: ArrayLike = 1.0, *, mirror: ArrayLike | None
             p3 = (-r + np.sqrt(disc)) / t
             p3 = np.where(p3.imag > 1e-12, p3, np.nan + 0j)
             decay[sagf, 2] = p3
-
     # no wave found (pseudo, none, unstable): no polarisation or decay to report
     pol[~found] = np.nan
     decay[~found] = np.nan
-    rho_s = scale / rho_f
-    out = {
-        "c": np.sqrt(X * rho_s),
-        "c_imag": np.where(found, 0.0, np.nan),
-        "c_limit": np.sqrt(XL * rho_s),
-        "wave_type": wave_type,
-        "reason": reason,
-        "polarisation": pol,
-        "decay": decay,
-        "penetration_depth": depth,
-        "mirror": mir,
-        "method": method,
-    }
-    return {k: (v.reshape(shape + v.shape[1:]) if v.ndim > 1 else v.reshape(shape)) for k, v in out.items()}
+    return pol, decay, depth
