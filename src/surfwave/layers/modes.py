@@ -109,24 +109,30 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
 
 
 def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary,
-            c_lim: float) -> tuple[np.ndarray, np.ndarray]:
+            c_lim: float, lam_lo: np.ndarray | None = None,
+            lam_hi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Safeguarded secant iteration on all brackets at once; converged speeds (m,) and Z's eigenvalues there.
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
     the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
     halve the bracket nor make a small secant step), falls back to bisection. The iteration runs
     in t = sqrt(1 - c^2 / c_lim^2), in which det Z is smooth up to the limit (in c it has a
-    square-root branch point there). A secant step from the latest point shorter than the
-    tolerance ends the iteration at its end point without evaluating det Z there; the
-    eigenvalues returned are then those at the latest evaluated point (within the tolerance,
-    relative 4e-15, of the root), which is all :func:`_mode_eigenvalues_ok` needs.
+    square-root branch point there); the first step, where ``lam_lo`` and ``lam_hi`` (the eigenvalue
+    of Z that crosses zero, at lo and hi) are given and finite, interpolates that eigenvalue instead.
+    Stopping: a secant step from the latest evaluated point below the tolerance (or, once the
+    steps shrink superlinearly, a predicted next step below tol / 1000) ends the iteration at the
+    step's end without evaluating det Z there, provided Z at the latest point is already that of
+    a mode (:func:`_mode_margin`); a sub-tolerance step that leaves the bracket (rounding) ends it
+    at the latest point. Each evaluation costs the layers' Stroh eigen-solutions at a new speed,
+    the bulk of the search's time.
 
     Returns
     -------
     c : ndarray, shape (m,)
         Converged speeds, m/s.
     w : ndarray, shape (m, na)
-        Ascending eigenvalues of the boundary matrix Z at (or within the tolerance of) each speed.
+        Ascending eigenvalues of the boundary matrix Z at each speed's latest evaluated point (the
+        speed itself, or a secant step from it that was not evaluated).
     """
     def to_t(c):
         return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
@@ -158,6 +164,11 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
             x = x1 - f1 * (x1 - x0) / (f1 - f0)
+            if it == 0 and lam_lo is not None and lam_hi is not None:
+                # first step: the zero of the crossing eigenvalue's chord (closer than det Z's,
+                # which carries the other eigenvalues' variation too)
+                xg = x1 - lam_hi * (x1 - x0) / (lam_hi - lam_lo)
+                x = np.where(np.isfinite(xg), xg, x)
         if Z1 is not None:
             # converged at x1 (the latest evaluated point, always a bracket end): the secant step from it
             # is below the tolerance but leaves the bracket (rounding, |det Z| at the level of its
@@ -480,7 +491,12 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     ik = np.concatenate([ik, pik[keep_p]])
     if ik.size == 0:
         return np.full((kh.size, 0), np.nan)
-    roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
+    # the eigenvalue that crosses zero in a grid bracket: the (neg)-th smallest at its low end
+    nb = ic.size
+    j = np.clip(neg[ic, ik[:nb]], 0, W.shape[-1] - 1)
+    lam_lo, lam_hi = np.full(ik.size, np.nan), np.full(ik.size, np.nan)
+    lam_lo[:nb], lam_hi[:nb] = W[ic, ik[:nb], j], W[ic + 1, ik[:nb], j]
+    roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim, lam_lo, lam_hi)
     ok = _mode_eigenvalues_ok(w_root)
     ik, roots = ik[ok], roots[ok]
     _ = secular  # (the refinement evaluates det Z through :func:`secular`)
