@@ -7,8 +7,8 @@ speed and shared by every kh. The grid is uniform in t = sqrt(1 - c^2 / c_lim^2)
 substrate's limiting speed c_lim, where modes appear at their cut-off with a square-root
 behaviour), plus a geometric tail toward t = 0. Every sign change brackets either a mode or a
 pole of Z (a mode of the stack with a clamped top); all brackets of all kh are refined together
-by the Illinois variant of regula falsi to a relative width :data:`C_TOL`, and a converged
-bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
+by a safeguarded secant iteration (:func:`_refine`) to a relative width :data:`C_TOL`, and a
+converged bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
 
 Labels. Within one family, the modes at fixed kh are ordered by speed and cannot cross as kh
 changes (crossings of one family are non-generic, and each family's modes are counted from the
