@@ -7,8 +7,8 @@ speed and shared by every kh. The grid is uniform in t = sqrt(1 - c^2 / c_lim^2)
 substrate's limiting speed c_lim, where modes appear at their cut-off with a square-root
 behaviour), plus a geometric tail toward t = 0. Every sign change brackets either a mode or a
 pole of Z (a mode of the stack with a clamped top); all brackets of all kh are refined together
-by the Illinois variant of regula falsi to a relative width :data:`C_TOL`, and a converged
-bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
+by a safeguarded secant iteration (:func:`_refine`) to a relative width :data:`C_TOL`, and a
+converged bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
 
 Labels. Within one family, the modes at fixed kh are ordered by speed and cannot cross as kh
 changes (crossings of one family are non-generic, and each family's modes are counted from the
@@ -108,14 +108,31 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
     return g[(g > c_lo) & (g < c_lim)]
 
 
-def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary, c_lim: float) -> np.ndarray:
-    """Safeguarded secant iteration on all brackets at once; converged speeds (m,).
+def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boundary,
+            c_lim: float, lam_lo: np.ndarray | None = None,
+            lam_hi: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Safeguarded secant iteration on all brackets at once; converged speeds (m,) and Z's eigenvalues there.
 
     Each step takes the secant through the two latest points (order 1.6); a step that leaves
     the current bracket (sign change of det Z), or a stalled iteration (four steps that neither
     halve the bracket nor make a small secant step), falls back to bisection. The iteration runs
     in t = sqrt(1 - c^2 / c_lim^2), in which det Z is smooth up to the limit (in c it has a
-    square-root branch point there).
+    square-root branch point there); the first step, where ``lam_lo`` and ``lam_hi`` (the eigenvalue
+    of Z that crosses zero, at lo and hi) are given and finite, interpolates that eigenvalue instead.
+    Stopping: a secant step from the latest evaluated point below the tolerance (or, once the
+    steps shrink superlinearly, a predicted next step below tol / 1000) ends the iteration at the
+    step's end without evaluating det Z there, provided Z at the latest point is already that of
+    a mode (:func:`_mode_margin`); a sub-tolerance step that leaves the bracket (rounding) ends it
+    at the latest point. Each evaluation costs the layers' Stroh eigen-solutions at a new speed,
+    the bulk of the search's time.
+
+    Returns
+    -------
+    c : ndarray, shape (m,)
+        Converged speeds, m/s.
+    w : ndarray, shape (m, na)
+        Ascending eigenvalues of the boundary matrix Z at each speed's latest evaluated point (the
+        speed itself, or a secant step from it that was not evaluated).
     """
     def to_t(c):
         return np.sqrt(np.maximum(1.0 - (c / c_lim) ** 2, 0.0))
@@ -123,17 +140,48 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
     def to_c(t):
         return c_lim * np.sqrt(1.0 - t * t)
 
+    def tol_at(x):
+        return C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
+
+    def evaluate(x, rows):
+        M = top_impedance(b, fam, to_c(x), kh[rows, None])["M"]
+        Z, _ = boundary_matrix(b, fam, M, electrical)
+        Z = Z[:, 0]
+        with np.errstate(all="ignore"):
+            return np.linalg.det(Z).real, Z          # as :func:`secular`
+
     a, fa, z, fz = to_t(lo), flo.copy(), to_t(hi), fhi.copy()           # bracket ends (a, z)
     x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()            # the two latest points
+    Z1: np.ndarray | None = None                                         # Z at x1 (once evaluated)
+    s1, s0 = np.full(a.size, np.inf), np.full(a.size, np.inf)            # the secant steps to x1 and x0
     width = np.abs(z - a)
     idx = np.arange(a.size)
     out = 0.5 * (lo + hi)
+    got: list[tuple[np.ndarray, np.ndarray]] = []                        # (bracket indices, eig Z there)
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
         left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
             x = x1 - f1 * (x1 - x0) / (f1 - f0)
+            if it == 0 and lam_lo is not None and lam_hi is not None:
+                # first step: the zero of the crossing eigenvalue's chord (closer than det Z's,
+                # which carries the other eigenvalues' variation too)
+                xg = x1 - lam_hi * (x1 - x0) / (lam_hi - lam_lo)
+                x = np.where(np.isfinite(xg), xg, x)
+        if Z1 is not None:
+            # converged at x1 (the latest evaluated point, always a bracket end): the secant step from it
+            # is below the tolerance but leaves the bracket (rounding, |det Z| at the level of its
+            # noise); without this a bisection would follow, and a tail of steps halving the bracket
+            edge = np.flatnonzero(np.isfinite(x) & (np.abs(x - x1) <= tol_at(x1)) & ((x <= left) | (x >= right)))
+            out[idx[edge]] = to_c(x1[edge])
+            got.append((idx[edge], _eigvalsh(Z1[edge])))
+            keep = np.ones(idx.size, dtype=bool)
+            keep[edge] = False
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, left, right, Z1, s1, s0 = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, left, right, Z1, s1, s0))
+            if idx.size == 0:
+                break
         # bisection where the secant leaves the bracket or, every fourth step, where the last
         # four steps did not shrink it by half and the secant step is not small (stalled iteration)
         slow = (it % 4 == 3) & (right - left > 0.5 * width) & (np.abs(x - x1) > 1e-3 * (right - left))
@@ -141,34 +189,133 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         x = np.where(bis, 0.5 * (left + right), x)
         if it % 4 == 3:
             width = right - left
-        fx = secular(b, fam, to_c(x), kh[idx, None], electrical)[:, 0]
+        tol = tol_at(x)
+        if Z1 is not None:
+            # converged: the secant step from the latest evaluated point x1 is below the tolerance
+            # (or, once the secant converges superlinearly, steps s < s1 < s0, where the next step
+            # predicted from them, C s s1 with C ~ s / (s1 s0), is below tol / 1000). x is then taken
+            # without evaluating det Z there when Z at x1 is already that of a mode with a 10x margin
+            # (the smallest |eigenvalue| only falls from x1 to the root); a pole, or a doubtful
+            # case, is evaluated at x as any other point
+            s = np.abs(x - x1)
+            with np.errstate(all="ignore"):
+                fast = (s < s1) & (s1 < s0) & (1e3 * s * s <= tol * s0) & np.isfinite(s0)
+            pre = np.flatnonzero(((s <= tol) | fast) & ~bis)
+            w1 = _eigvalsh(Z1[pre])
+            clear = _mode_margin(w1) > 0
+            pre, w1 = pre[clear], w1[clear]
+            out[idx[pre]] = to_c(x[pre])
+            got.append((idx[pre], w1))
+            keep = np.ones(idx.size, dtype=bool)
+            keep[pre] = False
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1, s1, s0 = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, tol, bis, Z1, s1, s0))
+            if idx.size == 0:
+                break
+        fx, Zx = evaluate(x, idx)
         side_a = np.sign(fx) == np.sign(fa)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
-        tol = C_TOL * (1.0 - x * x) / np.maximum(x, 1e-300)              # |dc/c| = t |dt| / (1 - t^2)
         done = (np.abs(x - x1) <= tol) & ~bis | (np.abs(z - a) <= tol) | (fx == 0) | ~np.isfinite(fx)
-        x0, f0, x1, f1 = x1, f1, x, fx
+        s0, s1 = s1, np.where(bis, np.inf, np.abs(x - x1))
+        x0, f0, x1, f1, Z1 = x1, f1, x, fx, Zx
         out[idx[done]] = to_c(x[done])
+        got.append((idx[done], _eigvalsh(Zx[done])))
         keep = ~done
-        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+        idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0 = (
+            v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0))
     out[idx] = to_c(x1)
-    return out
+    if Z1 is not None:
+        got.append((idx, _eigvalsh(Z1)))
+    if not got:
+        return out, np.zeros((out.size, 0))
+    w = np.concatenate([g[1] for g in got])
+    w_out = np.empty((out.size, w.shape[-1]))
+    w_out[np.concatenate([g[0] for g in got])] = w
+    return out, w_out
 
 
-def _is_mode(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
-    """True where Z(c, kh) is singular and bounded (a mode), False at a pole."""
-    M = top_impedance(b, fam, c, kh[:, None])["M"][:, 0]
+def _eigvalsh(Z: np.ndarray) -> np.ndarray:
+    """Ascending eigenvalues of Hermitian matrices (..., na, na); NaN rows where Z is not finite."""
+    with np.errstate(all="ignore"):
+        bad = ~np.isfinite(Z).all(axis=(-1, -2))
+        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
+    w[bad] = np.nan
+    return w
+
+
+def _mode_eigenvalues_ok(w: np.ndarray) -> np.ndarray:
+    """True where eigenvalues w (..., na) of Z say singular and bounded (a mode), False at a pole."""
+    return _mode_margin(w, 1.0) > 0
+
+
+def _mode_margin(w: np.ndarray, margin: float = 10.0) -> np.ndarray:
+    """+1 where eigenvalues w (..., na) of Z are those of a mode, -1 of a pole, with this margin; else 0.
+
+    A mode: Z singular (smallest |w| <= 1e-7 x the largest, or 1e-10) and bounded (largest |w| < 1e6).
+    With ``margin`` m > 1 the decision must hold with every threshold moved by the factor m against
+    it (the refinement's shortcut, :func:`_refine`); ``margin`` 1 is the plain test.
+    """
+    w = np.abs(w)
+    fin = np.isfinite(w).all(axis=-1)
+    with np.errstate(invalid="ignore"):
+        lo, hi = w.min(axis=-1, initial=np.inf), w.max(axis=-1, initial=0.0)
+        small = 1e-7 * np.maximum(hi, 1e-3)
+        mode = fin & (lo * margin <= small) & (hi * margin < 1e6)
+        pole = ~fin | (lo > small * margin) | (hi >= 1e6 * margin)
+    return np.where(mode, 1, np.where(pole, -1, 0))
+
+
+def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
+    """Ascending eigenvalues of Hermitian matrices Z (..., n, n): closed forms for n <= 3, else LAPACK.
+
+    n = 3: the trigonometric solution of the (real) characteristic cubic of the shifted matrix
+    Z - tr(Z)/3; where two eigenvalues nearly coincide (|cos 3 phi| > 1 - 1e-6, where the arccos
+    loses digits) and where Z is not finite, LAPACK's eigvalsh. Absolute error ~ 1e-13 |Z| (what
+    the grid scan needs: signs, products, the Foster test at 1e-9); NaN rows where Z is not finite.
+    """
+    n = Z.shape[-1]
+    if n > 3 or n == 0:
+        return _eigvalsh(Z)
+    a = Z[..., 0, 0].real
+    if n == 1:
+        return a[..., None].copy()
+    b = Z[..., 1, 1].real
+    if n == 2:
+        m, h = 0.5 * (a + b), np.hypot(0.5 * (a - b), np.abs(Z[..., 0, 1]))
+        return np.stack([m - h, m + h], axis=-1)
+    c = Z[..., 2, 2].real
+    d, e, f = Z[..., 0, 1], Z[..., 1, 2], Z[..., 0, 2]
+    m = (a + b + c) / 3.0
+    a1, b1, c1 = a - m, b - m, c - m
+    d2, e2, f2 = d.real ** 2 + d.imag ** 2, e.real ** 2 + e.imag ** 2, f.real ** 2 + f.imag ** 2
+    p = (a1 * a1 + b1 * b1 + c1 * c1 + 2.0 * (d2 + e2 + f2)) / 6.0
+    q = 0.5 * (a1 * b1 * c1 - a1 * e2 - b1 * f2 - c1 * d2 + 2.0 * (d * e * np.conj(f)).real)
+    with np.errstate(all="ignore"):
+        sp = np.sqrt(p)
+        r = np.where(p > 0, q / (p * sp), 0.0)
+        phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
+        hi = m + 2.0 * sp * np.cos(phi)
+        lo = m + 2.0 * sp * np.cos(phi + 2.0 * np.pi / 3.0)
+        w = np.stack([lo, 3.0 * m - hi - lo, hi], axis=-1)
+    hard = ~(np.abs(r) <= 1.0 - 1e-6) & (p > 0) | ~np.isfinite(w).all(axis=-1)
+    if hard.any():
+        w[hard] = _eigvalsh(Z[hard])
+    return w
+
+
+def _grid_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
+    """:func:`surfwave.layers.recursion.boundary_eigenvalues` for the grid scan (closed-form eigenvalues)."""
+    M = top_impedance(b, fam, c, kh)["M"]
     Z, _ = boundary_matrix(b, fam, M, electrical)
-    w = np.abs(np.linalg.eigvalsh(Z))
-    return np.isfinite(w).all(axis=-1) & (w.min(axis=-1) <= 1e-7 * np.maximum(w.max(axis=-1), 1e-3)) \
-        & (w.max(axis=-1) < 1e6)
+    return _hermitian_eigenvalues(Z)
 
 
 def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
     """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
     cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
     bisected (``rounds`` times)."""
-    w = boundary_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
+    w = _grid_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
     D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
     D[~np.isfinite(w).all(axis=-1)] = np.nan
     for _ in range(rounds):
@@ -179,7 +326,7 @@ def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: 
         if cells.size == 0:
             break
         mid = 0.5 * (grid[cells] + grid[cells + 1])
-        wm = boundary_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
+        wm = _grid_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
         Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
         Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
         w = np.insert(w, cells + 1, wm, axis=0)
@@ -344,8 +491,13 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     ik = np.concatenate([ik, pik[keep_p]])
     if ik.size == 0:
         return np.full((kh.size, 0), np.nan)
-    roots = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim)
-    ok = _is_mode(b, fam, roots, kh[ik], electrical)
+    # the eigenvalue that crosses zero in a grid bracket: the (neg)-th smallest at its low end
+    nb = ic.size
+    j = np.clip(neg[ic, ik[:nb]], 0, W.shape[-1] - 1)
+    lam_lo, lam_hi = np.full(ik.size, np.nan), np.full(ik.size, np.nan)
+    lam_lo[:nb], lam_hi[:nb] = W[ic, ik[:nb], j], W[ic + 1, ik[:nb], j]
+    roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim, lam_lo, lam_hi)
+    ok = _mode_eigenvalues_ok(w_root)
     ik, roots = ik[ok], roots[ok]
     _ = secular  # (the refinement evaluates det Z through :func:`secular`)
     counts = np.bincount(ik, minlength=kh.size)

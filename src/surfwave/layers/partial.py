@@ -234,21 +234,25 @@ def _degenerate_pairs(N: np.ndarray, p: np.ndarray, V: np.ndarray, n: int) -> No
     are looked for across both groups: above a film's shear speed the double root is real and the
     sort by Im p may put its two copies in different groups.
     """
-    for i in range(2 * n):
-        for j in range(i + 1, 2 * n):
-            close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
-            if not close.any():
-                continue
-            vi, vj = V[:, :, i], V[:, :, j]
-            cos = np.abs(np.einsum("mk,mk->m", np.conj(vi), vj)) / (np.linalg.norm(vi, axis=-1)
-                                                                   * np.linalg.norm(vj, axis=-1))
-            close &= cos > 0.5                      # a well-conditioned pair is kept as LAPACK gave it
-            if not close.any():
-                continue
-            rows = np.flatnonzero(close)
-            pm = 0.5 * (p[rows, i] + p[rows, j])
-            A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
-            _, _, vh = np.linalg.svd(A)
-            basis = np.conj(vh[:, -2:, :]).transpose(0, 2, 1)          # (r, 2n, 2)
-            V[rows, :, i], V[rows, :, j] = basis[..., 0], basis[..., 1]
-            p[rows, i] = p[rows, j] = pm
+    # candidate pairs, found at once: within 4 x the tolerance in some row (the in-place merges below
+    # move a root by at most half the tolerance, twice at most, so no other pair can become close)
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(p[:, :, None] - p[:, None, :]) <= 4.0 * DEGENERATE_TOL * (1.0 + np.abs(p[:, :, None]))
+    cand = np.triu(gap.any(axis=0), 1)
+    for i, j in zip(*np.nonzero(cand)):
+        close = np.abs(p[:, i] - p[:, j]) <= DEGENERATE_TOL * (1.0 + np.abs(p[:, i]))
+        if not close.any():
+            continue
+        rows = np.flatnonzero(close)
+        vi, vj = V[rows, :, i], V[rows, :, j]
+        cos = np.abs(np.einsum("mk,mk->m", np.conj(vi), vj)) / (np.linalg.norm(vi, axis=-1)
+                                                               * np.linalg.norm(vj, axis=-1))
+        rows = rows[cos > 0.5]                  # a well-conditioned pair is kept as LAPACK gave it
+        if rows.size == 0:
+            continue
+        pm = 0.5 * (p[rows, i] + p[rows, j])
+        A = N[rows] - pm[:, None, None] * np.eye(N.shape[-1])
+        _, _, vh = np.linalg.svd(A)
+        basis = np.conj(vh[:, -2:, :]).transpose(0, 2, 1)          # (r, 2n, 2)
+        V[rows, :, i], V[rows, :, j] = basis[..., 0], basis[..., 1]
+        p[rows, i] = p[rows, j] = pm

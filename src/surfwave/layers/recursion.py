@@ -49,6 +49,21 @@ def _layer_eigs(b: Blocks, fam: Family, c: np.ndarray) -> list[tuple[np.ndarray,
     return out
 
 
+def _expi(z: np.ndarray, decaying: bool) -> np.ndarray:
+    """exp(i z); with ``decaying`` (Im z >= 0 up to rounding: real speeds) as exp(-Im z) (cos + i sin) of z's parts.
+
+    The product form skips the complex exponential's special-value handling, which is not needed
+    when |exp(i z)| <= 1 (about 30 % faster on the grid scan's (c, kh) arrays).
+    """
+    if not decaying or not np.iscomplexobj(z):
+        return np.exp(1j * z)
+    mag = np.exp(-z.imag)
+    out = np.empty(z.shape, dtype=complex)
+    out.real = mag * np.cos(z.real)
+    out.imag = mag * np.sin(z.real)
+    return out
+
+
 def _solve_right(Y: np.ndarray, Xm: np.ndarray) -> np.ndarray:
     """Y Xm^-1 for stacks of square matrices."""
     return np.swapaxes(np.linalg.solve(np.swapaxes(Xm, -1, -2), np.swapaxes(Y, -1, -2)), -1, -2)
@@ -81,11 +96,16 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
     """
     c = np.atleast_1d(np.asarray(c))
     c = c.astype(np.result_type(c.dtype, float))
+    real_c = not np.iscomplexobj(c) and M_sub is None
     kh = np.asarray(kh)
     kh = kh.astype(np.result_type(kh.dtype, float))
     kh = np.broadcast_to(kh.reshape(kh.shape + (1,) * (2 - kh.ndim)) if kh.ndim < 2 else kh,
                          (c.shape[0], np.shape(kh)[-1] if kh.ndim else 1))
-    eigs = _layer_eigs(b, fam, c)
+    uc, inv = np.unique(c, return_inverse=True)
+    if uc.size < c.size:                       # repeated speeds (e.g. bisection of one cell at many kh)
+        eigs = [(p[inv], V[inv]) for p, V in _layer_eigs(b, fam, uc)]
+    else:
+        eigs = _layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
     if M_sub is None:
@@ -93,14 +113,15 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             M = _solve_right(Vs[:, nf:, nf:], Vs[:, :nf, nf:])[:, None]      # (m, 1, nf, nf)
     else:
         M = np.asarray(M_sub)[:, None]
-    M = np.broadcast_to(M, kh.shape + (nf, nf))
+    # M stays (m, 1, nf, nf) while it depends on c only (the substrate's): the first film's
+    # interface solve is then done once per speed and shared by every kh
     Rrs, Xms, ts = [], [], []
     for layer in range(len(b.frac) - 1, -1, -1):
         p, V = eigs[layer]
         t = kh * b.frac[layer]                                                 # (m, k)
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
-        Ed = np.exp(1j * p[:, None, nf:] * t[..., None])                       # (m, k, nf)
-        Eu = np.exp(-1j * p[:, None, :nf] * t[..., None])
+        Ed = _expi(p[:, None, nf:] * t[..., None], real_c)                     # (m, k, nf)
+        Eu = _expi(-p[:, None, :nf] * t[..., None], real_c)
         electrode = METALLIZED if b.electrode_below and b.electrode_below[layer] else FREE
         G = electrode.interface_rows(M, fam.phi) if fam.phi is not None else None
         if G is not None:
@@ -111,14 +132,20 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         else:
             GVu, GVd = Bu - M @ Au, Bd - M @ Ad
         with np.errstate(all="ignore"):
-            Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
+            if GVu.shape[-3] == 1 < t.shape[-1]:
+                Rr = -np.linalg.solve(GVu, GVd) * Ed[..., None, :]     # (GVu^-1 GVd) diag(Ed)
+            else:
+                Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
             ER = Eu[..., :, None] * Rr
-            Xm = Ad + Au @ ER
-            M = _solve_right(Bd + Bu @ ER, Xm)
+            XY = V[:, None, :, nf:] + V[:, None, :, :nf] @ ER               # [A_d; B_d] + [A_u; B_u] ER
+            Xm = XY[..., :nf, :]
+            M = _solve_right(XY[..., nf:, :], Xm)
         if keep:
             Rrs.append(Rr)
             Xms.append(Xm)
             ts.append(t)
+    if M.shape[:-2] != kh.shape:
+        M = np.broadcast_to(M, kh.shape + (nf, nf))
     out: dict[str, Any] = {"M": M}
     if keep:
         out.update(eigs=eigs, Rr=Rrs[::-1], Xm=Xms[::-1], t=ts[::-1])
