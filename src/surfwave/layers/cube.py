@@ -22,7 +22,7 @@ from surfwave.data.variables import CUBES, LAYERED_COORDS
 from surfwave.errors import InputError
 from surfwave.layers.modes import film_x1_speeds
 from surfwave.layers.partial import scaled_blocks
-from surfwave.layers.solve import _kh_values, layered
+from surfwave.layers.solve import checked_kh, layered
 from surfwave.layers.stack import resolve_stack
 from surfwave.solvers.boundary import Boundary, as_boundary
 
@@ -58,7 +58,7 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
         Dimensions (film_stress, electrical, kh, mode); see the module docstring. No global
         provenance attributes (the workflow script adds them with :func:`surfwave.data.cube.provenance`).
     """
-    kh = _kh_values(kh)
+    kh = checked_kh(kh)
     s = np.atleast_1d(validate.gpa_stress(film_stress, "film_stress"))   # the one Pa bound, before any run
     bounds = [as_boundary(e) for e in ([electrical] if isinstance(electrical, (str, Boundary)) else electrical)]
     el = [b.name for b in bounds]

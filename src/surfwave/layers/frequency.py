@@ -78,12 +78,12 @@ def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free"
 
 def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False) -> dict:
     """:func:`at_frequency` for one electrical condition (K2 left NaN)."""
-    from surfwave.layers.solve import MAX_KH, REASON_NONE, _empty, _merge, assemble, unstable_reason
+    from surfwave.layers.solve import MAX_KH, REASON_NONE, assemble, empty_result, merge_families, unstable_reason
 
     f = _frequencies(frequency)
     why = unstable_reason(stack)
     if why:
-        return _empty(f, np.nan, why)
+        return empty_result(f, np.nan, why)
     H = stack.total_thickness
     if H == 0:
         out = assemble(stack, np.zeros(f.size), electrical, leaky)
@@ -138,7 +138,7 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
                     break
         cs.append(C)
         vgs.append(V)
-    Cm, labels, (vg, khm) = _merge(fams, cs, [vgs, [wH[:, None] / c for c in cs]])
+    Cm, labels, (vg, khm) = merge_families(fams, cs, [vgs, [wH[:, None] / c for c in cs]])
     reason = np.where(np.isfinite(Cm).any(axis=1), "", REASON_NONE).astype(object)
     pf = np.full(Cm.shape, np.nan)
     rows, cols = np.nonzero(np.isfinite(Cm))

@@ -30,7 +30,9 @@ REASON_BUCKLED = ("no modes: the prestressed stack is unstable at this kh (surfa
                   "negative eigenvalue at low speed, i.e. a mode with omega^2 < 0)")
 
 
-def _kh_values(kh) -> np.ndarray:
+def checked_kh(kh) -> np.ndarray:
+    """kh (wavenumber x total film thickness) as a checked 1-D float array, shape (n,): finite,
+    in [0, MAX_KH]; anything else is one InputError line."""
     a = validate.real_array(kh, "kh").reshape(-1)
     if a.size == 0 or not np.all(np.isfinite(a)):
         raise InputError(f"kh must be finite numbers (wavenumber x total film thickness), got {kh!r}")
@@ -60,7 +62,7 @@ def solve_stack(stack: Stack, kh, electrical: str | Boundary = "free") -> dict:
         ``blocks`` (Blocks), ``families`` (list of Family), ``c``, ``group_velocity`` and
         ``power_flow_angle`` (lists of (k, n_f) arrays, one per family), ``c_limit`` (m/s).
     """
-    kh = _kh_values(kh)
+    kh = checked_kh(kh)
     b = scaled_blocks(stack)
     fams = families(b)
     cs, vgs, pfs = [], [], []
@@ -74,7 +76,7 @@ def solve_stack(stack: Stack, kh, electrical: str | Boundary = "free") -> dict:
             "c_limit": c_lim}
 
 
-def _merge(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray]]) -> tuple:
+def merge_families(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray]]) -> tuple:
     """Columns of all families merged, ascending per row; labels; the extra arrays in the same order."""
     k = cs[0].shape[0] if cs else 0
     cols_c: list[np.ndarray] = []
@@ -169,7 +171,7 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         from surfwave.layers.frequency import at_frequency
 
         return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky)))
-    return cast(LayeredResult, assemble(stack, _kh_values(kh), boundary, bool(leaky)))
+    return cast(LayeredResult, assemble(stack, checked_kh(kh), boundary, bool(leaky)))
 
 
 def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarray:
@@ -192,7 +194,7 @@ def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarra
     ndarray, shape (n,)
         Phase speed, m/s; NaN where the mode does not exist (or the stack is unstable).
     """
-    kh = _kh_values(kh)
+    kh = checked_kh(kh)
     which = np.broadcast_to(np.asarray(labels, dtype=object), kh.shape)
     out = np.full(kh.size, np.nan)
     if unstable_reason(stack):
@@ -240,7 +242,8 @@ def unstable_reason(stack: Stack) -> str:
             "direction: the stressed state buckles)")
 
 
-def _empty(kh: np.ndarray, c_limit: float, reason: str) -> dict:
+def empty_result(kh: np.ndarray, c_limit: float, reason: str) -> dict:
+    """A result with no mode at any kh (shape (n, 0) arrays), ``reason`` at every row."""
     shape = (kh.size, 0)
     nan = np.full(shape, np.nan)
     return {"c": nan, "mode": np.full(shape, "", dtype=object), "group_velocity": nan.copy(), "K2": nan.copy(),
@@ -261,7 +264,7 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bo
     """The result record for a resolved stack at kh (n,) (all NaN with the reason if a layer is unstable)."""
     why = unstable_reason(stack)
     if why:
-        return _empty(kh, np.nan, why)
+        return empty_result(kh, np.nan, why)
     sol = solve_stack(stack, kh, electrical)
     fams, cs, vgs = sol["families"], sol["c"], sol["group_velocity"]
     k2s = [np.full(c.shape, np.nan) for c in cs]
@@ -285,7 +288,7 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bo
         cs, vgs, k2s, att, lk = leaky_continuation(sol, kh, electrical, cs, vgs, k2s, att)
     pfs = [np.pad(p, ((0, 0), (0, c.shape[1] - p.shape[1])), constant_values=np.nan)
            for p, c in zip(sol["power_flow_angle"], cs)]
-    C, labels, (vg, K2, A, L, PF) = _merge(fams, cs, [vgs, k2s, att, lk, pfs])
+    C, labels, (vg, K2, A, L, PF) = merge_families(fams, cs, [vgs, k2s, att, lk, pfs])
     labels = np.where(L == 1.0, labels + "~", labels).astype(object)
     H = stack.total_thickness
     khm = np.broadcast_to(kh[:, None], C.shape).copy()

@@ -109,7 +109,7 @@ def stack_kwargs(orientation: dict) -> dict:
 
 
 def _expand(name: str, raw: dict) -> dict:
-    from surfwave.layers.solve import _kh_values
+    from surfwave.layers.solve import checked_kh
     from surfwave.layers.stack import resolve_stack
 
     where = f"scene {name!r}"
@@ -120,7 +120,7 @@ def _expand(name: str, raw: dict) -> dict:
     if len(set(labels)) != len(labels):
         raise SceneError(f"{where}, key 'orientations': the same orientation twice ({labels})")
     try:
-        kh = _kh_values(expand_grid(raw["kh"], f"{where}, key 'kh'"))
+        kh = checked_kh(expand_grid(raw["kh"], f"{where}, key 'kh'"))
     except InputError as exc:
         raise SceneError(f"{where}, key 'kh': {exc}") from None
     stresses = [float(s) for s in expand_grid(raw.get("film_stress", [0.0]), f"{where}, key 'film_stress'")]
