@@ -38,7 +38,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import stress_model
-from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, surface_wave_conditions
+from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, require_toec, surface_wave_conditions
 from surfwave.real_crystals.toec import born_lowest, born_reason
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
 from surfwave.solvers.tensors import rotate2, voigt_to_tensor
@@ -130,12 +130,7 @@ def check_constants(constants: Constants, toec: bool) -> None:
         validate.gpa_constants(constants.toec, "third-order constants")
     if constants.is_piezo:
         validate.piezo_constants(constants.piezo, constants.permittivity)
-    if toec and constants.toec is None:
-        what = ("of the piezoelectric database only GaAs carries them; give a set as toec= (a (6, 6, 6) Voigt "
-                "array in GPa, or the class's named constants, e.g. the 14 of quartz (class 32): C111, C112, "
-                "C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, C444)"
-                if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
-        raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
+    require_toec(constants, toec)
 
 
 def born_reason_natural(constants: Constants) -> str:

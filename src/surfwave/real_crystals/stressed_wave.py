@@ -63,7 +63,7 @@ if TYPE_CHECKING:
 
 __all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
            "REASON_LEAKY_OFF", "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
-           "electrical_error", "stress_tensor", "surface_wave", "surface_wave_conditions"]
+           "electrical_error", "require_toec", "stress_tensor", "surface_wave", "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -363,6 +363,22 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
                                                                                 else condition.name]
 
 
+def require_toec(constants: Constants, toec: bool) -> None:
+    """Refuse ``toec=True`` for constants without a third-order set (one wording for every door).
+
+    Raises
+    ------
+    InputError
+        ``toec`` is true and ``constants.toec`` is None; the message names the constants a set needs.
+    """
+    if toec and constants.toec is None:
+        what = ("of the piezoelectric database only GaAs carries them; give a set as toec= (a (6, 6, 6) Voigt "
+                "array in GPa, or the class's named constants, e.g. the 14 of quartz (class 32): C111, C112, "
+                "C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, C444)"
+                if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
+        raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
+
+
 def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: ArrayLike, *,
                             conditions: Sequence[str | Boundary | None] = ELECTRICAL, toec: bool = False,
                             tol: float | None = None,
@@ -407,12 +423,7 @@ def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: Array
     shape = np.broadcast_shapes(axes.shape[:-2], sigma.shape[:-2])
     axes = np.broadcast_to(axes, shape + (3, 3)).reshape(-1, 3, 3)
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
-    if toec and constants.toec is None:
-        what = ("of the piezoelectric database only GaAs carries them; give a set as toec= (a (6, 6, 6) Voigt "
-                "array in GPa, or the class's named constants, e.g. the 14 of quartz (class 32): C111, C112, "
-                "C113, C114, C123, C124, C133, C134, C144, C155, C222, C333, C344, C444)"
-                if constants.is_piezo else "C111, C112, C123, C144, C155, C456")
-        raise InputError(f"toec=True needs third-order constants ({what}), and this crystal has none")
+    require_toec(constants, toec)
     outs = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, conditions, leaky)
     return {c: {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()} for c, out in outs.items()}
 
