@@ -19,6 +19,7 @@ import yaml
 from surfwave.data.paper import SAFE_LOADER
 from surfwave.errors import InputError
 from surfwave.real_crystals.catalog import CatalogEntry, name_key, unknown_name
+from surfwave.solvers.tensors import cubic_voigt
 
 __all__ = ["available_films", "film_catalog", "hill_average", "lookup"]
 
@@ -133,10 +134,7 @@ def lookup(name: str, where: str = "material", *, film: bool = True) -> dict:
             raise InputError(f"{where}: {exc}") from None
         K, G = hill_average(m.voigt)
         lam = K - 2 * G / 3
-        C = np.zeros((6, 6))
-        C[:3, :3] = lam
-        C[[0, 1, 2], [0, 1, 2]] = lam + 2 * G
-        C[[3, 4, 5], [3, 4, 5]] = G
+        C = cubic_voigt(lam + 2 * G, lam, G)   # isotropic: a cubic stiffness with C11 - C12 = 2 C44
         return {"name": f"{m.name}-poly", "voigt": C, "rho": m.rho, "e": None, "eps_r": None, "conductor": False}
     elastic, piezo = find_crystal(key)
     if elastic is None and piezo is None:

@@ -39,7 +39,7 @@ from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.stroh import wave_propagation_tensor
-from surfwave.solvers.tensors import rotate2, rotate4, voigt_to_tensor
+from surfwave.solvers.tensors import cubic_voigt, rotate2, rotate4, voigt_to_tensor
 
 __all__ = ["GPA", "Layer", "MAX_THICKNESS", "SAW_TO_LAB", "Stack", "isotropic_voigt", "resolve_stack"]
 
@@ -135,11 +135,7 @@ def isotropic_voigt(E, nu) -> np.ndarray:
         raise InputError(f"Poisson's ratio nu must lie in (-1, 0.5) for a stable isotropic solid, got {nu!r}")
     lam = E * nu / ((1 + nu) * (1 - 2 * nu))
     mu = E / (2 * (1 + nu))
-    C = np.zeros((6, 6))
-    C[:3, :3] = lam
-    C[[0, 1, 2], [0, 1, 2]] = lam + 2 * mu
-    C[[3, 4, 5], [3, 4, 5]] = mu
-    return C
+    return cubic_voigt(lam + 2 * mu, lam, mu)   # isotropic: a cubic stiffness with C11 - C12 = 2 C44
 
 
 def _number(value, what: str) -> float:

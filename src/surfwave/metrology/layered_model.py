@@ -82,6 +82,7 @@ def explicit_film(film: Mapping[str, Any]) -> dict[str, Any]:
     and ``permittivity``. A film without a name is returned as a copy.
     """
     from surfwave.layers.films import lookup
+    from surfwave.solvers.tensors import cubic_voigt
 
     f = dict(film)
     name = f.pop("name", None)
@@ -91,10 +92,7 @@ def explicit_film(film: Mapping[str, Any]) -> dict[str, Any]:
     rec = lookup(str(name), "film")
     C = np.asarray(rec["voigt"], dtype=float)
     lam, mu = C[0, 1], C[3, 3]
-    iso = np.zeros((6, 6))
-    iso[:3, :3] = lam
-    iso[[0, 1, 2], [0, 1, 2]] = lam + 2 * mu
-    iso[[3, 4, 5], [3, 4, 5]] = mu
+    iso = cubic_voigt(lam + 2 * mu, lam, mu)                            # the isotropic stiffness of (lam, mu)
     if np.allclose(C, iso, rtol=1e-9, atol=1e-9 * np.abs(C).max()):
         f.update(E=float(mu * (3 * lam + 2 * mu) / (lam + mu)), nu=float(lam / (2 * (lam + mu))))
     else:
