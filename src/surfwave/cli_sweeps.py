@@ -50,13 +50,12 @@ def _numbers(text: str, option: str, kind: Kind) -> list[float]:
 
 
 def _check_bound(values: list[float], text: str, option: str, kind: Kind) -> None:
-    from surfwave.validate import MAX_ANGLE
+    from surfwave.validate import MAX_ANGLE, huge_angle_error
 
     if kind == "angle":
         big = [v for v in values[:2] if abs(v) > MAX_ANGLE]
         if big:
-            raise InputError(f"{option} {big[0]!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose precision in "
-                             f"float64; reduce it modulo 360 (got {text!r})")
+            raise huge_angle_error(f"{option} {big[0]!r}", f" (got {text!r})")
     else:
         big = [v for v in values[:2] if abs(v) > MAX_GPA]
         if big:

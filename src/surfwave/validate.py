@@ -57,6 +57,13 @@ MAX_ANGLE = 1.0e6
 MIN_RHO, MAX_RHO = 1.0, 1.0e12
 
 
+def huge_angle_error(what: str, detail: str = "") -> InputError:
+    """The one refusal of an angle beyond :data:`MAX_ANGLE` degrees; ``what`` names it and its
+    value (e.g. "angle = 1e+20"), ``detail`` is appended (e.g. the text given)."""
+    return InputError(f"{what} degrees: angles beyond {MAX_ANGLE:g} degrees lose precision in float64 (the angle "
+                      f"computed would not be the angle labelled); reduce it modulo 360{detail}")
+
+
 def brief(value, limit: int = 80) -> str:
     """``repr(value)`` on one line, cut to ``limit`` characters (for error messages)."""
     text = " ".join(repr(value.tolist() if isinstance(value, np.ndarray) else value).split())
@@ -103,9 +110,7 @@ def angle_values(values, name: str = "angle"):
         raise InputError(f"{name} must hold at least one angle (degrees), got {values!r}")
     big = np.abs(a) > MAX_ANGLE
     if big.any():
-        raise InputError(f"{name} = {float(a[big][0])!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose "
-                         "precision in float64 (the angle computed would not be the angle labelled); "
-                         "reduce it modulo 360")
+        raise huge_angle_error(f"{name} = {float(a[big][0])!r}")
     return float(a[0]) if np.ndim(values) == 0 else a
 
 
@@ -195,9 +200,7 @@ def euler_angles(euler, name: str = "euler") -> np.ndarray:
         raise InputError(f"{name} angles must be finite, got (phi, theta, psi) = {tuple(row.tolist())} degrees")
     big = np.abs(e) > MAX_ANGLE
     if big.any():
-        raise InputError(f"{name} = {float(e[big][0])!r} degrees: angles beyond {MAX_ANGLE:g} degrees lose "
-                         "precision in float64 (the angle computed would not be the angle labelled); "
-                         "reduce it modulo 360")
+        raise huge_angle_error(f"{name} = {float(e[big][0])!r}")
     return e
 
 
