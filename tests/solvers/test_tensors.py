@@ -34,3 +34,23 @@ def test_rotate2_matches_matrix_product():
     s = rng.normal(size=(3, 3))
     Q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
     assert np.allclose(rotate2(s, Q), Q @ s @ Q.T)
+
+
+def test_stacked_rotate4_has_the_bits_of_the_einsum_chain():
+    """rotate4 of (m, 3, 3, 3, 3) stacks (stacked_rotate4, products and sums of whole arrays) gives
+    every entry with the bits of the four-einsum chain it replaced (reference: that chain, written
+    out here), zeros included with their +0 sign: the cubes keep their numbers bit for bit. A
+    failure means numpy's einsum adds its terms in another order: the fast path must follow it."""
+    rng = np.random.default_rng(5)
+    for m in (8, 57, 400):
+        R = np.linalg.qr(rng.normal(size=(m, 3, 3)))[0]
+        C = rng.normal(size=(m, 3, 3, 3, 3)) * 100.0
+        C[:2] = 0.0                                   # exact zeros (signs)
+        C[2, 0] = -0.0
+        R[3] = np.eye(3)
+        ref = np.einsum("...ai,...ijkl->...ajkl", R, C)
+        for spec in ("...bj,...ajkl->...abkl", "...ck,...abkl->...abcl", "...dl,...abcl->...abcd"):
+            ref = np.einsum(spec, R, ref)
+        out = rotate4(C, R)
+        assert np.array_equal(out, ref)
+        assert np.array_equal(np.signbit(out), np.signbit(ref))

@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
-from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, rotate4, tensor_to_voigt, voigt_to_tensor
 
 #: Newton iterations of the deformation solve before it is declared failed.
 MAX_ITERATIONS = 60
@@ -219,11 +219,7 @@ def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.
 def _push_forward(F: np.ndarray, K: np.ndarray) -> np.ndarray:
     """F_ip F_jq F_kr F_ls K_pqrs / J, shape (..., 3, 3, 3, 3): :func:`stressed_constants` from the
     tangent K = C2 + C3 : eta (GPa) at F."""
-    out = np.einsum("...ip,...pqrs->...iqrs", F, K)
-    out = np.einsum("...jq,...iqrs->...ijrs", F, out)
-    out = np.einsum("...kr,...ijrs->...ijks", F, out)
-    out = np.einsum("...ls,...ijks->...ijkl", F, out)
-    return out / np.linalg.det(F)[..., None, None, None, None]
+    return rotate4(K, F) / np.linalg.det(F)[..., None, None, None, None]
 
 
 _VI = np.array([p[0] for p in VOIGT_PAIRS])
