@@ -180,3 +180,27 @@ def test_pressure_derivative_of_the_bulk_modulus_is_the_closed_form():
         B0 = (c["C11"] + 2 * c["C12"]) / 3
         assert (B[1] - B[0]) / (2 * h) == pytest.approx(-(t["C111"] + 6 * t["C112"] + 2 * t["C123"]) / (9 * B0),
                                                         rel=1e-6), name
+
+
+def test_lowest_if_needed_gives_the_flags_of_eigvalsh():
+    """The Cholesky certificate in front of the Born and convexity checks: the flags equal
+    eigvalsh's lowest eigenvalue > 0 (reference: LAPACK eigvalsh) for stacks that are clearly
+    positive, marginal (lowest eigenvalue +-1e-13 .. 1e-6 of the scale) or indefinite, and the
+    eigenvalue is reported wherever the certificate did not decide."""
+    from surfwave.real_crystals.toec import lowest_if_needed
+
+    rng = np.random.default_rng(11)
+    Q = np.linalg.qr(rng.normal(size=(60, 6, 6)))[0]
+    w = rng.uniform(1.0, 300.0, (60, 6))
+    w[:, 0] = np.concatenate([rng.uniform(1.0, 50.0, 20), 300.0 * np.array([1e-13, -1e-13, 1e-11, -1e-11, 1e-9, 2e-9,
+                                                                           -1e-9, 1e-7, -1e-7, 1e-6] * 4)])
+    M = Q @ (w[..., None] * np.swapaxes(Q, -1, -2))
+    M = 0.5 * (M + np.swapaxes(M, -1, -2))
+    for stack in (M[:20], M, M[20:], M[:0]):
+        ref = np.linalg.eigvalsh(stack)[..., 0] if len(stack) else np.zeros(0)
+        positive, lowest = lowest_if_needed(stack)
+        np.testing.assert_array_equal(positive, ref > 0)
+        decided = np.isnan(lowest)
+        assert np.all(positive[decided])                       # the certificate only ever says "positive"
+        np.testing.assert_array_equal(lowest[~decided], ref[~decided])
+    assert np.isnan(lowest_if_needed(M[:20])[1]).all()         # clearly positive: no eigenvalue computed
