@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
-from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, rotate4, tensor_to_voigt, voigt_to_tensor
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cross, rotate4, tensor_to_voigt, voigt_to_tensor
 
 #: Newton iterations of the deformation solve before it is declared failed.
 MAX_ITERATIONS = 60
@@ -190,7 +190,7 @@ def deformed_axes(F: ArrayLike, axes: ArrayLike) -> np.ndarray:
     x2 = np.einsum("...ji,...j->...i", np.linalg.inv(F), axes[..., 1, :])
     x1 = x1 / np.linalg.norm(x1, axis=-1, keepdims=True)
     x2 = x2 / np.linalg.norm(x2, axis=-1, keepdims=True)
-    return np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    return np.stack([x1, x2, cross(x1, x2)], axis=-2)
 
 
 def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.ndarray:

@@ -456,15 +456,41 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
         ok[idx] = _blocks_positive(blocks, _best_null_weight(blocks, scale[idx])[None], tol[idx])[0]
     g = np.flatnonzero(~mirror)  # no lab mirrors: the full (d^2, d^2) matrices
     if g.size:
-        eye = np.eye(dim)
-        N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
+        N = _NULL_LAGRANGIAN[dim]
         Ag = 0.5 * (A[g] + np.swapaxes(A[g], 1, 2))
         for t in _NULL_WEIGHTS:
             rest = np.flatnonzero(~ok[g])
             if not rest.size:
                 break
-            ok[g[rest]] = _positive_definite(Ag[rest] - t * scale[g[rest], None, None] * N, tol[g[rest]])
+            ok[g[rest]] = _pivots_above(Ag[rest] - t * scale[g[rest], None, None] * N, tol[g[rest]])
     return ok
+
+
+def _null_lagrangian(dim: int) -> np.ndarray:
+    """N_ijkl = delta_il delta_jk - delta_ij delta_kl as a (d^2, d^2) matrix of (ij), (kl)."""
+    eye = np.eye(dim)
+    return (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
+
+
+_NULL_LAGRANGIAN = {dim: _null_lagrangian(dim) for dim in (2, 3)}
+
+
+def _pivots_above(B: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """:func:`_positive_definite` (the same flags), with a sufficient test first.
+
+    Where LAPACK's Cholesky factorisation of B - 2 tol I succeeds for the whole stack, each
+    matrix's lowest eigenvalue exceeds 2 tol less rounding (~1e-15 of max|B|, tol being 1e-9 of
+    it), and every pivot of the elimination, at least that eigenvalue less rounding, exceeds tol:
+    all True without the elimination's Python loop. Otherwise the elimination decides.
+    B must be exactly symmetric (LAPACK reads the lower triangle).
+    """
+    if B.shape[0]:
+        try:
+            np.linalg.cholesky(B - 2.0 * tol[:, None, None] * np.eye(B.shape[-1]))
+            return np.ones(B.shape[0], dtype=bool)
+        except np.linalg.LinAlgError:
+            pass
+    return _positive_definite(B, tol)
 
 
 #: Margin (times the largest |Q entry|) below zero of the probe eigenvalue that
