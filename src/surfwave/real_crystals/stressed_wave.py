@@ -465,13 +465,15 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
         shared["stable"] = np.zeros(n, dtype=bool)
         shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
     names = [c.name if isinstance(c, Boundary) else c for c in conditions]
-    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in names}
+    # the shared arrays go to the last condition as they are, to the others as copies
+    return {c: _assemble(constants, sws[c], c, idx, reason, shared, copy=i < len(names) - 1)
+            for i, c in enumerate(names)}
 
 
-def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict) -> dict:
+def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict, copy: bool = True) -> dict:
     """One condition's output arrays (n points) from the solver dict ``sw`` of the points ``idx``
     with a state; points without one keep NaN and their ``reason``; ``shared`` (state, bulk
-    speeds) is copied in."""
+    speeds) is copied in (``copy``) or put in as it is (the last condition's)."""
     n = reason.shape[0]
     out: dict = {}
     floats = PIEZO_KEYS if constants.is_piezo else LEAKY_KEYS
@@ -495,7 +497,7 @@ def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: d
     out["method"][idx] = sw["method"]
     with np.errstate(invalid="ignore"):
         out["grazing"] = np.isfinite(out["c_R"]) & (out["penetration_depth"] > GRAZING_DEPTH)
-    out.update({k: v.copy() for k, v in shared.items()})
+    out.update({k: v.copy() for k, v in shared.items()} if copy else shared)
     return out
 
 

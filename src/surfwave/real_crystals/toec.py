@@ -160,7 +160,11 @@ def cauchy_stress(F: ArrayLike, C2: ArrayLike, C3: ArrayLike | None) -> np.ndarr
     """
     F = np.asarray(F, dtype=float)
     C2 = _as_c2(C2)
-    C3 = np.zeros(C2.shape[:-4] + (3,) * 6) if C3 is None else _as_c3(C3)
+    return _cauchy(F, C2, np.zeros(C2.shape[:-4] + (3,) * 6) if C3 is None else _as_c3(C3))
+
+
+def _cauchy(F: np.ndarray, C2: np.ndarray, C3: np.ndarray) -> np.ndarray:
+    """:func:`cauchy_stress` of float F and full-index C2, C3 (GPa)."""
     T = _pk2(C2, C3, lagrangian_strain(F))
     return np.einsum("...ip,...pq,...jq->...ij", F, T, F) / np.linalg.det(F)[..., None, None]
 
@@ -354,6 +358,8 @@ def _stress_parts(F, C2, C3) -> tuple[np.ndarray, dict]:
 def _jacobian(parts: dict, rows=None) -> np.ndarray:
     """d sigma / dF along the 6 symmetric basis directions, (..., 6, 3, 3), of the points ``rows``
     (all when None) from :func:`_stress_parts` (each point's numbers do not depend on the others)."""
+    if rows is not None and rows.all():
+        rows = None                                            # every point: no copies
     F, Ft, T, J, K, sigma = (parts[k] if rows is None else parts[k][rows] for k in ("F", "Ft", "T", "J", "K", "sigma"))
     Finv = np.linalg.inv(F)
     F1, Ft1 = F[..., None, :, :], Ft[..., None, :, :]
@@ -488,7 +494,7 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
             todo = np.ones(len(F_a), dtype=bool)
             for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
                 trial = F_a[todo] + alpha * step[todo]
-                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - tgt[todo]), axis=-1)
+                rt = np.max(np.abs(_voigt_vec(_cauchy(trial, C2, C3)) - tgt[todo]), axis=-1)
                 better = np.isfinite(rt) & (rt < res_a[todo])
                 idx = np.flatnonzero(todo)[better]
                 F_a[idx] = trial[better]

@@ -445,7 +445,7 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     # no eigenvalue by more than 1e-10 of it, far inside the pivot margin _CONVEX_RTOL
     mirror = np.abs(A[:, _ODD_ENTRIES[dim]]).max(axis=-1, initial=0.0) <= 1e-12 * scale
     idx = np.flatnonzero(mirror)
-    blocks = _mirror_blocks(A[idx])
+    blocks = _mirror_blocks(A[idx]) if idx.size else ()
     for t in _NULL_WEIGHTS:  # in turn, each on the points the previous ones left
         if not idx.size:
             break
