@@ -344,15 +344,24 @@ def _stress_and_jacobian(F, C2, C3):
     return sigma, _jacobian(parts), parts["K"]
 
 
-def _stress_parts(F, C2, C3) -> tuple[np.ndarray, dict]:
-    """Cauchy stress (..., 3, 3) at F and the intermediate arrays its Jacobian (:func:`_jacobian`) reuses."""
-    eta = lagrangian_strain(F)
-    K = _tangent(C2, C3, eta)
-    T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
+def _stress_parts(F, C2, C3, strain=None) -> tuple[np.ndarray, dict]:
+    """Cauchy stress (..., 3, 3) at F and the intermediate arrays its Jacobian (:func:`_jacobian`) reuses.
+
+    ``strain``: (eta, K, T) at this F where already known (:func:`_strain_parts`), else computed.
+    """
+    eta, K, T = _strain_parts(F, C2, C3) if strain is None else strain
     J = np.linalg.det(F)
     Ft = np.swapaxes(F, -1, -2)
     sigma = F @ T @ Ft / J[..., None, None]
     return sigma, {"F": F, "Ft": Ft, "T": T, "J": J, "K": K, "sigma": sigma, "eta": eta}
+
+
+def _strain_parts(F, C2, C3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lagrangian strain eta, tangent K = C2 + C3 : eta and PK2 stress T = (C2 + K)/2 : eta at F:
+    the numbers of :func:`_pk2` (C2 + K and K + C2 are the same sum), kept for reuse."""
+    eta = lagrangian_strain(F)
+    K = _tangent(C2, C3, eta)
+    return eta, K, np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
 
 
 def _jacobian(parts: dict, rows=None) -> np.ndarray:
@@ -474,8 +483,9 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     done = np.zeros(n, dtype=bool)
     residual = np.full(n, np.inf)
     with np.errstate(all="ignore"):
+        strain = _strain_parts(F, C2, C3)     # (eta, K, T) at F, carried along with F from the line search
         for it in range(max_iterations + 1):
-            s, parts = _stress_parts(F, C2, C3)
+            s, parts = _stress_parts(F, C2, C3, strain)
             r = _voigt_vec(s) - target
             residual = np.max(np.abs(r), axis=-1)
             done |= residual <= tol
@@ -490,18 +500,28 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
                 du = -np.einsum("mab,mb->ma", np.linalg.pinv(jac), r[active])
             step = np.einsum("ma,aij->mij", du, _BASIS)
             # Full Newton step where it lowers the residual; step halving only for the others.
-            F_a, res_a, tgt = F[active], residual[active], target[active]
+            every = bool(active.all())                          # then F and strain are updated in place
+            F_a, res_a, tgt = (F, residual, target) if every else (F[active], residual[active], target[active])
+            strain_a = strain if every else [x[active] for x in strain]
             todo = np.ones(len(F_a), dtype=bool)
             for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
                 trial = F_a[todo] + alpha * step[todo]
-                rt = np.max(np.abs(_voigt_vec(_cauchy(trial, C2, C3)) - tgt[todo]), axis=-1)
+                strain_t = _strain_parts(trial, C2, C3)        # _cauchy(trial, C2, C3), its parts kept
+                s_t = np.einsum("...ip,...pq,...jq->...ij", trial, strain_t[2], trial) / \
+                    np.linalg.det(trial)[..., None, None]
+                rt = np.max(np.abs(_voigt_vec(s_t) - tgt[todo]), axis=-1)
                 better = np.isfinite(rt) & (rt < res_a[todo])
                 idx = np.flatnonzero(todo)[better]
                 F_a[idx] = trial[better]
+                for x, x_t in zip(strain_a, strain_t):
+                    x[idx] = x_t[better]
                 todo[idx] = False
                 if not todo.any():
                     break
-            F[active] = F_a
+            if not every:
+                F[active] = F_a
+                for x, x_a in zip(strain, strain_a):
+                    x[active] = x_a
         eta, K = parts["eta"], parts["K"]           # F has not moved since this last evaluation
         J = np.linalg.det(F)
     reason = np.full(n, "", dtype=object)
@@ -512,7 +532,7 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     reason[bad_J] = "deformation solve reached det F <= 0"
     ok &= ~bad_J
     rows = np.flatnonzero(ok)                       # convexity: only where a state was found
-    convex, K_min = lowest_if_needed(tensor_to_voigt(K[rows]))
+    convex, K_min = lowest_if_needed(tensor_to_voigt(K if rows.size == n else K[rows]))
     not_convex = np.zeros(n, dtype=bool)
     not_convex[rows[~convex]] = True
     reason[not_convex] = [
@@ -580,8 +600,10 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
         rho = float(rho0) / np.linalg.det(F)
     # Born stability where a state exists (the others are not ok either way)
     rows = np.flatnonzero(ok)
-    stable, born = lowest_if_needed(wallace_tensor(C_star.reshape(-1, 3, 3, 3, 3)[rows],
-                                                   np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)[rows]))
+    C_rows, s_rows = C_star.reshape(-1, 3, 3, 3, 3), np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
+    if rows.size < ok.size:
+        C_rows, s_rows = C_rows[rows], s_rows[rows]
+    stable, born = lowest_if_needed(wallace_tensor(C_rows, s_rows))
     if not stable.all():
         lost = np.zeros(ok.size, dtype=bool)
         lost[rows[~stable]] = True

@@ -34,6 +34,8 @@ import itertools
 
 import numpy as np
 
+from surfwave.solvers.tensors import cross
+
 __all__ = ["AXIS_WAVES", "BULK_SPEEDS", "BULK_POLARISATIONS", "DEGENERATE_RTOL", "axis_waves", "christoffel"]
 
 #: The waves along each lab axis: (direction index, name of the wave mostly polarised along x1, x2, x3).
@@ -109,8 +111,8 @@ def _align_degenerate(w: np.ndarray, V: np.ndarray) -> np.ndarray:
         axis = np.argmax(np.einsum("kii->ki", P), axis=-1)          # the axis closest to the plane
         first = P[np.arange(len(axis)), :, axis]
         first /= np.linalg.norm(first, axis=-1, keepdims=True)
-        normal = np.cross(U[:, :, 0], U[:, :, 1])
-        second = np.cross(normal, first)
+        normal = cross(U[:, :, 0], U[:, :, 1])
+        second = cross(normal, first)
         V[np.flatnonzero(deg)[:, None], :, np.array([a, b])[None, :]] = np.stack([first, second], axis=1)
     return V
 
