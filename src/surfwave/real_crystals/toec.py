@@ -371,16 +371,27 @@ def _jacobian(parts: dict, rows=None) -> np.ndarray:
         rows = None                                            # every point: no copies
     F, Ft, T, J, K, sigma = (parts[k] if rows is None else parts[k][rows] for k in ("F", "Ft", "T", "J", "K", "sigma"))
     Finv = np.linalg.inv(F)
-    F1, Ft1 = F[..., None, :, :], Ft[..., None, :, :]
-    dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
     FtdF = _times_basis(Ft)                                    # Ft @ dF
     deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
     K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
     dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
-    dFTFt = np.swapaxes(_times_basis(np.swapaxes(T, -1, -2)), -1, -2).copy() @ Ft1     # (dF @ T) @ Ft
-    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
-    trace = np.einsum("...ij,...bji->...b", Finv, dF)
+    dFTFt = _times_each(np.swapaxes(_times_basis(np.swapaxes(T, -1, -2)), -1, -2), Ft)     # (dF @ T) @ Ft
+    FdT = (F @ np.swapaxes(dT, -3, -2).reshape(dT.shape[:-3] + (3, 18))).reshape(dT.shape[:-3] + (3, 6, 3))
+    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + _times_each(np.swapaxes(FdT, -3, -2), Ft)   # F @ dT @ Ft
+    # tr(F^-1 dF) = Finv_pq (+ Finv_qp off the diagonal): the einsum over the basis' 0/1 entries
+    # adds exact zeros to these, and + 0.0 gives a zero its +0 sign as the einsum's sum does
+    trace = Finv[..., _VI, _VJ]
+    trace[..., 3:] += Finv[..., _VJ[3:], _VI[3:]]
+    trace += 0.0
     return term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
+
+
+def _times_each(X: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """X_a @ B for the six 3 x 3 matrices X_a of each point, (..., 6, 3, 3) @ (..., 3, 3): one (18, 3)
+    by (3, 3) product per point instead of six 3 x 3 ones (each entry the same dot product, so the
+    same numbers as ``X @ B[..., None, :, :]``)."""
+    lead = X.shape[:-3]
+    return (np.ascontiguousarray(X).reshape(lead + (18, 3)) @ B).reshape(lead + (6, 3, 3))
 
 
 def _times_basis(X: np.ndarray) -> np.ndarray:
@@ -428,7 +439,7 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
         ``F`` (..., 3, 3), ``eta`` (..., 3, 3), ``ok`` (...,) bool, ``reason`` (...,) str
         ("" where ok), ``iterations`` (...,) int, ``residual`` (...,) GPa.
     """
-    sol, _ = _deformation(_checked_sigma(sigma), _as_c2(C2), np.zeros((3,) * 6) if C3 is None else _as_c3(C3),
+    sol, _, _ = _deformation(_checked_sigma(sigma), _as_c2(C2), np.zeros((3,) * 6) if C3 is None else _as_c3(C3),
                           tol, max_iterations)
     return sol
 
@@ -449,7 +460,7 @@ def _checked_sigma(sigma: ArrayLike) -> np.ndarray:
 
 
 def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
-                 max_iterations: int) -> tuple[dict, np.ndarray]:
+                 max_iterations: int) -> tuple[dict, np.ndarray, np.ndarray]:
     """:func:`deformation_for_stress` on checked input, and the tangent C2 + C3 : eta at its F.
 
     Parameters
@@ -471,6 +482,8 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     K : ndarray, shape (n, 3, 3, 3, 3)
         C2 + C3 : eta (GPa) at the last F of the iteration, n points flattened (the same
         numbers as :func:`_tangent` of the returned ``eta`` where ``ok``).
+    J : ndarray, shape (n,)
+        det F at that F (before the failed points' F is set to NaN).
     """
     shape = sigma.shape[:-2]
     target = _voigt_vec(sigma).reshape(-1, 6)
@@ -522,8 +535,7 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
                 F[active] = F_a
                 for x, x_a in zip(strain, strain_a):
                     x[active] = x_a
-        eta, K = parts["eta"], parts["K"]           # F has not moved since this last evaluation
-        J = np.linalg.det(F)
+        eta, K, J = parts["eta"], parts["K"], parts["J"]    # F has not moved since this last evaluation
     reason = np.full(n, "", dtype=object)
     ok = done.copy()
     reason[~done] = [f"no homogeneous state of the third-order model found for this stress (Newton stalled at "
@@ -543,7 +555,7 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     eta[~ok] = np.nan
     return {"F": F.reshape(shape + (3, 3)), "eta": eta.reshape(shape + (3, 3)),
             "ok": ok.reshape(shape), "reason": reason.astype(str).reshape(shape),
-            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}, K
+            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}, K, J
 
 
 def stressed_state(C2: ArrayLike, C3: ArrayLike | None, sigma: ArrayLike, rho0: float, *,
@@ -594,10 +606,10 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
     else:
         # the constants converted once; C* from the tangent the deformation solve ends with
         # (the same numbers as stressed_constants(C2, C3, F), without recomputing them)
-        sol, K = _deformation(_checked_sigma(sigma), C2, _as_c3(C3), tol, MAX_ITERATIONS)
+        sol, K, J = _deformation(_checked_sigma(sigma), C2, _as_c3(C3), tol, MAX_ITERATIONS)
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
         C_star = _push_forward(F, K.reshape(shape + (3, 3, 3, 3)))
-        rho = float(rho0) / np.linalg.det(F)
+        rho = float(rho0) / J.reshape(shape)               # det F (NaN-masked below where not ok)
     # Born stability where a state exists (the others are not ok either way)
     rows = np.flatnonzero(ok)
     C_rows, s_rows = C_star.reshape(-1, 3, 3, 3, 3), np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
