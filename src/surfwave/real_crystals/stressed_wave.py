@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
@@ -63,7 +64,8 @@ if TYPE_CHECKING:
 
 __all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
            "REASON_LEAKY_OFF", "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
-           "electrical_error", "require_toec", "stress_tensor", "surface_wave", "surface_wave_conditions"]
+           "check_stress", "electrical_error", "require_toec", "stress_tensor", "surface_wave",
+           "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -361,6 +363,44 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
     return surface_wave_conditions(constants, axes, stress, conditions=(condition,), toec=toec, tol=tol,
                                    state_tol=state_tol, bulk=bulk, leaky=leaky)[None if condition is None
                                                                                 else condition.name]
+
+
+def check_stress(stress, axes: np.ndarray, where: str, *, frame: str = "crystal axes") -> np.ndarray:
+    """The prestress (m, 3, 3) in GPa: numbers, finite, the Pa guard, symmetric, sigma . n = 0.
+
+    The one stress check of every door (:func:`surfwave.case.make_case`, where it is also
+    exported, :func:`surfwave.real_crystals.piezo_wave.piezo_wave`,
+    :func:`surfwave.real_crystals.acoustoelastic.surface_wave_speed`), in one wording.
+
+    Parameters
+    ----------
+    stress : array_like, shape (m, 3, 3) or (3, 3)
+        Cauchy stress, GPa, in the axes ``frame`` names.
+    axes : ndarray, shape (m, 3, 3)
+        Lab axes in the same frame (row 1: the inward normal).
+    where : str
+        The surface in words (the message names it).
+    frame : str
+        The axes of ``stress`` in words (the message names them).
+    """
+    s = validate.gpa_stress(stress)
+    if s.shape[-2:] != (3, 3):
+        raise InputError(f"stress must be 3 x 3 tensors (GPa), got shape {s.shape}")
+    try:
+        s = np.broadcast_to(s, axes.shape)
+    except ValueError:
+        raise InputError(f"stress must be one 3 x 3 tensor or one per point ({axes.shape[0]}), got shape "
+                         f"{s.shape}") from None
+    scale = max(float(np.abs(s).max()), 1e-300) if s.size else 1.0
+    if not np.all(np.abs(s - np.swapaxes(s, -1, -2)) <= 1e-12 * scale):   # allclose(rtol=0): s is finite
+        raise InputError(f"the stress tensor must be symmetric, got {s[0].tolist()}")
+    traction = np.einsum("mij,mj->mi", s, axes[:, 1])
+    bad = np.abs(traction).max(axis=-1) > TRACTION_TOL * scale
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(f"prestress must lie in the surface plane {where}: its traction sigma . n = "
+                         f"{np.round(traction[k], 12).tolist()} GPa ({frame}) is not zero")
+    return s
 
 
 def require_toec(constants: Constants, toec: bool) -> None:
