@@ -240,7 +240,16 @@ def material_result(case: Case) -> dict:
     if case.piezo:
         out["euler"] = case.euler if case.euler is not None else np.full((case.size, 3), np.nan)
     if case.scalar:
-        out = {k: (v[0] if np.ndim(v[0]) else np.asarray(v[0]).item()) for k, v in out.items()}
+        out = {k: _first(v) for k, v in out.items()}
     if case.piezo:
         out["model"] = stress_model([case.toec])
     return out
+
+
+def _first(v: np.ndarray) -> Any:
+    """The first point's value of a per-point array: an array (its trailing axes) or a Python
+    scalar (float, bool, str: ``np.asarray(v[0]).item()``)."""
+    x = v[0]
+    if isinstance(x, np.ndarray):
+        return x
+    return x.item() if isinstance(x, np.generic) else np.asarray(x).item()

@@ -465,6 +465,8 @@ def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: Array
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
     require_toec(constants, toec)
     outs = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, conditions, leaky)
+    if shape == (sigma.shape[0],):       # already (n, ...): no reshaped views
+        return outs
     return {c: {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()} for c, out in outs.items()}
 
 
@@ -610,6 +612,8 @@ def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray, constants: Co
     crystal), n points, NaN where no state."""
     e, eps = _lab_piezo(constants, lab) if constants.is_piezo else (None, None)
     waves = axis_waves(A, rho, e, eps)
+    if idx.size == n:                    # every point has a state: the waves as they are (fresh arrays)
+        return waves
     out = {}
     for key, v in waves.items():
         out[key] = np.full((n,) + v.shape[1:], np.nan)
