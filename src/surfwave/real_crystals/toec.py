@@ -34,6 +34,8 @@ Examples
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -105,8 +107,20 @@ def toec_tensor(C3_voigt: ArrayLike) -> np.ndarray:
     return C3[..., V[:, :, None, None, None, None], V[None, None, :, :, None, None], V[None, None, None, None, :, :]]
 
 
+@lru_cache(maxsize=64)
+def _full_index(data: bytes, shape: tuple[int, ...]) -> np.ndarray:
+    """The full-index tensor of one Voigt C2 (6, 6) or C3 (6, 6, 6) given by its bytes, built once
+    per set of constants (the same numbers: the same picks), read-only."""
+    voigt = np.frombuffer(data, dtype=float).reshape(shape)
+    full = voigt_to_tensor(voigt) if shape == (6, 6) else toec_tensor(voigt)
+    full.setflags(write=False)
+    return full
+
+
 def _as_c2(C2) -> np.ndarray:
     C2 = np.asarray(C2, dtype=float)
+    if C2.shape == (6, 6):
+        return _full_index(C2.tobytes(), C2.shape)
     if C2.shape[-2:] == (6, 6) and (C2.ndim < 4 or C2.shape[-4:-2] != (3, 3)):
         return voigt_to_tensor(C2)
     if C2.shape[-4:] != (3, 3, 3, 3):
@@ -116,6 +130,8 @@ def _as_c2(C2) -> np.ndarray:
 
 def _as_c3(C3) -> np.ndarray:
     C3 = np.asarray(C3, dtype=float)
+    if C3.shape == (6, 6, 6):
+        return _full_index(C3.tobytes(), C3.shape)
     if C3.shape[-3:] == (6, 6, 6):
         return toec_tensor(C3)
     if C3.shape[-6:] != (3,) * 6:
@@ -228,6 +244,10 @@ def _push_forward(F: np.ndarray, K: np.ndarray) -> np.ndarray:
 
 _VI = np.array([p[0] for p in VOIGT_PAIRS])
 _VJ = np.array([p[1] for p in VOIGT_PAIRS])
+# Kronecker deltas of :func:`wallace_tensor` on the Voigt pairs (ij), (km): d_ik, d_jk, d_im, d_jm, d_km, (6, 6)
+_WALLACE_DELTAS = tuple(np.eye(3)[a, b] for a, b in ((_VI[:, None], _VI[None, :]), (_VJ[:, None], _VI[None, :]),
+                                                     (_VI[:, None], _VJ[None, :]), (_VJ[:, None], _VJ[None, :]),
+                                                     (_VI[None, :], _VJ[None, :])))
 
 
 def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
@@ -246,15 +266,15 @@ def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     -------
     ndarray, shape (..., 6, 6)
     """
-    e = np.eye(3)
     sigma = np.asarray(sigma, dtype=float)
     # the 36 Voigt entries only (the same products and sums as the full tensor, term by term)
     i, j = _VI[:, None], _VJ[:, None]
     k, m = _VI[None, :], _VJ[None, :]
+    d_ik, d_jk, d_im, d_jm, d_km = _WALLACE_DELTAS
     B6 = tensor_to_voigt(C) + 0.5 * (
-        e[i, k] * sigma[..., j, m] + e[j, k] * sigma[..., i, m]
-        + e[i, m] * sigma[..., j, k] + e[j, m] * sigma[..., i, k]
-        - 2 * (e[k, m] * sigma[..., i, j]))
+        d_ik * sigma[..., j, m] + d_jk * sigma[..., i, m]
+        + d_im * sigma[..., j, k] + d_jm * sigma[..., i, k]
+        - 2 * (d_km * sigma[..., i, j]))
     return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
 
 
