@@ -38,7 +38,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import stress_model
-from surfwave.real_crystals.stressed_wave import TRACTION_TOL, Constants, require_toec, surface_wave_conditions
+from surfwave.real_crystals.stressed_wave import Constants, check_stress, require_toec, surface_wave_conditions
 from surfwave.real_crystals.toec import born_lowest, born_reason
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
 from surfwave.solvers.tensors import rotate2, voigt_to_tensor
@@ -156,40 +156,6 @@ def born_reason_natural(constants: Constants) -> str:
     return born_reason(lowest)
 
 
-def check_stress(stress, axes: np.ndarray, where: str, *, frame: str = "crystal axes") -> np.ndarray:
-    """The prestress (m, 3, 3) in GPa: numbers, finite, the Pa guard, symmetric, sigma . n = 0.
-
-    Parameters
-    ----------
-    stress : array_like, shape (m, 3, 3) or (3, 3)
-        Cauchy stress, GPa, in the axes ``frame`` names.
-    axes : ndarray, shape (m, 3, 3)
-        Lab axes in the same frame (row 1: the inward normal).
-    where : str
-        The surface in words (the message names it).
-    frame : str
-        The axes of ``stress`` in words (the message names them).
-    """
-    s = validate.gpa_stress(stress)
-    if s.shape[-2:] != (3, 3):
-        raise InputError(f"stress must be 3 x 3 tensors (GPa), got shape {s.shape}")
-    try:
-        s = np.broadcast_to(s, axes.shape)
-    except ValueError:
-        raise InputError(f"stress must be one 3 x 3 tensor or one per point ({axes.shape[0]}), got shape "
-                         f"{s.shape}") from None
-    scale = max(float(np.abs(s).max()), 1e-300) if s.size else 1.0
-    if not np.allclose(s, np.swapaxes(s, -1, -2), rtol=0, atol=1e-12 * scale):
-        raise InputError(f"the stress tensor must be symmetric, got {s[0].tolist()}")
-    traction = np.einsum("mij,mj->mi", s, axes[:, 1])
-    bad = np.abs(traction).max(axis=-1) > TRACTION_TOL * scale
-    if bad.any():
-        k = int(np.flatnonzero(bad)[0])
-        raise InputError(f"prestress must lie in the surface plane {where}: its traction sigma . n = "
-                         f"{np.round(traction[k], 12).tolist()} GPa ({frame}) is not zero")
-    return s
-
-
 def make_case(constants: Constants, axes, stress, *, electrical: Any = None, toec: bool = False,
               leaky: bool | np.bool_ | None = None, tol: float | None = None, where: str = "(001)",
               angle: np.ndarray | None = None, euler: np.ndarray | None = None, scalar: bool = False) -> Case:
@@ -274,7 +240,16 @@ def material_result(case: Case) -> dict:
     if case.piezo:
         out["euler"] = case.euler if case.euler is not None else np.full((case.size, 3), np.nan)
     if case.scalar:
-        out = {k: (v[0] if np.ndim(v[0]) else np.asarray(v[0]).item()) for k, v in out.items()}
+        out = {k: _first(v) for k, v in out.items()}
     if case.piezo:
         out["model"] = stress_model([case.toec])
     return out
+
+
+def _first(v: np.ndarray) -> Any:
+    """The first point's value of a per-point array: an array (its trailing axes) or a Python
+    scalar (float, bool, str: ``np.asarray(v[0]).item()``)."""
+    x = v[0]
+    if isinstance(x, np.ndarray):
+        return x
+    return x.item() if isinstance(x, np.generic) else np.asarray(x).item()

@@ -296,6 +296,11 @@ def _has_bool(values) -> bool:
 
 def _numbers(values, name: str, unit: str) -> np.ndarray:
     """``values`` as a real float array; booleans, text and complex refused (naming ``unit``)."""
+    if type(values) is np.ndarray and values.dtype == np.float64:        # already real floats: a view
+        a = values.reshape(values.shape)
+        if not np.all(np.isfinite(a)):
+            raise InputError(f"{name} must be finite, got {brief(values)}")
+        return a
     if _has_bool(values):
         raise InputError(f"{name} must be numbers ({unit}), not True/False: got {brief(values)}")
     a = real_array(values, name).reshape(np.shape(values))

@@ -71,12 +71,20 @@ def test_copper_toec_effect_as_stated_in_the_issue():
 
 
 def test_extremes_and_bad_input():
-    """Out-of-plane stress is refused naming the component; a stress past the model's range is
-    NaN with a reason; a direction outside the surface is an InputError."""
+    """Out-of-plane stress is refused (check_in_plane naming the component; surface_wave_speed in
+    the case check's words, as surfwave.material, naming the traction); a stress past the model's
+    range is NaN with a reason; a direction outside the surface is an InputError."""
     with pytest.raises(InputError, match="sigma_yy"):
         check_in_plane(np.diag([0.0, 0.0, 1.0]), "(001)", "[100]")
-    with pytest.raises(InputError, match="sigma_xy"):
-        surface_wave_speed(CU.voigt, CU_C3, CU.rho, np.array([[0, 0, 0.1], [0, 0, 0], [0.1, 0, 0]]))
+    loaded = np.array([[0, 0, 0.1], [0, 0, 0], [0.1, 0, 0]])
+    with pytest.raises(InputError) as api:
+        surfwave.material("Cu", stress=loaded, toec=True)
+    with pytest.raises(InputError) as ae:
+        surface_wave_speed(CU.voigt, CU_C3, CU.rho, loaded)
+    assert str(ae.value) == str(api.value)
+    assert str(ae.value).startswith("prestress must lie in the surface plane (001): its traction sigma . n = [0.1, 0.0, 0.0]")
+    with pytest.raises(InputError, match="in GPa"):
+        surface_wave_speed(CU.voigt, CU_C3, CU.rho, np.diag([2000.0, 0.0, 0.0]))
     r = surface_wave_speed(CU.voigt, CU_C3, CU.rho, loading_stress("along", [-40.0, 0.2]))
     assert np.isnan(r["c_R"][0]) and r["reason"][0] and r["wave_type"][0] == "none"
     assert np.isfinite(r["c_R"][1]) and r["reason"][1] == ""

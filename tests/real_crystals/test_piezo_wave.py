@@ -102,15 +102,26 @@ def test_euler_for_a_non_piezoelectric_crystal():
 
 def test_prestress_in_plane_and_loading_the_surface():
     """A scalar stress is uniaxial along x1: on ST-X (x1 = crystal X) it equals the 3 x 3 tensor
-    s X X^T (same model, two inputs); a stress sigma_ZZ on the Z cut loads the surface (NaN + reason)
-    but lies in the plane of the Y cut (finite): one call, per-point answer. Compression along X of
-    ST-X lowers nothing by more than a few 1e-3 at 0.1 GPa (fixed-C: dv/v ~ sigma / (2 C66))."""
+    s X X^T (same model, two inputs); a stress sigma_ZZ lies in the plane of the Y cut (finite)
+    but loads the surface of the Z cut: refused, one InputError line in the words of
+    surfwave.material with Euler angles (the reference: that door's refusal of the same stress,
+    naming the traction), not a NaN. Compression along X of ST-X lowers nothing by more than a
+    few 1e-3 at 0.1 GPa (fixed-C: dv/v ~ sigma / (2 C66))."""
     c = get_cut("ST-X quartz")
     a = piezo_wave(c.material, c.lab_axes, -0.1)
     b = piezo_wave(c.material, c.lab_axes, np.diag([-0.1, 0.0, 0.0]))
     np.testing.assert_allclose(a["c_R"], b["c_R"], rtol=1e-13)
-    z = piezo_wave("quartz", euler_lab_axes([[0, 0, 0], [0, 90, 0]]), np.diag([0.0, 0.0, 0.05]))
-    assert np.isnan(z["c_R"][0]) and z["reason"][0] == REASON_TRACTION and np.isfinite(z["c_R"][1])
+    szz = np.diag([0.0, 0.0, 0.05])
+    y = piezo_wave("quartz", euler_lab_axes([0, 90, 0]), szz)
+    assert np.isfinite(y["c_R"][0]) and y["reason"][0] == ""
+    with pytest.raises(InputError) as pw:
+        piezo_wave("quartz", euler_lab_axes([[0, 0, 0], [0, 90, 0]]), szz)
+    with pytest.raises(InputError) as api:
+        surfwave.material("quartz", euler=(0, 0, 0), stress=szz)
+    text = str(pw.value)
+    assert "\n" not in text and text.startswith("prestress must lie in the surface plane of the lab axes: its traction")
+    assert text.split(": its")[1] == str(api.value).split(": its")[1]
+    assert REASON_TRACTION not in text
     free0 = piezo_wave(c.material, c.lab_axes)["c_free"][0]
     assert abs(a["c_free"][0] / free0 - 1) < 5e-3 and a["c_free"][0] != free0
 

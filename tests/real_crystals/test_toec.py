@@ -180,3 +180,51 @@ def test_pressure_derivative_of_the_bulk_modulus_is_the_closed_form():
         B0 = (c["C11"] + 2 * c["C12"]) / 3
         assert (B[1] - B[0]) / (2 * h) == pytest.approx(-(t["C111"] + 6 * t["C112"] + 2 * t["C123"]) / (9 * B0),
                                                         rel=1e-6), name
+
+
+def test_lowest_if_needed_gives_the_flags_of_eigvalsh():
+    """The Cholesky certificate in front of the Born and convexity checks: the flags equal
+    eigvalsh's lowest eigenvalue > 0 (reference: LAPACK eigvalsh) for stacks that are clearly
+    positive, marginal (lowest eigenvalue +-1e-13 .. 1e-6 of the scale) or indefinite, and the
+    eigenvalue is reported wherever the certificate did not decide."""
+    from surfwave.real_crystals.toec import lowest_if_needed
+
+    rng = np.random.default_rng(11)
+    Q = np.linalg.qr(rng.normal(size=(60, 6, 6)))[0]
+    w = rng.uniform(1.0, 300.0, (60, 6))
+    w[:, 0] = np.concatenate([rng.uniform(1.0, 50.0, 20), 300.0 * np.array([1e-13, -1e-13, 1e-11, -1e-11, 1e-9, 2e-9,
+                                                                           -1e-9, 1e-7, -1e-7, 1e-6] * 4)])
+    M = Q @ (w[..., None] * np.swapaxes(Q, -1, -2))
+    M = 0.5 * (M + np.swapaxes(M, -1, -2))
+    for stack in (M[:20], M, M[20:], M[:0]):
+        ref = np.linalg.eigvalsh(stack)[..., 0] if len(stack) else np.zeros(0)
+        positive, lowest = lowest_if_needed(stack)
+        np.testing.assert_array_equal(positive, ref > 0)
+        decided = np.isnan(lowest)
+        assert np.all(positive[decided])                       # the certificate only ever says "positive"
+        np.testing.assert_array_equal(lowest[~decided], ref[~decided])
+    assert np.isnan(lowest_if_needed(M[:20])[1]).all()         # clearly positive: no eigenvalue computed
+
+
+def test_jacobian_products_have_the_bits_of_the_per_matrix_forms():
+    """The deformation solve's Jacobian writes its products in cheaper forms that must keep every
+    bit (the cubes do not move): one (18, 3) x (3, 3) product per point for six 3 x 3 ones, and
+    tr(F^-1 dF) by picking entries (references: the per-matrix products and the einsum over the
+    0/1 basis tensors they replaced). A failure means the BLAS or numpy computes these entries in
+    another order on this build: the forms must follow it."""
+    from surfwave.real_crystals import toec as tm
+
+    rng = np.random.default_rng(8)
+    for n in (1, 7, 300):
+        X, F = rng.normal(size=(n, 6, 3, 3)), rng.normal(size=(n, 3, 3))
+        Ft = np.swapaxes(F, -1, -2)
+        assert np.array_equal(tm._times_each(X, Ft), X @ Ft[:, None])
+        FX = (F @ np.swapaxes(X, -3, -2).reshape(n, 3, 18)).reshape(n, 3, 6, 3)
+        assert np.array_equal(np.swapaxes(FX, -3, -2), F[:, None] @ X)
+        Finv = np.linalg.inv(F)
+        Finv[0, 1, 2] = -Finv[0, 2, 1]                     # an exact zero trace entry
+        trace = Finv[..., tm._VI, tm._VJ]
+        trace[..., 3:] += Finv[..., tm._VJ[3:], tm._VI[3:]]
+        trace += 0.0
+        ref = np.einsum("...ij,...bji->...b", Finv, np.broadcast_to(tm._BASIS, (n, 6, 3, 3)))
+        assert np.array_equal(trace, ref) and np.array_equal(np.signbit(trace), np.signbit(ref))

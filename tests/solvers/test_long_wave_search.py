@@ -16,6 +16,7 @@ import pytest
 from surfwave.model_crystals import elastic
 from surfwave.model_crystals.lattices import build
 from surfwave.solvers import long_wave
+from surfwave.solvers.tensors import rotate2, rotate4
 
 # (lattice, loading, direction, potential) -> d/d0 span through its long-wave instabilities
 # and up to its geometry edge (limits from surfwave.model_crystals.stability.instability_limits).
@@ -188,3 +189,48 @@ def test_mirror_blocks_against_the_full_matrix(case):
 
     brute = np.max([lowest(w * scale) for w in np.linspace(-1.0, 1.0, 401)], axis=0)
     assert np.all(lowest(long_wave._best_null_weight(blocks, scale)) >= brute - 1e-7 * scale)
+
+
+def test_cholesky_certificate_gives_the_elimination_flags():
+    """_pivots_above (LAPACK Cholesky of B - 2 tol I first) gives the flags of the pivot
+    elimination _positive_definite (the reference) on 9 x 9 stacks that are clearly positive,
+    marginal (lowest eigenvalue near tol, on both sides) or indefinite."""
+    rng = np.random.default_rng(4)
+    Q = np.linalg.qr(rng.normal(size=(80, 9, 9)))[0]
+    w = rng.uniform(1.0, 100.0, (80, 9))
+    w[:, 0] = np.concatenate([rng.uniform(1.0, 10.0, 30), 1e-7 * np.geomspace(0.01, 100.0, 45), -1e-7 * np.ones(5)])
+    B = Q @ (w[..., None] * np.swapaxes(Q, -1, -2))
+    B = 0.5 * (B + np.swapaxes(B, -1, -2))
+    tol = 1e-9 * np.abs(B).max(axis=(1, 2))                  # ~3e-8 .. 1e-7: the marginal rows straddle it
+    for rows in [slice(0, 30), slice(None), slice(30, None), slice(0, 0)] + [slice(k, k + 1) for k in range(80)]:
+        pivots = long_wave._positive_definite(B[rows], tol[rows])
+        np.testing.assert_array_equal(long_wave._pivots_above(B[rows], tol[rows]), pivots)
+        if long_wave._all_certified(B[rows], np.zeros(len(pivots)), tol[rows]):   # t = 0: B itself
+            assert pivots.all() and len(pivots)
+    assert long_wave._all_certified(B[:30], np.zeros(30), tol[:30])
+
+
+@pytest.mark.parametrize("case", list(SPANS), ids=lambda c: "-".join(c))
+def test_whole_stack_certificate_keeps_the_sufficient_test_flags(case, monkeypatch):
+    """strongly_convex with its whole-stack Cholesky certificate gives the flags it gives without
+    it (the reference: the same function with the certificate switched off), on stacks that pass
+    (a stable stretch) and on the full span through the instabilities (where it falls back), at
+    the mirror directions and rotated off them (3D: 20 degrees about the normal, no lab mirror)."""
+    lattice, loading, direction, pot = case
+    lo, hi = SPANS[case]
+    c = build(lattice, loading, pot, direction, np.linspace(lo, hi, 200))
+    sigma = elastic.stress(c.bonds, pot)
+    C = elastic.elastic_constants(c.bonds, pot)
+    stacks = [(C, sigma)]
+    if C.shape[-1] == 3:
+        a = np.radians(20.0)
+        R = np.array([[np.cos(a), 0.0, np.sin(a)], [0.0, 1.0, 0.0], [-np.sin(a), 0.0, np.cos(a)]])
+        stacks.append((rotate4(C, np.broadcast_to(R, sigma.shape)), rotate2(sigma, R)))
+    for Cs, ss in stacks:
+        with_cert = long_wave.strongly_convex(Cs, ss)
+        for rows in (np.flatnonzero(with_cert)[:60], np.arange(len(ss))):      # all pass / mixed
+            got = long_wave.strongly_convex(Cs[rows], ss[rows])
+            with monkeypatch.context() as mp:
+                mp.setattr(long_wave, "_all_certified", lambda *args: False)
+                ref = long_wave.strongly_convex(Cs[rows], ss[rows])
+            np.testing.assert_array_equal(got, ref)

@@ -27,6 +27,7 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from surfwave.case import check_stress
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec
 from surfwave.real_crystals.stressed_wave import REASON_TRACTION, TRACTION_TOL, Constants, stress_tensor, surface_wave
@@ -129,7 +130,9 @@ def surface_wave_speed(C2: np.ndarray, C3: np.ndarray | None, rho0: float, sigma
     rho0 : float
         Natural-state density, kg/m^3.
     sigma : array_like, shape (..., 3, 3)
-        Cauchy stress, crystal axes, GPa; in-plane only (else InputError naming the component).
+        Cauchy stress, crystal axes, GPa: numbers, symmetric, in GPa and in-plane, checked by
+        :func:`surfwave.case.check_stress` (InputError in the words of every door, e.g. the
+        traction sigma . n it finds).
     surface : str or 3-vector
         "(hkl)" of the natural crystal.
     direction : str or float
@@ -147,9 +150,10 @@ def surface_wave_speed(C2: np.ndarray, C3: np.ndarray | None, rho0: float, sigma
     sigma = np.asarray(sigma, dtype=float)
     if sigma.shape[-2:] != (3, 3):
         raise InputError(f"sigma must have shape (..., 3, 3), got {sigma.shape}")
-    check_in_plane(sigma, surface, direction)
-    r = surface_wave(Constants(C2, rho0, C3), _axes(surface, direction), sigma, toec=C3 is not None,
-                     state_tol=tol, bulk=False, leaky=False)
+    R = _axes(surface, direction)
+    flat = sigma.reshape(-1, 3, 3)                  # the one check of a case, in its words
+    check_stress(flat, np.broadcast_to(R, flat.shape), surface if isinstance(surface, str) else str(list(surface)))
+    r = surface_wave(Constants(C2, rho0, C3), R, sigma, toec=C3 is not None, state_tol=tol, bulk=False, leaky=False)
     return {"c_R": r["c_R"], "c_limit": r["c_limit"], "wave_type": r["wave_type"].astype(str),
             "reason": r["reason"].astype(str), "ok": r["ok"], "rho": r["rho"], "F": r["F"], "axes": r["axes"]}
 

@@ -7,8 +7,10 @@ Model (say it whenever a prestress is given): fixed constants, A_ijkl = C_ijkl +
 delta_ik with C the stiffness at constant field of the data set (the stressed crystal's
 constants are taken equal to the natural ones); the piezoelectric constants e and the clamped
 permittivity eps are held at their natural values (their stress derivatives are not in the
-database). The prestress must lie in the surface plane (sigma0 . n = 0); a point where it does
-not is NaN with a reason.
+database). The prestress must lie in the surface plane (sigma0 . n = 0): a stress that loads
+the surface is refused with the words of :func:`surfwave.material` (the one check,
+:func:`surfwave.real_crystals.stressed_wave.check_stress`); with the third-order model, a point
+whose *deformed* surface the stress loads is NaN with a reason.
 
 This module only resolves arguments (a material name or explicit constants, lab axes, a
 stress given as a scalar or a tensor); the physics is the one real-crystal path,
@@ -192,14 +194,15 @@ def piezo_wave(material: str | PiezoMaterial | None = None, axes: ArrayLike | No
         the stressed state's C*), ``e`` (m, 3, 3, 3) C/m^2, ``eps`` (m, 3, 3) F/m, ``sigma`` (m, 3, 3)
         GPa (lab frame), ``rho`` (m,) kg/m^3, ``model`` (str); and every key of
         :func:`surfwave.real_crystals.stressed_wave.surface_wave` (``ok``, ``F``, ``axes``, ...).
-        A point whose stress loads the surface, or without a (Born-stable) stressed state, is
-        NaN with the reason of that function.
+        A point without a (Born-stable) stressed state, or (``toec``) whose deformed surface the
+        stress loads, is NaN with the reason of that function.
 
     Raises
     ------
     InputError
         Bad constants (see :func:`resolve_piezo_material`), axes that are not rotations, stress
-        not scalar or 3 x 3, non-finite or in Pa, unknown ``electrical``; all before any solve.
+        not scalar or 3 x 3, non-finite or in Pa, a stress that loads a surface (sigma . n != 0,
+        as :func:`surfwave.material` words it), unknown ``electrical``; all before any solve.
 
     Examples
     --------
@@ -246,7 +249,7 @@ def piezo_wave_conditions(material: str | PiezoMaterial | None = None, axes: Arr
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)
-    sigma_c = _prestress(stress, R)
+    sigma_c = sw_path.check_stress(_prestress(stress, R), R, "of the lab axes")   # the one check, its words
     rs = sw_path.surface_wave_conditions(sw_path.Constants.from_piezo_material(mat), R, sigma_c,
                                          conditions=conditions, toec=toec, tol=tol, bulk=bulk, leaky=leaky)
     lab = rs[conditions[0]]["axes"]

@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
+from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
 from surfwave.solvers import stroh
@@ -63,7 +64,8 @@ if TYPE_CHECKING:
 
 __all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAKY_KEYS", "LOADINGS", "PIEZO_KEYS",
            "REASON_LEAKY_OFF", "REASON_LEAKY_SUBSONIC", "REASON_NO_STATE", "REASON_TRACTION", "TRACTION_TOL",
-           "electrical_error", "require_toec", "stress_tensor", "surface_wave", "surface_wave_conditions"]
+           "check_stress", "electrical_error", "require_toec", "stress_tensor", "surface_wave",
+           "surface_wave_conditions"]
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
@@ -363,6 +365,44 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
                                                                                 else condition.name]
 
 
+def check_stress(stress, axes: np.ndarray, where: str, *, frame: str = "crystal axes") -> np.ndarray:
+    """The prestress (m, 3, 3) in GPa: numbers, finite, the Pa guard, symmetric, sigma . n = 0.
+
+    The one stress check of every door (:func:`surfwave.case.make_case`, where it is also
+    exported, :func:`surfwave.real_crystals.piezo_wave.piezo_wave`,
+    :func:`surfwave.real_crystals.acoustoelastic.surface_wave_speed`), in one wording.
+
+    Parameters
+    ----------
+    stress : array_like, shape (m, 3, 3) or (3, 3)
+        Cauchy stress, GPa, in the axes ``frame`` names.
+    axes : ndarray, shape (m, 3, 3)
+        Lab axes in the same frame (row 1: the inward normal).
+    where : str
+        The surface in words (the message names it).
+    frame : str
+        The axes of ``stress`` in words (the message names them).
+    """
+    s = validate.gpa_stress(stress)
+    if s.shape[-2:] != (3, 3):
+        raise InputError(f"stress must be 3 x 3 tensors (GPa), got shape {s.shape}")
+    try:
+        s = np.broadcast_to(s, axes.shape)
+    except ValueError:
+        raise InputError(f"stress must be one 3 x 3 tensor or one per point ({axes.shape[0]}), got shape "
+                         f"{s.shape}") from None
+    scale = max(float(np.abs(s).max()), 1e-300) if s.size else 1.0
+    if not np.all(np.abs(s - np.swapaxes(s, -1, -2)) <= 1e-12 * scale):   # allclose(rtol=0): s is finite
+        raise InputError(f"the stress tensor must be symmetric, got {s[0].tolist()}")
+    traction = np.einsum("mij,mj->mi", s, axes[:, 1])
+    bad = np.abs(traction).max(axis=-1) > TRACTION_TOL * scale
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(f"prestress must lie in the surface plane {where}: its traction sigma . n = "
+                         f"{np.round(traction[k], 12).tolist()} GPa ({frame}) is not zero")
+    return s
+
+
 def require_toec(constants: Constants, toec: bool) -> None:
     """Refuse ``toec=True`` for constants without a third-order set (one wording for every door).
 
@@ -425,6 +465,8 @@ def surface_wave_conditions(constants: Constants, axes: ArrayLike, stress: Array
     sigma = np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
     require_toec(constants, toec)
     outs = _surface_wave(constants, axes, sigma, bool(toec), tol, state_tol, bulk, conditions, leaky)
+    if shape == (sigma.shape[0],):       # already (n, ...): no reshaped views
+        return outs
     return {c: {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()} for c, out in outs.items()}
 
 
@@ -465,13 +507,15 @@ def _surface_wave(constants: Constants, axes, sigma, toec: bool, tol, state_tol,
         shared["stable"] = np.zeros(n, dtype=bool)
         shared["stable"][idx] = _long_wave_stable(st["C_star"][idx], sigma[idx])
     names = [c.name if isinstance(c, Boundary) else c for c in conditions]
-    return {c: _assemble(constants, sws[c], c, idx, reason, shared) for c in names}
+    # the shared arrays go to the last condition as they are, to the others as copies
+    return {c: _assemble(constants, sws[c], c, idx, reason, shared, copy=i < len(names) - 1)
+            for i, c in enumerate(names)}
 
 
-def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict) -> dict:
+def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: dict, copy: bool = True) -> dict:
     """One condition's output arrays (n points) from the solver dict ``sw`` of the points ``idx``
     with a state; points without one keep NaN and their ``reason``; ``shared`` (state, bulk
-    speeds) is copied in."""
+    speeds) is copied in (``copy``) or put in as it is (the last condition's)."""
     n = reason.shape[0]
     out: dict = {}
     floats = PIEZO_KEYS if constants.is_piezo else LEAKY_KEYS
@@ -495,7 +539,7 @@ def _assemble(constants: Constants, sw: dict, electrical, idx, reason, shared: d
     out["method"][idx] = sw["method"]
     with np.errstate(invalid="ignore"):
         out["grazing"] = np.isfinite(out["c_R"]) & (out["penetration_depth"] > GRAZING_DEPTH)
-    out.update({k: v.copy() for k, v in shared.items()})
+    out.update({k: v.copy() for k, v in shared.items()} if copy else shared)
     return out
 
 
@@ -568,6 +612,8 @@ def _bulk(A: np.ndarray, rho: np.ndarray, n: int, idx: np.ndarray, constants: Co
     crystal), n points, NaN where no state."""
     e, eps = _lab_piezo(constants, lab) if constants.is_piezo else (None, None)
     waves = axis_waves(A, rho, e, eps)
+    if idx.size == n:                    # every point has a state: the waves as they are (fresh arrays)
+        return waves
     out = {}
     for key, v in waves.items():
         out[key] = np.full((n,) + v.shape[1:], np.nan)

@@ -34,11 +34,13 @@ Examples
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
-from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, tensor_to_voigt, voigt_to_tensor
+from surfwave.solvers.tensors import VOIGT_INDEX, VOIGT_PAIRS, cross, rotate4, tensor_to_voigt, voigt_to_tensor
 
 #: Newton iterations of the deformation solve before it is declared failed.
 MAX_ITERATIONS = 60
@@ -105,8 +107,20 @@ def toec_tensor(C3_voigt: ArrayLike) -> np.ndarray:
     return C3[..., V[:, :, None, None, None, None], V[None, None, :, :, None, None], V[None, None, None, None, :, :]]
 
 
+@lru_cache(maxsize=64)
+def _full_index(data: bytes, shape: tuple[int, ...]) -> np.ndarray:
+    """The full-index tensor of one Voigt C2 (6, 6) or C3 (6, 6, 6) given by its bytes, built once
+    per set of constants (the same numbers: the same picks), read-only."""
+    voigt = np.frombuffer(data, dtype=float).reshape(shape)
+    full = voigt_to_tensor(voigt) if shape == (6, 6) else toec_tensor(voigt)
+    full.setflags(write=False)
+    return full
+
+
 def _as_c2(C2) -> np.ndarray:
     C2 = np.asarray(C2, dtype=float)
+    if C2.shape == (6, 6):
+        return _full_index(C2.tobytes(), C2.shape)
     if C2.shape[-2:] == (6, 6) and (C2.ndim < 4 or C2.shape[-4:-2] != (3, 3)):
         return voigt_to_tensor(C2)
     if C2.shape[-4:] != (3, 3, 3, 3):
@@ -116,6 +130,8 @@ def _as_c2(C2) -> np.ndarray:
 
 def _as_c3(C3) -> np.ndarray:
     C3 = np.asarray(C3, dtype=float)
+    if C3.shape == (6, 6, 6):
+        return _full_index(C3.tobytes(), C3.shape)
     if C3.shape[-3:] == (6, 6, 6):
         return toec_tensor(C3)
     if C3.shape[-6:] != (3,) * 6:
@@ -160,7 +176,11 @@ def cauchy_stress(F: ArrayLike, C2: ArrayLike, C3: ArrayLike | None) -> np.ndarr
     """
     F = np.asarray(F, dtype=float)
     C2 = _as_c2(C2)
-    C3 = np.zeros(C2.shape[:-4] + (3,) * 6) if C3 is None else _as_c3(C3)
+    return _cauchy(F, C2, np.zeros(C2.shape[:-4] + (3,) * 6) if C3 is None else _as_c3(C3))
+
+
+def _cauchy(F: np.ndarray, C2: np.ndarray, C3: np.ndarray) -> np.ndarray:
+    """:func:`cauchy_stress` of float F and full-index C2, C3 (GPa)."""
     T = _pk2(C2, C3, lagrangian_strain(F))
     return np.einsum("...ip,...pq,...jq->...ij", F, T, F) / np.linalg.det(F)[..., None, None]
 
@@ -190,7 +210,7 @@ def deformed_axes(F: ArrayLike, axes: ArrayLike) -> np.ndarray:
     x2 = np.einsum("...ji,...j->...i", np.linalg.inv(F), axes[..., 1, :])
     x1 = x1 / np.linalg.norm(x1, axis=-1, keepdims=True)
     x2 = x2 / np.linalg.norm(x2, axis=-1, keepdims=True)
-    return np.stack([x1, x2, np.cross(x1, x2)], axis=-2)
+    return np.stack([x1, x2, cross(x1, x2)], axis=-2)
 
 
 def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.ndarray:
@@ -219,15 +239,15 @@ def stressed_constants(C2: ArrayLike, C3: ArrayLike | None, F: ArrayLike) -> np.
 def _push_forward(F: np.ndarray, K: np.ndarray) -> np.ndarray:
     """F_ip F_jq F_kr F_ls K_pqrs / J, shape (..., 3, 3, 3, 3): :func:`stressed_constants` from the
     tangent K = C2 + C3 : eta (GPa) at F."""
-    out = np.einsum("...ip,...pqrs->...iqrs", F, K)
-    out = np.einsum("...jq,...iqrs->...ijrs", F, out)
-    out = np.einsum("...kr,...ijrs->...ijks", F, out)
-    out = np.einsum("...ls,...ijks->...ijkl", F, out)
-    return out / np.linalg.det(F)[..., None, None, None, None]
+    return rotate4(K, F) / np.linalg.det(F)[..., None, None, None, None]
 
 
 _VI = np.array([p[0] for p in VOIGT_PAIRS])
 _VJ = np.array([p[1] for p in VOIGT_PAIRS])
+# Kronecker deltas of :func:`wallace_tensor` on the Voigt pairs (ij), (km): d_ik, d_jk, d_im, d_jm, d_km, (6, 6)
+_WALLACE_DELTAS = tuple(np.eye(3)[a, b] for a, b in ((_VI[:, None], _VI[None, :]), (_VJ[:, None], _VI[None, :]),
+                                                     (_VI[:, None], _VJ[None, :]), (_VJ[:, None], _VJ[None, :]),
+                                                     (_VI[None, :], _VJ[None, :])))
 
 
 def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
@@ -246,15 +266,15 @@ def wallace_tensor(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     -------
     ndarray, shape (..., 6, 6)
     """
-    e = np.eye(3)
     sigma = np.asarray(sigma, dtype=float)
     # the 36 Voigt entries only (the same products and sums as the full tensor, term by term)
     i, j = _VI[:, None], _VJ[:, None]
     k, m = _VI[None, :], _VJ[None, :]
+    d_ik, d_jk, d_im, d_jm, d_km = _WALLACE_DELTAS
     B6 = tensor_to_voigt(C) + 0.5 * (
-        e[i, k] * sigma[..., j, m] + e[j, k] * sigma[..., i, m]
-        + e[i, m] * sigma[..., j, k] + e[j, m] * sigma[..., i, k]
-        - 2 * (e[k, m] * sigma[..., i, j]))
+        d_ik * sigma[..., j, m] + d_jk * sigma[..., i, m]
+        + d_im * sigma[..., j, k] + d_jm * sigma[..., i, k]
+        - 2 * (d_km * sigma[..., i, j]))
     return 0.5 * (B6 + np.swapaxes(B6, -1, -2))
 
 
@@ -273,6 +293,44 @@ def born_lowest(C: ArrayLike, sigma: ArrayLike) -> np.ndarray:
     ndarray, shape (...)
     """
     return np.linalg.eigvalsh(wallace_tensor(C, sigma))[..., 0]
+
+
+#: Margin of the positive-definiteness certificate of :func:`lowest_if_needed`: LAPACK Cholesky of
+#: M - margin max|M| I, far above the ~1e-15 max|M| by which rounding moves an eigenvalue.
+PD_MARGIN = 1e-9
+
+
+def lowest_if_needed(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Whether the lowest eigenvalue of each symmetric 6 x 6 matrix is positive, and that eigenvalue
+    where it is needed to say by how much it is not.
+
+    The flags are those of ``np.linalg.eigvalsh(M)[..., 0] > 0``. A sufficient test first: where
+    LAPACK's Cholesky factorisation of M - :data:`PD_MARGIN` max|M| I succeeds for the whole stack,
+    every lowest eigenvalue exceeds 1e-9 max|M| less rounding (~1e-15 max|M|), so eigvalsh (as
+    accurate) finds it positive too, and no eigenvalue is computed (5x cheaper). Otherwise
+    eigvalsh decides, as before. Both read the lower triangle.
+
+    Parameters
+    ----------
+    M : ndarray, shape (n, 6, 6)
+        Finite symmetric matrices (GPa).
+
+    Returns
+    -------
+    positive : ndarray of bool, shape (n,)
+    lowest : ndarray, shape (n,)
+        The lowest eigenvalue (eigvalsh) where the sufficient test did not decide; NaN where it did.
+    """
+    n = M.shape[0]
+    if n:
+        scale = np.abs(M).max(axis=(-2, -1))
+        try:
+            np.linalg.cholesky(M - (PD_MARGIN * scale)[:, None, None] * np.eye(M.shape[-1]))
+            return np.ones(n, dtype=bool), np.full(n, np.nan)
+        except np.linalg.LinAlgError:
+            pass
+    lowest = np.linalg.eigvalsh(M)[..., 0]
+    return lowest > 0, lowest
 
 
 def born_stable(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
@@ -306,32 +364,54 @@ def _stress_and_jacobian(F, C2, C3):
     return sigma, _jacobian(parts), parts["K"]
 
 
-def _stress_parts(F, C2, C3) -> tuple[np.ndarray, dict]:
-    """Cauchy stress (..., 3, 3) at F and the intermediate arrays its Jacobian (:func:`_jacobian`) reuses."""
-    eta = lagrangian_strain(F)
-    K = _tangent(C2, C3, eta)
-    T = np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
+def _stress_parts(F, C2, C3, strain=None) -> tuple[np.ndarray, dict]:
+    """Cauchy stress (..., 3, 3) at F and the intermediate arrays its Jacobian (:func:`_jacobian`) reuses.
+
+    ``strain``: (eta, K, T) at this F where already known (:func:`_strain_parts`), else computed.
+    """
+    eta, K, T = _strain_parts(F, C2, C3) if strain is None else strain
     J = np.linalg.det(F)
     Ft = np.swapaxes(F, -1, -2)
     sigma = F @ T @ Ft / J[..., None, None]
     return sigma, {"F": F, "Ft": Ft, "T": T, "J": J, "K": K, "sigma": sigma, "eta": eta}
 
 
+def _strain_parts(F, C2, C3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lagrangian strain eta, tangent K = C2 + C3 : eta and PK2 stress T = (C2 + K)/2 : eta at F:
+    the numbers of :func:`_pk2` (C2 + K and K + C2 are the same sum), kept for reuse."""
+    eta = lagrangian_strain(F)
+    K = _tangent(C2, C3, eta)
+    return eta, K, np.einsum("...ijkl,...kl->...ij", 0.5 * (K + C2), eta)
+
+
 def _jacobian(parts: dict, rows=None) -> np.ndarray:
     """d sigma / dF along the 6 symmetric basis directions, (..., 6, 3, 3), of the points ``rows``
     (all when None) from :func:`_stress_parts` (each point's numbers do not depend on the others)."""
+    if rows is not None and rows.all():
+        rows = None                                            # every point: no copies
     F, Ft, T, J, K, sigma = (parts[k] if rows is None else parts[k][rows] for k in ("F", "Ft", "T", "J", "K", "sigma"))
     Finv = np.linalg.inv(F)
-    F1, Ft1 = F[..., None, :, :], Ft[..., None, :, :]
-    dF = np.broadcast_to(_BASIS, F.shape[:-2] + (6, 3, 3))
     FtdF = _times_basis(Ft)                                    # Ft @ dF
     deta = 0.5 * (FtdF + np.swapaxes(FtdF, -1, -2))
     K6 = K.reshape(K.shape[:-4] + (1, 9, 9))
     dT = (K6 @ deta.reshape(deta.shape[:-2] + (9, 1))).reshape(deta.shape)
-    dFTFt = np.swapaxes(_times_basis(np.swapaxes(T, -1, -2)), -1, -2).copy() @ Ft1     # (dF @ T) @ Ft
-    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + F1 @ dT @ Ft1
-    trace = np.einsum("...ij,...bji->...b", Finv, dF)
+    dFTFt = _times_each(np.swapaxes(_times_basis(np.swapaxes(T, -1, -2)), -1, -2), Ft)     # (dF @ T) @ Ft
+    FdT = (F @ np.swapaxes(dT, -3, -2).reshape(dT.shape[:-3] + (3, 18))).reshape(dT.shape[:-3] + (3, 6, 3))
+    term = dFTFt + np.swapaxes(dFTFt, -1, -2) + _times_each(np.swapaxes(FdT, -3, -2), Ft)   # F @ dT @ Ft
+    # tr(F^-1 dF) = Finv_pq (+ Finv_qp off the diagonal): the einsum over the basis' 0/1 entries
+    # adds exact zeros to these, and + 0.0 gives a zero its +0 sign as the einsum's sum does
+    trace = Finv[..., _VI, _VJ]
+    trace[..., 3:] += Finv[..., _VJ[3:], _VI[3:]]
+    trace += 0.0
     return term / J[..., None, None, None] - sigma[..., None, :, :] * trace[..., None, None]
+
+
+def _times_each(X: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """X_a @ B for the six 3 x 3 matrices X_a of each point, (..., 6, 3, 3) @ (..., 3, 3): one (18, 3)
+    by (3, 3) product per point instead of six 3 x 3 ones (each entry the same dot product, so the
+    same numbers as ``X @ B[..., None, :, :]``)."""
+    lead = X.shape[:-3]
+    return (np.ascontiguousarray(X).reshape(lead + (18, 3)) @ B).reshape(lead + (6, 3, 3))
 
 
 def _times_basis(X: np.ndarray) -> np.ndarray:
@@ -379,7 +459,7 @@ def deformation_for_stress(sigma: ArrayLike, C2: ArrayLike, C3: ArrayLike | None
         ``F`` (..., 3, 3), ``eta`` (..., 3, 3), ``ok`` (...,) bool, ``reason`` (...,) str
         ("" where ok), ``iterations`` (...,) int, ``residual`` (...,) GPa.
     """
-    sol, _ = _deformation(_checked_sigma(sigma), _as_c2(C2), np.zeros((3,) * 6) if C3 is None else _as_c3(C3),
+    sol, _, _ = _deformation(_checked_sigma(sigma), _as_c2(C2), np.zeros((3,) * 6) if C3 is None else _as_c3(C3),
                           tol, max_iterations)
     return sol
 
@@ -400,7 +480,7 @@ def _checked_sigma(sigma: ArrayLike) -> np.ndarray:
 
 
 def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
-                 max_iterations: int) -> tuple[dict, np.ndarray]:
+                 max_iterations: int) -> tuple[dict, np.ndarray, np.ndarray]:
     """:func:`deformation_for_stress` on checked input, and the tangent C2 + C3 : eta at its F.
 
     Parameters
@@ -422,6 +502,8 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     K : ndarray, shape (n, 3, 3, 3, 3)
         C2 + C3 : eta (GPa) at the last F of the iteration, n points flattened (the same
         numbers as :func:`_tangent` of the returned ``eta`` where ``ok``).
+    J : ndarray, shape (n,)
+        det F at that F (before the failed points' F is set to NaN).
     """
     shape = sigma.shape[:-2]
     target = _voigt_vec(sigma).reshape(-1, 6)
@@ -434,8 +516,9 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     done = np.zeros(n, dtype=bool)
     residual = np.full(n, np.inf)
     with np.errstate(all="ignore"):
+        strain = _strain_parts(F, C2, C3)     # (eta, K, T) at F, carried along with F from the line search
         for it in range(max_iterations + 1):
-            s, parts = _stress_parts(F, C2, C3)
+            s, parts = _stress_parts(F, C2, C3, strain)
             r = _voigt_vec(s) - target
             residual = np.max(np.abs(r), axis=-1)
             done |= residual <= tol
@@ -450,21 +533,29 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
                 du = -np.einsum("mab,mb->ma", np.linalg.pinv(jac), r[active])
             step = np.einsum("ma,aij->mij", du, _BASIS)
             # Full Newton step where it lowers the residual; step halving only for the others.
-            F_a, res_a, tgt = F[active], residual[active], target[active]
+            every = bool(active.all())                          # then F and strain are updated in place
+            F_a, res_a, tgt = (F, residual, target) if every else (F[active], residual[active], target[active])
+            strain_a = strain if every else [x[active] for x in strain]
             todo = np.ones(len(F_a), dtype=bool)
             for alpha in (1.0, 0.5, 0.25, 0.125, 0.0625):
                 trial = F_a[todo] + alpha * step[todo]
-                rt = np.max(np.abs(_voigt_vec(cauchy_stress(trial, C2, C3)) - tgt[todo]), axis=-1)
+                strain_t = _strain_parts(trial, C2, C3)        # _cauchy(trial, C2, C3), its parts kept
+                s_t = np.einsum("...ip,...pq,...jq->...ij", trial, strain_t[2], trial) / \
+                    np.linalg.det(trial)[..., None, None]
+                rt = np.max(np.abs(_voigt_vec(s_t) - tgt[todo]), axis=-1)
                 better = np.isfinite(rt) & (rt < res_a[todo])
                 idx = np.flatnonzero(todo)[better]
                 F_a[idx] = trial[better]
+                for x, x_t in zip(strain_a, strain_t):
+                    x[idx] = x_t[better]
                 todo[idx] = False
                 if not todo.any():
                     break
-            F[active] = F_a
-        eta, K = parts["eta"], parts["K"]           # F has not moved since this last evaluation
-        J = np.linalg.det(F)
-        K_min = np.linalg.eigvalsh(tensor_to_voigt(K))[..., 0]
+            if not every:
+                F[active] = F_a
+                for x, x_a in zip(strain, strain_a):
+                    x[active] = x_a
+        eta, K, J = parts["eta"], parts["K"], parts["J"]    # F has not moved since this last evaluation
     reason = np.full(n, "", dtype=object)
     ok = done.copy()
     reason[~done] = [f"no homogeneous state of the third-order model found for this stress (Newton stalled at "
@@ -472,16 +563,19 @@ def _deformation(sigma: np.ndarray, C2: np.ndarray, C3: np.ndarray, tol: float,
     bad_J = ok & ~(J > 0)
     reason[bad_J] = "deformation solve reached det F <= 0"
     ok &= ~bad_J
-    not_convex = ok & ~(K_min > 0)
+    rows = np.flatnonzero(ok)                       # convexity: only where a state was found
+    convex, K_min = lowest_if_needed(tensor_to_voigt(K if rows.size == n else K[rows]))
+    not_convex = np.zeros(n, dtype=bool)
+    not_convex[rows[~convex]] = True
     reason[not_convex] = [
         f"energy not convex at the solved strain (lowest eigenvalue of C2 + C3:eta = {k:.3g} GPa): "
-        "stress beyond the stability limit of the third-order model" for k in K_min[not_convex]]
+        "stress beyond the stability limit of the third-order model" for k in K_min[~convex]]
     ok &= ~not_convex
     F[~ok] = np.nan
     eta[~ok] = np.nan
     return {"F": F.reshape(shape + (3, 3)), "eta": eta.reshape(shape + (3, 3)),
             "ok": ok.reshape(shape), "reason": reason.astype(str).reshape(shape),
-            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}, K
+            "iterations": iterations.reshape(shape), "residual": residual.reshape(shape)}, K, J
 
 
 def stressed_state(C2: ArrayLike, C3: ArrayLike | None, sigma: ArrayLike, rho0: float, *,
@@ -532,15 +626,22 @@ def _stressed_state(C2, C3, sigma, rho0, tol) -> dict:
     else:
         # the constants converted once; C* from the tangent the deformation solve ends with
         # (the same numbers as stressed_constants(C2, C3, F), without recomputing them)
-        sol, K = _deformation(_checked_sigma(sigma), C2, _as_c3(C3), tol, MAX_ITERATIONS)
+        sol, K, J = _deformation(_checked_sigma(sigma), C2, _as_c3(C3), tol, MAX_ITERATIONS)
         F, ok, reason = sol["F"], sol["ok"].copy(), sol["reason"].astype(object)
         C_star = _push_forward(F, K.reshape(shape + (3, 3, 3, 3)))
-        rho = float(rho0) / np.linalg.det(F)
-    born = born_lowest(np.nan_to_num(C_star), sigma)
-    lost = ok & ~(born > 0)
-    if np.any(lost):
+        rho = float(rho0) / J.reshape(shape)               # det F (NaN-masked below where not ok)
+    # Born stability where a state exists (the others are not ok either way)
+    rows = np.flatnonzero(ok)
+    C_rows, s_rows = C_star.reshape(-1, 3, 3, 3, 3), np.broadcast_to(sigma, shape + (3, 3)).reshape(-1, 3, 3)
+    if rows.size < ok.size:
+        C_rows, s_rows = C_rows[rows], s_rows[rows]
+    stable, born = lowest_if_needed(wallace_tensor(C_rows, s_rows))
+    if not stable.all():
+        lost = np.zeros(ok.size, dtype=bool)
+        lost[rows[~stable]] = True
+        lost = lost.reshape(shape)
         reason = np.array(reason, dtype=object)
-        reason[lost] = [born_reason(b) for b in born[lost]]
+        reason[lost] = [born_reason(b) for b in born[~stable]]
         ok = ok & ~lost
     F = np.where(ok[..., None, None], F, np.nan)
     C_star = np.where(ok[..., None, None, None, None], C_star, np.nan)

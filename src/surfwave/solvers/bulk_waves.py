@@ -34,6 +34,8 @@ import itertools
 
 import numpy as np
 
+from surfwave.solvers.tensors import cross
+
 __all__ = ["AXIS_WAVES", "BULK_SPEEDS", "BULK_POLARISATIONS", "DEGENERATE_RTOL", "axis_waves", "christoffel"]
 
 #: The waves along each lab axis: (direction index, name of the wave mostly polarised along x1, x2, x3).
@@ -109,8 +111,8 @@ def _align_degenerate(w: np.ndarray, V: np.ndarray) -> np.ndarray:
         axis = np.argmax(np.einsum("kii->ki", P), axis=-1)          # the axis closest to the plane
         first = P[np.arange(len(axis)), :, axis]
         first /= np.linalg.norm(first, axis=-1, keepdims=True)
-        normal = np.cross(U[:, :, 0], U[:, :, 1])
-        second = np.cross(normal, first)
+        normal = cross(U[:, :, 0], U[:, :, 1])
+        second = cross(normal, first)
         V[np.flatnonzero(deg)[:, None], :, np.array([a, b])[None, :]] = np.stack([first, second], axis=1)
     return V
 
@@ -146,21 +148,26 @@ def axis_waves(A, rho, e=None, eps=None) -> dict[str, np.ndarray]:
     A = np.asarray(A, dtype=float)
     rho = np.broadcast_to(np.asarray(rho, dtype=float), A.shape[:1])
     m = A.shape[0]
+    # both axes in one stack (rows 0..m-1: x1, m..2m-1: x2): every step below is per row
+    G = np.concatenate([_axis_christoffel(A, axis, e, eps) for axis, _ in AXIS_WAVES])
+    G = 0.5 * (G + np.swapaxes(G, -1, -2))
+    if m:
+        w, V = np.linalg.eigh(G)
+        V = _align_degenerate(w, V)
+        which = _name_by_polarisation(V)                                   # (2m, 3): wave of each axis
+    else:
+        w, V, which = np.empty((0, 3)), np.empty((0, 3, 3)), np.empty((0, 3), dtype=int)
+    rows = np.arange(2 * m)[:, None]
+    x = w[rows, which] / np.concatenate([rho, rho])[:, None]               # (2m, 3) rho v^2 / rho
+    vec = V[rows, :, which]                                                # (2m, 3 waves, 3 components)
+    big = np.take_along_axis(vec, np.argmax(np.abs(vec), axis=-1)[..., None], axis=-1)[..., 0]
+    vec = vec * np.sign(np.where(big == 0, 1.0, big))[..., None]
+    real = x > 0
+    speed = np.where(real, np.sqrt(np.where(real, x, 1.0)), np.nan)
+    pol = np.where(real[..., None], vec, np.nan)
     out: dict[str, np.ndarray] = {}
-    for axis, names in AXIS_WAVES:
-        G = _axis_christoffel(A, axis, e, eps)
-        G = 0.5 * (G + np.swapaxes(G, -1, -2))
-        w, V = np.linalg.eigh(G) if m else (np.empty((0, 3)), np.empty((0, 3, 3)))
-        V = _align_degenerate(w, V) if m else V
-        which = _name_by_polarisation(V) if m else np.empty((0, 3), dtype=int)
-        rows = np.arange(m)
+    for a, (_, names) in enumerate(AXIS_WAVES):
         for c, name in enumerate(names):
-            k = which[:, c]
-            x = w[rows, k] / rho
-            vec = V[rows, :, k]
-            big = vec[rows, np.argmax(np.abs(vec), axis=-1)]
-            vec = vec * np.sign(np.where(big == 0, 1.0, big))[:, None]
-            real = x > 0
-            out[f"c_{name}"] = np.where(real, np.sqrt(np.where(real, x, 1.0)), np.nan)
-            out[f"polarisation_{name}"] = np.where(real[:, None], vec, np.nan)
+            out[f"c_{name}"] = speed[a * m:(a + 1) * m, c].copy()
+            out[f"polarisation_{name}"] = pol[a * m:(a + 1) * m, c].copy()
     return {key: out[key] for key in BULK_SPEEDS + BULK_POLARISATIONS}

@@ -440,12 +440,14 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
         A[:, i * dim:(i + 1) * dim, i * dim:(i + 1) * dim] += sigma
     scale = np.abs(A).max(axis=(1, 2))
     tol = _CONVEX_RTOL * scale
+    if _all_certified(A, _NULL_WEIGHTS[0] * scale, tol):
+        return np.ones(C.shape[0], bool)
     ok = np.zeros(C.shape[0], bool)
     # lab mirrors: the entries they force to zero are below 1e-12 of the scale, which moves
     # no eigenvalue by more than 1e-10 of it, far inside the pivot margin _CONVEX_RTOL
     mirror = np.abs(A[:, _ODD_ENTRIES[dim]]).max(axis=-1, initial=0.0) <= 1e-12 * scale
     idx = np.flatnonzero(mirror)
-    blocks = _mirror_blocks(A[idx])
+    blocks = _mirror_blocks(A[idx]) if idx.size else ()
     for t in _NULL_WEIGHTS:  # in turn, each on the points the previous ones left
         if not idx.size:
             break
@@ -456,15 +458,63 @@ def strongly_convex(C: np.ndarray, sigma: np.ndarray) -> np.ndarray:
         ok[idx] = _blocks_positive(blocks, _best_null_weight(blocks, scale[idx])[None], tol[idx])[0]
     g = np.flatnonzero(~mirror)  # no lab mirrors: the full (d^2, d^2) matrices
     if g.size:
-        eye = np.eye(dim)
-        N = (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
+        N = _NULL_LAGRANGIAN[dim]
         Ag = 0.5 * (A[g] + np.swapaxes(A[g], 1, 2))
         for t in _NULL_WEIGHTS:
             rest = np.flatnonzero(~ok[g])
             if not rest.size:
                 break
-            ok[g[rest]] = _positive_definite(Ag[rest] - t * scale[g[rest], None, None] * N, tol[g[rest]])
+            ok[g[rest]] = _pivots_above(Ag[rest] - t * scale[g[rest], None, None] * N, tol[g[rest]])
     return ok
+
+
+def _null_lagrangian(dim: int) -> np.ndarray:
+    """N_ijkl = delta_il delta_jk - delta_ij delta_kl as a (d^2, d^2) matrix of (ij), (kl)."""
+    eye = np.eye(dim)
+    return (np.einsum("il,jk->ijkl", eye, eye) - np.einsum("ij,kl->ijkl", eye, eye)).reshape(dim * dim, -1)
+
+
+_NULL_LAGRANGIAN = {dim: _null_lagrangian(dim) for dim in (2, 3)}
+
+
+def _all_certified(A: np.ndarray, t: np.ndarray, tol: np.ndarray) -> bool:
+    """Whether every point passes :func:`strongly_convex` at its first null weight, by one LAPACK
+    Cholesky factorisation of the whole stack of (A + A^T)/2 - t N - 2 tol I (A of shape (s, d^2, d^2)).
+
+    Success puts each lowest eigenvalue of (A + A^T)/2 - t N above 2 tol less rounding (~1e-15 of
+    max|A|; tol is 1e-9 of it). Then every pivot the test takes exceeds tol: the full matrix's
+    (:func:`_pivots_above`) and, at points with lab mirrors, its blocks' (:func:`_blocks_positive`:
+    the blocks leave out entries below 1e-12 of max|A|, which move no eigenvalue by more than 1e-10
+    of it); a pivot is at least the lowest eigenvalue. So the flags are all True, as the test
+    gives them. False: let the test decide.
+    """
+    if not A.shape[0]:
+        return False
+    dim2 = A.shape[-1]
+    B = 0.5 * (A + np.swapaxes(A, 1, 2)) - t[:, None, None] * _NULL_LAGRANGIAN[int(round(dim2 ** 0.5))]
+    try:
+        np.linalg.cholesky(B - 2.0 * tol[:, None, None] * np.eye(dim2))
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+def _pivots_above(B: np.ndarray, tol: np.ndarray) -> np.ndarray:
+    """:func:`_positive_definite` (the same flags), with a sufficient test first.
+
+    Where LAPACK's Cholesky factorisation of B - 2 tol I succeeds for the whole stack, each
+    matrix's lowest eigenvalue exceeds 2 tol less rounding (~1e-15 of max|B|, tol being 1e-9 of
+    it), and every pivot of the elimination, at least that eigenvalue less rounding, exceeds tol:
+    all True without the elimination's Python loop. Otherwise the elimination decides.
+    B must be exactly symmetric (LAPACK reads the lower triangle).
+    """
+    if B.shape[0]:
+        try:
+            np.linalg.cholesky(B - 2.0 * tol[:, None, None] * np.eye(B.shape[-1]))
+            return np.ones(B.shape[0], dtype=bool)
+        except np.linalg.LinAlgError:
+            pass
+    return _positive_definite(B, tol)
 
 
 #: Margin (times the largest |Q entry|) below zero of the probe eigenvalue that

@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from surfwave.errors import InputError
+from surfwave.solvers.tensors import cross
 
 #: Largest |Miller index| accepted (larger ones overflow int64 or resolve angles below
 #: float64 precision; real surfaces and directions have small indices).
@@ -154,7 +155,7 @@ def reference_direction(surface: str | Sequence[float] | np.ndarray) -> np.ndarr
 
 
 def _frames(x1: np.ndarray, n: np.ndarray) -> np.ndarray:
-    x3 = np.cross(x1, n)
+    x3 = cross(x1, n)
     return np.stack([x1, np.broadcast_to(n, x1.shape), x3], axis=-2)
 
 
