@@ -1,0 +1,353 @@
+"""Guided modes of isotropic stacks from the pole-free secular functions of :mod:`surfwave.layers.isotropic`.
+
+Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular function is evaluated
+on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
+:data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
+function has no poles, so every sign change is a mode and the n-th one from below is the n-th
+mode. All brackets are then refined together by the Illinois variant of regula falsi in
+t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
+c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
+
+Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
+any layer (no mode of an isotropic stack is slower than that: below every shear speed each wave is
+evanescent and the only solutions are surface or interface waves, which are not slower than the
+slowest free-surface Rayleigh wave) to c_lim, and is the union of
+(i) 24 points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
+(ii) :data:`N_BASE` points uniform in t and as many uniform in c, and (iii) points where the total
+vertical phase Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real)
+advances by :data:`PHASE_STEP`. Between consecutive modes of one family the field of some film
+turns by about pi in depth, so at most a fraction of a mode spacing falls in one cell: two modes
+are only missed when they lie within one cell of each other (an osculation of two branches closer
+than ~pi/8 in phase, i.e. a few 1e-3 relative at kh ~ 40). As a last guard a row holding fewer
+modes than rows on both sides of it (modes enter only at c_lim, so counts are monotone in kh and
+in frequency) is searched again on a grid :data:`RESCAN` times finer.
+
+Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c from central differences of the
+scalar secular function at the root (relative steps :data:`DIFF_STEP` in t and kh; the positive
+normalisations of F drop out at a zero of F). Power flow is along x1 (angle 0).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from surfwave.layers.isotropic import IsoStack, iso_stack, psv_kernels, secular_psv, secular_sh
+from surfwave.layers.modes import label as mode_label
+from surfwave.layers.partial import Family
+from surfwave.layers.stack import Stack
+
+__all__ = ["CHUNK", "C_TOL", "family_roots", "frequency_record", "kh_record", "slowest_speed"]
+
+#: Relative width in c of a converged bracket.
+C_TOL = 1e-14
+#: Illinois iterations at most.
+MAX_ITER = 60
+#: Speeds per chunk of the upward scan.
+CHUNK = 48
+#: Points uniform in t and uniform in c.
+N_BASE = 40
+#: Phase step of the grid, radians.
+PHASE_STEP = math.pi / 8
+#: Refinement factor of the rescan of rows with too few modes.
+RESCAN = 4
+#: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
+DIFF_STEP = 2e-3
+
+
+
+class Rows:
+    """The rows of a call: fixed kh (``base`` = kh) or fixed frequency (``base`` = omega H, kh = omega H / c).
+
+    Parameters
+    ----------
+    base : ndarray, shape (n,)
+        kh, or 2 pi f H (m/s).
+    freq : bool
+        True at fixed frequency.
+    """
+
+    def __init__(self, base: np.ndarray, freq: bool) -> None:
+        self.base, self.freq = np.asarray(base, dtype=float), freq
+
+    def grid(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (r, n) of rows (r,) at speeds c (n,)."""
+        b = self.base[rows][:, None]
+        return b / c[None, :] if self.freq else np.broadcast_to(b, (rows.size, c.size))
+
+    def pairs(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (m,) of (row, speed) pairs (m,)."""
+        return self.base[rows] / c if self.freq else self.base[rows]
+
+    def kh_max(self, c: np.ndarray) -> np.ndarray:
+        """An upper bound (n,) of every row's kh at speeds c (n,)."""
+        top = float(self.base.max(initial=0.0))
+        return top / c if self.freq else np.full(c.shape, top)
+
+
+def _rayleigh_ratio(kappa: float) -> float:
+    """c_R^2 / beta^2 of an isotropic half-space with beta^2 / alpha^2 = kappa (bisection, 1e-12)."""
+    lo, hi = 1e-9, 1.0
+    for _ in range(42):
+        x = 0.5 * (lo + hi)
+        if (2.0 - x) ** 2 - 4.0 * math.sqrt((1.0 - x) * (1.0 - kappa * x)) < 0.0:
+            lo = x
+        else:
+            hi = x
+    return lo
+
+
+def slowest_speed(st: IsoStack) -> float:
+    """The slowest Rayleigh speed of any layer as a half-space, m/s."""
+    beta = st.shear
+    kap = st.mu / (st.lam + 2 * st.mu)
+    return float(min(b * math.sqrt(_rayleigh_ratio(float(k))) for b, k in zip(beta, kap)))
+
+
+def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
+    """Ascending speeds (n,) in (c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    c_lim = st.c_lim
+    c_lo = 0.95 * slowest_speed(st)
+    t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
+    t = np.concatenate([np.geomspace(1e-7, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, N_BASE * fine)])
+    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)]
+    if st.frac.size:
+        aux = np.linspace(c_lo, c_lim, 4000)
+        nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
+                 for v in (st.shear, st.longitudinal) for i in range(st.frac.size))
+        phase = rows_of.kh_max(aux) * nu
+        levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
+        if levels.size:
+            parts.append(np.interp(levels, phase, aux))
+    g = np.unique(np.concatenate(parts))
+    return g[(g > c_lo) & (g < c_lim)]
+
+
+def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """The family's secular function at speeds c (n,) and kh (r, n)."""
+    if prefix == "L":
+        return secular_sh(st, c, kh)
+    return secular_psv(st, c, kh)
+
+
+def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float) -> tuple:
+    """Brackets (row, grid index of the lower end) of the first ``need`` sign changes of each row, chunk by chunk."""
+    found = np.zeros(rows.size, dtype=int)
+    act = np.arange(rows.size)
+    prev = None
+    out_r: list[np.ndarray] = []
+    out_j: list[np.ndarray] = []
+    for start in range(0, grid.size, CHUNK):
+        if act.size == 0:
+            break
+        c = grid[start:start + CHUNK]
+        kernels = None
+        if prefix == "R" and st.frac.size:
+            X = st.rho * (c[:, None] ** 2) / st.s
+            kernels = [psv_kernels(st.lam[i], st.mu[i], X[:, i]) for i in range(st.frac.size)]
+        kh = rows_of.grid(rows[act], c)
+        F = secular_sh(st, c, kh) if prefix == "L" else secular_psv(st, c, kh, kernels)
+        col0 = start
+        if prev is not None:
+            F = np.concatenate([prev[:, None], F], axis=1)
+            col0 = start - 1
+        pos = F > 0
+        sc = pos[:, 1:] != pos[:, :-1]
+        keep = sc & (np.cumsum(sc, axis=1) + found[act, None] <= need)
+        r, j = np.nonzero(keep)
+        out_r.append(act[r])
+        out_j.append(col0 + j)
+        found[act] += keep.sum(axis=1)
+        live = found[act] < need
+        act, prev = act[live], F[live, -1]
+    if not out_r:
+        return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+    return np.concatenate(out_r), np.concatenate(out_j)
+
+
+def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray) -> np.ndarray:
+    """Illinois iteration in t on all brackets (c in (lo, hi), of rows r) at once; converged speeds (m,), m/s."""
+    c_lim = st.c_lim
+
+    def fun(which: np.ndarray, t: np.ndarray) -> np.ndarray:
+        c = c_lim * np.sqrt(1.0 - t * t)
+        return _secular(st, prefix, c, rows_of.pairs(r[which], c)[None, :])[0]
+
+    idx = np.arange(lo.size)
+    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # the fast end: small t
+    b = np.sqrt(1.0 - (lo / c_lim) ** 2)
+    both = fun(np.concatenate([idx, idx]), np.concatenate([a, b]))
+    fa, fb = both[:idx.size], both[idx.size:]
+    out = 0.5 * (a + b)
+    for _ in range(MAX_ITER):
+        if idx.size == 0:
+            break
+        with np.errstate(all="ignore"):
+            x = (a * fb - b * fa) / (fb - fa)
+        left, right = np.minimum(a, b), np.maximum(a, b)
+        x = np.where(np.isfinite(x) & (x > left) & (x < right), x, 0.5 * (left + right))
+        fx = fun(idx, x)
+        swap = (fx > 0) != (fb > 0)
+        a, fa = np.where(swap, b, a), np.where(swap, fb, 0.5 * fa)
+        b, fb = x, fx
+        tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
+        done = (np.abs(b - a) <= tol) | (fx == 0)
+        out[idx[done]] = x[done]
+        keep = ~done
+        idx, a, fa, b, fb = idx[keep], a[keep], fa[keep], b[keep], fb[keep]
+    out[idx] = b
+    return c_lim * np.sqrt(1.0 - out * out)
+
+
+def _group_velocity(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """v_g = c + kh dc/dkh at modes (c, kh) (m,), by implicit differentiation of the secular function."""
+    if c.size == 0:
+        return np.zeros(0)
+    c_lim = st.c_lim
+    t = np.sqrt(1.0 - (c / c_lim) ** 2)
+    # steps: each film phase kh h_l/H nu (nu = |1 - c^2/v^2|^(1/2), at least 1/(kh h_l/H): F is analytic
+    # in nu^2) moves by at most DIFF_STEP radians, and by at most DIFF_STEP in t and kh themselves
+    rate_t, rate_k = np.ones(c.size), np.ones(c.size)
+    for v in (st.shear[:-1], st.longitudinal[:-1]):
+        for f, vl in zip(st.frac, v):
+            kf = kh * f
+            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-300))
+            rate_t += kf * c_lim * c_lim * t / (vl * vl * nu)
+            rate_k += f * nu
+    ht, hk = DIFF_STEP / rate_t, DIFF_STEP / rate_k
+    ot, wt = _stencil(t, ht)
+    ok, wk = _stencil(kh, hk)
+    m = c.size
+    tt = np.concatenate([t + ht * ot.T, np.broadcast_to(t, (5, m))]).ravel()
+    kk = np.concatenate([np.broadcast_to(kh, (5, m)), kh + hk * ok.T]).ravel()
+    F = _secular(st, prefix, c_lim * np.sqrt(1.0 - tt * tt), kk[None, :])[0].reshape(10, m)
+    F_t = (wt.T * F[:5]).sum(axis=0) / ht
+    F_k = (wk.T * F[5:]).sum(axis=0) / hk
+    with np.errstate(all="ignore"):
+        dc_dkh = F_k * c_lim * c_lim * t / (F_t * c)     # -F_k / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
+    return c + kh * dc_dkh
+
+
+_CENTRAL = (np.array([-2.0, -1.0, 0.0, 1.0, 2.0]), np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / 12.0)
+_FORWARD = (np.arange(5.0), np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0)
+
+
+def _stencil(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets (in steps h) and weights (m, 5) of a fourth-order first derivative at x (m,) >= 0:
+    central where x >= 2 h, forward (no negative argument) otherwise."""
+    central = (x >= 2.0 * h)[:, None]
+    return (np.where(central, _CENTRAL[0], _FORWARD[0]), np.where(central, _CENTRAL[1], _FORWARD[1]))
+
+
+def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds and group velocities (n_rows, n_modes) of one family's guided modes, ascending, NaN-padded.
+
+    Parameters
+    ----------
+    st : IsoStack
+    prefix : {"R", "L"}
+        P-SV or SH.
+    rows_of : Rows
+        The rows (kh or frequencies; the row-count guard compares neighbours in ascending order).
+    modes : int or None
+        At most this many modes per row (the slowest); None: all.
+    """
+    n_rows = rows_of.base.size
+    need = np.inf if modes is None else modes
+    rows = np.arange(n_rows)
+    grid = speed_grid(st, rows_of)
+    r, j = _scan(st, prefix, grid, rows_of, rows, need)
+    lo, hi = grid[j], grid[j + 1]
+    counts = np.bincount(r, minlength=n_rows)
+    order = np.argsort(rows_of.base, kind="stable")
+    cs = counts[order]
+    dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
+    if dip.size:
+        fine = speed_grid(st, rows_of, RESCAN)
+        r2, j2 = _scan(st, prefix, fine, rows_of, dip, need)
+        better = np.bincount(r2, minlength=n_rows) > counts
+        keep, keep2 = ~better[r], better[r2]
+        r = np.concatenate([r[keep], r2[keep2]])
+        lo = np.concatenate([lo[keep], fine[j2[keep2]]])
+        hi = np.concatenate([hi[keep], fine[j2[keep2] + 1]])
+    width = int(np.bincount(r, minlength=n_rows).max(initial=0))
+    c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
+    if r.size == 0:
+        return c_out, v_out
+    roots = _refine(st, prefix, lo, hi, rows_of, r)
+    vg = _group_velocity(st, prefix, roots, rows_of.pairs(r, roots))
+    srt = np.lexsort((roots, r))
+    r, roots, vg = r[srt], roots[srt], vg[srt]
+    start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
+    col = np.arange(r.size) - start[r]
+    c_out[r, col], v_out[r, col] = roots, vg
+    return c_out, v_out
+
+
+def _families(st: IsoStack) -> list[Family]:
+    """The two families of an isotropic stack, as the general path names them."""
+    X = float(st.mu[-1])
+    return [Family(idx=(0, 1), kind="sagittal", prefix="R", X_limit=X),
+            Family(idx=(2,), kind="sh", prefix="L", X_limit=X)]
+
+
+def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
+    """The :func:`surfwave.layered` record of an eligible stack at checked kh (n,)."""
+    from surfwave.layers.solve import REASON_NONE, merge_families
+
+    st = iso_stack(stack)
+    rows_of = Rows(kh, freq=False)
+    fams = _families(st)
+    sols = [family_roots(st, f.prefix, rows_of, modes) for f in fams]
+    cs = [s[0] for s in sols]
+    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
+    C, labels, (vg, PF) = merge_families(fams, cs, [[s[1] for s in sols], pfs])
+    khm = np.broadcast_to(kh[:, None], C.shape).copy()
+    freq = C * khm / (2 * np.pi * st.H) if st.H > 0 else np.full(C.shape, np.nan)
+    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
+    nan = np.full(C.shape, np.nan)
+    return {"c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
+            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF}
+
+
+def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> dict:
+    """The :func:`surfwave.layered` record of an eligible stack with films (H > 0) at checked frequencies f (n,), Hz."""
+    from surfwave.layers.solve import REASON_NONE, merge_families
+
+    st = iso_stack(stack)
+    wH = 2 * np.pi * f * st.H
+    rows_of = Rows(wH, freq=True)
+    fams = _families(st)
+    sols = [family_roots(st, fm.prefix, rows_of, modes) for fm in fams]
+    cs = [s[0] for s in sols]
+    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
+    C, labels, (vg, khm, PF) = merge_families(fams, cs, [[s[1] for s in sols], [wH[:, None] / c for c in cs], pfs])
+    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
+    nan = np.full(C.shape, np.nan)
+    return {"power_flow_angle": PF, "c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
+            "attenuation": nan.copy(), "kh": khm, "frequency": np.where(np.isfinite(C), f[:, None], np.nan),
+            "reason": reason}
+
+
+def labelled_speeds(stack: Stack, kh: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """Speeds (n,) of the guided mode named at each kh (n,) ("R", "S2", "L0", ...; NaN where absent or unknown)."""
+    st = iso_stack(stack)
+    out = np.full(kh.size, np.nan)
+    for prefix, first in (("R", ("R", "S")), ("L", ("L",))):
+        idx = np.array([_index(str(lab), first) for lab in labels])
+        if not (idx >= 0).any():
+            continue
+        c, _ = family_roots(st, prefix, Rows(kh, freq=False), int(idx.max()) + 1)
+        hit = np.flatnonzero((idx >= 0) & (idx < c.shape[1]))
+        out[hit] = c[hit, idx[hit]]
+    return out
+
+
+def _index(label: str, first: tuple[str, ...]) -> int:
+    """Column of a guided mode's label within its family (-1: another family, leaky or malformed)."""
+    if label == "R" and "R" in first:
+        return 0
+    head, tail = label[:1], label[1:]
+    if head in first and head != "R" and tail.isdigit() and label == mode_label(first[0], int(tail)):
+        return int(tail)
+    return -1
