@@ -39,8 +39,8 @@ Overflow. For an evanescent wave (r^2 > 0) C and S grow like exp(r t); every lay
 multiplied by the positive factor exp(-(r_a + r_b) t) (only over the evanescent ones), which turns
 C, S into (1 + e^{-2rt}) / 2 and -expm1(-2 r t) / (2 r) and K0 into K0 e^{-(r_a + r_b) t}, all
 bounded; the vector is renormalised after each layer. Positive factors change neither the zeros
-nor the sign of the secular function, which is returned as m_NT / |m| (SH: tau / |(v, tau)|),
-in [-1, 1], analytic in c below the substrate's shear speed and without poles (the substrate's
+nor the sign of the secular function, which is returned as m_NT (the vector entering the top film
+normalised; SH: tau / |(v, tau)|), bounded, analytic in c below the substrate's shear speed and without poles (the substrate's
 r_a, r_b are analytic there and every layer's factor is entire): its sign changes are the modes.
 
 Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
@@ -156,33 +156,39 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
         cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0).
     """
     ev = r2 > 0
-    rt = np.sqrt(np.abs(r2)) * t
+    r = np.sqrt(np.abs(r2))
+    rt = r * t
     g = np.exp(-np.where(ev, rt, 0.0))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        s_ev = np.where(rt > 0, -np.expm1(-2.0 * rt) / (2.0 * rt), 1.0) * t
+    zero = r == 0
+    rs = np.where(zero, 1.0, r)
     C = np.where(ev, 0.5 * (1.0 + g * g), np.cos(rt))
-    S = np.where(ev, s_ev, t * np.sinc(rt / np.pi))
+    S = np.where(zero, t, np.where(ev, -np.expm1(-2.0 * rt), np.sin(rt)) / np.where(ev, 2.0 * rs, rs))
     return C, S, g
 
 
-def _c2(M: np.ndarray) -> np.ndarray:
-    """Second compound of 4 x 4 matrices (..., 4, 4) -> (..., 6, 6), minor order :data:`PAIRS`."""
-    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
+def _c2(M: np.ndarray, rows: tuple[np.ndarray, np.ndarray] = (_I[:, None], _J[:, None])) -> np.ndarray:
+    """Second compound of 4 x 4 matrices (..., 4, 4) -> (..., 6, 6), minor order :data:`PAIRS`
+    (with ``rows`` = (i, j) of one minor: its row only, (..., 6))."""
+    i, j = rows
+    k, l = (_I, _J) if np.ndim(i) == 0 else (_I[None, :], _J[None, :])
     return M[..., i, k] * M[..., j, l] - M[..., i, l] * M[..., j, k]
 
 
-def _mixed(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
-    """The mixed term D(X, Y) of C2(X + Y) = C2(X) + C2(Y) + D(X, Y), shape (..., 6, 6)."""
-    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
+def _mixed(X: np.ndarray, Y: np.ndarray, rows: tuple[np.ndarray, np.ndarray] = (_I[:, None], _J[:, None])
+           ) -> np.ndarray:
+    """The mixed term D(X, Y) of C2(X + Y) = C2(X) + C2(Y) + D(X, Y), shape (..., 6, 6) (``rows``: as :func:`_c2`)."""
+    i, j = rows
+    k, l = (_I, _J) if np.ndim(i) == 0 else (_I[None, :], _J[None, :])
     return (X[..., i, k] * Y[..., j, l] + Y[..., i, k] * X[..., j, l]
             - X[..., i, l] * Y[..., j, k] - Y[..., i, l] * X[..., j, k])
 
 
-def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
+def psv_kernels(lam: float, mu: float, X: np.ndarray, top: bool = False) -> np.ndarray:
     """K0 ... K4 of one isotropic layer at scaled X = rho c^2 / s (n,), signs folded in: shape (n, 5, 6, 6).
 
     The layer's compound propagator upward over t is g_a g_b K0 + C_a C_b K1 + C_a S_b K2 + S_a C_b K3
-    + S_a S_b K4 with the scaled C, S, g of :func:`wave_functions` (the module docstring).
+    + S_a S_b K4 with the scaled C, S, g of :func:`wave_functions` (the module docstring). With ``top``
+    only the row of the minor NT (the free-surface one), shape (n, 5, 6).
     """
     M = lam + 2.0 * mu
     n = X.size
@@ -202,8 +208,9 @@ def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
     Ma = (B - rb2[:, None, None] * eye) / gap[:, None, None]
     Mb = eye - Ma
     AMa, AMb = A @ Ma, A @ Mb
-    return np.stack([_c2(Ma) + _c2(Mb), _mixed(Ma, Mb), -_mixed(Ma, AMb), -_mixed(AMa, Mb), _mixed(AMa, AMb)],
-                    axis=1)
+    rows = (np.intp(2), np.intp(3)) if top else (_I[:, None], _J[:, None])
+    return np.stack([_c2(Ma, rows) + _c2(Mb, rows), _mixed(Ma, Mb, rows), -_mixed(Ma, AMb, rows),
+                     -_mixed(AMa, Mb, rows), _mixed(AMa, AMb, rows)], axis=1)
 
 
 def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
@@ -215,7 +222,10 @@ def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> 
 
 
 def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
-    """Pole-free P-SV secular function m_NT / |m| at the free top, shape (r, n).
+    """Pole-free P-SV secular function: the minor m_NT at the free top, shape (r, n).
+
+    The vector m entering the top film has unit norm, so F is bounded (|F| <= the norm of the top
+    film's NT row); without films F = m_NT / |m| of the substrate (its Rayleigh function).
 
     Parameters
     ----------
@@ -224,8 +234,9 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         Speeds below the substrate's shear speed, m/s.
     kh : ndarray, shape (r, n)
         Wavenumber x total film thickness at each (row, speed).
-    kernels : list of ndarray (n, 5, 6, 6), optional
-        :func:`psv_kernels` of each film at ``c`` (computed when not given).
+    kernels : list of ndarray, optional
+        :func:`psv_kernels` of each film at ``c`` (the top film's with ``top=True``; computed when
+        not given).
     """
     X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
     ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
@@ -233,17 +244,22 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
     m = _substrate_psv(st.mu[-1], X[:, -1], ra, rb)
     m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
     L = st.frac.size
+    if L == 0:
+        return np.broadcast_to(m[:, 5], kh.shape)
     for layer in range(L - 1, -1, -1):
-        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
+        top = layer == 0
+        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer], top) if kernels is None else kernels[layer]
         t = kh * st.frac[layer]
         Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
         Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
-        Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
+        if top:                                                            # the NT row only: F itself
+            Km = (K * m[..., None, :]).sum(axis=-1)                         # (n, 5) or (r, n, 5)
+            return sum(w[p] * Km[..., p] for p in range(5))
+        Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
         m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))
-    m = np.broadcast_to(m, kh.shape + (6,))
-    return m[..., 5]
+    raise AssertionError("unreachable")
 
 
 def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:

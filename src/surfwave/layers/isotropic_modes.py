@@ -4,7 +4,7 @@ Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular fu
 on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
 :data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
 function has no poles, so every sign change is a mode and the n-th one from below is the n-th
-mode. All brackets are then refined together by the Illinois variant of regula falsi in
+mode. All brackets are then refined together by a safeguarded secant iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
 c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
 
@@ -40,8 +40,8 @@ from surfwave.layers.stack import Stack
 __all__ = ["CHUNK", "C_TOL", "family_roots", "frequency_record", "kh_record", "slowest_speed"]
 
 #: Relative width in c of a converged bracket.
-C_TOL = 1e-14
-#: Illinois iterations at most.
+C_TOL = 5e-14
+#: Refinement iterations at most.
 MAX_ITER = 60
 #: Speeds per chunk of the upward scan.
 CHUNK = 48
@@ -144,7 +144,7 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         kernels = None
         if prefix == "R" and st.frac.size:
             X = st.rho * (c[:, None] ** 2) / st.s
-            kernels = [psv_kernels(st.lam[i], st.mu[i], X[:, i]) for i in range(st.frac.size)]
+            kernels = [psv_kernels(st.lam[i], st.mu[i], X[:, i], i == 0) for i in range(st.frac.size)]
         kh = rows_of.grid(rows[act], c)
         F = secular_sh(st, c, kh) if prefix == "L" else secular_psv(st, c, kh, kernels)
         col0 = start
@@ -166,7 +166,12 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray) -> np.ndarray:
-    """Illinois iteration in t on all brackets (c in (lo, hi), of rows r) at once; converged speeds (m,), m/s."""
+    """Safeguarded secant iteration in t on all brackets (c in (lo, hi), of rows r) at once; speeds (m,), m/s.
+
+    The secant through the two latest iterates (order 1.6); bisection where it leaves the bracket or
+    the bracket stalls. Converged: a secant step below the tolerance (C_TOL relative in c), a bracket
+    narrower than it, or F = 0 exactly.
+    """
     c_lim = st.c_lim
 
     def fun(which: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -174,28 +179,47 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         return _secular(st, prefix, c, rows_of.pairs(r[which], c)[None, :])[0]
 
     idx = np.arange(lo.size)
-    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # the fast end: small t
-    b = np.sqrt(1.0 - (lo / c_lim) ** 2)
-    both = fun(np.concatenate([idx, idx]), np.concatenate([a, b]))
-    fa, fb = both[:idx.size], both[idx.size:]
-    out = 0.5 * (a + b)
-    for _ in range(MAX_ITER):
+    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
+    z = np.sqrt(1.0 - (lo / c_lim) ** 2)
+    both = fun(np.concatenate([idx, idx]), np.concatenate([a, z]))
+    fa, fz = both[:idx.size], both[idx.size:]
+    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()   # the two latest iterates
+    width = np.abs(z - a)
+    out = 0.5 * (a + z)
+    for it in range(MAX_ITER):
         if idx.size == 0:
             break
+        left, right = np.minimum(a, z), np.maximum(a, z)
         with np.errstate(all="ignore"):
-            x = (a * fb - b * fa) / (fb - fa)
-        left, right = np.minimum(a, b), np.maximum(a, b)
-        x = np.where(np.isfinite(x) & (x > left) & (x < right), x, 0.5 * (left + right))
+            x = x1 - f1 * (x1 - x0) / (f1 - f0)
+        # bisection where the secant leaves the bracket or, every third step, where the bracket
+        # has not halved over the last three (a stalled secant)
+        slow = (it % 3 == 2) & (right - left > 0.5 * width)
+        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
+        # a secant step below the tolerance from the latest iterate that leaves the bracket (rounding:
+        # F there is at its noise level) ends the iteration at that iterate
+        edge = np.isfinite(x) & (np.abs(x - x1) <= np.minimum(C_TOL * (1.0 - x1 * x1) / x1, 1e-8 * x1))
+        if edge.any():
+            out[idx[edge]] = x1[edge]
+            keep = ~edge
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right))
+            if idx.size == 0:
+                break
+        x = np.where(bis, 0.5 * (left + right), x)
+        if it % 3 == 2:
+            width = right - left
         fx = fun(idx, x)
-        swap = (fx > 0) != (fb > 0)
-        a, fa = np.where(swap, b, a), np.where(swap, fb, 0.5 * fa)
-        b, fb = x, fx
+        side_a = (fx > 0) == (fa > 0)
+        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
+        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
         tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
-        done = (np.abs(b - a) <= tol) | (fx == 0)
+        done = ((np.abs(x - x1) <= tol) & ~bis) | (np.abs(z - a) <= tol) | (fx == 0)
+        x0, f0, x1, f1 = x1, f1, x, fx
         out[idx[done]] = x[done]
         keep = ~done
-        idx, a, fa, b, fb = idx[keep], a[keep], fa[keep], b[keep], fb[keep]
-    out[idx] = b
+        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+    out[idx] = x1
     return c_lim * np.sqrt(1.0 - out * out)
 
 
