@@ -40,8 +40,9 @@ multiplied by the positive factor exp(-(r_a + r_b) t) (only over the evanescent 
 C, S into (1 + e^{-2rt}) / 2 and -expm1(-2 r t) / (2 r) and K0 into K0 e^{-(r_a + r_b) t}, all
 bounded; the vector is renormalised after each layer. Positive factors change neither the zeros
 nor the sign of the secular function, which is returned as m_NT (the vector entering the top film
-normalised; SH: tau / |(v, tau)|), bounded, analytic in c below the substrate's shear speed and without poles (the substrate's
-r_a, r_b are analytic there and every layer's factor is entire): its sign changes are the modes.
+normalised; SH: tau / |(v, tau)|), bounded, analytic in c below the substrate's shear speed and
+without poles (the substrate's r_a, r_b are analytic there and every layer's factor is entire):
+its zeros are exactly the modes.
 
 Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
 """
@@ -166,29 +167,24 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return C, S, g
 
 
-def _c2(M: np.ndarray, rows: tuple[np.ndarray, np.ndarray] = (_I[:, None], _J[:, None])) -> np.ndarray:
-    """Second compound of 4 x 4 matrices (..., 4, 4) -> (..., 6, 6), minor order :data:`PAIRS`
-    (with ``rows`` = (i, j) of one minor: its row only, (..., 6))."""
-    i, j = rows
-    k, l = (_I, _J) if np.ndim(i) == 0 else (_I[None, :], _J[None, :])
+def _c2(M: np.ndarray) -> np.ndarray:
+    """Second compound of 4 x 4 matrices (..., 4, 4) -> (..., 6, 6), minor order :data:`PAIRS`."""
+    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
     return M[..., i, k] * M[..., j, l] - M[..., i, l] * M[..., j, k]
 
 
-def _mixed(X: np.ndarray, Y: np.ndarray, rows: tuple[np.ndarray, np.ndarray] = (_I[:, None], _J[:, None])
-           ) -> np.ndarray:
-    """The mixed term D(X, Y) of C2(X + Y) = C2(X) + C2(Y) + D(X, Y), shape (..., 6, 6) (``rows``: as :func:`_c2`)."""
-    i, j = rows
-    k, l = (_I, _J) if np.ndim(i) == 0 else (_I[None, :], _J[None, :])
+def _mixed(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """The mixed term D(X, Y) of C2(X + Y) = C2(X) + C2(Y) + D(X, Y), shape (..., 6, 6)."""
+    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
     return (X[..., i, k] * Y[..., j, l] + Y[..., i, k] * X[..., j, l]
             - X[..., i, l] * Y[..., j, k] - Y[..., i, l] * X[..., j, k])
 
 
-def psv_kernels(lam: float, mu: float, X: np.ndarray, top: bool = False) -> np.ndarray:
+def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
     """K0 ... K4 of one isotropic layer at scaled X = rho c^2 / s (n,), signs folded in: shape (n, 5, 6, 6).
 
     The layer's compound propagator upward over t is g_a g_b K0 + C_a C_b K1 + C_a S_b K2 + S_a C_b K3
-    + S_a S_b K4 with the scaled C, S, g of :func:`wave_functions` (the module docstring). With ``top``
-    only the row of the minor NT (the free-surface one), shape (n, 5, 6).
+    + S_a S_b K4 with the scaled C, S, g of :func:`wave_functions` (the module docstring).
     """
     M = lam + 2.0 * mu
     n = X.size
@@ -208,9 +204,7 @@ def psv_kernels(lam: float, mu: float, X: np.ndarray, top: bool = False) -> np.n
     Ma = (B - rb2[:, None, None] * eye) / gap[:, None, None]
     Mb = eye - Ma
     AMa, AMb = A @ Ma, A @ Mb
-    rows = (np.intp(2), np.intp(3)) if top else (_I[:, None], _J[:, None])
-    return np.stack([_c2(Ma, rows) + _c2(Mb, rows), _mixed(Ma, Mb, rows), -_mixed(Ma, AMb, rows),
-                     -_mixed(AMa, Mb, rows), _mixed(AMa, AMb, rows)], axis=1)
+    return np.stack([_c2(Ma) + _c2(Mb), _mixed(Ma, Mb), -_mixed(Ma, AMb), -_mixed(AMa, Mb), _mixed(AMa, AMb)], axis=1)
 
 
 def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
@@ -219,6 +213,30 @@ def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> 
     rr = ra * rb
     return np.stack([1.0 - rr, -X * rb, q + 2.0 * mu * rr, -q - 2.0 * mu * rr, X * ra, q * q - 4.0 * mu * mu * rr],
                     axis=-1)
+
+
+def _top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The NT row of K0, K2, K3, K4 of the top film applied to m (..., 6) (K1's is m_NT - K0's), closed form.
+
+    With q = X - 2 mu, r_a^2 = 1 - X/M, r_b^2 = 1 - X/mu and d = m_UT - m_WN (the forms of
+    :func:`psv_kernels` reduced by hand):
+    K0 m = (-8 mu^2 q^2 m_UW - 2 mu q (q - 2 mu) d + 4 mu q m_NT) / X^2,
+    K2 m = -(q^2 m_UN + 4 mu^2 r_b^2 m_WT) / X,   K3 m = (4 mu^2 r_a^2 m_UN + q^2 m_WT) / X,
+    K4 m = (-(q^4 + 16 mu^4 P) m_UW + (q^3 - 8 mu^3 P) d - (q^2 + 4 mu^2 P) m_NT) / X^2, P = r_a^2 r_b^2.
+    """
+    q = X - 2.0 * mu
+    ra2, rb2 = 1.0 - X / M, 1.0 - X / mu
+    P = ra2 * rb2
+    iX = 1.0 / X
+    m0, m1, m4, m5 = m[..., 0], m[..., 1], m[..., 4], m[..., 5]
+    d = m[..., 2] - m[..., 3]
+    q2 = q * q
+    k0 = (-8.0 * mu * mu * q2 * m0 - 2.0 * mu * q * (q - 2.0 * mu) * d + 4.0 * mu * q * m5) * iX * iX
+    k2 = -(q2 * m1 + 4.0 * mu * mu * rb2 * m4) * iX
+    k3 = (4.0 * mu * mu * ra2 * m1 + q2 * m4) * iX
+    k4 = (-(q2 * q2 + 16.0 * mu ** 4 * P) * m0 + (q2 * q - 8.0 * mu ** 3 * P) * d
+          - (q2 + 4.0 * mu * mu * P) * m5) * iX * iX
+    return k0, k2, k3, k4
 
 
 def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
@@ -234,9 +252,9 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         Speeds below the substrate's shear speed, m/s.
     kh : ndarray, shape (r, n)
         Wavenumber x total film thickness at each (row, speed).
-    kernels : list of ndarray, optional
-        :func:`psv_kernels` of each film at ``c`` (the top film's with ``top=True``; computed when
-        not given).
+    kernels : list of ndarray (n, 5, 6, 6), optional
+        :func:`psv_kernels` of each film below the top one at ``c`` (computed when not given; entry
+        0 is not used: the top film's row is in closed form, :func:`_top_row`).
     """
     X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
     ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
@@ -247,15 +265,14 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
     if L == 0:
         return np.broadcast_to(m[:, 5], kh.shape)
     for layer in range(L - 1, -1, -1):
-        top = layer == 0
-        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer], top) if kernels is None else kernels[layer]
         t = kh * st.frac[layer]
         Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
         Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
-        if top:                                                            # the NT row only: F itself
-            Km = (K * m[..., None, :]).sum(axis=-1)                         # (n, 5) or (r, n, 5)
-            return sum(w[p] * Km[..., p] for p in range(5))
+        if layer == 0:                                                     # the NT row only: F itself
+            k0, k2, k3, k4 = _top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+            return w[0] * k0 + w[1] * (m[..., 5] - k0) + w[2] * k2 + w[3] * k3 + w[4] * k4
+        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
         Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
         m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))

@@ -49,6 +49,8 @@ CHUNK = 48
 N_BASE = 40
 #: Phase step of the grid, radians.
 PHASE_STEP = math.pi / 8
+#: Parabolic / golden steps hunting two roots hidden in one grid cell.
+PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
 #: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
@@ -130,39 +132,111 @@ def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.nda
     return secular_psv(st, c, kh)
 
 
-def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float) -> tuple:
-    """Brackets (row, grid index of the lower end) of the first ``need`` sign changes of each row, chunk by chunk."""
+def _at(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The secular function at (row, speed) pairs r, c (m,)."""
+    return _secular(st, prefix, c, rows_of.pairs(r, c)[None, :])[0]
+
+
+def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: np.ndarray, Fs: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Split points of two roots hidden between grid speeds: (found (m,), x (m,)).
+
+    ``cs``, ``Fs`` (m, 3): three consecutive grid speeds around a local minimum of |F| without a sign
+    change. The minimum of s F (s its sign) is hunted by parabolic steps (golden-section fallback)
+    for :data:`PAIR_STEPS` steps; where s F < 0 at some point x, (c_left, x) and (x, c_right) each
+    hold one root.
+    """
+    s = np.sign(Fs[:, 1])
+    (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
+    found = np.zeros(r.size, dtype=bool)
+    x_out = np.full(r.size, np.nan)
+    idx = np.arange(r.size)
+    for _ in range(PAIR_STEPS):
+        if idx.size == 0:
+            break
+        with np.errstate(all="ignore"):
+            a, b = cm - cl, cm - ch
+            den = a * (gm - gh) - b * (gm - gl)
+            x = cm - 0.5 * (a * a * (gm - gh) - b * b * (gm - gl)) / den
+        wide_left = a > -b
+        gold = np.where(wide_left, cm - 0.382 * a, cm - 0.382 * b)
+        bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
+        x = np.where(bad, gold, x)
+        gx = _at(st, prefix, rows_of, r[idx], x) * s[idx]
+        hit = gx < 0
+        found[idx[hit]], x_out[idx[hit]] = True, x[hit]
+        better, left = gx < gm, x < cm
+        cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
+                  np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
+        gl, gh = (np.where(better, np.where(left, gl, gm), np.where(left, gx, gl)),
+                  np.where(better, np.where(left, gm, gh), np.where(left, gh, gx)))
+        cm, gm = np.where(better, x, cm), np.where(better, gx, gm)
+        keep = ~hit & (ch - cl > 1e-9 * cm)
+        idx, cl, cm, ch, gl, gm, gh = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh))
+    return found, x_out
+
+
+def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Brackets (row, lower speed, upper speed) of the first ``need`` roots of each row.
+
+    The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
+    change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
+    |F| (:func:`_hidden_pairs`, all candidates of all chunks at once). Per row the brackets are
+    sorted and the first ``need`` kept.
+    """
     found = np.zeros(rows.size, dtype=int)
     act = np.arange(rows.size)
-    prev = None
-    out_r: list[np.ndarray] = []
-    out_j: list[np.ndarray] = []
+    c_old, F_old = grid[:0], np.zeros((rows.size, 0))                 # the last two columns seen
+    rr: list[np.ndarray] = []
+    lo: list[np.ndarray] = []
+    hi: list[np.ndarray] = []
+    cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
     for start in range(0, grid.size, CHUNK):
         if act.size == 0:
             break
-        c = grid[start:start + CHUNK]
+        cn = grid[start:start + CHUNK]
         kernels = None
-        if prefix == "R" and st.frac.size:
-            X = st.rho * (c[:, None] ** 2) / st.s
-            kernels = [psv_kernels(st.lam[i], st.mu[i], X[:, i], i == 0) for i in range(st.frac.size)]
-        kh = rows_of.grid(rows[act], c)
-        F = secular_sh(st, c, kh) if prefix == "L" else secular_psv(st, c, kh, kernels)
-        col0 = start
-        if prev is not None:
-            F = np.concatenate([prev[:, None], F], axis=1)
-            col0 = start - 1
+        if prefix == "R" and st.frac.size > 1:
+            X = st.rho * (cn[:, None] ** 2) / st.s
+            kernels = [X[:0, 0]] + [psv_kernels(st.lam[i], st.mu[i], X[:, i]) for i in range(1, st.frac.size)]
+        kh = rows_of.grid(rows[act], cn)
+        Fn = secular_sh(st, cn, kh) if prefix == "L" else secular_psv(st, cn, kh, kernels)
+        c, F = np.concatenate([c_old, cn]), np.concatenate([F_old, Fn], axis=1)
+        n0 = c_old.size
         pos = F > 0
-        sc = pos[:, 1:] != pos[:, :-1]
-        keep = sc & (np.cumsum(sc, axis=1) + found[act, None] <= need)
-        r, j = np.nonzero(keep)
-        out_r.append(act[r])
-        out_j.append(col0 + j)
-        found[act] += keep.sum(axis=1)
+        sc_all = pos[:, 1:] != pos[:, :-1]
+        sc = sc_all.copy()
+        sc[:, :max(n0 - 1, 0)] = False                                    # counted with the last chunk
+        r1, j1 = np.nonzero(sc)
+        rr.append(rows[act[r1]])
+        lo.append(c[j1])
+        hi.append(c[j1 + 1])
+        if c.size >= 3:
+            # a local minimum of |F| between cells without a sign change: two roots may hide there
+            aF = np.abs(F)
+            cand = (aF[:, 1:-1] < aF[:, :-2]) & (aF[:, 1:-1] <= aF[:, 2:]) & ~sc_all[:, :-1] & ~sc_all[:, 1:]
+            cand[:, :max(n0 - 2, 0)] = False
+            r2, j2 = np.nonzero(cand)
+            cols = j2[:, None] + np.arange(3)
+            cands.append((rows[act[r2]], c[cols], F[r2[:, None], cols]))
+        found[act] += sc.sum(axis=1)
         live = found[act] < need
-        act, prev = act[live], F[live, -1]
-    if not out_r:
-        return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
-    return np.concatenate(out_r), np.concatenate(out_j)
+        act, c_old, F_old = act[live], c[-2:], F[live][:, -2:]
+    if cands:
+        r2, c3, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
+        if r2.size:
+            ok, x = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
+            rr += [r2[ok], r2[ok]]
+            lo += [c3[ok, 0], x[ok]]
+            hi += [x[ok], c3[ok, 2]]
+    if not rr:
+        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0)
+    R, LO, HI = np.concatenate(rr), np.concatenate(lo), np.concatenate(hi)
+    srt = np.lexsort((LO, R))
+    R, LO, HI = R[srt], LO[srt], HI[srt]
+    keep = np.arange(R.size) - np.searchsorted(R, R) < need                # rank within the row
+    return R[keep], LO[keep], HI[keep]
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray) -> np.ndarray:
@@ -235,7 +309,7 @@ def _group_velocity(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) ->
     for v in (st.shear[:-1], st.longitudinal[:-1]):
         for f, vl in zip(st.frac, v):
             kf = kh * f
-            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-300))
+            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-12))
             rate_t += kf * c_lim * c_lim * t / (vl * vl * nu)
             rate_k += f * nu
     ht, hk = DIFF_STEP / rate_t, DIFF_STEP / rate_k
@@ -280,20 +354,16 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
     grid = speed_grid(st, rows_of)
-    r, j = _scan(st, prefix, grid, rows_of, rows, need)
-    lo, hi = grid[j], grid[j + 1]
+    r, lo, hi = _scan(st, prefix, grid, rows_of, rows, need)
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
     dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
     if dip.size:
-        fine = speed_grid(st, rows_of, RESCAN)
-        r2, j2 = _scan(st, prefix, fine, rows_of, dip, need)
+        r2, lo2, hi2 = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
         better = np.bincount(r2, minlength=n_rows) > counts
         keep, keep2 = ~better[r], better[r2]
-        r = np.concatenate([r[keep], r2[keep2]])
-        lo = np.concatenate([lo[keep], fine[j2[keep2]]])
-        hi = np.concatenate([hi[keep], fine[j2[keep2] + 1]])
+        r, lo, hi = (np.concatenate([u[keep], v[keep2]]) for u, v in ((r, r2), (lo, lo2), (hi, hi2)))
     width = int(np.bincount(r, minlength=n_rows).max(initial=0))
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
