@@ -145,26 +145,43 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
 
     Parameters
     ----------
-    r2 : ndarray
-        r^2 = 1 - c^2 / v^2 (v the bulk speed).
-    t : ndarray
-        Thickness in units of 1/k (>= 0), broadcastable with ``r2``.
+    r2 : ndarray, shape (n,) or ()
+        r^2 = 1 - c^2 / v^2 (v the bulk speed), one per speed (the last axis of ``t``).
+    t : ndarray, shape (..., n) or ()
+        Thickness in units of 1/k (>= 0).
 
     Returns
     -------
-    C, S, g : ndarray
-        g = exp(-r t) for r^2 > 0 (else 1); C = g cosh(r t), S = g sinh(r t) / r for r^2 > 0,
-        cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0).
+    C, S, g : ndarray, shape of ``t`` broadcast with ``r2``
+        g = exp(-r t) for r^2 > 0 (else 1); C = g cosh(r t), S = g sinh(r t) / r for r^2 > 0
+        (from e = expm1(-r t): C = (1 + (1 + e)^2) / 2, S = -e (2 + e) / (2 r), no cancellation),
+        cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0). Each speed's branch
+        is computed on its own columns only.
     """
-    ev = r2 > 0
-    r = np.sqrt(np.abs(r2))
-    rt = r * t
-    g = np.exp(-np.where(ev, rt, 0.0))
-    zero = r == 0
-    rs = np.where(zero, 1.0, r)
-    C = np.where(ev, 0.5 * (1.0 + g * g), np.cos(rt))
-    S = np.where(zero, t, np.where(ev, -np.expm1(-2.0 * rt), np.sin(rt)) / np.where(ev, 2.0 * rs, rs))
-    return C, S, g
+    r2 = np.asarray(r2, dtype=float)
+    t = np.asarray(t, dtype=float)
+    shape = np.broadcast_shapes(r2.shape, t.shape)
+    r2v = np.broadcast_to(r2, shape[-1:] if shape else ()).reshape(-1)
+    tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
+    r = np.sqrt(np.abs(r2v))
+    C, S, g = np.empty(tb.shape), np.empty(tb.shape), np.ones(tb.shape)
+    ev = np.flatnonzero(r2v > 0)
+    pr = np.flatnonzero(r2v <= 0)
+    if ev.size:
+        re = r[ev]
+        e = np.expm1(-re * tb[..., ev])
+        ge = 1.0 + e
+        g[..., ev] = ge
+        C[..., ev] = 0.5 * (1.0 + ge * ge)
+        S[..., ev] = -e * (2.0 + e) / (2.0 * re)
+    if pr.size:
+        rp = r[pr]
+        tp = tb[..., pr]
+        rt = rp * tp
+        C[..., pr] = np.cos(rt)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            S[..., pr] = np.where(rp > 0, np.sin(rt) / np.where(rp > 0, rp, 1.0), tp)
+    return C.reshape(shape), S.reshape(shape), g.reshape(shape)
 
 
 def _c2(M: np.ndarray) -> np.ndarray:
