@@ -55,7 +55,7 @@ PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
 #: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
-DIFF_STEP = 5e-4
+DIFF_STEP = 1e-4
 #: The same for kh (F is noisier there, truncation milder: measured on fast films and three-film stacks).
 DIFF_STEP_K = 2e-3
 
