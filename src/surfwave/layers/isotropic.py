@@ -155,8 +155,9 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     C, S, g : ndarray, shape of ``t`` broadcast with ``r2``
         g = exp(-r t) for r^2 > 0 (else 1); C = g cosh(r t), S = g sinh(r t) / r for r^2 > 0
         (from e = expm1(-r t): C = (1 + (1 + e)^2) / 2, S = -e (2 + e) / (2 r), no cancellation),
-        cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0). Each speed's branch
-        is computed on its own columns only.
+        cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0; both from
+        u = tan(q t / 2): cos = (1 - u^2) / (1 + u^2), sin = 2 u / (1 + u^2), exact to rounding
+        and one transcendental call). Each speed's branch is computed on its own columns only.
     """
     r2 = np.asarray(r2, dtype=float)
     t = np.asarray(t, dtype=float)
@@ -165,22 +166,28 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
     r = np.sqrt(np.abs(r2v))
     C, S, g = np.empty(tb.shape), np.empty(tb.shape), np.ones(tb.shape)
-    ev = np.flatnonzero(r2v > 0)
-    pr = np.flatnonzero(r2v <= 0)
-    if ev.size:
+    pos = r2v > 0
+    k = int(pos.sum())
+    ev: slice | np.ndarray
+    pr: slice | np.ndarray
+    if pos[:k].all():                                   # ascending speeds: evanescent columns first
+        ev, pr = slice(0, k), slice(k, r2v.size)
+    else:
+        ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
+    if k:
         re = r[ev]
         e = np.expm1(-re * tb[..., ev])
         ge = 1.0 + e
         g[..., ev] = ge
         C[..., ev] = 0.5 * (1.0 + ge * ge)
         S[..., ev] = -e * (2.0 + e) / (2.0 * re)
-    if pr.size:
+    if k < r2v.size:
         rp = r[pr]
         tp = tb[..., pr]
-        rt = rp * tp
-        C[..., pr] = np.cos(rt)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            S[..., pr] = np.where(rp > 0, np.sin(rt) / np.where(rp > 0, rp, 1.0), tp)
+        u = np.tan(0.5 * rp * tp)                    # half-angle tangent: cos and sin from one call
+        d = 1.0 / (1.0 + u * u)
+        C[..., pr] = (1.0 - u * u) * d
+        S[..., pr] = np.where(rp > 0, 2.0 * u * d / np.where(rp > 0, rp, 1.0), tp)
     return C.reshape(shape), S.reshape(shape), g.reshape(shape)
 
 

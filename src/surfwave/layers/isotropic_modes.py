@@ -147,20 +147,31 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
     ``cs``, ``Fs`` (m, 3): three consecutive grid speeds around a local minimum of |F| without a sign
     change. The minimum of s F (s its sign) is hunted by parabolic steps (golden-section fallback)
     for :data:`PAIR_STEPS` steps; where s F < 0 at some point x, (c_left, x) and (x, c_right) each
-    hold one root.
+    hold one root. From the second step on, a candidate whose parabola puts the minimum above 0.7 x
+    the lowest value seen is dropped (a near miss).
     """
     s = np.sign(Fs[:, 1])
     (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
     found = np.zeros(r.size, dtype=bool)
     x_out = np.full(r.size, np.nan)
     idx = np.arange(r.size)
-    for _ in range(PAIR_STEPS):
+    for step in range(PAIR_STEPS):
         if idx.size == 0:
             break
         with np.errstate(all="ignore"):
             a, b = cm - cl, cm - ch
             den = a * (gm - gh) - b * (gm - gl)
             x = cm - 0.5 * (a * a * (gm - gh) - b * b * (gm - gl)) / den
+            curv = ((gl - gm) / a - (gh - gm) / b) / (a - b)
+            g_min = gm - curv * (cm - x) ** 2                            # the parabola's minimum
+        if step > 0:
+            # after one step the parabola models the dip: a minimum it puts well above zero is a
+            # near miss, not two roots
+            clear = np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm)
+            keep = ~clear
+            idx, cl, cm, ch, gl, gm, gh, a, b, x = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh, a, b, x))
+            if idx.size == 0:
+                break
         wide_left = a > -b
         gold = np.where(wide_left, cm - 0.382 * a, cm - 0.382 * b)
         bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
