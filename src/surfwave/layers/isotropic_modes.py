@@ -114,8 +114,10 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    t = np.concatenate([np.geomspace(1e-7, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, N_BASE * fine)])
-    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)]
+    top = np.geomspace(1e-7, 0.02, 24, endpoint=False)
+    t = np.linspace(0.02, t_hi, N_BASE * fine)
+    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
+    parts = [c_lim * np.sqrt(1.0 - top * top)]
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
         nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
@@ -123,8 +125,16 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
         phase = rows_of.kh_max(aux) * nu
         levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
         if levels.size:
-            parts.append(np.interp(levels, phase, aux))
-    g = np.unique(np.concatenate(parts))
+            pts = np.interp(levels, phase, aux)
+            parts.append(pts)
+            # a base point within half the base spacing of a phase point adds nothing
+            t_base = np.sqrt(np.maximum(1.0 - (base / c_lim) ** 2, 0.0))
+            step_c = (c_lim - c_lo) / (N_BASE * fine)                       # of the c-uniform part
+            dc = np.minimum(step_c, c_lim * c_lim * t_base * t_hi / (base * N_BASE * fine))   # and the t-uniform
+            k = np.clip(np.searchsorted(pts, base), 1, pts.size - 1) if pts.size > 1 else np.zeros(base.size, int)
+            near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
+            base = base[near > 0.5 * dc]
+    g = np.unique(np.concatenate(parts + [base]))
     return g[(g > c_lo) & (g < c_lim)]
 
 
