@@ -151,8 +151,8 @@ def _at(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, c: np.ndarray) 
 
 
 def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: np.ndarray, Fs: np.ndarray
-                  ) -> tuple[np.ndarray, np.ndarray]:
-    """Split points of two roots hidden between grid speeds: (found (m,), x (m,)).
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split points of two roots hidden between grid speeds: (found (m,), x (m,), F at x (m,)).
 
     ``cs``, ``Fs`` (m, 3): three consecutive grid speeds around a local minimum of |F| without a sign
     change. The minimum of s F (s its sign) is hunted by parabolic steps (golden-section fallback)
@@ -164,6 +164,7 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
     (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
     found = np.zeros(r.size, dtype=bool)
     x_out = np.full(r.size, np.nan)
+    f_out = np.full(r.size, np.nan)
     idx = np.arange(r.size)
     for step in range(PAIR_STEPS):
         if idx.size == 0:
@@ -188,7 +189,7 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
         x = np.where(bad, gold, x)
         gx = _at(st, prefix, rows_of, r[idx], x) * s[idx]
         hit = gx < 0
-        found[idx[hit]], x_out[idx[hit]] = True, x[hit]
+        found[idx[hit]], x_out[idx[hit]], f_out[idx[hit]] = True, x[hit], gx[hit] * s[idx[hit]]
         better, left = gx < gm, x < cm
         cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
                   np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
@@ -197,12 +198,12 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
         cm, gm = np.where(better, x, cm), np.where(better, gx, gm)
         keep = ~hit & (ch - cl > 1e-9 * cm)
         idx, cl, cm, ch, gl, gm, gh = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh))
-    return found, x_out
+    return found, x_out, f_out
 
 
 def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
-          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Brackets (row, lower speed, upper speed) of the first ``need`` roots of each row.
+          ) -> tuple[np.ndarray, ...]:
+    """Brackets (row, lower speed, upper speed, F at both) of the first ``need`` roots of each row.
 
     The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
     change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
@@ -215,6 +216,8 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     rr: list[np.ndarray] = []
     lo: list[np.ndarray] = []
     hi: list[np.ndarray] = []
+    flo: list[np.ndarray] = []
+    fhi: list[np.ndarray] = []
     cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
     for start in range(0, grid.size, CHUNK):
         if act.size == 0:
@@ -236,6 +239,8 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         rr.append(rows[act[r1]])
         lo.append(c[j1])
         hi.append(c[j1 + 1])
+        flo.append(F[r1, j1])
+        fhi.append(F[r1, j1 + 1])
         if c.size >= 3:
             # a local minimum of |F| between cells without a sign change: two roots may hide there
             aF = np.abs(F)
@@ -250,20 +255,22 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     if cands:
         r2, c3, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
         if r2.size:
-            ok, x = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
             rr += [r2[ok], r2[ok]]
             lo += [c3[ok, 0], x[ok]]
             hi += [x[ok], c3[ok, 2]]
+            flo += [F3[ok, 0], fx[ok]]
+            fhi += [fx[ok], F3[ok, 2]]
     if not rr:
-        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0)
-    R, LO, HI = np.concatenate(rr), np.concatenate(lo), np.concatenate(hi)
+        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0)
+    R, LO, HI, FLO, FHI = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi))
     srt = np.lexsort((LO, R))
-    R, LO, HI = R[srt], LO[srt], HI[srt]
-    keep = np.arange(R.size) - np.searchsorted(R, R) < need                # rank within the row
-    return R[keep], LO[keep], HI[keep]
+    keep = np.arange(R.size) - np.searchsorted(R[srt], R[srt]) < need        # rank within the row
+    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI))
 
 
-def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray) -> np.ndarray:
+def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
+            flo: np.ndarray, fhi: np.ndarray) -> np.ndarray:
     """Safeguarded secant iteration in t on all brackets (c in (lo, hi), of rows r) at once; speeds (m,), m/s.
 
     The secant through the two latest iterates (order 1.6); bisection where it leaves the bracket or
@@ -279,8 +286,7 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     idx = np.arange(lo.size)
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
-    both = fun(np.concatenate([idx, idx]), np.concatenate([a, z]))
-    fa, fz = both[:idx.size], both[idx.size:]
+    fa, fz = fhi.astype(float), flo.astype(float)
     x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()   # the two latest iterates
     width = np.abs(z - a)
     out = 0.5 * (a + z)
@@ -377,22 +383,21 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
     n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
-    grid = speed_grid(st, rows_of)
-    r, lo, hi = _scan(st, prefix, grid, rows_of, rows, need)
+    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of), rows_of, rows, need)
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
     dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
     if dip.size:
-        r2, lo2, hi2 = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
-        better = np.bincount(r2, minlength=n_rows) > counts
-        keep, keep2 = ~better[r], better[r2]
-        r, lo, hi = (np.concatenate([u[keep], v[keep2]]) for u, v in ((r, r2), (lo, lo2), (hi, hi2)))
+        more = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
+        better = np.bincount(more[0], minlength=n_rows) > counts
+        keep, keep2 = ~better[r], better[more[0]]
+        r, lo, hi, flo, fhi = (np.concatenate([u[keep], v[keep2]]) for u, v in zip((r, lo, hi, flo, fhi), more))
     width = int(np.bincount(r, minlength=n_rows).max(initial=0))
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
         return c_out, v_out
-    roots = _refine(st, prefix, lo, hi, rows_of, r)
+    roots = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
     vg = _group_velocity(st, prefix, roots, rows_of.pairs(r, roots))
     srt = np.lexsort((roots, r))
     r, roots, vg = r[srt], roots[srt], vg[srt]
