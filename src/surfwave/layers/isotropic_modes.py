@@ -9,18 +9,22 @@ t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is 
 c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
 
 Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
-any layer (no mode of an isotropic stack is slower than that: below every shear speed each wave is
-evanescent and the only solutions are surface or interface waves, which are not slower than the
-slowest free-surface Rayleigh wave) to c_lim, and is the union of
+any layer to c_lim. (Below every shear speed each wave is evanescent and the only solutions are
+surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
+the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
+safety, not a proof.) It is the union of
 (i) 24 points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
-(ii) :data:`N_BASE` points uniform in t and as many uniform in c, and (iii) points where the total
-vertical phase Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real)
-advances by :data:`PHASE_STEP`. Between consecutive modes of one family the field of some film
-turns by about pi in depth, so at most a fraction of a mode spacing falls in one cell: two modes
-are only missed when they lie within one cell of each other (an osculation of two branches closer
-than ~pi/8 in phase, i.e. a few 1e-3 relative at kh ~ 40). As a last guard a row holding fewer
-modes than rows on both sides of it (modes enter only at c_lim, so counts are monotone in kh and
-in frequency) is searched again on a grid :data:`RESCAN` times finer.
+(ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
+spacing of a point of (iii)), and (iii) points where the total vertical phase
+Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
+:data:`PHASE_STEP`. Between consecutive modes of one family the field of some film turns by about
+pi in depth, so a cell holds a fraction of a mode spacing. Every sign change on the grid is a mode
+(the function has no poles). Two modes in one cell (modes localised in different films, weakly
+coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
+hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite sign splits the
+cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
+As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
+so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
 
 Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c from differences of the scalar
 secular function at the root (fourth-order stencils, central or one-sided at t or kh = 0; steps
