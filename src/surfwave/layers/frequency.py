@@ -104,7 +104,7 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
         raise InputError("leaky=True is available with kh, not with frequency")
     if fast:
         from surfwave.layers.isotropic import iso_stack
-        from surfwave.layers.isotropic_modes import frequency_record
+        from surfwave.layers.isotropic_record import frequency_record
 
         c_floor = 0.5 * float(iso_stack(stack).shear.min())             # 10 x lowest_speed, as below
         if 2 * np.pi * float(f.max()) * H / c_floor > MAX_KH * 0.999 / 1.05:

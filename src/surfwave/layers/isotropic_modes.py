@@ -37,12 +37,9 @@ import math
 
 import numpy as np
 
-from surfwave.layers.isotropic import IsoStack, iso_stack, psv_kernels, secular_psv, secular_sh
-from surfwave.layers.modes import label as mode_label
-from surfwave.layers.partial import Family
-from surfwave.layers.stack import Stack
+from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
 
-__all__ = ["CHUNK", "C_TOL", "family_roots", "frequency_record", "kh_record", "slowest_speed"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
@@ -409,72 +406,3 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
     col = np.arange(r.size) - start[r]
     c_out[r, col], v_out[r, col] = roots, vg
     return c_out, v_out
-
-
-def _families(st: IsoStack) -> list[Family]:
-    """The two families of an isotropic stack, as the general path names them."""
-    X = float(st.mu[-1])
-    return [Family(idx=(0, 1), kind="sagittal", prefix="R", X_limit=X),
-            Family(idx=(2,), kind="sh", prefix="L", X_limit=X)]
-
-
-def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
-    """The :func:`surfwave.layered` record of an eligible stack at checked kh (n,)."""
-    from surfwave.layers.solve import REASON_NONE, merge_families
-
-    st = iso_stack(stack)
-    rows_of = Rows(kh, freq=False)
-    fams = _families(st)
-    sols = [family_roots(st, f.prefix, rows_of, modes) for f in fams]
-    cs = [s[0] for s in sols]
-    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
-    C, labels, (vg, PF) = merge_families(fams, cs, [[s[1] for s in sols], pfs])
-    khm = np.broadcast_to(kh[:, None], C.shape).copy()
-    freq = C * khm / (2 * np.pi * st.H) if st.H > 0 else np.full(C.shape, np.nan)
-    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
-    nan = np.full(C.shape, np.nan)
-    return {"c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
-            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF}
-
-
-def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> dict:
-    """The :func:`surfwave.layered` record of an eligible stack with films (H > 0) at checked frequencies f (n,), Hz."""
-    from surfwave.layers.solve import REASON_NONE, merge_families
-
-    st = iso_stack(stack)
-    wH = 2 * np.pi * f * st.H
-    rows_of = Rows(wH, freq=True)
-    fams = _families(st)
-    sols = [family_roots(st, fm.prefix, rows_of, modes) for fm in fams]
-    cs = [s[0] for s in sols]
-    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
-    C, labels, (vg, khm, PF) = merge_families(fams, cs, [[s[1] for s in sols], [wH[:, None] / c for c in cs], pfs])
-    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
-    nan = np.full(C.shape, np.nan)
-    return {"power_flow_angle": PF, "c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
-            "attenuation": nan.copy(), "kh": khm, "frequency": np.where(np.isfinite(C), f[:, None], np.nan),
-            "reason": reason}
-
-
-def labelled_speeds(stack: Stack, kh: np.ndarray, labels: np.ndarray) -> np.ndarray:
-    """Speeds (n,) of the guided mode named at each kh (n,) ("R", "S2", "L0", ...; NaN where absent or unknown)."""
-    st = iso_stack(stack)
-    out = np.full(kh.size, np.nan)
-    for prefix, first in (("R", ("R", "S")), ("L", ("L",))):
-        idx = np.array([_index(str(lab), first) for lab in labels])
-        if not (idx >= 0).any():
-            continue
-        c, _ = family_roots(st, prefix, Rows(kh, freq=False), int(idx.max()) + 1)
-        hit = np.flatnonzero((idx >= 0) & (idx < c.shape[1]))
-        out[hit] = c[hit, idx[hit]]
-    return out
-
-
-def _index(label: str, first: tuple[str, ...]) -> int:
-    """Column of a guided mode's label within its family (-1: another family, leaky or malformed)."""
-    if label == "R" and "R" in first:
-        return 0
-    head, tail = label[:1], label[1:]
-    if head in first and head != "R" and tail.isdigit() and label == mode_label(first[0], int(tail)):
-        return int(tail)
-    return -1

@@ -225,7 +225,7 @@ def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarra
     kh = checked_kh(kh)
     which = np.broadcast_to(np.asarray(labels, dtype=object), kh.shape)
     if use_fast_path(stack):
-        from surfwave.layers.isotropic_modes import labelled_speeds
+        from surfwave.layers.isotropic_record import labelled_speeds
 
         return labelled_speeds(stack, kh, which)
     out = np.full(kh.size, np.nan)
@@ -298,7 +298,7 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bo
     ``modes``: at most that many columns per family (None: all).
     """
     if use_fast_path(stack, leaky):
-        from surfwave.layers.isotropic_modes import kh_record
+        from surfwave.layers.isotropic_record import kh_record
 
         return kh_record(stack, kh, modes)
     why = unstable_reason(stack)
