@@ -252,3 +252,18 @@ def test_mode_speeds_and_eligibility():
     got = solve.mode_speeds(stack, kh, labels)
     assert np.array_equal(got, np.array(want), equal_nan=True)
     assert np.isnan(got[3])                                   # "S0" names no mode
+
+
+def test_twenty_layers_and_zero_frequency():
+    """Twenty 50 nm films of one material equal one 1 um film (the same stack: 1e-12 in speed, 1e-8 in
+    group velocity, same labels); at f = 0 the stack is the bare substrate: R at its Rayleigh speed
+    (Rayleigh equation, brentq), kh = 0."""
+    kh = [0.5, 5.0, 30.0]
+    one = surfwave.layered(HARD, [{**SIO2, "thickness": 1e-6}], kh=kh)
+    many = surfwave.layered(HARD, [{**SIO2, "thickness": 5e-8}] * 20, kh=kh)
+    assert (one["mode"] == many["mode"]).all()
+    assert np.allclose(many["c"], one["c"], rtol=1e-12, atol=0, equal_nan=True)
+    assert np.allclose(many["group_velocity"], one["group_velocity"], rtol=1e-8, atol=0, equal_nan=True)
+    r = surfwave.layered(HARD, [{**SIO2, "thickness": 1e-6}], frequency=[0.0])
+    assert list(r["mode"][0]) == ["R"] and r["kh"][0, 0] == 0.0
+    assert r["c"][0, 0] == pytest.approx(_rayleigh(HARD), rel=1e-12)
