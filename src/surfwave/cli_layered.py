@@ -57,6 +57,8 @@ def add_parser(sub, parser_class) -> argparse.ArgumentParser:
                     help="substrate stress: one value (equibiaxial in the surface plane) or nine (3 x 3, SAW frame)")
     lp.add_argument("--electrical", default="free", choices=["free", "metallized"])
     lp.add_argument("--leaky", action="store_true", help="also continue modes above c_limit as leaky waves")
+    lp.add_argument("--modes", type=int, default=None, metavar="N",
+                    help="only the N slowest guided modes of each family (e.g. 2: R, S1, L0, L1)")
     lp.add_argument("--group", action="store_true", help="also print the group velocities")
     lp.add_argument("--json", action="store_true", help="print the result record as JSON")
     return lp
@@ -114,7 +116,7 @@ def run(args) -> int:
     except ValueError:
         pass
     kw: dict = {"surface": args.surface, "direction": direction, "euler": args.euler, "stress": stress,
-                "electrical": args.electrical, "leaky": args.leaky}
+                "electrical": args.electrical, "leaky": args.leaky, "modes": args.modes}
     if args.kh is not None:
         kw["kh"] = parse_kh(args.kh)
     else:

@@ -54,15 +54,16 @@ def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: n
     return out
 
 
-def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False) -> dict:
+def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False,
+                 modes: int | None = None) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies).
 
     K^2 of a piezoelectric stack compares the free and metallized speeds of the same mode label at
-    the same frequency.
+    the same frequency. ``modes``: at most that many modes per family (None: all).
     """
     from surfwave.layers.solve import k2_pair
 
-    out = _at_frequency(stack, frequency, electrical=electrical, leaky=leaky)
+    out = _at_frequency(stack, frequency, electrical=electrical, leaky=leaky, modes=modes)
     if stack.piezo and stack.total_thickness > 0 and out["c"].size:
         pair, free = k2_pair(electrical)
         other = _at_frequency(stack, frequency, electrical=pair)
@@ -76,21 +77,40 @@ def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free"
     return out
 
 
-def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False) -> dict:
+def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False,
+                  modes: int | None = None) -> dict:
     """:func:`at_frequency` for one electrical condition (K2 left NaN)."""
-    from surfwave.layers.solve import MAX_KH, REASON_NONE, assemble, empty_result, merge_families, unstable_reason
+    from surfwave.layers.solve import (
+        MAX_KH,
+        REASON_NONE,
+        assemble,
+        empty_result,
+        merge_families,
+        unstable_reason,
+        use_fast_path,
+    )
 
     f = _frequencies(frequency)
-    why = unstable_reason(stack)
+    fast = use_fast_path(stack, leaky)
+    why = "" if fast else unstable_reason(stack)
     if why:
         return empty_result(f, np.nan, why)
     H = stack.total_thickness
     if H == 0:
-        out = assemble(stack, np.zeros(f.size), electrical, leaky)
+        out = assemble(stack, np.zeros(f.size), electrical, leaky, modes)
         out["frequency"] = np.broadcast_to(f[:, None], out["c"].shape).copy()
         return out
     if leaky:
         raise InputError("leaky=True is available with kh, not with frequency")
+    if fast:
+        from surfwave.layers.isotropic import iso_stack
+        from surfwave.layers.isotropic_record import frequency_record
+
+        c_floor = 0.5 * float(iso_stack(stack).shear.min())             # 10 x lowest_speed, as below
+        if 2 * np.pi * float(f.max()) * H / c_floor > MAX_KH * 0.999 / 1.05:
+            top = 2 * np.pi * float(f.max()) * H / c_floor
+            raise InputError(f"frequency {f.max():.4g} Hz gives kh up to {top:.4g}, beyond {MAX_KH:g}")
+        return frequency_record(stack, f, modes)
     b = scaled_blocks(stack)
     fams = families(b)
     wH = 2 * np.pi * f * H
@@ -138,6 +158,8 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
                     break
         cs.append(C)
         vgs.append(V)
+    if modes is not None:
+        cs, vgs = [c[:, :modes] for c in cs], [v[:, :modes] for v in vgs]
     Cm, labels, (vg, khm) = merge_families(fams, cs, [vgs, [wH[:, None] / c for c in cs]])
     reason = np.where(np.isfinite(Cm).any(axis=1), "", REASON_NONE).astype(object)
     pf = np.full(Cm.shape, np.nan)

@@ -21,7 +21,7 @@ from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, Free, as_boundary
 
-__all__ = ["MAX_KH", "layered", "mode_speeds", "solve_stack"]
+__all__ = ["MAX_KH", "checked_modes", "layered", "mode_speeds", "solve_stack", "use_fast_path"]
 
 #: Largest kh accepted (the speed grid grows with kh; beyond this the film is a half-space).
 MAX_KH = 1000.0
@@ -102,7 +102,8 @@ def merge_families(fams: list[Family], cs: list[np.ndarray], extra: list[list[np
 
 
 def layered(substrate, films=(), *, euler=None, surface: str = "(001)", direction="[100]", kh=None,
-            frequency=None, electrical: str | Boundary = "free", stress=None, leaky: bool = False) -> LayeredResult:
+            frequency=None, electrical: str | Boundary = "free", stress=None, leaky: bool = False,
+            modes: int | None = None) -> LayeredResult:
     """Every guided mode of films on a crystal substrate, under in-plane prestress.
 
     Parameters
@@ -135,6 +136,10 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     leaky : bool
         Also continue modes above the substrate's limiting speed as leaky waves (complex speed):
         ``c`` is then the real phase speed and ``attenuation`` their loss.
+    modes : int, optional
+        Only the ``modes`` slowest guided modes of each family (e.g. 2: R and S1, L0 and L1);
+        None (default): all. On isotropic stacks the search stops there (faster); otherwise the
+        columns beyond are dropped (with ``leaky`` a leaky continuation counts as a mode of its family).
 
     Returns
     -------
@@ -167,11 +172,34 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         raise InputError(f"leaky must be True or False, got {leaky!r}")
     if (kh is None) == (frequency is None):
         raise InputError("give exactly one of kh (wavenumber x total film thickness) or frequency (Hz)")
+    n_modes = checked_modes(modes)
     if frequency is not None:
         from surfwave.layers.frequency import at_frequency
 
-        return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky)))
-    return cast(LayeredResult, assemble(stack, checked_kh(kh), boundary, bool(leaky)))
+        return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky),
+                                                modes=n_modes))
+    return cast(LayeredResult, assemble(stack, checked_kh(kh), boundary, bool(leaky), n_modes))
+
+
+def checked_modes(modes) -> int | None:
+    """``modes`` of :func:`layered`: None or a positive integer; anything else is one InputError line."""
+    if modes is None:
+        return None
+    if isinstance(modes, (bool, np.bool_)) or not isinstance(modes, (int, np.integer)) or modes < 1:
+        raise InputError(f"modes must be a positive integer (the N slowest guided modes of each family) or None "
+                         f"(all), got {modes!r}")
+    return int(modes)
+
+
+#: Set to False to force the general (Stroh) path on isotropic stacks too (tests compare the two).
+FAST_ISOTROPIC = True
+
+
+def use_fast_path(stack: Stack, leaky: bool = False) -> bool:
+    """True when the isotropic fast path (:mod:`surfwave.layers.isotropic`) answers this stack."""
+    from surfwave.layers.isotropic import eligible
+
+    return FAST_ISOTROPIC and not leaky and eligible(stack)
 
 
 def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarray:
@@ -196,6 +224,10 @@ def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarra
     """
     kh = checked_kh(kh)
     which = np.broadcast_to(np.asarray(labels, dtype=object), kh.shape)
+    if use_fast_path(stack):
+        from surfwave.layers.isotropic_record import labelled_speeds
+
+        return labelled_speeds(stack, kh, which)
     out = np.full(kh.size, np.nan)
     if unstable_reason(stack):
         return out
@@ -260,8 +292,15 @@ def k2_pair(electrical: str | Boundary) -> tuple[Boundary, bool]:
     return (METALLIZED if free else FREE), free
 
 
-def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bool) -> dict:
-    """The result record for a resolved stack at kh (n,) (all NaN with the reason if a layer is unstable)."""
+def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bool, modes: int | None = None) -> dict:
+    """The result record for a resolved stack at kh (n,) (all NaN with the reason if a layer is unstable).
+
+    ``modes``: at most that many columns per family (None: all).
+    """
+    if use_fast_path(stack, leaky):
+        from surfwave.layers.isotropic_record import kh_record
+
+        return kh_record(stack, kh, modes)
     why = unstable_reason(stack)
     if why:
         return empty_result(kh, np.nan, why)
@@ -286,7 +325,9 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bo
         from surfwave.layers.leaky import leaky_continuation
 
         cs, vgs, k2s, att, lk = leaky_continuation(sol, kh, electrical, cs, vgs, k2s, att)
-    pfs = [np.pad(p, ((0, 0), (0, c.shape[1] - p.shape[1])), constant_values=np.nan)
+    if modes is not None:
+        cs, vgs, k2s, att, lk = ([x[:, :modes] for x in arrs] for arrs in (cs, vgs, k2s, att, lk))
+    pfs = [np.pad(p, ((0, 0), (0, max(c.shape[1] - p.shape[1], 0))), constant_values=np.nan)[:, :c.shape[1]]
            for p, c in zip(sol["power_flow_angle"], cs)]
     C, labels, (vg, K2, A, L, PF) = merge_families(fams, cs, [vgs, k2s, att, lk, pfs])
     labels = np.where(L == 1.0, labels + "~", labels).astype(object)

@@ -1,0 +1,320 @@
+"""Secular functions of isotropic, unstressed, non-piezoelectric stacks: pole-free and overflow-free.
+
+An isotropic stack splits exactly into a sagittal (P-SV: u1, u3 with our x2 as depth) and a
+shear-horizontal (SH) family. Each is a linear ODE in depth, z in units of 1/k (z = k x_depth),
+for a real state vector y: with u_x = U e^{i theta}, u_z = i W e^{i theta}, sigma_zz = i k N e^{i theta},
+sigma_xz = k T e^{i theta} (theta = k x - omega t; z down, into the substrate) and X = rho c^2,
+
+    U' = W + T / mu,          W' = (N - lam U) / M,          (M = lam + 2 mu)
+    N' = -X W - T,            T' = (4 mu (lam + mu) / M - X) U + lam N / M,
+
+and for SH (u_y = v e^{i theta}, sigma_yz = k tau e^{i theta}): v' = tau / mu, tau' = (mu - X) v.
+A' = A y has the eigenvalues +-r_a, +-r_b with r_a^2 = 1 - X / M, r_b^2 = 1 - X / mu.
+
+Layer propagator. Going up through a layer of thickness t (units 1/k), y_top = exp(-A t) y_bottom,
+and exp(-A t) = C(A^2) - A S(A^2) with the entire functions C(s) = cosh(sqrt(s) t) and
+S(s) = sinh(sqrt(s) t) / sqrt(s) (cos(q t) and sin(q t) / q for s = -q^2 < 0, i.e. above the
+bulk speed; C = 1, S = t at s = 0, so c at a bulk speed is no special case). With the spectral
+projectors Ma = (A^2 - r_b^2) / (r_a^2 - r_b^2) and Mb = 1 - Ma (no square roots: polynomial in
+c^2 over X (lam + mu) / (mu M), which vanishes only at c = 0),
+exp(-A t) = Pa + Pb, Pa = (C_a - S_a A) Ma, Pb = (C_b - S_b A) Mb.
+
+SH: the 2 x 2 propagator [[C_b, -S_b / mu], [-mu r_b^2 S_b, C_b]] acts on (v, tau); the substrate's
+decaying solution is (1, -mu r_b); the secular function is tau at the free top.
+
+P-SV (compound matrices, Dunkin 1965): the two decaying solutions of the substrate span a plane;
+its 2 x 2 minors m (order UW, UN, UT, WN, WT, NT) are carried upward by the second compound C2 of
+each layer's propagator, and the free top (N = T = 0 for both solutions' combination) is m_NT = 0.
+Writing C2(Pa + Pb) = C2(Pa) + C2(Pb) + D(Pa, Pb) (D the mixed term, bilinear), and using that
+Pa has determinant C_a^2 - r_a^2 S_a^2 = 1 on its plane (so C2(Pa) = C2(Ma) exactly, likewise b),
+
+    C2(exp(-A t)) = K0 + C_a C_b K1 - C_a S_b K2 - S_a C_b K3 + S_a S_b K4,
+    K0 = C2(Ma) + C2(Mb),  K1 = D(Ma, Mb),  K2 = D(Ma, A Mb),  K3 = D(A Ma, Mb),  K4 = D(A Ma, A Mb).
+
+The K depend on c only (shared by every kh), and the identity cosh^2 - sinh^2 = 1 has been used
+analytically: no term grows like exp(2 r t), which is what a numerical product of transfer
+matrices (or their compounds) would cancel in rounding.
+
+Overflow. For an evanescent wave (r^2 > 0) C and S grow like exp(r t); every layer's compound is
+multiplied by the positive factor exp(-(r_a + r_b) t) (only over the evanescent ones), which turns
+C, S into (1 + e^{-2rt}) / 2 and -expm1(-2 r t) / (2 r) and K0 into K0 e^{-(r_a + r_b) t}, all
+bounded; the vector is renormalised after each layer. Positive factors change neither the zeros
+nor the sign of the secular function, which is returned as m_NT (the vector entering the top film
+normalised; SH: tau / |(v, tau)|), bounded, analytic in c below the substrate's shear speed and
+without poles (the substrate's r_a, r_b are analytic there and every layer's factor is entire):
+its zeros are exactly the modes.
+
+Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from surfwave.layers.stack import Stack
+from surfwave.solvers.tensors import tensor_to_voigt
+
+__all__ = ["IsoStack", "eligible", "is_isotropic", "iso_stack", "secular_psv", "secular_sh", "wave_functions"]
+
+#: Relative tolerance of the isotropy test of a stiffness.
+ISO_TOL = 1e-12
+#: Minor order of the 6-vector (pairs of U, W, N, T).
+PAIRS = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+_I = np.array([p[0] for p in PAIRS])
+_J = np.array([p[1] for p in PAIRS])
+
+
+def is_isotropic(C6, tol: float = ISO_TOL) -> bool:
+    """True when a Voigt stiffness (6, 6) is isotropic to a relative ``tol`` of its largest entry.
+
+    C11 = C22 = C33, C12 = C13 = C23, C44 = C55 = C66 = (C11 - C12) / 2, every other entry 0.
+    """
+    C = np.asarray(C6, dtype=float)
+    s = float(np.abs(C).max())
+    if s == 0 or not np.all(np.isfinite(C)):
+        return False
+    c11, c12 = C[0, 0], C[0, 1]
+    ref = np.zeros((6, 6))
+    ref[:3, :3] = c12
+    ref[[0, 1, 2], [0, 1, 2]] = c11
+    ref[[3, 4, 5], [3, 4, 5]] = 0.5 * (c11 - c12)
+    return bool(np.abs(C - ref).max() <= tol * s)
+
+
+def eligible(stack: Stack) -> bool:
+    """True when the fast isotropic path applies: every layer isotropic, unstressed, no piezoelectricity."""
+    if stack.piezo:
+        return False
+    layers = [*stack.films, stack.substrate]
+    return all(not np.any(lay.sigma) and is_isotropic(tensor_to_voigt(lay.A)) for lay in layers)
+
+
+@dataclass(frozen=True, eq=False)
+class IsoStack:
+    """Lame constants of an isotropic stack, scaled.
+
+    Attributes
+    ----------
+    lam, mu, rho : ndarray, shape (L + 1,)
+        Lame constants / ``s`` and densities (kg/m^3); films from the top, the substrate last.
+    frac : ndarray, shape (L,)
+        Film thickness / total film thickness (0 when the total is 0).
+    s : float
+        Stiffness scale, Pa.
+    H : float
+        Total film thickness, m.
+    """
+
+    lam: np.ndarray
+    mu: np.ndarray
+    rho: np.ndarray
+    frac: np.ndarray
+    s: float
+    H: float
+
+    @property
+    def c_lim(self) -> float:
+        """The substrate's shear speed (the guided limit of both families), m/s."""
+        return float(np.sqrt(self.mu[-1] * self.s / self.rho[-1]))
+
+    @property
+    def shear(self) -> np.ndarray:
+        """Shear speeds of every layer, m/s, shape (L + 1,)."""
+        return np.sqrt(self.mu * self.s / self.rho)
+
+    @property
+    def longitudinal(self) -> np.ndarray:
+        """Longitudinal speeds of every layer, m/s, shape (L + 1,)."""
+        return np.sqrt((self.lam + 2 * self.mu) * self.s / self.rho)
+
+
+def iso_stack(stack: Stack) -> IsoStack:
+    """The Lame constants of an :func:`eligible` stack (lab-frame tensors are isotropic: any frame)."""
+    layers = [*stack.films, stack.substrate]
+    V = np.stack([tensor_to_voigt(lay.A) for lay in layers])
+    s = float(np.abs(V).max())
+    H = stack.total_thickness
+    frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
+    return IsoStack(lam=V[:, 0, 1] / s, mu=V[:, 3, 3] / s, rho=np.array([lay.rho for lay in layers]),
+                    frac=frac, s=s, H=H)
+
+
+def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Scaled C, S of one wave type and the scale factor g, elementwise.
+
+    Parameters
+    ----------
+    r2 : ndarray, shape (n,) or ()
+        r^2 = 1 - c^2 / v^2 (v the bulk speed), one per speed (the last axis of ``t``).
+    t : ndarray, shape (..., n) or ()
+        Thickness in units of 1/k (>= 0).
+
+    Returns
+    -------
+    C, S, g : ndarray, shape of ``t`` broadcast with ``r2``
+        g = exp(-r t) for r^2 > 0 (else 1); C = g cosh(r t), S = g sinh(r t) / r for r^2 > 0
+        (from e = expm1(-r t): C = (1 + (1 + e)^2) / 2, S = -e (2 + e) / (2 r), no cancellation),
+        cos(q t) and sin(q t) / q with q^2 = -r^2 otherwise (S = t at r = 0; both from
+        u = tan(q t / 2): cos = (1 - u^2) / (1 + u^2), sin = 2 u / (1 + u^2), exact to rounding
+        and one transcendental call). Each speed's branch is computed on its own columns only.
+    """
+    r2 = np.asarray(r2, dtype=float)
+    t = np.asarray(t, dtype=float)
+    shape = np.broadcast_shapes(r2.shape, t.shape)
+    r2v = np.broadcast_to(r2, shape[-1:] if shape else ()).reshape(-1)
+    tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
+    r = np.sqrt(np.abs(r2v))
+    C, S, g = np.empty(tb.shape), np.empty(tb.shape), np.ones(tb.shape)
+    pos = r2v > 0
+    k = int(pos.sum())
+    ev: slice | np.ndarray
+    pr: slice | np.ndarray
+    if pos[:k].all():                                   # ascending speeds: evanescent columns first
+        ev, pr = slice(0, k), slice(k, r2v.size)
+    else:
+        ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
+    if k:
+        re = r[ev]
+        e = np.expm1(-re * tb[..., ev])
+        ge = 1.0 + e
+        g[..., ev] = ge
+        C[..., ev] = 0.5 * (1.0 + ge * ge)
+        S[..., ev] = -e * (2.0 + e) / (2.0 * re)
+    if k < r2v.size:
+        rp = r[pr]
+        tp = tb[..., pr]
+        u = np.tan(0.5 * rp * tp)                    # half-angle tangent: cos and sin from one call
+        d = 1.0 / (1.0 + u * u)
+        C[..., pr] = (1.0 - u * u) * d
+        S[..., pr] = np.where(rp > 0, 2.0 * u * d / np.where(rp > 0, rp, 1.0), tp)
+    return C.reshape(shape), S.reshape(shape), g.reshape(shape)
+
+
+def _c2(M: np.ndarray) -> np.ndarray:
+    """Second compound of 4 x 4 matrices (..., 4, 4) -> (..., 6, 6), minor order :data:`PAIRS`."""
+    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
+    return M[..., i, k] * M[..., j, l] - M[..., i, l] * M[..., j, k]
+
+
+def _mixed(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """The mixed term D(X, Y) of C2(X + Y) = C2(X) + C2(Y) + D(X, Y), shape (..., 6, 6)."""
+    i, j, k, l = _I[:, None], _J[:, None], _I[None, :], _J[None, :]
+    return (X[..., i, k] * Y[..., j, l] + Y[..., i, k] * X[..., j, l]
+            - X[..., i, l] * Y[..., j, k] - Y[..., i, l] * X[..., j, k])
+
+
+def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
+    """K0 ... K4 of one isotropic layer at scaled X = rho c^2 / s (n,), signs folded in: shape (n, 5, 6, 6).
+
+    The layer's compound propagator upward over t is g_a g_b K0 + C_a C_b K1 + C_a S_b K2 + S_a C_b K3
+    + S_a S_b K4 with the scaled C, S, g of :func:`wave_functions` (the module docstring).
+    """
+    M = lam + 2.0 * mu
+    n = X.size
+    A = np.zeros((n, 4, 4))
+    A[:, 0, 1] = 1.0
+    A[:, 0, 3] = 1.0 / mu
+    A[:, 1, 0] = -lam / M
+    A[:, 1, 2] = 1.0 / M
+    A[:, 2, 1] = -X
+    A[:, 2, 3] = -1.0
+    A[:, 3, 0] = 4.0 * mu * (lam + mu) / M - X
+    A[:, 3, 2] = lam / M
+    B = A @ A
+    rb2 = 1.0 - X / mu
+    gap = X * (lam + mu) / (mu * M)                                     # r_a^2 - r_b^2
+    eye = np.eye(4)
+    Ma = (B - rb2[:, None, None] * eye) / gap[:, None, None]
+    Mb = eye - Ma
+    AMa, AMb = A @ Ma, A @ Mb
+    return np.stack([_c2(Ma) + _c2(Mb), _mixed(Ma, Mb), -_mixed(Ma, AMb), -_mixed(AMa, Mb), _mixed(AMa, AMb)], axis=1)
+
+
+def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
+    """Minors (n, 6) of the substrate's decaying solutions [1, r_a, X-2mu, -2mu r_a], [r_b, 1, -2mu r_b, X-2mu]."""
+    q = X - 2.0 * mu
+    rr = ra * rb
+    return np.stack([1.0 - rr, -X * rb, q + 2.0 * mu * rr, -q - 2.0 * mu * rr, X * ra, q * q - 4.0 * mu * mu * rr],
+                    axis=-1)
+
+
+def _top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The NT row of K0, K2, K3, K4 of the top film applied to m (..., 6) (K1's is m_NT - K0's), closed form.
+
+    With q = X - 2 mu, r_a^2 = 1 - X/M, r_b^2 = 1 - X/mu and d = m_UT - m_WN (the forms of
+    :func:`psv_kernels` reduced by hand):
+    K0 m = (-8 mu^2 q^2 m_UW - 2 mu q (q - 2 mu) d + 4 mu q m_NT) / X^2,
+    K2 m = -(q^2 m_UN + 4 mu^2 r_b^2 m_WT) / X,   K3 m = (4 mu^2 r_a^2 m_UN + q^2 m_WT) / X,
+    K4 m = (-(q^4 + 16 mu^4 P) m_UW + (q^3 - 8 mu^3 P) d - (q^2 + 4 mu^2 P) m_NT) / X^2, P = r_a^2 r_b^2.
+    """
+    q = X - 2.0 * mu
+    ra2, rb2 = 1.0 - X / M, 1.0 - X / mu
+    P = ra2 * rb2
+    iX = 1.0 / X
+    m0, m1, m4, m5 = m[..., 0], m[..., 1], m[..., 4], m[..., 5]
+    d = m[..., 2] - m[..., 3]
+    q2 = q * q
+    k0 = (-8.0 * mu * mu * q2 * m0 - 2.0 * mu * q * (q - 2.0 * mu) * d + 4.0 * mu * q * m5) * iX * iX
+    k2 = -(q2 * m1 + 4.0 * mu * mu * rb2 * m4) * iX
+    k3 = (4.0 * mu * mu * ra2 * m1 + q2 * m4) * iX
+    k4 = (-(q2 * q2 + 16.0 * mu ** 4 * P) * m0 + (q2 * q - 8.0 * mu ** 3 * P) * d
+          - (q2 + 4.0 * mu * mu * P) * m5) * iX * iX
+    return k0, k2, k3, k4
+
+
+def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
+    """Pole-free P-SV secular function: the minor m_NT at the free top, shape (r, n).
+
+    The vector m entering the top film has unit norm, so F is bounded (|F| <= the norm of the top
+    film's NT row); without films F = m_NT / |m| of the substrate (its Rayleigh function).
+
+    Parameters
+    ----------
+    st : IsoStack
+    c : ndarray, shape (n,)
+        Speeds below the substrate's shear speed, m/s.
+    kh : ndarray, shape (r, n)
+        Wavenumber x total film thickness at each (row, speed).
+    kernels : list of ndarray (n, 5, 6, 6), optional
+        :func:`psv_kernels` of each film below the top one at ``c`` (computed when not given; entry
+        0 is not used: the top film's row is in closed form, :func:`_top_row`).
+    """
+    X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
+    ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
+    rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    m = _substrate_psv(st.mu[-1], X[:, -1], ra, rb)
+    m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
+    L = st.frac.size
+    if L == 0:
+        return np.broadcast_to(m[:, 5], kh.shape)
+    for layer in range(L - 1, -1, -1):
+        t = kh * st.frac[layer]
+        Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
+        Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
+        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
+        if layer == 0:                                                     # the NT row only: F itself
+            k0, k2, k3, k4 = _top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+            return w[0] * k0 + w[1] * (m[..., 5] - k0) + w[2] * k2 + w[3] * k3 + w[4] * k4
+        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
+        Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
+        m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
+        m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))
+    raise AssertionError("unreachable")
+
+
+def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """Pole-free SH secular function tau / |(v, tau)| at the free top, shape (r, n) (arguments: :func:`secular_psv`)."""
+    X = st.rho * (c[:, None] ** 2) / st.s
+    v = np.ones(c.size)
+    tau = -st.mu[-1] * np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    nrm = np.hypot(v, tau)
+    v, tau = v / nrm, tau / nrm
+    for layer in range(st.frac.size - 1, -1, -1):
+        mu = st.mu[layer]
+        rb2 = 1.0 - X[:, layer] / mu
+        Cb, Sb, _ = wave_functions(rb2, kh * st.frac[layer])
+        v, tau = Cb * v - Sb * tau / mu, -mu * rb2 * Sb * v + Cb * tau
+        nrm = np.hypot(v, tau)
+        v, tau = v / nrm, tau / nrm
+    return np.broadcast_to(tau, kh.shape)

@@ -1,0 +1,408 @@
+"""Guided modes of isotropic stacks from the pole-free secular functions of :mod:`surfwave.layers.isotropic`.
+
+Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular function is evaluated
+on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
+:data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
+function has no poles, so every sign change is a mode and the n-th one from below is the n-th
+mode. All brackets are then refined together by a safeguarded secant iteration in
+t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
+c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
+
+Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
+any layer to c_lim. (Below every shear speed each wave is evanescent and the only solutions are
+surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
+the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
+safety, not a proof.) It is the union of
+(i) 24 points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
+(ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
+spacing of a point of (iii)), and (iii) points where the total vertical phase
+Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
+:data:`PHASE_STEP`. Between consecutive modes of one family the field of some film turns by about
+pi in depth, so a cell holds a fraction of a mode spacing. Every sign change on the grid is a mode
+(the function has no poles). Two modes in one cell (modes localised in different films, weakly
+coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
+hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite sign splits the
+cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
+As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
+so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
+
+Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c from differences of the scalar
+secular function at the root (fourth-order stencils, central or one-sided at t or kh = 0; steps
+from :data:`DIFF_STEP` and :data:`DIFF_STEP_K`; the positive normalisations of F drop out at a zero
+of F), 1e-7 or better against the general solver's energy velocity. Power flow is along x1 (angle 0).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
+
+__all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_grid"]
+
+#: Relative width in c of a converged bracket.
+C_TOL = 5e-14
+#: Refinement iterations at most.
+MAX_ITER = 60
+#: Speeds per chunk of the upward scan.
+CHUNK = 48
+#: Points uniform in t and uniform in c.
+N_BASE = 40
+#: Phase step of the grid, radians.
+PHASE_STEP = math.pi / 8
+#: Parabolic / golden steps hunting two roots hidden in one grid cell.
+PAIR_STEPS = 10
+#: Refinement factor of the rescan of rows with too few modes.
+RESCAN = 4
+#: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
+DIFF_STEP = 1e-4
+#: The same for kh (F is noisier there, truncation milder: measured on fast films and three-film stacks).
+DIFF_STEP_K = 2e-3
+
+
+
+class Rows:
+    """The rows of a call: fixed kh (``base`` = kh) or fixed frequency (``base`` = omega H, kh = omega H / c).
+
+    Parameters
+    ----------
+    base : ndarray, shape (n,)
+        kh, or 2 pi f H (m/s).
+    freq : bool
+        True at fixed frequency.
+    """
+
+    def __init__(self, base: np.ndarray, freq: bool) -> None:
+        self.base, self.freq = np.asarray(base, dtype=float), freq
+
+    def grid(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (r, n) of rows (r,) at speeds c (n,)."""
+        b = self.base[rows][:, None]
+        return b / c[None, :] if self.freq else np.broadcast_to(b, (rows.size, c.size))
+
+    def pairs(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (m,) of (row, speed) pairs (m,)."""
+        return self.base[rows] / c if self.freq else self.base[rows]
+
+    def kh_max(self, c: np.ndarray) -> np.ndarray:
+        """An upper bound (n,) of every row's kh at speeds c (n,)."""
+        top = float(self.base.max(initial=0.0))
+        return top / c if self.freq else np.full(c.shape, top)
+
+
+def _rayleigh_ratio(kappa: float) -> float:
+    """c_R^2 / beta^2 of an isotropic half-space with beta^2 / alpha^2 = kappa (bisection, 1e-12)."""
+    lo, hi = 1e-9, 1.0
+    for _ in range(42):
+        x = 0.5 * (lo + hi)
+        if (2.0 - x) ** 2 - 4.0 * math.sqrt((1.0 - x) * (1.0 - kappa * x)) < 0.0:
+            lo = x
+        else:
+            hi = x
+    return lo
+
+
+def slowest_speed(st: IsoStack) -> float:
+    """The slowest Rayleigh speed of any layer as a half-space, m/s."""
+    beta = st.shear
+    kap = st.mu / (st.lam + 2 * st.mu)
+    return float(min(b * math.sqrt(_rayleigh_ratio(float(k))) for b, k in zip(beta, kap)))
+
+
+def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
+    """Ascending speeds (n,) in (c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    c_lim = st.c_lim
+    c_lo = 0.95 * slowest_speed(st)
+    t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
+    top = np.geomspace(1e-7, 0.02, 24, endpoint=False)
+    t = np.linspace(0.02, t_hi, N_BASE * fine)
+    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
+    parts = [c_lim * np.sqrt(1.0 - top * top)]
+    if st.frac.size:
+        aux = np.linspace(c_lo, c_lim, 4000)
+        nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
+                 for v in (st.shear, st.longitudinal) for i in range(st.frac.size))
+        phase = rows_of.kh_max(aux) * nu
+        levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
+        if levels.size:
+            pts = np.interp(levels, phase, aux)
+            parts.append(pts)
+            # a base point within half the base spacing of a phase point adds nothing
+            t_base = np.sqrt(np.maximum(1.0 - (base / c_lim) ** 2, 0.0))
+            step_c = (c_lim - c_lo) / (N_BASE * fine)                       # of the c-uniform part
+            dc = np.minimum(step_c, c_lim * c_lim * t_base * t_hi / (base * N_BASE * fine))   # and the t-uniform
+            k = np.clip(np.searchsorted(pts, base), 1, pts.size - 1) if pts.size > 1 else np.zeros(base.size, int)
+            near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
+            base = base[near > 0.5 * dc]
+    g = np.unique(np.concatenate(parts + [base]))
+    return g[(g > c_lo) & (g < c_lim)]
+
+
+def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """The family's secular function at speeds c (n,) and kh (r, n)."""
+    if prefix == "L":
+        return secular_sh(st, c, kh)
+    return secular_psv(st, c, kh)
+
+
+def _at(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The secular function at (row, speed) pairs r, c (m,)."""
+    return _secular(st, prefix, c, rows_of.pairs(r, c)[None, :])[0]
+
+
+def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: np.ndarray, Fs: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split points of two roots hidden between grid speeds: (found (m,), x (m,), F at x (m,)).
+
+    ``cs``, ``Fs`` (m, 3): three consecutive grid speeds around a local minimum of |F| without a sign
+    change. The minimum of s F (s its sign) is hunted by parabolic steps (golden-section fallback)
+    for :data:`PAIR_STEPS` steps; where s F < 0 at some point x, (c_left, x) and (x, c_right) each
+    hold one root. From the second step on, a candidate whose parabola puts the minimum above 0.7 x
+    the lowest value seen is dropped (a near miss).
+    """
+    s = np.sign(Fs[:, 1])
+    (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
+    found = np.zeros(r.size, dtype=bool)
+    x_out = np.full(r.size, np.nan)
+    f_out = np.full(r.size, np.nan)
+    idx = np.arange(r.size)
+    for step in range(PAIR_STEPS):
+        if idx.size == 0:
+            break
+        with np.errstate(all="ignore"):
+            a, b = cm - cl, cm - ch
+            den = a * (gm - gh) - b * (gm - gl)
+            x = cm - 0.5 * (a * a * (gm - gh) - b * b * (gm - gl)) / den
+            curv = ((gl - gm) / a - (gh - gm) / b) / (a - b)
+            g_min = gm - curv * (cm - x) ** 2                            # the parabola's minimum
+        if step > 0:
+            # after one step the parabola models the dip: a minimum it puts well above zero is a
+            # near miss, not two roots
+            clear = np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm)
+            keep = ~clear
+            idx, cl, cm, ch, gl, gm, gh, a, b, x = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh, a, b, x))
+            if idx.size == 0:
+                break
+        wide_left = a > -b
+        gold = np.where(wide_left, cm - 0.382 * a, cm - 0.382 * b)
+        bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
+        x = np.where(bad, gold, x)
+        gx = _at(st, prefix, rows_of, r[idx], x) * s[idx]
+        hit = gx < 0
+        found[idx[hit]], x_out[idx[hit]], f_out[idx[hit]] = True, x[hit], gx[hit] * s[idx[hit]]
+        better, left = gx < gm, x < cm
+        cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
+                  np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
+        gl, gh = (np.where(better, np.where(left, gl, gm), np.where(left, gx, gl)),
+                  np.where(better, np.where(left, gm, gh), np.where(left, gh, gx)))
+        cm, gm = np.where(better, x, cm), np.where(better, gx, gm)
+        keep = ~hit & (ch - cl > 1e-9 * cm)
+        idx, cl, cm, ch, gl, gm, gh = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh))
+    return found, x_out, f_out
+
+
+def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
+          ) -> tuple[np.ndarray, ...]:
+    """Brackets (row, lower speed, upper speed, F at both) of the first ``need`` roots of each row.
+
+    The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
+    change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
+    |F| (:func:`_hidden_pairs`, all candidates of all chunks at once). Per row the brackets are
+    sorted and the first ``need`` kept.
+    """
+    found = np.zeros(rows.size, dtype=int)
+    act = np.arange(rows.size)
+    c_old, F_old = grid[:0], np.zeros((rows.size, 0))                 # the last two columns seen
+    rr: list[np.ndarray] = []
+    lo: list[np.ndarray] = []
+    hi: list[np.ndarray] = []
+    flo: list[np.ndarray] = []
+    fhi: list[np.ndarray] = []
+    cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    for start in range(0, grid.size, CHUNK):
+        if act.size == 0:
+            break
+        cn = grid[start:start + CHUNK]
+        kernels = None
+        if prefix == "R" and st.frac.size > 1:
+            X = st.rho * (cn[:, None] ** 2) / st.s
+            kernels = [X[:0, 0]] + [psv_kernels(st.lam[i], st.mu[i], X[:, i]) for i in range(1, st.frac.size)]
+        kh = rows_of.grid(rows[act], cn)
+        Fn = secular_sh(st, cn, kh) if prefix == "L" else secular_psv(st, cn, kh, kernels)
+        c, F = np.concatenate([c_old, cn]), np.concatenate([F_old, Fn], axis=1)
+        n0 = c_old.size
+        pos = F > 0
+        sc_all = pos[:, 1:] != pos[:, :-1]
+        sc = sc_all.copy()
+        sc[:, :max(n0 - 1, 0)] = False                                    # counted with the last chunk
+        r1, j1 = np.nonzero(sc)
+        rr.append(rows[act[r1]])
+        lo.append(c[j1])
+        hi.append(c[j1 + 1])
+        flo.append(F[r1, j1])
+        fhi.append(F[r1, j1 + 1])
+        if c.size >= 3:
+            # a local minimum of |F| between cells without a sign change: two roots may hide there
+            aF = np.abs(F)
+            cand = (aF[:, 1:-1] < aF[:, :-2]) & (aF[:, 1:-1] <= aF[:, 2:]) & ~sc_all[:, :-1] & ~sc_all[:, 1:]
+            cand[:, :max(n0 - 2, 0)] = False
+            r2, j2 = np.nonzero(cand)
+            cols = j2[:, None] + np.arange(3)
+            cands.append((rows[act[r2]], c[cols], F[r2[:, None], cols]))
+        found[act] += sc.sum(axis=1)
+        live = found[act] < need
+        act, c_old, F_old = act[live], c[-2:], F[live][:, -2:]
+    if cands:
+        r2, c3, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
+        if r2.size:
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
+            rr += [r2[ok], r2[ok]]
+            lo += [c3[ok, 0], x[ok]]
+            hi += [x[ok], c3[ok, 2]]
+            flo += [F3[ok, 0], fx[ok]]
+            fhi += [fx[ok], F3[ok, 2]]
+    if not rr:
+        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0)
+    R, LO, HI, FLO, FHI = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi))
+    srt = np.lexsort((LO, R))
+    keep = np.arange(R.size) - np.searchsorted(R[srt], R[srt]) < need        # rank within the row
+    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI))
+
+
+def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
+            flo: np.ndarray, fhi: np.ndarray) -> np.ndarray:
+    """Safeguarded secant iteration in t on all brackets (c in (lo, hi), of rows r) at once; speeds (m,), m/s.
+
+    The secant through the two latest iterates (order 1.6); bisection where it leaves the bracket or
+    the bracket stalls. Converged: a secant step below the tolerance (C_TOL relative in c), a bracket
+    narrower than it, or F = 0 exactly.
+    """
+    c_lim = st.c_lim
+
+    def fun(which: np.ndarray, t: np.ndarray) -> np.ndarray:
+        c = c_lim * np.sqrt(1.0 - t * t)
+        return _secular(st, prefix, c, rows_of.pairs(r[which], c)[None, :])[0]
+
+    idx = np.arange(lo.size)
+    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
+    z = np.sqrt(1.0 - (lo / c_lim) ** 2)
+    fa, fz = fhi.astype(float), flo.astype(float)
+    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()   # the two latest iterates
+    width = np.abs(z - a)
+    out = 0.5 * (a + z)
+    for it in range(MAX_ITER):
+        if idx.size == 0:
+            break
+        left, right = np.minimum(a, z), np.maximum(a, z)
+        with np.errstate(all="ignore"):
+            x = x1 - f1 * (x1 - x0) / (f1 - f0)
+        # bisection where the secant leaves the bracket or, every third step, where the bracket
+        # has not halved over the last three (a stalled secant)
+        slow = (it % 3 == 2) & (right - left > 0.5 * width)
+        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
+        # a secant step below the tolerance from the latest iterate that leaves the bracket (rounding:
+        # F there is at its noise level) ends the iteration at that iterate
+        edge = np.isfinite(x) & (np.abs(x - x1) <= np.minimum(C_TOL * (1.0 - x1 * x1) / x1, 1e-8 * x1))
+        if edge.any():
+            out[idx[edge]] = x1[edge]
+            keep = ~edge
+            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right = (
+                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right))
+            if idx.size == 0:
+                break
+        x = np.where(bis, 0.5 * (left + right), x)
+        if it % 3 == 2:
+            width = right - left
+        fx = fun(idx, x)
+        side_a = (fx > 0) == (fa > 0)
+        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
+        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
+        tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
+        done = ((np.abs(x - x1) <= tol) & ~bis) | (np.abs(z - a) <= tol) | (fx == 0)
+        x0, f0, x1, f1 = x1, f1, x, fx
+        out[idx[done]] = x[done]
+        keep = ~done
+        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
+    out[idx] = x1
+    return c_lim * np.sqrt(1.0 - out * out)
+
+
+def _group_velocity(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """v_g = c + kh dc/dkh at modes (c, kh) (m,), by implicit differentiation of the secular function."""
+    if c.size == 0:
+        return np.zeros(0)
+    c_lim = st.c_lim
+    t = np.sqrt(1.0 - (c / c_lim) ** 2)
+    # steps: each film phase kh h_l/H nu (nu = |1 - c^2/v^2|^(1/2), at least 1/(kh h_l/H): F is analytic
+    # in nu^2) moves by at most DIFF_STEP (DIFF_STEP_K) radians, and t (kh) by at most as much
+    rate_t, rate_k = np.ones(c.size), np.ones(c.size)
+    for v in (st.shear[:-1], st.longitudinal[:-1]):
+        for f, vl in zip(st.frac, v):
+            kf = kh * f
+            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-12))
+            rate_t += kf * c_lim * c_lim * t / (vl * vl * nu)
+            rate_k += f * nu
+    ht, hk = DIFF_STEP / rate_t, DIFF_STEP_K / rate_k
+    ot, wt = _stencil(t, ht)
+    ok, wk = _stencil(kh, hk)
+    m = c.size
+    tt = np.concatenate([t + ht * ot.T, np.broadcast_to(t, (5, m))]).ravel()
+    kk = np.concatenate([np.broadcast_to(kh, (5, m)), kh + hk * ok.T]).ravel()
+    F = _secular(st, prefix, c_lim * np.sqrt(1.0 - tt * tt), kk[None, :])[0].reshape(10, m)
+    F_t = (wt.T * F[:5]).sum(axis=0) / ht
+    F_k = (wk.T * F[5:]).sum(axis=0) / hk
+    with np.errstate(all="ignore"):
+        dc_dkh = F_k * c_lim * c_lim * t / (F_t * c)     # -F_k / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
+    return c + kh * dc_dkh
+
+
+_CENTRAL = (np.array([-2.0, -1.0, 0.0, 1.0, 2.0]), np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / 12.0)
+_FORWARD = (np.arange(5.0), np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0)
+
+
+def _stencil(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets (in steps h) and weights (m, 5) of a fourth-order first derivative at x (m,) >= 0:
+    central where x >= 2 h, forward (no negative argument) otherwise."""
+    central = (x >= 2.0 * h)[:, None]
+    return (np.where(central, _CENTRAL[0], _FORWARD[0]), np.where(central, _CENTRAL[1], _FORWARD[1]))
+
+
+def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds and group velocities (n_rows, n_modes) of one family's guided modes, ascending, NaN-padded.
+
+    Parameters
+    ----------
+    st : IsoStack
+    prefix : {"R", "L"}
+        P-SV or SH.
+    rows_of : Rows
+        The rows (kh or frequencies; the row-count guard compares neighbours in ascending order).
+    modes : int or None
+        At most this many modes per row (the slowest); None: all.
+    """
+    n_rows = rows_of.base.size
+    need = np.inf if modes is None else modes
+    rows = np.arange(n_rows)
+    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of), rows_of, rows, need)
+    counts = np.bincount(r, minlength=n_rows)
+    order = np.argsort(rows_of.base, kind="stable")
+    cs = counts[order]
+    dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
+    if dip.size:
+        more = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
+        better = np.bincount(more[0], minlength=n_rows) > counts
+        keep, keep2 = ~better[r], better[more[0]]
+        r, lo, hi, flo, fhi = (np.concatenate([u[keep], v[keep2]]) for u, v in zip((r, lo, hi, flo, fhi), more))
+    width = int(np.bincount(r, minlength=n_rows).max(initial=0))
+    c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
+    if r.size == 0:
+        return c_out, v_out
+    roots = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
+    vg = _group_velocity(st, prefix, roots, rows_of.pairs(r, roots))
+    srt = np.lexsort((roots, r))
+    r, roots, vg = r[srt], roots[srt], vg[srt]
+    start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
+    col = np.arange(r.size) - start[r]
+    c_out[r, col], v_out[r, col] = roots, vg
+    return c_out, v_out
