@@ -142,7 +142,8 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
     """
     from surfwave.layers.solve import MAX_KH
 
-    cg = family_modes(b, fam, grid, electrical=electrical)           # (GRID, n_f)
+    slowest = columns is not None and list(columns) == [0]             # the scans may stop above it
+    cg = family_modes(b, fam, grid, electrical=electrical, lowest=slowest)  # (GRID, n_f)
     C = np.full((wH.size, cg.shape[1]), np.nan)
     V = np.full(C.shape, np.nan)
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
@@ -165,7 +166,7 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
             rows = rows[live]
             if rows.size == 0:
                 break
-            allc = family_modes(b, fam, kh[rows], electrical=electrical)
+            allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
             c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
             good = np.isfinite(c)
             v = np.full(rows.size, np.nan)
