@@ -437,7 +437,9 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
         cells scanned are those of the full scan, so the slowest mode comes out the same: below
         the slowest mode Z has no pole (each eigenvalue, positive at the floor and decreasing
         between poles, must cross zero, a mode, before it can reach a pole), so no mode hides
-        next to a pole there.
+        next to a pole there. (Where the full scan finds a kh short of a higher mode and rescans
+        it on a finer grid, its slowest mode there comes from another bracket: the same root to
+        round-off.)
 
     Returns
     -------
