@@ -35,7 +35,7 @@ NAN_PENALTY = 1.0e8
 PROFILE_RANGE = (0.6, 1.6)
 #: How far above the lower end of the range the rise predicted for the next chord step must be for
 #: a refit to stop early (:func:`profile_rises` with ``accept``): the prediction is first order; in
-#: seeded layered fits it was up to 0.03 above the three-step rise (docs/physics/metrology.md).
+#: seeded layered fits it was up to 0.032 above the three-step rise (docs/physics/metrology.md).
 PREDICTION_MARGIN = 0.05
 
 
@@ -56,12 +56,12 @@ def profile_rises(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray, c
     the rise evaluated there (the others not yet optimal: an upper bound of the refitted rise)
     is at most ``hi``, and the rise the next chord step predicts (that bound minus the squared
     projection of the residuals onto the others' Jacobian columns) is at least ``lo`` +
-    :data:`PREDICTION_MARGIN`. The value
-    returned for that side is then the bound (inside [lo, hi]); sides that do not pass get the
-    full three steps and the same number as without ``accept``; where a parameter is then out of
-    range, its other side is refitted in full too (the warning quotes both; the points it already
-    evaluated are not evaluated again). Cost: 2 m model calls where the model is linear over one
-    sigma, about 4 m along a curved valley of chi^2, 8 m where it bends (as without ``accept``).
+    :data:`PREDICTION_MARGIN`. The value returned for that side is then the bound (inside
+    [lo, hi]); sides that do not pass get the full three steps and the same number as without
+    ``accept``; where a parameter is then out of range, its other side is refitted in full too
+    (the warning quotes both; the points it already evaluated are not evaluated again). Cost:
+    2 m model calls where the model is linear over one sigma, about 4 m along a curved valley of
+    chi^2, 8 m where it bends (as without ``accept``).
     """
     seen: dict[bytes, np.ndarray] = {}
 
@@ -90,6 +90,7 @@ def profile_rises(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray, c
 
 
 def _inside(v: float, band: tuple[float, float] | None) -> bool:
+    """Whether a rise raises no warning: inside ``band`` (default :data:`PROFILE_RANGE`), or NaN (a bound)."""
     band = PROFILE_RANGE if band is None else band
     return bool(np.isfinite(v) and band[0] <= v <= band[1]) or bool(np.isnan(v))
 
