@@ -11,17 +11,19 @@ every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh mea
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
 from surfwave.layers.modes import family_modes, lowest_speed
-from surfwave.layers.partial import families, scaled_blocks
+from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack
 from surfwave.solvers.boundary import Boundary
 
-__all__ = ["at_frequency"]
+__all__ = ["at_frequency", "mode_speeds_at_frequency"]
 
 #: Points of the kh grid of the starting curves.
 GRID = 160
@@ -113,49 +115,10 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
         return frequency_record(stack, f, modes)
     b = scaled_blocks(stack)
     fams = families(b)
-    wH = 2 * np.pi * f * H
-    c_floor = 10.0 * lowest_speed(b)
-    kh_top = min(float(wH.max()) / c_floor * 1.05, MAX_KH)
-    if kh_top > MAX_KH * 0.999:
-        raise InputError(f"frequency {f.max():.4g} Hz gives kh up to {float(wH.max()) / c_floor:.4g}, beyond "
-                         f"{MAX_KH:g}")
-    grid = np.linspace(0.0, kh_top, GRID)
+    wH, grid = _start_grid(b, f, H)
     cs, vgs = [], []
     for fam in fams:
-        cg = family_modes(b, fam, grid, electrical=electrical)           # (GRID, n_f)
-        C = np.full((f.size, cg.shape[1]), np.nan)
-        V = np.full(C.shape, np.nan)
-        c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-        for j in range(cg.shape[1]):
-            ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
-            if ok.size < 2:
-                continue
-            vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical)["group_velocity"]
-            w = cg[ok, j] * grid[ok]                                     # omega H along the curve
-            kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
-            # between the last grid point without the mode and the first with it: the cut-off is
-            # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
-            below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
-            kh[below] = wH[below] / c_lim
-            rows = np.flatnonzero(np.isfinite(kh))
-            for _ in range(NEWTON):
-                live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
-                kh[rows[~live]] = np.nan
-                C[rows[~live], j] = np.nan
-                rows = rows[live]
-                if rows.size == 0:
-                    break
-                allc = family_modes(b, fam, kh[rows], electrical=electrical)
-                c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
-                good = np.isfinite(c)
-                v = np.full(rows.size, np.nan)
-                if good.any():
-                    v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical)["group_velocity"]
-                C[rows, j], V[rows, j] = c, v
-                step = (c * kh[rows] - wH[rows]) / v
-                kh[rows] = np.where(good, kh[rows] - step, np.nan)
-                if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
-                    break
+        C, V = _family_at_frequency(b, fam, wH, grid, electrical)
         cs.append(C)
         vgs.append(V)
     if modes is not None:
@@ -176,3 +139,125 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
             "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
             "attenuation": np.full(Cm.shape, np.nan), "kh": khm,
             "frequency": np.where(np.isfinite(Cm), f[:, None], np.nan), "reason": reason}
+
+
+def _start_grid(b: Blocks, f: np.ndarray, H: float) -> tuple[np.ndarray, np.ndarray]:
+    """omega H (m/s) at each frequency, shape (n,), and the kh grid of the starting curves, shape (GRID,)."""
+    from surfwave.layers.solve import MAX_KH
+
+    wH = 2 * np.pi * f * H
+    c_floor = 10.0 * lowest_speed(b)
+    kh_top = min(float(wH.max()) / c_floor * 1.05, MAX_KH)
+    if kh_top > MAX_KH * 0.999:
+        raise InputError(f"frequency {f.max():.4g} Hz gives kh up to {float(wH.max()) / c_floor:.4g}, beyond "
+                         f"{MAX_KH:g}")
+    return wH, np.linspace(0.0, kh_top, GRID)
+
+
+def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarray, electrical: str | Boundary,
+                         columns: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds and group velocities (n, n_f) of one family's modes at omega H = ``wH`` (m/s).
+
+    ``columns``: only these mode indices of the family (the others stay NaN); each mode is solved
+    on its own (the start from the curve on ``grid``, then Newton), so the numbers do not depend
+    on which others are solved.
+    """
+    from surfwave.layers.solve import MAX_KH
+
+    slowest = columns is not None and list(columns) == [0]             # the scans may stop above it
+    cg = family_modes(b, fam, grid, electrical=electrical, lowest=slowest)  # (GRID, n_f)
+    C = np.full((wH.size, cg.shape[1]), np.nan)
+    V = np.full(C.shape, np.nan)
+    c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+    for j in range(cg.shape[1]) if columns is None else [j for j in columns if j < cg.shape[1]]:
+        ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
+        if ok.size < 2:
+            continue
+        vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical)["group_velocity"]
+        w = cg[ok, j] * grid[ok]                                     # omega H along the curve
+        kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
+        # between the last grid point without the mode and the first with it: the cut-off is
+        # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
+        below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
+        kh[below] = wH[below] / c_lim
+        rows = np.flatnonzero(np.isfinite(kh))
+        for _ in range(NEWTON):
+            live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
+            kh[rows[~live]] = np.nan
+            C[rows[~live], j] = np.nan
+            rows = rows[live]
+            if rows.size == 0:
+                break
+            allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
+            c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
+            good = np.isfinite(c)
+            v = np.full(rows.size, np.nan)
+            if good.any():
+                v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical)["group_velocity"]
+            C[rows, j], V[rows, j] = c, v
+            step = (c * kh[rows] - wH[rows]) / v
+            kh[rows] = np.where(good, kh[rows] - step, np.nan)
+            if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
+                break
+    return C, V
+
+
+def mode_speeds_at_frequency(stack: Stack, frequency, labels, electrical: str | Boundary = "free") -> np.ndarray:
+    """Speeds of named guided modes at frequencies (Hz): their families and modes alone.
+
+    The numbers are those of :func:`at_frequency` (and :func:`surfwave.layered` with
+    ``frequency``) for the same labels: each mode is solved on its own there too, so the modes
+    a fit does not measure (other families, other mode indices) are simply not solved.
+
+    Parameters
+    ----------
+    stack : Stack
+    frequency : array_like, shape (n,)
+        Hz.
+    labels : str or sequence of str, length n
+        The mode of every point (or one for all): "R", "S1", "L0", "M2", ... (guided modes).
+    electrical : {"free", "metallized"} or Boundary
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Phase speed, m/s; NaN where the mode does not exist (or the stack is unstable).
+    """
+    from surfwave.layers.modes import label
+    from surfwave.layers.solve import unstable_reason, use_fast_path
+
+    f = _frequencies(frequency)
+    which = np.broadcast_to(np.asarray(labels, dtype=object), f.shape)
+    out = np.full(f.size, np.nan)
+    fast = use_fast_path(stack)
+    if not fast and unstable_reason(stack):
+        return out
+    H = stack.total_thickness
+    if H == 0 or fast:   # the isotropic path solves every family at once (modes: only up to the highest asked)
+        r = _at_frequency(stack, f, electrical=electrical, modes=_max_index(which) + 1 if fast else None)
+        for i in range(f.size):
+            hit = np.flatnonzero(r["mode"][i] == which[i])
+            out[i] = r["c"][i, hit[0]] if hit.size else np.nan
+        return out
+    b = scaled_blocks(stack)
+    wH, grid = _start_grid(b, f, H)
+    for fam in families(b):
+        cols = sorted({j for j in range(_max_index(which) + 1) if (which == label(fam.prefix, j)).any()})
+        if not cols:
+            continue
+        C, _ = _family_at_frequency(b, fam, wH, grid, electrical, cols)
+        for j in cols:
+            hit = which == label(fam.prefix, j)
+            if j < C.shape[1]:
+                out[hit] = C[hit, j]
+    return out
+
+
+def _max_index(labels: np.ndarray) -> int:
+    """The largest mode index in labels like "R", "S3", "L0", "M2" (R counts as 0)."""
+    top = 0
+    for lab in dict.fromkeys(labels.tolist()):
+        text = str(lab)
+        if text[1:].isdigit():
+            top = max(top, int(text[1:]))
+    return top

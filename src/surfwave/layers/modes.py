@@ -38,6 +38,9 @@ BASE_GRID = 60
 POLE_SPLIT = 8
 #: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
 T_MIN = 1e-7
+#: With ``lowest=True``: the speed grid is scanned from the bottom in these parts (fractions of its
+#: points), stopping after the first part in which every kh has the bracket of a mode.
+LOWEST_PARTS = (0.4, 0.55, 0.7, 1.0)
 
 
 def label(prefix: str, j: int) -> str:
@@ -415,7 +418,7 @@ def _electric(fam: Family, electrical: str | Boundary) -> int:
 
 
 def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "free",
-                 n_grid: int | None = None) -> np.ndarray:
+                 n_grid: int | None = None, lowest: bool = False) -> np.ndarray:
     """Speeds of every guided mode of one family below its limiting speed, for each kh.
 
     Parameters
@@ -428,16 +431,28 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
         The top's electrical condition (:func:`surfwave.solvers.boundary.as_boundary`).
     n_grid : int, optional
         Speed grid points (default :data:`BASE_GRID` + :data:`GRID_PER_KH` max kh).
+    lowest : bool
+        Only the family's slowest mode (column 0): the grid is scanned from the bottom and the
+        scan stops once every kh has the bracket of a mode (:data:`LOWEST_PARTS`). The grid
+        cells scanned are those of the full scan, so the slowest mode comes out the same: below
+        the slowest mode Z has no pole (each eigenvalue, positive at the floor and decreasing
+        between poles, must cross zero, a mode, before it can reach a pole), so no mode hides
+        next to a pole there. (Where the full scan finds a kh short of a higher mode and rescans
+        it on a finer grid, its slowest mode there comes from another bracket: the same root to
+        round-off.)
 
     Returns
     -------
     ndarray, shape (k, n_modes)
-        Ascending speeds (m/s) per kh, NaN-padded; column j is the family's j-th slowest mode.
+        Ascending speeds (m/s) per kh, NaN-padded; column j is the family's j-th slowest mode
+        (``lowest``: shape (k, 1) or (k, 0)).
     """
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
     if not np.all(np.isfinite(kh)):
         raise ValueError("family_modes needs finite kh")
-    out = _family_scan(b, fam, kh, electrical, n_grid)
+    out = _family_scan(b, fam, kh, electrical, n_grid, lowest)
+    if lowest:
+        out = out[:, :1]
     # a mode and a pole of Z in one grid cell cancel in the count: where a kh holds fewer modes
     # than kh on both sides of it (modes are continuous in kh and enter only at the top), rescan it
     # on a grid four times finer
@@ -450,6 +465,8 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
     if dip.size:
         n0 = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
         fine = _family_scan(b, fam, kh[dip], electrical, 4 * n0)
+        if lowest:
+            fine = fine[:, :1]
         if fine.shape[1] > out.shape[1]:
             out = np.pad(out, ((0, 0), (0, fine.shape[1] - out.shape[1])), constant_values=np.nan)
         better = np.isfinite(fine).sum(axis=1) > n[dip]
@@ -458,8 +475,10 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
     return out
 
 
-def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary, n_grid: int | None) -> np.ndarray:
-    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh)."""
+def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary, n_grid: int | None,
+                 lowest: bool = False) -> np.ndarray:
+    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh); with
+    ``lowest`` the scan may stop early (:func:`_scan_from_bottom`) and higher columns may be missing."""
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
@@ -471,7 +490,10 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     v_x1 = v_x1[(v_x1 > grid[0]) & (v_x1 < grid[-1])]
     near = (np.abs(grid[:, None] / v_x1[None, :] - 1.0) <= 2e-9).any(axis=1)
     grid = np.unique(np.concatenate([grid[~near], v_x1 * (1 - 1e-9), v_x1 * (1 + 1e-9)]))
-    grid, D, neg, W = _scan(b, fam, grid, kh, electrical)
+    if lowest:
+        grid, D, neg, W = _scan_from_bottom(b, fam, grid, kh, electrical, v_x1)
+    else:
+        grid, D, neg, W = _scan(b, fam, grid, kh, electrical)
     # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
     # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
     D[:, neg[0] > _electric(fam, electrical)] = np.nan
@@ -509,3 +531,38 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     out[ik, col] = roots
     return out
 
+
+def _scan_from_bottom(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary,
+                      v_x1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_scan` of the grid's parts (:data:`LOWEST_PARTS`) from the bottom, until every kh has a bracket.
+
+    Each part is scanned with the last point of the one below it (its cell, and that cell's
+    bisections, belong to the new part); the parts joined are the full scan's arrays up to the
+    last part scanned, cell for cell. A kh has a bracket where the count of negative eigenvalues
+    rises by one with a sign change of det Z in a cell not fenced off at a film's x1 bulk speed;
+    rows unstable at the floor need none (they report no mode).
+    """
+    ends = sorted({max(2, min(grid.size, int(round(f * grid.size)))) for f in LOWEST_PARTS} | {grid.size})
+    parts: list[tuple[np.ndarray, ...]] = []
+    start = 0
+    for end in ends:
+        if end <= start:
+            continue
+        lo = max(start - 1, 0)
+        g, D, neg, W = _scan(b, fam, grid[lo:end], kh, electrical)
+        if start > 0:  # the shared point is the previous part's last one
+            g, D, neg, W = g[1:], D[1:], neg[1:], W[1:]
+        parts.append((g, D, neg, W))
+        start = end
+        if end == grid.size:
+            break
+        g = np.concatenate([p[0] for p in parts])
+        D = np.concatenate([p[1] for p in parts])
+        neg = np.concatenate([p[2] for p in parts])
+        step = neg[1:] - neg[:-1]
+        fenced = np.asarray(((g[:-1, None] < v_x1[None, :]) & (g[1:, None] > v_x1[None, :])).any(axis=1))
+        with np.errstate(invalid="ignore"):
+            found = ((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None]).any(axis=0)
+        if np.all(found | (neg[0] > _electric(fam, electrical))):
+            break
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(4))  # type: ignore[return-value]

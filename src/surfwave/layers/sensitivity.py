@@ -27,7 +27,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from surfwave.errors import InputError
-from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
+from surfwave.layers.partial import COUPLING_TOL, Blocks, Family, families, scaled_blocks
 from surfwave.layers.recursion import boundary_matrix, top_impedance
 from surfwave.layers.stack import Stack
 
@@ -83,7 +83,11 @@ def root_eigenvalue(stack: Stack, prefix: str, c: np.ndarray, kh: np.ndarray, el
         Scaled (dimensionless) eigenvalue; zero at a guided mode. NaN where the recursion failed.
     """
     b = scaled_blocks(stack)
-    fam = _family(b, prefix)
+    return _root_eigenvalue(b, _family(b, prefix), c, kh, electrical)
+
+
+def _root_eigenvalue(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, electrical: str) -> np.ndarray:
+    """:func:`root_eigenvalue` from the scaled blocks and the family (shape (n,))."""
     M = top_impedance(b, fam, np.asarray(c, dtype=float), np.asarray(kh, dtype=float)[:, None])["M"][:, 0]
     Z, _ = boundary_matrix(b, fam, M, electrical)
     with np.errstate(all="ignore"):
@@ -92,6 +96,19 @@ def root_eigenvalue(stack: Stack, prefix: str, c: np.ndarray, kh: np.ndarray, el
     lam = np.take_along_axis(w, np.argmin(np.abs(w), axis=-1)[:, None], axis=-1)[:, 0]
     lam[bad] = np.nan
     return lam
+
+
+def _family_like(b: Blocks, fam: Family) -> Family:
+    """``fam`` for the blocks ``b`` of a perturbed stack, when no layer of ``b`` couples its components to the
+    others (the recursion uses only the components; the family's limiting speed is not needed here); else
+    the family of that prefix from :func:`surfwave.layers.partial.families` (which computes the limits)."""
+    link = (np.abs(b.Q) + np.abs(b.R) + np.abs(np.swapaxes(b.R, -1, -2)) + np.abs(b.T)).max(axis=0)
+    adj = link > COUPLING_TOL * link.max()
+    inside = np.zeros(adj.shape[0], dtype=bool)
+    inside[list(fam.idx)] = True
+    if not (adj[np.ix_(inside, ~inside)].any() or adj[np.ix_(~inside, inside)].any()):
+        return fam
+    return _family(b, fam.prefix)
 
 
 def mode_sensitivities(stack_of: Callable[[np.ndarray], Stack], p, c, x, steps, *, family: str | Sequence[str],
@@ -142,20 +159,29 @@ def mode_sensitivities(stack_of: Callable[[np.ndarray], Stack], p, c, x, steps, 
             return x[rows]
         return 2.0 * np.pi * x[rows] * st.total_thickness / cc
 
+    prefixes = list(dict.fromkeys(fams[ok].tolist()))
+    if not prefixes:
+        return J
     st0 = stack_of(p)
-    for prefix in dict.fromkeys(fams[ok].tolist()):
+    b0 = scaled_blocks(st0)
+    perturbed = []                                       # (stack, blocks) at p + step and p - step, per parameter
+    for j in range(p.size):
+        pp, pm = p.copy(), p.copy()
+        pp[j] += steps[j]
+        pm[j] -= steps[j]
+        sp, sm = stack_of(pp), stack_of(pm)
+        perturbed.append(((sp, scaled_blocks(sp)), (sm, scaled_blocks(sm))))
+    for prefix in prefixes:
         rows = np.flatnonzero(ok & (fams == prefix))
         cr = c[rows]
         hc = STEP_C * cr
-        lam_c = (root_eigenvalue(st0, prefix, cr + hc, kh_of(st0, cr + hc, rows), electrical)
-                 - root_eigenvalue(st0, prefix, cr - hc, kh_of(st0, cr - hc, rows), electrical)) / (2.0 * hc)
-        for j in range(p.size):
-            pp, pm = p.copy(), p.copy()
-            pp[j] += steps[j]
-            pm[j] -= steps[j]
-            sp, sm = stack_of(pp), stack_of(pm)
-            lam_p = (root_eigenvalue(sp, prefix, cr, kh_of(sp, cr, rows), electrical)
-                     - root_eigenvalue(sm, prefix, cr, kh_of(sm, cr, rows), electrical)) / (2.0 * steps[j])
+        fam = _family(b0, prefix)
+        lam_c = (_root_eigenvalue(b0, fam, cr + hc, kh_of(st0, cr + hc, rows), electrical)
+                 - _root_eigenvalue(b0, fam, cr - hc, kh_of(st0, cr - hc, rows), electrical)) / (2.0 * hc)
+        for j, ((sp, bp), (sm, bm)) in enumerate(perturbed):
+            up = _root_eigenvalue(bp, _family_like(bp, fam), cr, kh_of(sp, cr, rows), electrical)
+            down = _root_eigenvalue(bm, _family_like(bm, fam), cr, kh_of(sm, cr, rows), electrical)
+            lam_p = (up - down) / (2.0 * steps[j])
             with np.errstate(all="ignore"):
                 J[rows, j] = np.where(lam_c != 0, -lam_p / lam_c, np.nan)
     return J

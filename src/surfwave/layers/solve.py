@@ -240,7 +240,9 @@ def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarra
     for fam in fams:
         if not (prefix == fam.prefix).any():
             continue
-        c = family_modes(b, fam, kh, electrical=electrical)  # all kh: the grid of layered()
+        # all kh: the grid of layered(); only the slowest mode asked for: the scan stops above it
+        slowest = set(which[prefix == fam.prefix].tolist()) == {label(fam.prefix, 0)}
+        c = family_modes(b, fam, kh, electrical=electrical, lowest=slowest)
         for j in range(c.shape[1]):
             hit = which == label(fam.prefix, j)
             out[hit] = c[hit, j]

@@ -77,7 +77,8 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
              mode: int | str | Sequence[int | str] = 0, layer: int = 0,
              bounds: Mapping[str, tuple[float, float]] | None = None,
              noise: Literal["relative", "absolute"] = "relative",
-             jacobian_updates: Literal["auto", "exact", "broyden"] = "auto", check_linearity: bool = True,
+             jacobian_updates: Literal["auto", "exact", "broyden"] = "auto",
+             check_linearity: bool | Literal["fast", "profile"] = True,
              layered_options: Mapping[str, Any] | None = None) -> FitResult:
     """Fit a film's parameters (E, nu, rho, thickness, C_ij, residual stress) to measured
     surface-wave dispersion points.
@@ -135,10 +136,12 @@ def fit_film(x, c, *, model: Literal["love", "layered"], film: Mapping[str, Any]
         its own sensitivities (the Love model; the layered model's guided modes), Broyden
         updates between finite-difference Jacobians otherwise (leaky layered modes: each
         finite-difference Jacobian costs 2 x the free parameters solver calls).
-    check_linearity : bool
+    check_linearity : bool or {"fast", "profile"}
         Check the linear uncertainties by holding each parameter one sigma off and refitting the
-        others (8 model calls per free parameter); a warning gives the profile's range where
-        they disagree (:func:`surfwave.metrology.fit.fit`).
+        others; a warning gives the profile's range where they disagree
+        (:func:`surfwave.metrology.fit.fit`). ``True`` (= ``"fast"``): each refit stops once
+        its chi^2 rise is known to be within range (2 model calls per free parameter where the
+        model is linear over one sigma, up to 8); ``"profile"``: the full refit everywhere (8).
     layered_options : mapping, optional
         Extra keywords of :func:`surfwave.layered` (``euler``, ``surface``, ``direction``,
         ``electrical``, ``stress``, ``leaky``).

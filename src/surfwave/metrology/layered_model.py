@@ -15,8 +15,10 @@ or frequency in Hz. :func:`surfwave.layered` is imported when the model is first
 module imports without it. A film given by name (``{"name": "SiO2", "thickness": 1e-6}``) whose
 free parameters it does not spell out is first written as explicit constants
 (:func:`explicit_film`: E and nu if the database's stiffness is isotropic, else ``voigt``; rho).
-Modes named by label at kh are solved by their families' search alone
-(:func:`surfwave.layers.solve.mode_speeds`: the same numbers as :func:`surfwave.layered`).
+Modes named by label are solved by their families' search alone (at kh:
+:func:`surfwave.layers.solve.mode_speeds`; at frequency, those modes alone:
+:func:`surfwave.layers.frequency.mode_speeds_at_frequency`; the same numbers as
+:func:`surfwave.layered`).
 
 Sensitivities: the model's :meth:`LayeredModel.jacobian` gives dc/dp of the guided modes by
 implicit differentiation of the layered solver's secular equation
@@ -183,6 +185,7 @@ class LayeredModel:
     def _solve(self, solver: Any, params: Mapping[str, float], xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(c, labels) of the chosen modes at the points xs."""
         if self._one_family_search(solver):
+            from surfwave.layers.frequency import mode_speeds_at_frequency
             from surfwave.layers.solve import mode_speeds
             from surfwave.layers.stack import resolve_stack
 
@@ -191,7 +194,10 @@ class LayeredModel:
             if self.options.get("electrical", "free") == "metallized" and not stack.piezo:
                 raise InputError("electrical='metallized' needs a piezoelectric layer or substrate")
             modes = self.mode if isinstance(self.mode, str) else list(self.mode)
-            c = mode_speeds(stack, xs, modes, self.options.get("electrical", "free"))
+            if self.variable == "kh":
+                c = mode_speeds(stack, xs, modes, self.options.get("electrical", "free"))
+            else:
+                c = mode_speeds_at_frequency(stack, xs, modes, self.options.get("electrical", "free"))
             labels = np.where(np.isfinite(c), np.broadcast_to(np.asarray(modes, dtype=object), c.shape), "")
         else:
             where = {"kh": xs} if self.variable == "kh" else {"frequency": xs}
@@ -202,13 +208,14 @@ class LayeredModel:
     def _one_family_search(self, solver: Any) -> bool:
         """Whether a call may search only the measured modes' families (same numbers as the full solve).
 
-        Guided modes named by label, at kh, with the library's own solver (not a stand-in) and
-        valid options; otherwise the full :func:`surfwave.layered` call (which also checks them).
+        Guided modes named by label (at kh or at frequency), with the library's own solver (not a
+        stand-in) and valid options; otherwise the full :func:`surfwave.layered` call (which also
+        checks them).
         """
         from surfwave.layers.solve import layered
 
         modes = [self.mode] if isinstance(self.mode, (str, int, np.integer)) else list(self.mode)
-        return (solver is layered and self.variable == "kh" and not self.options.get("leaky", False)
+        return (solver is layered and not self.options.get("leaky", False)
                 and self.options.get("electrical", "free") in ("free", "metallized")
                 and set(self.options) <= {*_STACK_OPTIONS, "electrical", "leaky"}
                 and all(isinstance(m, str) and not m.endswith("~") for m in modes))
