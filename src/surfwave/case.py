@@ -39,7 +39,7 @@ from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals.piezo_wave import stress_model
 from surfwave.real_crystals.stressed_wave import Constants, check_stress, require_toec, surface_wave_conditions
-from surfwave.real_crystals.toec import born_lowest, born_reason
+from surfwave.real_crystals.wallace import born_lowest, born_reason
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
 from surfwave.solvers.tensors import rotate2, voigt_to_tensor
 
@@ -137,7 +137,7 @@ def born_reason_natural(constants: Constants) -> str:
     """Why the natural-state stiffness is not Born-stable, in the one wording; "" when it is.
 
     The criterion and the words of the stressed-state check
-    (:func:`surfwave.real_crystals.toec.born_lowest`, :func:`surfwave.real_crystals.toec.born_reason`)
+    (:func:`surfwave.real_crystals.wallace.born_lowest`, :func:`surfwave.real_crystals.wallace.born_reason`)
     at zero stress, where Wallace's B is C: the lowest eigenvalue of the Voigt matrix must be
     positive (a value within 1e-12 of the largest counts as zero). :func:`surfwave.material`
     answers such a crystal with NaN and this reason (after "no stressed state: "); a door that
