@@ -37,8 +37,9 @@ import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
+from surfwave.real_crystals.loads import check_stress
 from surfwave.real_crystals.piezo_wave import stress_model
-from surfwave.real_crystals.stressed_wave import Constants, check_stress, require_toec, surface_wave_conditions
+from surfwave.real_crystals.stressed_wave import Constants, require_toec, surface_wave_conditions
 from surfwave.real_crystals.wallace import born_lowest, born_reason
 from surfwave.solvers.boundary import FREE, Boundary, as_boundary
 from surfwave.solvers.tensors import rotate2, voigt_to_tensor

@@ -34,6 +34,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.case import Case, check_constants, make_case
 from surfwave.errors import InputError
+from surfwave.real_crystals.loads import stress_tensor
 from surfwave.real_crystals.materials import CUBIC_TOEC, Material, get_material
 from surfwave.real_crystals.piezo_materials import (
     PiezoMaterial,
@@ -42,7 +43,7 @@ from surfwave.real_crystals.piezo_materials import (
     note_status,
     with_toec,
 )
-from surfwave.real_crystals.stressed_wave import Constants, stress_tensor
+from surfwave.real_crystals.stressed_wave import Constants
 from surfwave.real_crystals.toec import cubic_toec
 from surfwave.solvers.euler import euler_lab_axes
 from surfwave.solvers.orientation import lab_axes, reference_direction, surface_frame, surface_normal

@@ -3,7 +3,7 @@
 Surface and direction by name in, the one path out: :func:`surface_wave_speed` is
 :func:`surfwave.real_crystals.stressed_wave.surface_wave` (the function ``surfwave.material``
 and the cube solver call too) and :func:`loading_stress` is
-:func:`surfwave.real_crystals.stressed_wave.stress_tensor`. The stressed crystal comes from
+:func:`surfwave.real_crystals.loads.stress_tensor`. The stressed crystal comes from
 :func:`surfwave.real_crystals.toec.stressed_state` (natural-state C2, Brugger C3, Cauchy
 stress sigma in crystal axes); its surface wave from the general solver
 (:func:`surfwave.solvers.stroh.surface_wave`, which uses Eq. (17) at mirror directions) with
@@ -30,7 +30,8 @@ from numpy.typing import ArrayLike
 from surfwave.case import check_stress
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec
-from surfwave.real_crystals.stressed_wave import REASON_TRACTION, TRACTION_TOL, Constants, stress_tensor, surface_wave
+from surfwave.real_crystals.loads import TRACTION_TOL, stress_tensor
+from surfwave.real_crystals.stressed_wave import REASON_TRACTION, Constants, surface_wave
 from surfwave.real_crystals.toec import DEFAULT_TOL
 from surfwave.solvers.orientation import lab_axes
 from surfwave.solvers.tensors import rotate2

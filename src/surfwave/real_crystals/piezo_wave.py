@@ -9,7 +9,7 @@ constants are taken equal to the natural ones); the piezoelectric constants e an
 permittivity eps are held at their natural values (their stress derivatives are not in the
 database). The prestress must lie in the surface plane (sigma0 . n = 0): a stress that loads
 the surface is refused with the words of :func:`surfwave.material` (the one check,
-:func:`surfwave.real_crystals.stressed_wave.check_stress`); with the third-order model, a point
+:func:`surfwave.real_crystals.loads.check_stress`); with the third-order model, a point
 whose *deformed* surface the stress loads is NaN with a reason.
 
 This module only resolves arguments (a material name or explicit constants, lab axes, a
@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import stressed_wave as sw_path
+from surfwave.real_crystals.loads import TRACTION_TOL, check_stress, stress_tensor
 from surfwave.real_crystals.piezo_materials import (
     EPS0,
     PiezoMaterial,
@@ -63,7 +64,7 @@ def stress_model(toec: Iterable[bool]) -> str:
 #: :data:`surfwave.validate.MAX_STRESS_GPA`).
 MAX_STRESS_GPA = validate.MAX_STRESS_GPA
 #: The one traction tolerance and wording (:mod:`surfwave.real_crystals.stressed_wave`).
-TRACTION_RTOL = sw_path.TRACTION_TOL
+TRACTION_RTOL = TRACTION_TOL
 REASON_TRACTION = sw_path.REASON_TRACTION
 ELECTRICAL = sw_path.ELECTRICAL
 
@@ -123,7 +124,7 @@ def _prestress(stress, axes: np.ndarray) -> np.ndarray:
     m = axes.shape[0]
     s = validate.gpa_stress(stress)                              # numbers, finite, the one Pa guard
     if s.shape == () or s.shape == (m,):                         # uniaxial along each x1: the one loading
-        return sw_path.stress_tensor("along", 1.0, axes) * s[..., None, None]
+        return stress_tensor("along", 1.0, axes) * s[..., None, None]
     if s.shape in ((3, 3), (m, 3, 3)):
         if not np.allclose(s, np.swapaxes(s, -1, -2), rtol=0, atol=1e-12 * max(np.abs(s).max(), 1e-300)):
             raise InputError(f"the stress tensor must be symmetric, got {s.tolist()}")
@@ -249,7 +250,7 @@ def piezo_wave_conditions(material: str | PiezoMaterial | None = None, axes: Arr
     if axes is None:
         raise InputError("lab axes are missing: give Euler angles, a named cut or a surface and direction")
     R = _axes(axes)
-    sigma_c = sw_path.check_stress(_prestress(stress, R), R, "of the lab axes")   # the one check, its words
+    sigma_c = check_stress(_prestress(stress, R), R, "of the lab axes")   # the one check, its words
     rs = sw_path.surface_wave_conditions(sw_path.Constants.from_piezo_material(mat), R, sigma_c,
                                          conditions=conditions, toec=toec, tol=tol, bulk=bulk, leaky=leaky)
     lab = rs[conditions[0]]["axes"]

@@ -39,16 +39,15 @@ Examples
 """
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.real_crystals import toec as toec_model
+from surfwave.real_crystals.loads import LOADINGS, TRACTION_TOL, check_stress, stress_tensor
 from surfwave.solvers import stroh
 from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.bulk_waves import BULK_POLARISATIONS, BULK_SPEEDS, axis_waves
@@ -57,7 +56,6 @@ from surfwave.solvers.long_wave import long_wave_stable
 from surfwave.solvers.piezo_saw import ELECTRICAL, PIEZO_KEYS, piezo_saw_conditions
 from surfwave.solvers.piezo_tensors import EPS0, piezo_voigt_to_tensor, rotate3
 from surfwave.solvers.tensors import rotate2, rotate4, tensor_to_voigt
-from surfwave.vocab import STRESS_LOADINGS
 
 if TYPE_CHECKING:
     from surfwave.real_crystals.piezo_materials import PiezoMaterial
@@ -69,10 +67,6 @@ __all__ = ["BULK_KEYS", "Constants", "ELECTRICAL", "GPA", "GRAZING_DEPTH", "LEAK
 
 #: Elastic constants and stresses are given in GPa; the solver gets Pa (speeds in m/s).
 GPA = 1.0e9
-#: The one tolerance of "the stress lies in the surface plane": |sigma . n| (lab components,
-#: n the normal of the deformed surface) and |axis . n| of an axis loading, relative to
-#: max |sigma| (to 1 for a unit axis).
-TRACTION_TOL = 1e-9
 #: Bulk-wave outputs of every point (speeds, m/s, then polarisations), :mod:`surfwave.solvers.bulk_waves`.
 BULK_KEYS = BULK_SPEEDS + BULK_POLARISATIONS
 #: Leaky-wave outputs of every crystal (elastic ones too): m/s, dB per wavelength, and ``leaky_reason``.
@@ -90,10 +84,6 @@ REASON_TRACTION = ("the deformed surface is loaded: sigma . n != 0 on the normal
 #: :func:`surfwave.real_crystals.toec.stressed_state` follows, e.g. the Born wording
 #: :func:`surfwave.real_crystals.toec.born_reason`).
 REASON_NO_STATE = "no stressed state: "
-#: Loading kinds: uniaxial along / across the propagation direction (in the surface),
-#: equi-biaxial in the surface plane; ``axis_<hkl>`` (or ``axis`` with ``axis=``) uniaxial
-#: along a fixed crystal direction in the surface.
-LOADINGS = tuple(k for k in STRESS_LOADINGS if k != "axis")
 #: Penetration depth (1/e, in wavelengths) above which a surface wave is flagged ``grazing``: a
 #: bulk-like wave grazing the limiting speed (e.g. rotated Y LiTaO3 near theta = 38 deg: 1e-4 m/s
 #: below v_L, ~680 wavelengths deep, K^2 ~ 0). 50 wavelengths is the order of a substrate's
@@ -102,7 +92,6 @@ LOADINGS = tuple(k for k in STRESS_LOADINGS if k != "axis")
 GRAZING_DEPTH = 50.0
 #: Relative accuracy of rho c^2 of the piezoelectric SAW search (its solver's default).
 PIEZO_TOL = 1e-12
-_AXIS = re.compile(r"^axis_(-?\d)(-?\d)(-?\d)$")
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,91 +168,6 @@ def electrical_error(value) -> str:
             "c_leaky_metallized, K2_leaky for the leaky SAW" if not isinstance(value, str) else "")
     return (f"electrical must be 'free' or 'metallized' (the condition of c_R, the polarisation, the power "
             f"flow and c_leaky), got {value!r}{both}")
-
-
-# --------------------------------------------------------------------------- loadings
-
-
-def axis_of_loading(loading: str) -> np.ndarray | None:
-    """Unit crystal direction of an ``axis_<hkl>`` loading, or None for the other kinds.
-
-    Raises
-    ------
-    InputError
-        An unknown loading name (the message lists the kinds).
-    """
-    if loading in LOADINGS:
-        return None
-    m = _AXIS.match(loading)
-    if not m:
-        raise InputError(f"unknown loading {loading!r}; choose one of {list(LOADINGS)} or "
-                         "axis_<hkl> (e.g. axis_100, axis_1-10)")
-    d = np.array([float(g) for g in m.groups()])
-    if not np.any(d):
-        raise InputError(f"loading {loading!r}: the axis [000] has no direction")
-    return d / np.linalg.norm(d)
-
-
-def stress_tensor(loading: str, magnitude: ArrayLike, axes: ArrayLike, *,
-                  axis: str | ArrayLike | None = None) -> np.ndarray:
-    """Cauchy stress of a loading in crystal axes, GPa: the one load-to-stress function.
-
-    Parameters
-    ----------
-    loading : str
-        ``along``: sigma = s x1 x1 (uniaxial along the propagation direction);
-        ``across``: sigma = s x3 x3 (uniaxial, in the surface, normal to the propagation);
-        ``biaxial``: sigma = s (x1 x1 + x3 x3); ``axis_<hkl>``, or ``axis`` with ``axis=``:
-        sigma = s a a along a fixed crystal direction a in the surface.
-    magnitude : float or array_like, shape (k,)
-        s, GPa (negative = compression).
-    axes : array_like, shape (3, 3) or (m, 3, 3)
-        Lab axes of the natural crystal, rows (x1, x2 = inward normal, x3), crystal axes.
-    axis : str or array_like, shape (3,), optional
-        The crystal direction of ``loading="axis"`` ("[hkl]" or a vector).
-
-    Returns
-    -------
-    ndarray, shape axes.shape[:-2] + magnitude.shape + (3, 3)
-        sigma . n = 0 for every entry.
-
-    Raises
-    ------
-    InputError
-        Unknown loading, non-finite magnitude, an axis not in the surface plane (|a . n| >
-        :data:`TRACTION_TOL`).
-    """
-    from surfwave.solvers.orientation import parse_direction
-
-    axes = np.asarray(axes, dtype=float)
-    s = np.asarray(magnitude, dtype=float)
-    if not np.all(np.isfinite(s)):
-        raise InputError(f"stress magnitude must be finite, got {magnitude!r}")
-    x1, n, x3 = axes[..., 0, :], axes[..., 1, :], axes[..., 2, :]
-    d: np.ndarray | None
-    if loading == "axis":
-        if axis is None:
-            raise InputError("loading 'axis' needs axis= (a crystal direction in the surface)")
-        d = parse_direction(axis) if isinstance(axis, str) else np.asarray(axis, dtype=float)
-        d = d / np.linalg.norm(d)
-        name = f"axis {axis!r}"
-    else:
-        d = axis_of_loading(loading)
-        name = f"loading {loading!r}: the axis"
-    if loading == "along":
-        unit = np.einsum("...i,...j->...ij", x1, x1)
-    elif loading == "across":
-        unit = np.einsum("...i,...j->...ij", x3, x3)
-    elif loading == "biaxial":
-        unit = np.einsum("...i,...j->...ij", x1, x1) + np.einsum("...i,...j->...ij", x3, x3)
-    else:
-        assert d is not None  # an axis loading: axis_of_loading refused every other name
-        if np.any(np.abs(n @ d) > TRACTION_TOL):
-            raise InputError(f"{name} is not in the surface plane (a stress with a normal component "
-                             "cannot act on a free surface)")
-        unit = np.broadcast_to(np.outer(d, d), axes.shape)
-    lead = axes.shape[:-2]
-    return unit.reshape(lead + (1,) * s.ndim + (3, 3)) * s[..., None, None]
 
 
 # --------------------------------------------------------------------------- the surface wave
@@ -363,44 +267,6 @@ def surface_wave(constants: Constants, axes: ArrayLike, stress: ArrayLike, *, to
     return surface_wave_conditions(constants, axes, stress, conditions=(condition,), toec=toec, tol=tol,
                                    state_tol=state_tol, bulk=bulk, leaky=leaky)[None if condition is None
                                                                                 else condition.name]
-
-
-def check_stress(stress, axes: np.ndarray, where: str, *, frame: str = "crystal axes") -> np.ndarray:
-    """The prestress (m, 3, 3) in GPa: numbers, finite, the Pa guard, symmetric, sigma . n = 0.
-
-    The one stress check of every door (:func:`surfwave.case.make_case`, where it is also
-    exported, :func:`surfwave.real_crystals.piezo_wave.piezo_wave`,
-    :func:`surfwave.real_crystals.acoustoelastic.surface_wave_speed`), in one wording.
-
-    Parameters
-    ----------
-    stress : array_like, shape (m, 3, 3) or (3, 3)
-        Cauchy stress, GPa, in the axes ``frame`` names.
-    axes : ndarray, shape (m, 3, 3)
-        Lab axes in the same frame (row 1: the inward normal).
-    where : str
-        The surface in words (the message names it).
-    frame : str
-        The axes of ``stress`` in words (the message names them).
-    """
-    s = validate.gpa_stress(stress)
-    if s.shape[-2:] != (3, 3):
-        raise InputError(f"stress must be 3 x 3 tensors (GPa), got shape {s.shape}")
-    try:
-        s = np.broadcast_to(s, axes.shape)
-    except ValueError:
-        raise InputError(f"stress must be one 3 x 3 tensor or one per point ({axes.shape[0]}), got shape "
-                         f"{s.shape}") from None
-    scale = max(float(np.abs(s).max()), 1e-300) if s.size else 1.0
-    if not np.all(np.abs(s - np.swapaxes(s, -1, -2)) <= 1e-12 * scale):   # allclose(rtol=0): s is finite
-        raise InputError(f"the stress tensor must be symmetric, got {s[0].tolist()}")
-    traction = np.einsum("mij,mj->mi", s, axes[:, 1])
-    bad = np.abs(traction).max(axis=-1) > TRACTION_TOL * scale
-    if bad.any():
-        k = int(np.flatnonzero(bad)[0])
-        raise InputError(f"prestress must lie in the surface plane {where}: its traction sigma . n = "
-                         f"{np.round(traction[k], 12).tolist()} GPa ({frame}) is not zero")
-    return s
 
 
 def require_toec(constants: Constants, toec: bool) -> None:

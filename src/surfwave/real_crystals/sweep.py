@@ -40,7 +40,8 @@ from surfwave.case import Case, make_case, solve
 from surfwave.data.progress import solve_in_chunks
 from surfwave.data.variables import CUBES, SURFACE_WAVE_COORDS
 from surfwave.errors import InputError
-from surfwave.real_crystals.stressed_wave import BULK_KEYS, LOADINGS, Constants, axis_of_loading, stress_tensor
+from surfwave.real_crystals.loads import LOADINGS, axis_of_loading, stress_tensor
+from surfwave.real_crystals.stressed_wave import BULK_KEYS, Constants
 from surfwave.solvers.bulk_waves import BULK_POLARISATIONS
 from surfwave.solvers.tensors import rotate4, voigt_to_tensor
 from surfwave.validate import as_1d
@@ -179,7 +180,7 @@ def symmetry_reduced_range(surface: str, voigts: Sequence) -> float:
 
 def applied_stress(loading: str, axes, stress) -> np.ndarray:
     """Applied stress tensors in crystal axes
-    (:func:`surfwave.real_crystals.stressed_wave.stress_tensor`).
+    (:func:`surfwave.real_crystals.loads.stress_tensor`).
 
     Parameters
     ----------
