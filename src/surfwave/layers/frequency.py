@@ -126,6 +126,13 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
         C = np.full((f.size, cg.shape[1]), np.nan)
         V = np.full(C.shape, np.nan)
         c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+        zero = np.flatnonzero(wH == 0)                                   # f = 0: the bare substrate's modes
+        if zero.size:
+            live0 = np.flatnonzero(np.isfinite(cg[0]))
+            if live0.size:
+                C[np.ix_(zero, live0)] = cg[0, live0]
+                V[np.ix_(zero, live0)] = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size),
+                                                     electrical)["group_velocity"]
         for j in range(cg.shape[1]):
             ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
             if ok.size < 2:

@@ -1,0 +1,108 @@
+"""Modes trapped in a slow layer buried under a stiff one (their zero of det Z hides next to a pole).
+
+References: the isotropic fast path (surfwave.layers.isotropic: compound matrices, pole-free, an
+independent formulation) for the general solver forced on isotropic stacks; the Chebyshev
+collocation route of tests/layers/layers_collocation.py for an anisotropic stack off a mirror.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from layers_collocation import collocation_speeds
+
+import surfwave
+import surfwave.layers.solve as solve
+from surfwave.layers.counting import mode_count, sublayers
+from surfwave.layers.partial import families, scaled_blocks
+from surfwave.layers.stack import resolve_stack
+
+SIO2 = {"E": 73.0, "nu": 0.17, "rho": 2200.0}
+SI_ISO = {"E": 170.0, "nu": 0.28, "rho": 2330.0}
+ALN_ISO = {"E": 300.0, "nu": 0.22, "rho": 3200.0}
+GOLD = {"E": 79.0, "nu": 0.42, "rho": 19300.0}
+BURIED = (SI_ISO, [{**SIO2, "thickness": 0.4e-6}, {**ALN_ISO, "thickness": 0.3e-6}, {**GOLD, "thickness": 0.3e-6}])
+#: Cubic gold (Neighbours & Alers 1958, GPa), crystal axes = lab axes.
+AU_CUBIC = {"voigt": [[192.3, 163.1, 163.1, 0, 0, 0], [163.1, 192.3, 163.1, 0, 0, 0], [163.1, 163.1, 192.3, 0, 0, 0],
+                      [0, 0, 0, 42.0, 0, 0], [0, 0, 0, 0, 42.0, 0], [0, 0, 0, 0, 0, 42.0]], "rho": 19300.0}
+
+
+def _general(sub, films, **kw):
+    try:
+        solve.FAST_ISOTROPIC = False
+        return surfwave.layered(sub, films, **kw)
+    finally:
+        solve.FAST_ISOTROPIC = True
+
+
+def _same_record(fast, gen, rtol):
+    assert fast["mode"].shape == gen["mode"].shape
+    assert (fast["mode"] == gen["mode"]).all()
+    assert (np.isnan(fast["c"]) == np.isnan(gen["c"])).all()
+    ok = np.isfinite(gen["c"])
+    assert np.allclose(fast["c"][ok], gen["c"][ok], rtol=rtol, atol=0)
+
+
+def test_buried_gold_general_path_equals_the_isotropic_path():
+    """SiO2 / AlN-like / gold on Si-like: every sagittal and SH mode of the general solver (forced) at
+    kh = 10 and on a kh sweep 0.5 ... 20 equals the isotropic fast path (compound matrices, no poles)
+    to 1e-9, labels included; R at kh = 10 is the trapped fundamental mode (1930.19 m/s)."""
+    sub, films = BURIED
+    for kh in ([10.0], np.linspace(0.5, 20.0, 25)):
+        fast = surfwave.layered(sub, films, kh=kh)
+        gen = _general(sub, films, kh=kh)
+        _same_record(fast, gen, 1e-9)
+    r = _general(sub, films, kh=[10.0])
+    assert list(r["mode"][0][:2]) == ["L0", "R"] and r["c"][0, 1] == pytest.approx(1930.19, abs=0.01)
+
+
+def test_buried_gold_at_fixed_frequency():
+    """The same stack at fixed frequencies (each mode at its own kh, L0 trapped too): the general solver
+    equals the isotropic fast path to 1e-9, labels included."""
+    sub, films = BURIED
+    f = np.array([3e8, 1.5e9, 3e9])
+    _same_record(surfwave.layered(sub, films, frequency=f), _general(sub, films, frequency=f), 1e-9)
+
+
+def test_trapped_modes_of_a_crystal_film_off_a_mirror_against_collocation():
+    """Cubic gold under a stiff film on Si (001), 20 deg off [100] (all components couple): every mode
+    below 0.95 c_limit at kh = 4 and 10 equals the Chebyshev collocation route (film, gold and a clamped
+    40/k-deep substrate slice, tests/layers/layers_collocation.py), one to one, to 1e-8; at kh = 10
+    three of them are trapped in the gold (a scan of det Z alone misses them)."""
+    films = [{**ALN_ISO, "thickness": 0.7e-6}, {**AU_CUBIC, "thickness": 0.3e-6}]
+    st = resolve_stack("Si", films, direction=20.0)
+    for kh in (4.0, 10.0):
+        r = surfwave.layered("Si", films, direction=20.0, kh=[kh])
+        ref = collocation_speeds([f.A for f in st.films], [f.rho for f in st.films],
+                                 [kh * f.thickness / 1e-6 for f in st.films], st.substrate.A, st.substrate.rho)
+        ref = ref[ref < 0.95 * r["c_limit"]]
+        got = r["c"][0][np.isfinite(r["c"][0])]
+        got = got[got < 0.95 * r["c_limit"]]
+        assert all(str(m).startswith("M") for m in r["mode"][0] if m)
+        assert got.size == ref.size and np.allclose(got, ref, rtol=1e-8, atol=0)
+    assert ref.size == 8 and ref[0] < 1900.0
+
+
+def test_count_equals_the_number_of_modes_of_the_fast_path():
+    """The Wittrick-Williams count at c (surfwave.layers.counting.mode_count) is the number of modes
+    below c of the isotropic fast path, per family, at speeds halfway between its modes (kh = 10)."""
+    sub, films = BURIED
+    b = scaled_blocks(resolve_stack(sub, films))
+    fast = surfwave.layered(sub, films, kh=[10.0])
+    for fam in families(b):
+        c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
+        prefix = ("R", "S") if fam.kind == "sagittal" else ("L",)
+        c = np.sort([x for x, m in zip(fast["c"][0], fast["mode"][0]) if m and m[0] in prefix])
+        probe = np.r_[0.5 * c[0], 0.5 * (c[1:] + c[:-1]), 0.5 * (c[-1] + c_lim)]
+        n = mode_count(b, fam, probe, np.array([[10.0]]), "free", sublayers(b, 10.0, c_lim))[:, 0]
+        assert (n - n[0] == np.arange(probe.size)).all()
+
+
+def test_zero_frequency_gives_the_bare_substrate_on_both_paths():
+    """f = 0: the general solver (forced) gives R at the substrate's Rayleigh speed with kh = 0, as the
+    isotropic path does (the stack at zero frequency is the bare substrate), 1e-12."""
+    sub, films = BURIED
+    fast = surfwave.layered(sub, films, frequency=[0.0, 1e9])
+    gen = _general(sub, films, frequency=[0.0, 1e9])
+    assert list(gen["mode"][0][:1]) == ["R"] and gen["kh"][0, 0] == 0.0
+    _same_record(fast, gen, 1e-9)
+    assert gen["c"][0, 0] == pytest.approx(fast["c"][0, 0], rel=1e-12)
