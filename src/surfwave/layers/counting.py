@@ -31,6 +31,7 @@ import numpy as np
 
 from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import _expi, _layer_eigs, boundary_matrix
+from surfwave.layers.scan import _hermitian_eigenvalues
 from surfwave.solvers.boundary import Boundary
 
 __all__ = ["applicable", "bisect_counts", "mode_count", "needed", "sublayers"]
@@ -100,34 +101,42 @@ def _right(Y: np.ndarray, X: np.ndarray) -> np.ndarray:
     return np.swapaxes(_solve(np.swapaxes(X, -1, -2), np.swapaxes(Y, -1, -2)), -1, -2)
 
 
-def _inertia(Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Number of negative eigenvalues (-10^6 where not finite) and log |det| of Hermitian matrices (..., n, n)."""
+def _inertia(Z: np.ndarray, fast: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Number of negative eigenvalues (-10^6 where not finite) and log |det| of Hermitian matrices (..., n, n).
+
+    ``fast``: closed-form eigenvalues for n <= 3 (:func:`surfwave.layers.scan._hermitian_eigenvalues`,
+    absolute error ~ 1e-13 |Z|: the grid's counts), else LAPACK (the root's last digits).
+    """
     with np.errstate(all="ignore"):
         bad = ~np.isfinite(Z).all(axis=(-1, -2))
-        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
+        Zs = np.where(bad[..., None, None], 0.0, Z)
+        w = _hermitian_eigenvalues(Zs) if fast else np.linalg.eigvalsh(Zs)
         return np.where(bad, -10**6, (w < 0).sum(axis=-1)), np.log(np.abs(w)).sum(axis=-1)
 
 
-def mode_count(b: Blocks, fam: Family, c, kh, electrical: str | Boundary, nsub: np.ndarray) -> np.ndarray:
+def mode_count(b: Blocks, fam: Family, c, kh, electrical: str | Boundary, nsub: np.ndarray,
+               fast: bool = False, eigs: list | None = None) -> np.ndarray:
     """Negative eigenvalues of the stack's dynamic stiffness at speeds c (m,) and kh (m, k), int (m, k).
 
     Differences in c at fixed kh count the modes in between (module docstring); negative entries
     (below -1000) flag a failed evaluation. kh must be positive (at kh = 0 the films have no
     thickness and no mode can hide).
     """
-    return stiffness(b, fam, c, kh, electrical, nsub)[0]
+    return stiffness(b, fam, c, kh, electrical, nsub, fast, eigs)[0]
 
 
 def stiffness(b: Blocks, fam: Family, c, kh, electrical: str | Boundary,
-              nsub: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+              nsub: np.ndarray, fast: bool = False, eigs: list | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`mode_count` and log |det K| of the dynamic stiffness K, both (m, k).
 
     det K is the product of the pivots' determinants (Schur); it is continuous in c (no member has
     a pole) and its sign, (-1)^count, changes at every mode: a pole-free secular function.
+    ``eigs``: the layers' eigen-solutions at c (``surfwave.layers.recursion._layer_eigs``), if known.
     """
     c = np.atleast_1d(np.asarray(c, dtype=float))
     kh = np.broadcast_to(np.asarray(kh, dtype=float), (c.size, np.shape(kh)[-1]))
-    eigs = _layer_eigs(b, fam, c)
+    if eigs is None:
+        eigs = _layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
     with np.errstate(all="ignore"):
@@ -154,7 +163,7 @@ def stiffness(b: Blocks, fam: Family, c, kh, electrical: str | Boundary,
             low = np.concatenate([np.broadcast_to(V[:, None, :, :nf], VdE.shape), VdE], axis=-1) @ N
             Z_up = _herm(-1j * _right(low[..., nf:, :], low[..., :nf, :]))
         for _ in range(nsub[layer]):
-            n_p, l_p = _inertia(_herm(-1j * M) - Z_up)
+            n_p, l_p = _inertia(_herm(-1j * M) - Z_up, fast)
             neg += n_p
             logdet += l_p
             with np.errstate(all="ignore"):
@@ -162,7 +171,7 @@ def stiffness(b: Blocks, fam: Family, c, kh, electrical: str | Boundary,
                 XY = V[:, None, :, nf:] + V[:, None, :, :nf] @ (Eu[..., :, None] * Rr)
                 M = _right(XY[..., nf:, :], XY[..., :nf, :])
     Z, _ = boundary_matrix(b, fam, M, electrical)
-    n_p, l_p = _inertia(Z)
+    n_p, l_p = _inertia(Z, fast)
     return neg + n_p, logdet + l_p
 
 
@@ -298,16 +307,44 @@ def recount(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, ik: np.nda
         The modes, unordered: those of the scan in every stretch of STRIDE grid cells where its number
         of modes equals the count's rise, the count's own (bisection, :func:`bisect_counts`) elsewhere.
     """
-    nsub = sublayers(b, float(np.max(kh, initial=0.0)), float(grid[-1]))
-    if nsub is None or kh.size == 0:
+    if kh.size == 0:
         return ik, roots
+    # rows grouped by the sublayers they need (thin films at small kh need few)
+    need = [sublayers(b, float(k), float(grid[-1])) for k in kh]
+    keys = [tuple(int(2 ** np.ceil(np.log2(x))) for x in n) if n is not None and n.max() <= MAX_SUB // 2 else
+            (tuple(n) if n is not None else None) for n in need]
     pts = grid[::STRIDE]
     if pts[-1] != grid[-1]:
         pts = np.r_[pts, grid[-1]]
     far = ~(np.abs(pts[:, None] / np.asarray(avoid)[None, :] - 1.0) <= 1e-8).any(axis=1)
     pts = pts[far | (np.arange(pts.size) == 0)]
+    eigs = _layer_eigs(b, fam, pts)
+    keep = np.ones(ik.size, dtype=bool)
+    add_k: list[np.ndarray] = []
+    add_c: list[np.ndarray] = []
+    for key in set(keys):
+        if key is None:
+            continue
+        rows = np.flatnonzero([k == key for k in keys])
+        mine = np.flatnonzero(np.isin(ik, rows))
+        local = np.searchsorted(rows, ik[mine])
+        drop, k_new, c_new = _recount_rows(b, fam, pts, eigs, kh[rows], local, roots[mine], electrical, skip[rows],
+                                           np.array(key))
+        keep[mine[drop]] = False
+        add_k.append(rows[k_new])
+        add_c.append(c_new)
+    return np.concatenate([ik[keep], *add_k]), np.concatenate([roots[keep], *add_c])
+
+
+def _recount_rows(b: Blocks, fam: Family, pts: np.ndarray, eigs: list, kh: np.ndarray, ik: np.ndarray,
+                  roots: np.ndarray, electrical: str | Boundary, skip: np.ndarray,
+                  nsub: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`recount` for kh rows that share their sublayers: which roots to drop, the count's modes (kh index, c).
+
+    ``pts`` are the count's speeds (ascending, m/s) and ``eigs`` the layers' eigen-solutions there.
+    """
     skip = skip | (kh <= 0)
-    n = mode_count(b, fam, pts, np.where(kh > 0, kh, 1.0)[None, :], electrical, nsub)     # (P, k)
+    n = mode_count(b, fam, pts, np.where(kh > 0, kh, 1.0)[None, :], electrical, nsub, fast=True, eigs=eigs)
     cell = np.clip(np.searchsorted(pts, roots, side="right") - 1, 0, pts.size - 2)
     have = np.zeros((pts.size - 1, kh.size), dtype=int)
     np.add.at(have, (cell, ik), 1)
@@ -315,10 +352,9 @@ def recount(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, ik: np.nda
     valid = (n[1:] > -1000) & (n[:-1] > -1000) & (rise >= 0) & ~skip[None, :]
     bad_c, bad_k = np.nonzero(valid & (rise != have))
     if bad_c.size == 0:
-        return ik, roots
+        return np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros(0)
     flag = np.zeros(have.shape, dtype=bool)
     flag[bad_c, bad_k] = True
-    keep = ~flag[cell, ik]
     new_c, row = bisect_counts(b, fam, pts[bad_c], pts[bad_c + 1], n[bad_c, bad_k], n[bad_c + 1, bad_k], kh[bad_k],
                                electrical, nsub)
-    return np.r_[ik[keep], bad_k[row]], np.r_[roots[keep], new_c]
+    return np.flatnonzero(flag[cell, ik]), bad_k[row], new_c
