@@ -63,15 +63,20 @@ def test_buried_gold_at_fixed_frequency():
     _same_record(surfwave.layered(sub, films, frequency=f), _general(sub, films, frequency=f), 1e-9)
 
 
-def test_trapped_modes_of_a_crystal_film_off_a_mirror_against_collocation():
-    """Cubic gold under a stiff film on Si (001), 20 deg off [100] (all components couple): every mode
-    below 0.95 c_limit at kh = 4 and 10 equals the Chebyshev collocation route (film, gold and a clamped
-    40/k-deep substrate slice, tests/layers/layers_collocation.py), one to one, to 1e-8; at kh = 10
-    three of them are trapped in the gold (a scan of det Z alone misses them)."""
+@pytest.mark.parametrize(("direction", "stress", "n_trapped"), [(20.0, (None, None), 3), (35.0, (0.5, -0.3), 4)])
+def test_trapped_modes_of_a_crystal_film_off_a_mirror_against_collocation(direction, stress, n_trapped):
+    """Cubic gold under a stiff film on Si (001), off [100] (all components couple), unstressed and with
+    film stresses (0.5 GPa on the stiff film, -0.3 GPa on the gold, equibiaxial): every mode below
+    0.95 c_limit at kh = 4 and 10 equals the Chebyshev collocation route (films and a clamped 40/k-deep
+    substrate slice, tests/layers/layers_collocation.py, with the stressed tensors A), one to one, to
+    1e-8; at kh = 10 several are trapped in the gold and the scan of det Z alone finds fewer."""
     films = [{**ALN_ISO, "thickness": 0.7e-6}, {**AU_CUBIC, "thickness": 0.3e-6}]
-    st = resolve_stack("Si", films, direction=20.0)
+    for f, s in zip(films, stress):
+        if s is not None:
+            f["stress"] = s
+    st = resolve_stack("Si", films, direction=direction)
     for kh in (4.0, 10.0):
-        r = surfwave.layered("Si", films, direction=20.0, kh=[kh])
+        r = surfwave.layered("Si", films, direction=direction, kh=[kh])
         ref = collocation_speeds([f.A for f in st.films], [f.rho for f in st.films],
                                  [kh * f.thickness / 1e-6 for f in st.films], st.substrate.A, st.substrate.rho)
         ref = ref[ref < 0.95 * r["c_limit"]]
@@ -79,7 +84,25 @@ def test_trapped_modes_of_a_crystal_film_off_a_mirror_against_collocation():
         got = got[got < 0.95 * r["c_limit"]]
         assert all(str(m).startswith("M") for m in r["mode"][0] if m)
         assert got.size == ref.size and np.allclose(got, ref, rtol=1e-8, atol=0)
-    assert ref.size == 8 and ref[0] < 1900.0
+    assert ref[0] < 1900.0
+    # the trapped ones: absent from the scan of det Z without the count
+    b = scaled_blocks(st)
+    fam = families(b)[0]
+    scan_only = _scan_without_count(b, fam, 10.0)
+    assert ref.size - np.sum(scan_only < 0.95 * r["c_limit"]) == n_trapped
+
+
+def _scan_without_count(b, fam, kh):
+    """The modes of the det Z scan alone (surfwave.layers.modes with the count switched off)."""
+    import surfwave.layers.modes as modes
+
+    keep = modes.needed
+    try:
+        modes.needed = lambda *a: False
+        c = modes.family_modes(b, fam, np.array([kh]))[0]
+    finally:
+        modes.needed = keep
+    return c[np.isfinite(c)]
 
 
 def test_count_equals_the_number_of_modes_of_the_fast_path():
@@ -106,3 +129,36 @@ def test_zero_frequency_gives_the_bare_substrate_on_both_paths():
     assert list(gen["mode"][0][:1]) == ["R"] and gen["kh"][0, 0] == 0.0
     _same_record(fast, gen, 1e-9)
     assert gen["c"][0, 0] == pytest.approx(fast["c"][0, 0], rel=1e-12)
+
+
+#: Si (001) cubic constants (GPa; McSkimin 1953) with a permittivity, for piezoelectric stacks.
+SI_CUBIC = {"voigt": [[165.7, 63.9, 63.9, 0, 0, 0], [63.9, 165.7, 63.9, 0, 0, 0], [63.9, 63.9, 165.7, 0, 0, 0],
+                      [0, 0, 0, 79.6, 0, 0], [0, 0, 0, 0, 79.6, 0], [0, 0, 0, 0, 0, 79.6]], "rho": 2330.0,
+            "permittivity": 11.7}
+
+
+@pytest.mark.parametrize("electrical", ["free", "metallized"])
+def test_trapped_modes_of_a_weakly_piezoelectric_stack(electrical):
+    """The piezoelectric code path (u and phi, 8 x 8 Stroh, free or metallized top): the gold film carries
+    piezoelectric constants of 1e-5 C/m^2 (every component couples to phi, a shift of ~1e-13 in c), so
+    every mode below 0.95 c_limit at kh = 10 equals the elastic Chebyshev collocation route to 1e-8,
+    the trapped ones (missed by the det Z scan alone) included."""
+    e = np.zeros((3, 6))
+    e[0, 4] = e[1, 3] = 1e-5
+    e[2, 0] = e[2, 1] = -1e-5
+    e[2, 2] = 2e-5
+    films = [{**ALN_ISO, "permittivity": 9.0, "thickness": 0.7e-6},
+             {**AU_CUBIC, "piezo": e.tolist(), "permittivity": 6.0, "thickness": 0.3e-6}]
+    st = resolve_stack(SI_CUBIC, films, direction=20.0)
+    b = scaled_blocks(st)
+    (fam,) = families(b)
+    assert fam.idx == (0, 1, 2, 3)
+    r = surfwave.layered(SI_CUBIC, films, direction=20.0, kh=[10.0], electrical=electrical)
+    ref = collocation_speeds([f.A for f in st.films], [f.rho for f in st.films], [10.0 * f.thickness / 1e-6
+                                                                                   for f in st.films],
+                             st.substrate.A, st.substrate.rho)
+    ref = ref[ref < 0.95 * r["c_limit"]]
+    got = r["c"][0][np.isfinite(r["c"][0])]
+    got = got[got < 0.95 * r["c_limit"]]
+    assert got.size == ref.size == 8 and np.allclose(got, ref, rtol=1e-8, atol=0)
+    assert np.sum(_scan_without_count(b, fam, 10.0) < 0.95 * r["c_limit"]) < ref.size
