@@ -162,3 +162,16 @@ def test_trapped_modes_of_a_weakly_piezoelectric_stack(electrical):
     got = got[got < 0.95 * r["c_limit"]]
     assert got.size == ref.size == 8 and np.allclose(got, ref, rtol=1e-8, atol=0)
     assert np.sum(_scan_without_count(b, fam, 10.0) < 0.95 * r["c_limit"]) < ref.size
+
+
+def test_group_velocity_of_trapped_modes_against_finite_differences():
+    """Buried gold, general solver (forced): the energy velocity of the trapped modes L0, R, S1, L1 at
+    kh = 10 and 20 equals d(c kh)/dkh by central differences (step 1e-5) of the solver's own speeds, 1e-6."""
+    sub, films = BURIED
+    d = 1e-5
+    for k in (10.0, 20.0):
+        r = _general(sub, films, kh=[k - d, k, k + d])
+        for lab in ("L0", "R", "S1", "L1"):
+            j = [list(r["mode"][i]).index(lab) for i in range(3)]
+            fd = (r["c"][2, j[2]] * (k + d) - r["c"][0, j[0]] * (k - d)) / (2 * d)
+            assert r["group_velocity"][1, j[1]] == pytest.approx(fd, rel=1e-6), (k, lab)

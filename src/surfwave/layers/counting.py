@@ -358,3 +358,4 @@ def _recount_rows(b: Blocks, fam: Family, pts: np.ndarray, eigs: list, kh: np.nd
     new_c, row = bisect_counts(b, fam, pts[bad_c], pts[bad_c + 1], n[bad_c, bad_k], n[bad_c + 1, bad_k], kh[bad_k],
                                electrical, nsub)
     return np.flatnonzero(flag[cell, ik]), bad_k[row], new_c
+
