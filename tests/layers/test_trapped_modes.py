@@ -175,3 +175,23 @@ def test_group_velocity_of_trapped_modes_against_finite_differences():
             j = [list(r["mode"][i]).index(lab) for i in range(3)]
             fd = (r["c"][2, j[2]] * (k + d) - r["c"][0, j[0]] * (k - d)) / (2 * d)
             assert r["group_velocity"][1, j[1]] == pytest.approx(fd, rel=1e-6), (k, lab)
+
+
+def test_slow_flexural_mode_under_a_heavy_top_film():
+    """A heavy top film on a soft one (three films): at kh = 3 the general solver's R lies below 0.95 x
+    every layer's Rayleigh speed (2211.7 m/s); it equals the root (brentq) of the isotropic P-SV secular
+    function (compound matrices, surfwave.layers.isotropic.secular_psv) to 1e-10."""
+    from scipy.optimize import brentq
+
+    from surfwave.layers.isotropic import iso_stack, secular_psv
+
+    sub = {"E": 281.82, "nu": 0.1972, "rho": 5138.9}
+    films = [{"E": 268.34, "nu": 0.2204, "rho": 13215.7, "thickness": 5.486e-7},
+             {"E": 66.63, "nu": 0.3666, "rho": 2930.1, "thickness": 8.448e-7},
+             {"E": 415.74, "nu": 0.3957, "rho": 13959.2, "thickness": 2.446e-7}]
+    r = _general(sub, films, kh=[3.0])
+    c_r = r["c"][0, list(r["mode"][0]).index("R")]
+    st = iso_stack(resolve_stack(sub, films))
+    ref = brentq(lambda x: secular_psv(st, np.array([x]), np.array([[3.0]]))[0, 0], 2150.0, 2260.0, xtol=1e-12)
+    assert c_r == pytest.approx(ref, rel=1e-10)
+    assert c_r < 0.95 * 2600.0                   # the slowest Rayleigh speed, the top film's, is about 2650 m/s
