@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-from surfwave.layers import modes
+from surfwave.layers import scan as scan_module
 from surfwave.layers.modes import family_modes
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.solve import mode_speeds
@@ -54,13 +54,13 @@ def test_scan_stops_above_the_slowest_mode(monkeypatch):
     fam = next(f for f in families(b) if f.prefix == "R")
     kh = np.linspace(0.2, 5.0, 30)
     counted = []
-    scan = modes._grid_eigenvalues
+    scan = scan_module._grid_eigenvalues
 
     def counting(b_, fam_, c, kh_, electrical):
         counted.append(np.size(c))
         return scan(b_, fam_, c, kh_, electrical)
 
-    monkeypatch.setattr(modes, "_grid_eigenvalues", counting)
+    monkeypatch.setattr(scan_module, "_grid_eigenvalues", counting)
     full = family_modes(b, fam, kh)
     n_full = sum(counted)
     counted.clear()

@@ -169,7 +169,13 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
     C = np.full((wH.size, cg.shape[1]), np.nan)
     V = np.full(C.shape, np.nan)
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-    for j in range(cg.shape[1]) if columns is None else [j for j in columns if j < cg.shape[1]]:
+    wanted = list(range(cg.shape[1])) if columns is None else [j for j in columns if j < cg.shape[1]]
+    zero = np.flatnonzero(wH == 0)                                   # f = 0: the bare substrate's modes
+    live0 = np.array([j for j in wanted if np.isfinite(cg[0, j])], dtype=int)
+    if zero.size and live0.size:
+        C[np.ix_(zero, live0)] = cg[0, live0]
+        V[np.ix_(zero, live0)] = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
+    for j in wanted:
         ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
         if ok.size < 2:
             continue

@@ -8,7 +8,15 @@ substrate's limiting speed c_lim, where modes appear at their cut-off with a squ
 behaviour), plus a geometric tail toward t = 0. Every sign change brackets either a mode or a
 pole of Z (a mode of the stack with a clamped top); all brackets of all kh are refined together
 by a safeguarded secant iteration (:func:`_refine`) to a relative width :data:`C_TOL`, and a
-converged bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise.
+converged bracket is a mode when Z is (numerically) singular there and bounded, a pole otherwise
+(the scan and the search next to poles: :mod:`surfwave.layers.scan`).
+
+Trapped modes. A mode trapped in a slow layer buried under a stiff one has a tiny surface
+amplitude: its zero of det Z sits next to a pole within a window far narrower than a grid cell,
+and no function of Z sampled at the cell's ends shows the pair. Where such a burial exists
+(:func:`surfwave.layers.counting.needed`), the modes of each stretch of the grid are checked
+against the exact, pole-free Wittrick-Williams count of :mod:`surfwave.layers.counting`, which
+finds the missing ones itself.
 
 Labels. Within one family, the modes at fixed kh are ordered by speed and cannot cross as kh
 changes (crossings of one family are non-generic, and each family's modes are counted from the
@@ -20,8 +28,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.layers.counting import needed, recount
 from surfwave.layers.partial import Blocks, Family
-from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, secular, top_impedance
+from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, top_impedance
+from surfwave.layers.scan import POLE_SPLIT as POLE_SPLIT  # noqa: F401  (re-exported)
+from surfwave.layers.scan import _eigvalsh, _near_poles, _scan
+from surfwave.layers.scan import _hermitian_eigenvalues as _hermitian_eigenvalues  # noqa: F401
 from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
 
@@ -34,8 +46,6 @@ MAX_ITER = 200
 #: Points of the speed grid per unit of kh (on top of :data:`BASE_GRID`): thick films hold many modes.
 GRID_PER_KH = 8
 BASE_GRID = 60
-#: Bisections of a cell holding a pole and, by its count, a mode (toward the pole).
-POLE_SPLIT = 8
 #: Smallest t = sqrt(1 - c^2/c_lim^2) of the grid.
 T_MIN = 1e-7
 #: With ``lowest=True``: the speed grid is scanned from the bottom in these parts (fractions of its
@@ -238,15 +248,6 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
     return out, w_out
 
 
-def _eigvalsh(Z: np.ndarray) -> np.ndarray:
-    """Ascending eigenvalues of Hermitian matrices (..., na, na); NaN rows where Z is not finite."""
-    with np.errstate(all="ignore"):
-        bad = ~np.isfinite(Z).all(axis=(-1, -2))
-        w = np.linalg.eigvalsh(np.where(bad[..., None, None], 0.0, Z))
-    w[bad] = np.nan
-    return w
-
-
 def _mode_eigenvalues_ok(w: np.ndarray) -> np.ndarray:
     """True where eigenvalues w (..., na) of Z say singular and bounded (a mode), False at a pole."""
     return _mode_margin(w, 1.0) > 0
@@ -267,132 +268,6 @@ def _mode_margin(w: np.ndarray, margin: float = 10.0) -> np.ndarray:
         mode = fin & (lo * margin <= small) & (hi * margin < 1e6)
         pole = ~fin | (lo > small * margin) | (hi >= 1e6 * margin)
     return np.where(mode, 1, np.where(pole, -1, 0))
-
-
-def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
-    """Ascending eigenvalues of Hermitian matrices Z (..., n, n): closed forms for n <= 3, else LAPACK.
-
-    n = 3: the trigonometric solution of the (real) characteristic cubic of the shifted matrix
-    Z - tr(Z)/3; where two eigenvalues nearly coincide (|cos 3 phi| > 1 - 1e-6, where the arccos
-    loses digits) and where Z is not finite, LAPACK's eigvalsh. Absolute error ~ 1e-13 |Z| (what
-    the grid scan needs: signs, products, the Foster test at 1e-9); NaN rows where Z is not finite.
-    """
-    n = Z.shape[-1]
-    if n > 3 or n == 0:
-        return _eigvalsh(Z)
-    a = Z[..., 0, 0].real
-    if n == 1:
-        return a[..., None].copy()
-    b = Z[..., 1, 1].real
-    if n == 2:
-        m, h = 0.5 * (a + b), np.hypot(0.5 * (a - b), np.abs(Z[..., 0, 1]))
-        return np.stack([m - h, m + h], axis=-1)
-    c = Z[..., 2, 2].real
-    d, e, f = Z[..., 0, 1], Z[..., 1, 2], Z[..., 0, 2]
-    m = (a + b + c) / 3.0
-    a1, b1, c1 = a - m, b - m, c - m
-    d2, e2, f2 = d.real ** 2 + d.imag ** 2, e.real ** 2 + e.imag ** 2, f.real ** 2 + f.imag ** 2
-    p = (a1 * a1 + b1 * b1 + c1 * c1 + 2.0 * (d2 + e2 + f2)) / 6.0
-    q = 0.5 * (a1 * b1 * c1 - a1 * e2 - b1 * f2 - c1 * d2 + 2.0 * (d * e * np.conj(f)).real)
-    with np.errstate(all="ignore"):
-        sp = np.sqrt(p)
-        r = np.where(p > 0, q / (p * sp), 0.0)
-        phi = np.arccos(np.clip(r, -1.0, 1.0)) / 3.0
-        hi = m + 2.0 * sp * np.cos(phi)
-        lo = m + 2.0 * sp * np.cos(phi + 2.0 * np.pi / 3.0)
-        w = np.stack([lo, 3.0 * m - hi - lo, hi], axis=-1)
-    hard = ~(np.abs(r) <= 1.0 - 1e-6) & (p > 0) | ~np.isfinite(w).all(axis=-1)
-    if hard.any():
-        w[hard] = _eigvalsh(Z[hard])
-    return w
-
-
-def _grid_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str | Boundary) -> np.ndarray:
-    """:func:`surfwave.layers.recursion.boundary_eigenvalues` for the grid scan (closed-form eigenvalues)."""
-    M = top_impedance(b, fam, c, kh)["M"]
-    Z, _ = boundary_matrix(b, fam, M, electrical)
-    return _hermitian_eigenvalues(Z)
-
-
-def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
-    """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
-    cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
-    bisected (``rounds`` times)."""
-    w = _grid_eigenvalues(b, fam, grid, np.broadcast_to(kh, (grid.size, kh.size)), electrical)
-    D, neg = np.prod(w, axis=-1), (w < 0).sum(axis=-1)
-    D[~np.isfinite(w).all(axis=-1)] = np.nan
-    for _ in range(rounds):
-        step = neg[1:] - neg[:-1]
-        odd = (np.abs(step) > 1) | ((np.abs(step) == 1) & ~(D[:-1] * D[1:] < 0)) | \
-            ((step == 0) & (D[:-1] * D[1:] < 0))
-        cells = np.flatnonzero(odd.any(axis=1))
-        if cells.size == 0:
-            break
-        mid = 0.5 * (grid[cells] + grid[cells + 1])
-        wm = _grid_eigenvalues(b, fam, mid, np.broadcast_to(kh, (mid.size, kh.size)), electrical)
-        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
-        Dm[~np.isfinite(wm).all(axis=-1)] = np.nan
-        w = np.insert(w, cells + 1, wm, axis=0)
-        grid = np.insert(grid, cells + 1, mid)
-        D = np.insert(D, cells + 1, Dm, axis=0)
-        neg = np.insert(neg, cells + 1, nm, axis=0)
-    return grid, D, neg, w
-
-
-def _pole_inside(wl: np.ndarray, wr: np.ndarray) -> np.ndarray:
-    """True where a cell holds a pole of Z: some sorted eigenvalue is larger at the cell's right end.
-
-    Between poles every eigenvalue of the reactance Z decreases with c (Foster), so the k-th smallest
-    does too; only a branch passing a pole (from -inf to +inf) can make a sorted eigenvalue grow.
-    """
-    tol = 1e-9 * (1.0 + np.abs(wl))
-    with np.errstate(invalid="ignore"):
-        return (wr > wl + tol).any(axis=-1)
-
-
-def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str | Boundary, skip) -> tuple:
-    """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
-
-    A cell whose count does not change but which holds a pole (:func:`_pole_inside`) holds a mode
-    too (or several); per (cell, kh) pair it is bisected :data:`POLE_SPLIT` times, always keeping the
-    half with the pole; a half whose count rises by one with a sign change of det Z is a bracket.
-
-    Returns
-    -------
-    lo, hi, flo, fhi : ndarray, shape (r,)
-        Bracket ends (m/s) and det Z there.
-    ik : ndarray of int, shape (r,)
-        The kh index of each bracket.
-    """
-    step = neg[1:] - neg[:-1]
-    near = (step == 0) & _pole_inside(W[:-1], W[1:]) & ~skip[:, None]
-    ic, ik = np.nonzero(near)
-    lo, hi = grid[ic], grid[ic + 1]
-    Dl, Dh, nl, nh = D[ic, ik], D[ic + 1, ik], neg[ic, ik], neg[ic + 1, ik]
-    wl, wh = W[ic, ik], W[ic + 1, ik]
-    found: list[tuple] = []
-    for _ in range(POLE_SPLIT):
-        if ik.size == 0:
-            break
-        mid = 0.5 * (lo + hi)
-        wm = boundary_eigenvalues(b, fam, mid, kh[ik, None], electrical)[:, 0]
-        Dm, nm = np.prod(wm, axis=-1), (wm < 0).sum(axis=-1)
-        with np.errstate(invalid="ignore"):
-            left = (nm - nl == 1) & (Dl * Dm < 0)
-            right = (nh - nm == 1) & (Dm * Dh < 0)
-        found.append((np.r_[lo[left], mid[right]], np.r_[mid[left], hi[right]], np.r_[Dl[left], Dm[right]],
-                      np.r_[Dm[left], Dh[right]], np.r_[ik[left], ik[right]]))
-        go_left = _pole_inside(wl, wm)                                       # the pole's half
-        keep = ~(left | right) & np.isfinite(Dm)
-        lo, hi = np.where(go_left, lo, mid), np.where(go_left, mid, hi)
-        Dl, Dh = np.where(go_left, Dl, Dm), np.where(go_left, Dm, Dh)
-        nl, nh = np.where(go_left, nl, nm), np.where(go_left, nm, nh)
-        wl, wh = np.where(go_left[:, None], wl, wm), np.where(go_left[:, None], wm, wh)
-        lo, hi, Dl, Dh, nl, nh, wl, wh, ik = (v[keep] for v in (lo, hi, Dl, Dh, nl, nh, wl, wh, ik))
-    if not found:
-        empty = np.zeros(0)
-        return empty, empty, empty, empty, np.zeros(0, dtype=int)
-    return tuple(np.concatenate([f[i] for f in found]) for i in range(5))
 
 
 def floor_unstable(b: Blocks, fam: Family, kh, electrical: str | Boundary = "free") -> np.ndarray:
@@ -482,7 +357,8 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
     n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
     kh_max = float(np.max(kh, initial=0.0))
-    grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, film_bulk_speeds(b), kh_max)
+    bulk = film_bulk_speeds(b)
+    grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, bulk, kh_max)
     # at a film's bulk speed along x1 its Stroh roots p = 0 coalesce (a Jordan block): det Z is
     # analytic there but its evaluation is not, and may jump. Fence each such speed with grid
     # points 1e-9 apart and ignore that one cell.
@@ -511,17 +387,21 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     flo = np.concatenate([D[ic, ik], pfl[keep_p]])
     fhi = np.concatenate([D[ic + 1, ik], pfh[keep_p]])
     ik = np.concatenate([ik, pik[keep_p]])
+    roots = np.zeros(0)
+    if ik.size:
+        # the eigenvalue that crosses zero in a grid bracket: the (neg)-th smallest at its low end
+        nb = ic.size
+        j = np.clip(neg[ic, ik[:nb]], 0, W.shape[-1] - 1)
+        lam_lo, lam_hi = np.full(ik.size, np.nan), np.full(ik.size, np.nan)
+        lam_lo[:nb], lam_hi[:nb] = W[ic, ik[:nb], j], W[ic + 1, ik[:nb], j]
+        roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim, lam_lo, lam_hi)
+        ok = _mode_eigenvalues_ok(w_root)
+        ik, roots = ik[ok], roots[ok]
+    if needed(b, bulk):
+        # a mode trapped under a stiff film hides next to a pole of Z: checked by the exact count
+        ik, roots = recount(b, fam, grid, kh, ik, roots, electrical, unstable_rows, v_x1)
     if ik.size == 0:
         return np.full((kh.size, 0), np.nan)
-    # the eigenvalue that crosses zero in a grid bracket: the (neg)-th smallest at its low end
-    nb = ic.size
-    j = np.clip(neg[ic, ik[:nb]], 0, W.shape[-1] - 1)
-    lam_lo, lam_hi = np.full(ik.size, np.nan), np.full(ik.size, np.nan)
-    lam_lo[:nb], lam_hi[:nb] = W[ic, ik[:nb], j], W[ic + 1, ik[:nb], j]
-    roots, w_root = _refine(b, fam, lo, hi, flo, fhi, kh[ik], electrical, c_lim, lam_lo, lam_hi)
-    ok = _mode_eigenvalues_ok(w_root)
-    ik, roots = ik[ok], roots[ok]
-    _ = secular  # (the refinement evaluates det Z through :func:`secular`)
     counts = np.bincount(ik, minlength=kh.size)
     out = np.full((kh.size, max(int(counts.max(initial=0)), 0)), np.nan)
     order = np.lexsort((roots, ik))

@@ -54,6 +54,10 @@ class Blocks:
         E_I3K1 and E_I3K2: the generalised stress on planes x3 = const (power flow along x3).
     n_mech : int
         3: components 0..2 are mechanical, component 3 (if n = 4) the potential.
+    korn : ndarray, shape (L + 1,), optional
+        Scaled lower bound kappa of each layer's strain energy per squared displacement gradient
+        (:func:`korn_bounds`): a layer of thickness t (in 1/k) clamped on both faces has no mode with
+        rho c^2 / sA below kappa (1 + (pi / t)^2) (used by :mod:`surfwave.layers.counting`).
     """
 
     Q: np.ndarray
@@ -68,6 +72,7 @@ class Blocks:
     R3: np.ndarray | None = None
     electrode_below: tuple[bool, ...] = ()
     n_mech: int = 3
+    korn: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,7 +128,42 @@ def scaled_blocks(stack: Stack) -> Blocks:
     frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
     return Blocks(Q=Q, R=R, T=T, Q3=Q3, R3=R3, electrode_below=tuple(f.electrode_below for f in stack.films),
                   rho=np.array([lay.rho for lay in layers]), frac=frac, sA=sA, se=se,
-                  eps0=EPS0 / se)
+                  eps0=EPS0 / se, korn=korn_bounds(A, np.stack([lay.sigma for lay in layers])) / sA)
+
+
+#: Voigt index pairs and the Mandel weights that make the 6 x 6 stiffness an isometry of strains.
+_PAIRS = ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))
+_MANDEL = np.array([1.0, 1.0, 1.0, np.sqrt(2.0), np.sqrt(2.0), np.sqrt(2.0)])
+
+
+def korn_bounds(A: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """Lower bound kappa (Pa) of A:H:H / |H|^2 for displacement fields clamped on two parallel faces, per layer.
+
+    With C = A - sigma delta (the layer's elastic constants) and e_min the smallest eigenvalue of C in
+    Mandel form, C:eps:eps >= e_min |eps|^2; Korn's identity for fields vanishing on the faces
+    (periodic along them), int |sym grad u|^2 = (int |grad u|^2 + int |div u|^2) / 2, and the
+    prestress term sigma_jl H_ij H_il >= s_min |H|^2 (s_min the smallest eigenvalue of sigma) give
+    int A:H:H >= (e_min / 2 + s_min) int |grad u|^2. A piezoelectric layer clamped and grounded on
+    both faces only stiffens. The bound is not positive when the layer is not stable.
+
+    Parameters
+    ----------
+    A : ndarray, shape (L, 3, 3, 3, 3)
+        Wave-propagation tensors C + sigma delta, Pa.
+    sigma : ndarray, shape (L, 3, 3)
+        Prestress, Pa.
+
+    Returns
+    -------
+    ndarray, shape (L,)
+        kappa, Pa.
+    """
+    C = A - np.einsum("sjl,ik->sijkl", sigma, np.eye(3))
+    i, j = np.array(_PAIRS).T
+    Mn = C[:, i[:, None], j[:, None], i[None, :], j[None, :]] * np.outer(_MANDEL, _MANDEL)
+    e_min = np.linalg.eigvalsh(0.5 * (Mn + np.swapaxes(Mn, -1, -2)))[:, 0]
+    s_min = np.linalg.eigvalsh(0.5 * (sigma + np.swapaxes(sigma, -1, -2)))[:, 0]
+    return 0.5 * e_min + np.minimum(s_min, 0.0)
 
 
 def families(b: Blocks) -> list[Family]:
