@@ -212,7 +212,7 @@ def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
     """
     M = lam + 2.0 * mu
     n = X.size
-    A = np.zeros((n, 4, 4))
+    A = np.zeros((n, 4, 4), dtype=np.result_type(X, float))             # complex X: complex-step derivatives
     A[:, 0, 1] = 1.0
     A[:, 0, 3] = 1.0 / mu
     A[:, 1, 0] = -lam / M

@@ -4,9 +4,10 @@ Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular fu
 on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
 :data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
 function has no poles, so every sign change is a mode and the n-th one from below is the n-th
-mode. All brackets are then refined together by a safeguarded secant iteration in
+mode. All brackets are then refined together by a safeguarded Newton iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
-c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
+c_lim, in c it has a square-root branch point there) with the exact derivative of
+:mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
 
 Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
 any layer to c_lim. (Below every shear speed each wave is evanescent and the only solutions are
@@ -26,10 +27,9 @@ cell into two brackets; the pair is missed only if the dip between the two roots
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
 so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
 
-Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c from differences of the scalar
-secular function at the root (fourth-order stencils, central or one-sided at t or kh = 0; steps
-from :data:`DIFF_STEP` and :data:`DIFF_STEP_K`; the positive normalisations of F drop out at a zero
-of F), 1e-7 or better against the general solver's energy velocity. Power flow is along x1 (angle 0).
+Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c, the exact derivatives of the
+secular function at the root (those of the last Newton evaluation; the positive normalisations of
+F drop out at a zero of F). Power flow is along x1 (angle 0).
 """
 from __future__ import annotations
 
@@ -38,6 +38,7 @@ import math
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
+from surfwave.layers.isotropic_deriv import secular_d
 
 __all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_grid"]
 
@@ -55,10 +56,6 @@ PHASE_STEP = math.pi / 8
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
-#: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
-DIFF_STEP = 1e-4
-#: The same for kh (F is noisier there, truncation milder: measured on fast films and three-film stacks).
-DIFF_STEP_K = 2e-3
 
 
 
@@ -271,101 +268,61 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
-            flo: np.ndarray, fhi: np.ndarray) -> np.ndarray:
-    """Safeguarded secant iteration in t on all brackets (c in (lo, hi), of rows r) at once; speeds (m,), m/s.
+            flo: np.ndarray, fhi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
 
-    The secant through the two latest iterates (order 1.6); bisection where it leaves the bracket or
-    the bracket stalls. Converged: a secant step below the tolerance (C_TOL relative in c), a bracket
-    narrower than it, or F = 0 exactly.
+    Starts at the linear interpolation of the bracket; Newton steps along the row (at fixed kh, or
+    at fixed frequency kh = omega H / c) with the exact derivative (:func:`secular_d`); bisection
+    where a step leaves the bracket or, every third step, where the bracket has not halved.
+    Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
+    returned), a bracket narrower than it, or F = 0 exactly. The group velocity
+    v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
     """
     c_lim = st.c_lim
-
-    def fun(which: np.ndarray, t: np.ndarray) -> np.ndarray:
-        c = c_lim * np.sqrt(1.0 - t * t)
-        return _secular(st, prefix, c, rows_of.pairs(r[which], c)[None, :])[0]
-
     idx = np.arange(lo.size)
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
-    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()   # the two latest iterates
+    with np.errstate(all="ignore"):
+        x = a - fa * (z - a) / (fz - fa)
+    x = np.where(np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z)), x, 0.5 * (a + z))
     width = np.abs(z - a)
-    out = 0.5 * (a + z)
+    out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
-        left, right = np.minimum(a, z), np.maximum(a, z)
+        c = c_lim * np.sqrt(1.0 - x * x)
+        kh = rows_of.pairs(r[idx], c)
+        fx, ft, fk = secular_d(st, prefix, x, kh)
         with np.errstate(all="ignore"):
-            x = x1 - f1 * (x1 - x0) / (f1 - f0)
-        # bisection where the secant leaves the bracket or, every third step, where the bracket
-        # has not halved over the last three (a stalled secant)
-        slow = (it % 3 == 2) & (right - left > 0.5 * width)
-        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
-        # a secant step below the tolerance from the latest iterate that leaves the bracket (rounding:
-        # F there is at its noise level) ends the iteration at that iterate
-        edge = np.isfinite(x) & (np.abs(x - x1) <= np.minimum(C_TOL * (1.0 - x1 * x1) / x1, 1e-8 * x1))
-        if edge.any():
-            out[idx[edge]] = x1[edge]
-            keep = ~edge
-            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right = (
-                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right))
-            if idx.size == 0:
-                break
-        x = np.where(bis, 0.5 * (left + right), x)
-        if it % 3 == 2:
-            width = right - left
-        fx = fun(idx, x)
+            rk = fk / ft
+            # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
+            step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
         side_a = (fx > 0) == (fa > 0)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
+        left, right = np.minimum(a, z), np.maximum(a, z)
+        xn = x - step
         tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
-        done = ((np.abs(x - x1) <= tol) & ~bis) | (np.abs(z - a) <= tol) | (fx == 0)
-        x0, f0, x1, f1 = x1, f1, x, fx
-        out[idx[done]] = x[done]
+        done = (np.isfinite(step) & (np.abs(step) <= tol)) | (right - left <= tol) | (fx == 0)
+        fin = np.where(np.isfinite(xn) & (xn >= left) & (xn <= right) & (fx != 0), xn, x)
+        out[idx[done]], ratio[idx[done]] = fin[done], rk[done]
+        slow = (it % 3 == 2) & (right - left > 0.5 * width)
+        bis = ~np.isfinite(xn) | (xn <= left) | (xn >= right) | slow
+        x = np.where(bis, 0.5 * (left + right), xn)
+        if it % 3 == 2:
+            width = right - left
         keep = ~done
-        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
-    out[idx] = x1
-    return c_lim * np.sqrt(1.0 - out * out)
-
-
-def _group_velocity(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
-    """v_g = c + kh dc/dkh at modes (c, kh) (m,), by implicit differentiation of the secular function."""
-    if c.size == 0:
-        return np.zeros(0)
-    c_lim = st.c_lim
-    t = np.sqrt(1.0 - (c / c_lim) ** 2)
-    # steps: each film phase kh h_l/H nu (nu = |1 - c^2/v^2|^(1/2), at least 1/(kh h_l/H): F is analytic
-    # in nu^2) moves by at most DIFF_STEP (DIFF_STEP_K) radians, and t (kh) by at most as much
-    rate_t, rate_k = np.ones(c.size), np.ones(c.size)
-    for v in (st.shear[:-1], st.longitudinal[:-1]):
-        for f, vl in zip(st.frac, v):
-            kf = kh * f
-            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-12))
-            rate_t += kf * c_lim * c_lim * t / (vl * vl * nu)
-            rate_k += f * nu
-    ht, hk = DIFF_STEP / rate_t, DIFF_STEP_K / rate_k
-    ot, wt = _stencil(t, ht)
-    ok, wk = _stencil(kh, hk)
-    m = c.size
-    tt = np.concatenate([t + ht * ot.T, np.broadcast_to(t, (5, m))]).ravel()
-    kk = np.concatenate([np.broadcast_to(kh, (5, m)), kh + hk * ok.T]).ravel()
-    F = _secular(st, prefix, c_lim * np.sqrt(1.0 - tt * tt), kk[None, :])[0].reshape(10, m)
-    F_t = (wt.T * F[:5]).sum(axis=0) / ht
-    F_k = (wk.T * F[5:]).sum(axis=0) / hk
+        idx, a, fa, z, fz, x, width = (v[keep] for v in (idx, a, fa, z, fz, x, width))
+    if idx.size:                                   # not converged in MAX_ITER (not seen): the last iterate
+        c = c_lim * np.sqrt(1.0 - x * x)
+        fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r[idx], c))
+        out[idx], ratio[idx] = x, fk / ft
+    c = c_lim * np.sqrt(1.0 - out * out)
+    kh = rows_of.pairs(r, c)
     with np.errstate(all="ignore"):
-        dc_dkh = F_k * c_lim * c_lim * t / (F_t * c)     # -F_k / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
-    return c + kh * dc_dkh
-
-
-_CENTRAL = (np.array([-2.0, -1.0, 0.0, 1.0, 2.0]), np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / 12.0)
-_FORWARD = (np.arange(5.0), np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0)
-
-
-def _stencil(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets (in steps h) and weights (m, 5) of a fourth-order first derivative at x (m,) >= 0:
-    central where x >= 2 h, forward (no negative argument) otherwise."""
-    central = (x >= 2.0 * h)[:, None]
-    return (np.where(central, _CENTRAL[0], _FORWARD[0]), np.where(central, _CENTRAL[1], _FORWARD[1]))
+        vg = c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
+    return c, vg
 
 
 def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) -> tuple[np.ndarray, np.ndarray]:
@@ -398,8 +355,7 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
         return c_out, v_out
-    roots = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
-    vg = _group_velocity(st, prefix, roots, rows_of.pairs(r, roots))
+    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
     srt = np.lexsort((roots, r))
     r, roots, vg = r[srt], roots[srt], vg[srt]
     start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])

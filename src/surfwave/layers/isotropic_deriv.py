@@ -1,0 +1,166 @@
+"""The isotropic secular functions with their exact derivatives (forward mode), for Newton steps and group velocity.
+
+At points (t_j, kh_j), t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed), the recursions
+of :mod:`surfwave.layers.isotropic` are carried with two tangents: d/dt at fixed kh and d/dkh at
+fixed c. Every positive factor the recursions apply (the overflow scale g of each evanescent wave,
+the renormalisation of the vector after each layer) is held constant in the tangents, so each call
+returns (N F, N F_t, N F_kh) with one positive N per point: the ratios F / F_t (a Newton step) and
+F_kh / F_t (the group velocity) are exact, and the sign of N F is that of F.
+
+Derivatives of the layer functions (unscaled C(s) = cosh(sqrt(s) t), S(s) = sinh(sqrt(s) t) / sqrt(s),
+s = r^2, t the layer thickness in units of 1/k): dC/ds = t S / 2, dS/ds = (t C - S) / (2 s) (by its
+series t^3 sum_k>=1 (s t^2)^(k-1) k / (2k + 1)! where |s t^2| < 1/2: no cancellation at a bulk
+speed), dC/dt = s S, dS/dt = C. The c-dependence of the substrate's minors, the closed-form top row
+and the kernels of buried films (polynomial or rational in X, r_a, r_b, no branch switch) is taken
+by a complex step of :data:`STEP` in t: exact to rounding.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from surfwave.layers.isotropic import IsoStack, _substrate_psv, _top_row, psv_kernels, wave_functions
+
+__all__ = ["STEP", "secular_d"]
+
+#: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
+STEP = 1e-20
+#: Series coefficients k / (2k + 1)! of (t C - S) / (2 s t^3), k = 1 ... 10, highest first (Horner).
+_SERIES = np.array([k / math.factorial(2 * k + 1) for k in range(10, 0, -1)])
+
+
+def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """g dS/ds of one wave type (scaled C, S, g of :func:`wave_functions`), elementwise (m,)."""
+    x = r2 * t * t
+    small = np.abs(x) < 0.5
+    with np.errstate(all="ignore"):
+        out = (t * C - S) / (2.0 * r2)
+    if small.any():
+        xs, ts = x[small], t[small]
+        acc = np.full(xs.shape, _SERIES[0])
+        for a in _SERIES[1:]:
+            acc = acc * xs + a
+        out[small] = g[small] * ts ** 3 * acc
+    return out
+
+
+def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tuple[np.ndarray, ...]:
+    """Scaled C, S and their tangents of one wave type at points (m,).
+
+    Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
+    log-derivatives of g itself along t and along kh (g = exp(-r t) where evanescent, else 1).
+    """
+    C, S, g = wave_functions(r2, t)
+    dC = 0.5 * t * S * dr2
+    dS = _dS_ds(r2, t, C, S, g) * dr2
+    r = np.sqrt(np.maximum(r2, 0.0))
+    with np.errstate(all="ignore"):
+        lg_t = np.where(r > 0, -0.5 * t * dr2 / r, 0.0)
+    return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, -r * frac
+
+
+def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
+    """m / |m| along the last axis and the derivatives of that unit vector from those of m."""
+    n = np.sqrt((m * m).sum(axis=-1, keepdims=True))
+    u = m / n
+    return (u, *(d / n - u * (u * d).sum(axis=-1, keepdims=True) / n for d in tangents))
+
+
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(N F, N F_t, N F_kh) of the P-SV secular function at points (m,)."""
+    c_lim2 = st.c_lim ** 2
+    tc = tau + 1j * STEP
+    Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
+    X, dX = Xc.real, Xc.imag / STEP
+    Msub = st.lam[-1] + 2.0 * st.mu[-1]
+    mc = _substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
+    m, mt = mc.real, mc.imag / STEP
+    mk = np.zeros_like(m)
+    L = st.frac.size
+    m, mt = _unit(m, mt)
+    if L == 0:
+        return m[:, 5], mt[:, 5], mk[:, 5]
+    for layer in range(L - 1, -1, -1):
+        lam, mu, f = st.lam[layer], st.mu[layer], st.frac[layer]
+        M = lam + 2.0 * mu
+        t = kh * f
+        Ca, Sa, ga, dCa, dSa, kCa, kSa, lta, lka = _layer_d(1.0 - X[:, layer] / M, -dX[:, layer] / M, t, f)
+        Cb, Sb, gb, dCb, dSb, kCb, kSb, ltb, lkb = _layer_d(1.0 - X[:, layer] / mu, -dX[:, layer] / mu, t, f)
+        Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
+        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
+        wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
+        wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
+        if layer == 0:                                                     # the NT row only, closed form
+            kc = _top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
+            k, kt = [v.real for v in kc], [v.imag / STEP for v in kc]
+            kk = _top_row(mu, M, X[:, 0], mk)
+            m5k0, t5k0, k5k0 = m[:, 5] - k[0], mt[:, 5] - kt[0], mk[:, 5] - kk[0]
+            F = w[0] * k[0] + w[1] * m5k0 + w[2] * k[1] + w[3] * k[2] + w[4] * k[3]
+            Ft = (w[0] * kt[0] + w[1] * t5k0 + wt[0] * m5k0 + w[2] * kt[1] + wt[1] * k[1]
+                  + w[3] * kt[2] + wt[2] * k[2] + w[4] * kt[3] + wt[3] * k[3])
+            Fk = (w[0] * kk[0] + w[1] * k5k0 + wk[0] * m5k0 + w[2] * kk[1] + wk[1] * k[1]
+                  + w[3] * kk[2] + wk[2] * k[2] + w[4] * kk[3] + wk[3] * k[3])
+            return F, Ft + F * Dt, Fk + F * Dk
+        Kc = psv_kernels(lam, mu, Xc[:, layer])                            # (m, 5, 6, 6)
+        K, Kt = Kc.real, Kc.imag / STEP
+        Km = np.einsum("npij,nj->npi", K, m)
+        Ktm = np.einsum("npij,nj->npi", Kt, m)
+        Kmt = np.einsum("npij,nj->npi", K, mt)
+        Kmk = np.einsum("npij,nj->npi", K, mk)
+        W = np.stack(w, axis=1)[:, :, None]                                # (m, 5, 1)
+        m_new = (W * Km).sum(axis=1)
+        mt = (W * (Ktm + Kmt)).sum(axis=1) + sum(wt[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+        mk = (W * Kmk).sum(axis=1) + sum(wk[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+        m, mt, mk = _unit(m_new, mt + m_new * Dt[:, None], mk + m_new * Dk[:, None])
+    raise AssertionError("unreachable")
+
+
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(N F, N F_t, N F_kh) of the SH secular function at points (m,)."""
+    c_lim2 = st.c_lim ** 2
+    X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
+    dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
+    mu_s = st.mu[-1]
+    y, yt = _unit(np.stack([np.ones_like(tau), -mu_s * tau], axis=-1),   # substrate: (1, -mu r_b), r_b = t
+                  np.stack([np.zeros_like(tau), np.full(tau.shape, -mu_s)], axis=-1))
+    v, s, vt, st_ = y[:, 0], y[:, 1], yt[:, 0], yt[:, 1]
+    vk, sk = np.zeros_like(tau), np.zeros_like(tau)
+    for layer in range(st.frac.size - 1, -1, -1):
+        mu, f = st.mu[layer], st.frac[layer]
+        rb2 = 1.0 - X[:, layer] / mu
+        drb2 = -dX[:, layer] / mu
+        Cb, Sb, _, dC, dS, kC, kS, Dt, Dk = _layer_d(rb2, drb2, kh * f, f)
+        v_new = Cb * v - Sb * s / mu
+        s_new = -mu * rb2 * Sb * v + Cb * s
+        vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
+                   -mu * ((drb2 * Sb + rb2 * dS) * v + rb2 * Sb * vt) + dC * s + Cb * st_)
+        vk, sk = (kC * v + Cb * vk - (kS * s + Sb * sk) / mu,
+                  -mu * rb2 * (kS * v + Sb * vk) + kC * s + Cb * sk)
+        y, yt, yk = _unit(np.stack([v_new, s_new], axis=-1), np.stack([vt + v_new * Dt, st_ + s_new * Dt], axis=-1),
+                          np.stack([vk + v_new * Dk, sk + s_new * Dk], axis=-1))
+        v, s, vt, st_, vk, sk = y[:, 0], y[:, 1], yt[:, 0], yt[:, 1], yk[:, 0], yk[:, 1]
+    return np.broadcast_to(s, tau.shape), np.broadcast_to(st_, tau.shape), np.broadcast_to(sk, tau.shape)
+
+
+def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The family's secular function and its derivatives at points (m,), up to one positive factor per point.
+
+    Parameters
+    ----------
+    st : IsoStack
+    prefix : {"R", "L"}
+        P-SV or SH.
+    tau : ndarray, shape (m,)
+        t = sqrt(1 - c^2 / c_lim^2) in (0, 1).
+    kh : ndarray, shape (m,)
+        Wavenumber x total film thickness.
+
+    Returns
+    -------
+    F, F_t, F_kh : ndarray, shape (m,)
+        N F, N dF/dt at fixed kh and N dF/dkh at fixed c (N > 0 per point; module docstring).
+    """
+    tau = np.asarray(tau, dtype=float)
+    kh = np.asarray(kh, dtype=float)
+    return _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
