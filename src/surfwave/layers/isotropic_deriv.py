@@ -20,14 +20,15 @@ import math
 
 import numpy as np
 
-from surfwave.layers.isotropic import IsoStack, _substrate_psv, _top_row, psv_kernels, wave_functions
+from surfwave.layers.isotropic import IsoStack, _substrate_psv, _top_row, psv_kernels
 
 __all__ = ["STEP", "secular_d"]
 
 #: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
 STEP = 1e-20
-#: Series coefficients k / (2k + 1)! of (t C - S) / (2 s t^3), k = 1 ... 10, highest first (Horner).
-_SERIES = np.array([k / math.factorial(2 * k + 1) for k in range(10, 0, -1)])
+#: Series coefficients k / (2k + 1)! of (t C - S) / (2 s t^3), k = 1 ... 8, highest first (Horner);
+#: for |s t^2| < 1/2 the next term is below 1e-16 of the sum.
+_SERIES = np.array([k / math.factorial(2 * k + 1) for k in range(8, 0, -1)])
 
 
 def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray) -> np.ndarray:
@@ -49,15 +50,24 @@ def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tup
     """Scaled C, S and their tangents of one wave type at points (m,).
 
     Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
-    log-derivatives of g itself along t and along kh (g = exp(-r t) where evanescent, else 1).
+    log-derivatives of g itself along t and along kh. C, S, g are those of :func:`wave_functions`
+    (the same formulas, both branches evaluated on all points and selected: no indexing).
     """
-    C, S, g = wave_functions(r2, t)
+    ev = r2 > 0
+    r = np.sqrt(np.abs(r2))
+    rt = r * t
+    with np.errstate(all="ignore"):
+        e = np.expm1(-rt)
+        u = np.tan(0.5 * rt)
+        d = 1.0 / (1.0 + u * u)
+        g = np.where(ev, 1.0 + e, 1.0)
+        C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - u * u) * d)
+        S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
+        S = np.where(r > 0, S, t)
+        lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
     dC = 0.5 * t * S * dr2
     dS = _dS_ds(r2, t, C, S, g) * dr2
-    r = np.sqrt(np.maximum(r2, 0.0))
-    with np.errstate(all="ignore"):
-        lg_t = np.where(r > 0, -0.5 * t * dr2 / r, 0.0)
-    return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, -r * frac
+    return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
 
 
 def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:

@@ -49,9 +49,9 @@ MAX_ITER = 60
 #: Speeds per chunk of the upward scan.
 CHUNK = 48
 #: Points uniform in t and uniform in c.
-N_BASE = 40
+N_BASE = 20
 #: Phase step of the grid, radians.
-PHASE_STEP = math.pi / 8
+PHASE_STEP = math.pi / 4
 #: Parabolic / golden steps hunting two roots hidden in one grid cell.
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
@@ -275,7 +275,9 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     at fixed frequency kh = omega H / c) with the exact derivative (:func:`secular_d`); bisection
     where a step leaves the bracket or, every third step, where the bracket has not halved.
     Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
-    returned), a bracket narrower than it, or F = 0 exactly. The group velocity
+    returned) or, after two Newton steps, one whose predicted remaining error (quadratic
+    convergence: step^3 / previous step^2) is below a tenth of it; a bracket narrower than the
+    tolerance, or F = 0 exactly. The group velocity
     v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
     """
     c_lim = st.c_lim
@@ -288,6 +290,7 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     x = np.where(np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z)), x, 0.5 * (a + z))
     width = np.abs(z - a)
     out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
+    newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
@@ -304,16 +307,22 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         left, right = np.minimum(a, z), np.maximum(a, z)
         xn = x - step
         tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
-        done = (np.isfinite(step) & (np.abs(step) <= tol)) | (right - left <= tol) | (fx == 0)
+        # quadratic convergence: after a Newton step that follows a Newton step, the error left is
+        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root
+        with np.errstate(all="ignore"):
+            fast = (newt & (np.abs(step) <= 0.1 * np.abs(prev)) & (np.abs(step) ** 3 <= 0.1 * tol * prev * prev)
+                    & (np.abs(step) <= 1e-10 * x))               # (and v_g at x: relative error ~ the step)
+        done = (np.isfinite(step) & ((np.abs(step) <= tol) | fast)) | (right - left <= tol) | (fx == 0)
         fin = np.where(np.isfinite(xn) & (xn >= left) & (xn <= right) & (fx != 0), xn, x)
         out[idx[done]], ratio[idx[done]] = fin[done], rk[done]
         slow = (it % 3 == 2) & (right - left > 0.5 * width)
         bis = ~np.isfinite(xn) | (xn <= left) | (xn >= right) | slow
         x = np.where(bis, 0.5 * (left + right), xn)
+        newt, prev = ~bis, step
         if it % 3 == 2:
             width = right - left
         keep = ~done
-        idx, a, fa, z, fz, x, width = (v[keep] for v in (idx, a, fa, z, fz, x, width))
+        idx, a, fa, z, fz, x, width, newt, prev = (v[keep] for v in (idx, a, fa, z, fz, x, width, newt, prev))
     if idx.size:                                   # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
         fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r[idx], c))
@@ -325,7 +334,8 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     return c, vg
 
 
-def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) -> tuple[np.ndarray, np.ndarray]:
+def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
     """Speeds and group velocities (n_rows, n_modes) of one family's guided modes, ascending, NaN-padded.
 
     Parameters
@@ -337,11 +347,13 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
         The rows (kh or frequencies; the row-count guard compares neighbours in ascending order).
     modes : int or None
         At most this many modes per row (the slowest); None: all.
+    grid : ndarray, optional
+        ``speed_grid(st, rows_of)`` when already computed (both families share it).
     """
     n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
-    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of), rows_of, rows, need)
+    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of) if grid is None else grid, rows_of, rows, need)
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
