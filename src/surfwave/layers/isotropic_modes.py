@@ -201,7 +201,7 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
 
 def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
           ) -> tuple[np.ndarray, ...]:
-    """Brackets (row, lower speed, upper speed, F at both) of the first ``need`` roots of each row.
+    """Brackets (row, lower speed, upper speed, F at both, a third grid speed next to them or NaN, F there).
 
     The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
     change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
@@ -216,6 +216,8 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     hi: list[np.ndarray] = []
     flo: list[np.ndarray] = []
     fhi: list[np.ndarray] = []
+    c3: list[np.ndarray] = []                                          # a third grid point next to the bracket
+    f3: list[np.ndarray] = []
     cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
     for start in range(0, grid.size, CHUNK):
         if act.size == 0:
@@ -239,6 +241,9 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         hi.append(c[j1 + 1])
         flo.append(F[r1, j1])
         fhi.append(F[r1, j1 + 1])
+        j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, c.size - 1))
+        c3.append(np.where(j3 == j1 + 1, np.nan, c[j3]))
+        f3.append(F[r1, j3])
         if c.size >= 3:
             # a local minimum of |F| between cells without a sign change: two roots may hide there
             aF = np.abs(F)
@@ -251,29 +256,33 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         live = found[act] < need
         act, c_old, F_old = act[live], c[-2:], F[live][:, -2:]
     if cands:
-        r2, c3, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
+        r2, c3_, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
         if r2.size:
-            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3_, F3)
             rr += [r2[ok], r2[ok]]
-            lo += [c3[ok, 0], x[ok]]
-            hi += [x[ok], c3[ok, 2]]
+            lo += [c3_[ok, 0], x[ok]]
+            hi += [x[ok], c3_[ok, 2]]
             flo += [F3[ok, 0], fx[ok]]
             fhi += [fx[ok], F3[ok, 2]]
+            c3 += [c3_[ok, 2], c3_[ok, 0]]
+            f3 += [F3[ok, 2], F3[ok, 0]]
     if not rr:
-        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0)
-    R, LO, HI, FLO, FHI = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi))
+        return np.zeros(0, dtype=int), *(np.zeros(0) for _ in range(6))
+    R, LO, HI, FLO, FHI, C3, F3_ = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi, c3, f3))
     srt = np.lexsort((LO, R))
     keep = np.arange(R.size) - np.searchsorted(R[srt], R[srt]) < need        # rank within the row
-    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI))
+    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI, C3, F3_))
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
-            flo: np.ndarray, fhi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
 
-    Starts at the linear interpolation of the bracket; Newton steps along the row (at fixed kh, or
-    at fixed frequency kh = omega H / c) with the exact derivative (:func:`secular_d`); bisection
-    where a step leaves the bracket or, every third step, where the bracket has not halved.
+    Starts at the inverse quadratic interpolation through the bracket ends and the third grid point
+    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); Newton
+    steps along the row (at fixed kh, or at fixed frequency kh = omega H / c) with the exact
+    derivative (:func:`secular_d`); bisection where a step leaves the bracket or, every third
+    step, where the bracket has not halved and the steps do not shrink tenfold.
     Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
     returned) or, after two Newton steps, one whose predicted remaining error (quadratic
     convergence: step^3 / previous step^2) is below a tenth of it; a bracket narrower than the
@@ -286,11 +295,16 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
     with np.errstate(all="ignore"):
-        x = a - fa * (z - a) / (fz - fa)
+        y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
+        x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
+             + y * fa * fz / ((f3 - fa) * (f3 - fz)))
+        inside = np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z))
+        x = np.where(inside, x, a - fa * (z - a) / (fz - fa))
     x = np.where(np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z)), x, 0.5 * (a + z))
     width = np.abs(z - a)
     out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
     newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
+    xp, rp = np.full(lo.size, np.nan), np.full(lo.size, np.nan)            # the previous iterate and F_kh / F_t
     for it in range(MAX_ITER):
         if idx.size == 0:
             break
@@ -308,21 +322,26 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         xn = x - step
         tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
         # quadratic convergence: after a Newton step that follows a Newton step, the error left is
-        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root
+        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
+        # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
+        # away): v_g to ~ the step times the previous step.
         with np.errstate(all="ignore"):
-            fast = (newt & (np.abs(step) <= 0.1 * np.abs(prev)) & (np.abs(step) ** 3 <= 0.1 * tol * prev * prev)
-                    & (np.abs(step) <= 1e-10 * x))               # (and v_g at x: relative error ~ the step)
+            conv = newt & (np.abs(step) <= 0.1 * np.abs(prev))
+            fast = conv & (np.abs(step) ** 3 <= 0.1 * tol * prev * prev) & (np.abs(step) <= 1e-7 * x)
         done = (np.isfinite(step) & ((np.abs(step) <= tol) | fast)) | (right - left <= tol) | (fx == 0)
         fin = np.where(np.isfinite(xn) & (xn >= left) & (xn <= right) & (fx != 0), xn, x)
-        out[idx[done]], ratio[idx[done]] = fin[done], rk[done]
-        slow = (it % 3 == 2) & (right - left > 0.5 * width)
+        with np.errstate(all="ignore"):
+            carried = rk + (rk - rp) / (x - xp) * (fin - x)
+        out[idx[done]], ratio[idx[done]] = fin[done], np.where(conv & np.isfinite(carried), carried, rk)[done]
+        slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
         bis = ~np.isfinite(xn) | (xn <= left) | (xn >= right) | slow
-        x = np.where(bis, 0.5 * (left + right), xn)
-        newt, prev = ~bis, step
+        x_now, x = x, np.where(bis, 0.5 * (left + right), xn)
+        newt, prev, xp, rp = ~bis, step, x_now, rk
         if it % 3 == 2:
             width = right - left
         keep = ~done
-        idx, a, fa, z, fz, x, width, newt, prev = (v[keep] for v in (idx, a, fa, z, fz, x, width, newt, prev))
+        idx, a, fa, z, fz, x, width, newt, prev, xp, rp = (v[keep] for v in (idx, a, fa, z, fz, x, width, newt, prev,
+                                                                              xp, rp))
     if idx.size:                                   # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
         fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r[idx], c))
@@ -353,7 +372,8 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, gr
     n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
-    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of) if grid is None else grid, rows_of, rows, need)
+    r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, speed_grid(st, rows_of) if grid is None else grid, rows_of, rows,
+                                        need)
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
@@ -362,12 +382,13 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, gr
         more = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
         better = np.bincount(more[0], minlength=n_rows) > counts
         keep, keep2 = ~better[r], better[more[0]]
-        r, lo, hi, flo, fhi = (np.concatenate([u[keep], v[keep2]]) for u, v in zip((r, lo, hi, flo, fhi), more))
+        r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
+                                       for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
     width = int(np.bincount(r, minlength=n_rows).max(initial=0))
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
         return c_out, v_out
-    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
+    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
     srt = np.lexsort((roots, r))
     r, roots, vg = r[srt], roots[srt], vg[srt]
     start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
