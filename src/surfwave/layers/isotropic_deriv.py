@@ -98,20 +98,29 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
         Ca, Sa, ga, dCa, dSa, kCa, kSa, lta, lka = _layer_d(1.0 - X[:, layer] / M, -dX[:, layer] / M, t, f)
         Cb, Sb, gb, dCb, dSb, kCb, kSb, ltb, lkb = _layer_d(1.0 - X[:, layer] / mu, -dX[:, layer] / mu, t, f)
         Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
+        if layer == 0:                                                     # the NT row only, closed form
+            # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
+            kc = _top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
+            k0, k2, k3, k4 = (v.real for v in kc)
+            k0t, k2t, k3t, k4t = (v.imag / STEP for v in kc)
+            q, qt = m[:, 5] - k0, mt[:, 5] - k0t
+            P, Q = Cb * q + Sb * k2, Cb * k3 + Sb * k4
+            F = ga * gb * k0 + Ca * P + Sa * Q
+            Pt = dCb * q + Cb * qt + dSb * k2 + Sb * k2t
+            Qt = dCb * k3 + Cb * k3t + dSb * k4 + Sb * k4t
+            Ft = ga * gb * k0t + dCa * P + Ca * Pt + dSa * Q + Sa * Qt
+            Pk, Qk = kCb * q + kSb * k2, kCb * k3 + kSb * k4
+            if L > 1:                                                      # the vector below depends on kh
+                k0k, k2k, k3k, k4k = _top_row(mu, M, X[:, 0], mk)
+                Pk = Pk + Cb * (mk[:, 5] - k0k) + Sb * k2k
+                Qk = Qk + Cb * k3k + Sb * k4k
+                Fk = ga * gb * k0k + kCa * P + Ca * Pk + kSa * Q + Sa * Qk
+            else:
+                Fk = kCa * P + Ca * Pk + kSa * Q + Sa * Qk
+            return F, Ft + F * Dt, Fk + F * Dk
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
         wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
-        if layer == 0:                                                     # the NT row only, closed form
-            kc = _top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
-            k, kt = [v.real for v in kc], [v.imag / STEP for v in kc]
-            kk = _top_row(mu, M, X[:, 0], mk)
-            m5k0, t5k0, k5k0 = m[:, 5] - k[0], mt[:, 5] - kt[0], mk[:, 5] - kk[0]
-            F = w[0] * k[0] + w[1] * m5k0 + w[2] * k[1] + w[3] * k[2] + w[4] * k[3]
-            Ft = (w[0] * kt[0] + w[1] * t5k0 + wt[0] * m5k0 + w[2] * kt[1] + wt[1] * k[1]
-                  + w[3] * kt[2] + wt[2] * k[2] + w[4] * kt[3] + wt[3] * k[3])
-            Fk = (w[0] * kk[0] + w[1] * k5k0 + wk[0] * m5k0 + w[2] * kk[1] + wk[1] * k[1]
-                  + w[3] * kk[2] + wk[2] * k[2] + w[4] * kk[3] + wk[3] * k[3])
-            return F, Ft + F * Dt, Fk + F * Dk
         Kc = psv_kernels(lam, mu, Xc[:, layer])                            # (m, 5, 6, 6)
         K, Kt = Kc.real, Kc.imag / STEP
         Km = np.einsum("npij,nj->npi", K, m)

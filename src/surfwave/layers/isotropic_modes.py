@@ -14,7 +14,7 @@ any layer to c_lim. (Below every shear speed each wave is evanescent and the onl
 surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
 the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
 safety, not a proof.) It is the union of
-(i) 24 points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
+(i) :data:`N_TOP` points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
 (ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
 spacing of a point of (iii)), and (iii) points where the total vertical phase
 Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
@@ -50,6 +50,8 @@ MAX_ITER = 60
 CHUNK = 48
 #: Points uniform in t and uniform in c.
 N_BASE = 20
+#: Points geometric in t from 1e-7 to 0.02 (next to c_lim, where modes enter).
+N_TOP = 12
 #: Phase step of the grid, radians.
 PHASE_STEP = math.pi / 4
 #: Parabolic / golden steps hunting two roots hidden in one grid cell.
@@ -112,7 +114,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    top = np.geomspace(1e-7, 0.02, 24, endpoint=False)
+    top = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
     parts = [c_lim * np.sqrt(1.0 - top * top)]
@@ -289,32 +291,39 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     tolerance, or F = 0 exactly. The group velocity
     v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
     """
+    with np.errstate(all="ignore"):
+        return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+
+
+def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
+            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The loop of :func:`_refine` (floating-point warnings off: converged points ride along unused).
+
+    Every point is evaluated at every iteration (one vectorised call costs the same for a few
+    hundred points as for a few); a converged point's answer is frozen when it converges.
+    """
     c_lim = st.c_lim
-    idx = np.arange(lo.size)
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
-    with np.errstate(all="ignore"):
-        y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
-        x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
-             + y * fa * fz / ((f3 - fa) * (f3 - fz)))
-        inside = np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z))
-        x = np.where(inside, x, a - fa * (z - a) / (fz - fa))
-    x = np.where(np.isfinite(x) & (x > np.minimum(a, z)) & (x < np.maximum(a, z)), x, 0.5 * (a + z))
-    width = np.abs(z - a)
+    y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
+    x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
+         + y * fa * fz / ((f3 - fa) * (f3 - fz)))
+    left, right = np.minimum(a, z), np.maximum(a, z)
+    x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
+    x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
+    width = right - left
     out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
+    act = np.ones(lo.size, dtype=bool)
     newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
     xp, rp = np.full(lo.size, np.nan), np.full(lo.size, np.nan)            # the previous iterate and F_kh / F_t
     for it in range(MAX_ITER):
-        if idx.size == 0:
-            break
         c = c_lim * np.sqrt(1.0 - x * x)
-        kh = rows_of.pairs(r[idx], c)
+        kh = rows_of.pairs(r, c)
         fx, ft, fk = secular_d(st, prefix, x, kh)
-        with np.errstate(all="ignore"):
-            rk = fk / ft
-            # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
-            step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
+        rk = fk / ft
+        # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
+        step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
         side_a = (fx > 0) == (fa > 0)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
@@ -325,32 +334,30 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
         # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
         # away): v_g to ~ the step times the previous step.
-        with np.errstate(all="ignore"):
-            conv = newt & (np.abs(step) <= 0.1 * np.abs(prev))
-            fast = conv & (np.abs(step) ** 3 <= 0.1 * tol * prev * prev) & (np.abs(step) <= 1e-7 * x)
-        done = (np.isfinite(step) & ((np.abs(step) <= tol) | fast)) | (right - left <= tol) | (fx == 0)
-        fin = np.where(np.isfinite(xn) & (xn >= left) & (xn <= right) & (fx != 0), xn, x)
-        with np.errstate(all="ignore"):
-            carried = rk + (rk - rp) / (x - xp) * (fin - x)
-        out[idx[done]], ratio[idx[done]] = fin[done], np.where(conv & np.isfinite(carried), carried, rk)[done]
+        ast = np.abs(step)
+        conv = newt & (ast <= 0.1 * np.abs(prev))
+        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x)))
+                      | (right - left <= tol) | (fx == 0))
+        fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
+        carried = rk + (rk - rp) / (x - xp) * (fin - x)
+        out = np.where(done, fin, out)
+        ratio = np.where(done, np.where(conv & np.isfinite(carried), carried, rk), ratio)
+        act &= ~done
+        if not act.any():
+            break
         slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
-        bis = ~np.isfinite(xn) | (xn <= left) | (xn >= right) | slow
-        x_now, x = x, np.where(bis, 0.5 * (left + right), xn)
-        newt, prev, xp, rp = ~bis, step, x_now, rk
+        bis = ~((xn > left) & (xn < right)) | slow
+        newt, prev, xp, rp = ~bis, step, x, rk
+        x = np.where(bis, 0.5 * (left + right), xn)
         if it % 3 == 2:
             width = right - left
-        keep = ~done
-        idx, a, fa, z, fz, x, width, newt, prev, xp, rp = (v[keep] for v in (idx, a, fa, z, fz, x, width, newt, prev,
-                                                                              xp, rp))
-    if idx.size:                                   # not converged in MAX_ITER (not seen): the last iterate
+    else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r[idx], c))
-        out[idx], ratio[idx] = x, fk / ft
+        fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r, c))
+        out, ratio = np.where(act, x, out), np.where(act, fk / ft, ratio)
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
-    with np.errstate(all="ignore"):
-        vg = c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
-    return c, vg
+    return c, c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
 
 
 def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None = None
