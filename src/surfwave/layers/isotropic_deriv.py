@@ -136,30 +136,37 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
 
 
 def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(N F, N F_t, N F_kh) of the SH secular function at points (m,)."""
+    """(F, F_t, F_kh) of the SH secular function tau / |(v, tau)| at the top, points (m,).
+
+    F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
+    after each film) is held constant in the tangents and F's derivatives are exact (no N).
+    """
     c_lim2 = st.c_lim ** 2
     X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
     dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
     mu_s = st.mu[-1]
-    y, yt = _unit(np.stack([np.ones_like(tau), -mu_s * tau], axis=-1),   # substrate: (1, -mu r_b), r_b = t
-                  np.stack([np.zeros_like(tau), np.full(tau.shape, -mu_s)], axis=-1))
-    v, s, vt, st_ = y[:, 0], y[:, 1], yt[:, 0], yt[:, 1]
+    v, s = np.ones_like(tau), -mu_s * tau                              # substrate: (1, -mu r_b), r_b = t
+    vt, st_ = np.zeros_like(tau), np.full(tau.shape, -mu_s)
     vk, sk = np.zeros_like(tau), np.zeros_like(tau)
     for layer in range(st.frac.size - 1, -1, -1):
         mu, f = st.mu[layer], st.frac[layer]
         rb2 = 1.0 - X[:, layer] / mu
         drb2 = -dX[:, layer] / mu
-        Cb, Sb, _, dC, dS, kC, kS, Dt, Dk = _layer_d(rb2, drb2, kh * f, f)
+        Cb, Sb, _, dC, dS, kC, kS, _, _ = _layer_d(rb2, drb2, kh * f, f)
         v_new = Cb * v - Sb * s / mu
         s_new = -mu * rb2 * Sb * v + Cb * s
         vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
                    -mu * ((drb2 * Sb + rb2 * dS) * v + rb2 * Sb * vt) + dC * s + Cb * st_)
         vk, sk = (kC * v + Cb * vk - (kS * s + Sb * sk) / mu,
                   -mu * rb2 * (kS * v + Sb * vk) + kC * s + Cb * sk)
-        y, yt, yk = _unit(np.stack([v_new, s_new], axis=-1), np.stack([vt + v_new * Dt, st_ + s_new * Dt], axis=-1),
-                          np.stack([vk + v_new * Dk, sk + s_new * Dk], axis=-1))
-        v, s, vt, st_, vk, sk = y[:, 0], y[:, 1], yt[:, 0], yt[:, 1], yk[:, 0], yk[:, 1]
-    return np.broadcast_to(s, tau.shape), np.broadcast_to(st_, tau.shape), np.broadcast_to(sk, tau.shape)
+        v, s = v_new, s_new
+        if layer:                                                      # renormalise (held constant)
+            n = 1.0 / np.hypot(v, s)
+            v, s, vt, st_, vk, sk = v * n, s * n, vt * n, st_ * n, vk * n, sk * n
+    n2 = v * v + s * s
+    n = np.sqrt(n2)
+    vn3 = v / (n2 * n)
+    return s / n, vn3 * (st_ * v - s * vt), vn3 * (sk * v - s * vk)
 
 
 def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
