@@ -2,10 +2,13 @@
 
 At points (t_j, kh_j), t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed), the recursions
 of :mod:`surfwave.layers.isotropic` are carried with two tangents: d/dt at fixed kh and d/dkh at
-fixed c. Every positive factor the recursions apply (the overflow scale g of each evanescent wave,
-the renormalisation of the vector after each layer) is held constant in the tangents, so each call
-returns (N F, N F_t, N F_kh) with one positive N per point: the ratios F / F_t (a Newton step) and
-F_kh / F_t (the group velocity) are exact, and the sign of N F is that of F.
+fixed c. Each call returns the value of :func:`secular_psv` / :func:`secular_sh` and its two
+derivatives. P-SV: the tangents hold every positive factor (the overflow scale g of each
+evanescent wave, the renormalisation of the vector) constant, and the factors' own
+log-derivatives are added (d log g = -t dr / dt, d log |m| = m . m' / |m|^2), so the derivatives
+are those of the function itself (Newton on the scaled function, which is bounded,
+converges where Newton on the unscaled one, dominated by exp(r t), would crawl). SH: the function
+tau / |(v, tau)| is invariant under positive factors, so they are held constant and drop out.
 
 Derivatives of the layer functions (unscaled C(s) = cosh(sqrt(s) t), S(s) = sinh(sqrt(s) t) / sqrt(s),
 s = r^2, t the layer thickness in units of 1/k): dC/ds = t S / 2, dS/ds = (t C - S) / (2 s) (by its
@@ -78,7 +81,7 @@ def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
 
 
 def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(N F, N F_t, N F_kh) of the P-SV secular function at points (m,)."""
+    """(F, F_t, F_kh) of the P-SV secular function at points (m,)."""
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
@@ -170,7 +173,7 @@ def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.n
 
 
 def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The family's secular function and its derivatives at points (m,), up to one positive factor per point.
+    """The family's secular function and its exact derivatives at points (m,).
 
     Parameters
     ----------
@@ -185,7 +188,7 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tup
     Returns
     -------
     F, F_t, F_kh : ndarray, shape (m,)
-        N F, N dF/dt at fixed kh and N dF/dkh at fixed c (N > 0 per point; module docstring).
+        F (as :func:`secular_psv` / :func:`secular_sh`), dF/dt at fixed kh and dF/dkh at fixed c.
     """
     tau = np.asarray(tau, dtype=float)
     kh = np.asarray(kh, dtype=float)

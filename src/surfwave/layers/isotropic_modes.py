@@ -47,7 +47,7 @@ C_TOL = 5e-14
 #: Refinement iterations at most.
 MAX_ITER = 60
 #: Speeds per chunk of the upward scan.
-CHUNK = 48
+CHUNK = 32
 #: Points uniform in t and uniform in c.
 N_BASE = 20
 #: Points geometric in t from 1e-7 to 0.02 (next to c_lim, where modes enter).
