@@ -174,20 +174,37 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
         ev, pr = slice(0, k), slice(k, r2v.size)
     else:
         ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
-    if k:
+    if k:                                               # (in place: few passes over the block)
         re = r[ev]
-        e = np.expm1(-re * tb[..., ev])
-        ge = 1.0 + e
+        e = tb[..., ev] * -re
+        np.expm1(e, out=e)
+        ge = e + 1.0
         g[..., ev] = ge
-        C[..., ev] = 0.5 * (1.0 + ge * ge)
-        S[..., ev] = -e * (2.0 + e) / (2.0 * re)
+        np.multiply(ge, ge, out=ge)
+        ge += 1.0
+        ge *= 0.5
+        C[..., ev] = ge
+        h = e + 2.0
+        h *= e
+        h *= -0.5 / re
+        S[..., ev] = h
     if k < r2v.size:
         rp = r[pr]
         tp = tb[..., pr]
-        u = np.tan(0.5 * rp * tp)                    # half-angle tangent: cos and sin from one call
-        d = 1.0 / (1.0 + u * u)
-        C[..., pr] = (1.0 - u * u) * d
-        S[..., pr] = np.where(rp > 0, 2.0 * u * d / np.where(rp > 0, rp, 1.0), tp)
+        u = tp * (0.5 * rp)
+        np.tan(u, out=u)                                # half-angle tangent: cos and sin from one call
+        u2 = u * u
+        d = u2 + 1.0
+        np.divide(1.0, d, out=d)
+        c = 1.0 - u2
+        c *= d
+        C[..., pr] = c
+        u *= d
+        if (rp > 0).all():
+            u *= 2.0 / rp
+            S[..., pr] = u
+        else:
+            S[..., pr] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
     return C.reshape(shape), S.reshape(shape), g.reshape(shape)
 
 
