@@ -46,7 +46,7 @@ __all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_gri
 C_TOL = 5e-14
 #: Refinement iterations at most.
 MAX_ITER = 60
-#: Speeds per chunk of the upward scan.
+#: Speeds per chunk of the upward scan (about: the grid is cut into near-equal chunks).
 CHUNK = 32
 #: Points uniform in t and uniform in c.
 N_BASE = 20
@@ -221,10 +221,11 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     c3: list[np.ndarray] = []                                          # a third grid point next to the bracket
     f3: list[np.ndarray] = []
     cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-    for start in range(0, grid.size, CHUNK):
+    cuts = np.linspace(0, grid.size, max(round(grid.size / CHUNK), 1) + 1).astype(int)   # near-equal chunks
+    for start, stop in zip(cuts[:-1], cuts[1:]):
         if act.size == 0:
             break
-        cn = grid[start:start + CHUNK]
+        cn = grid[start:stop]
         kernels = None
         if prefix == "R" and st.frac.size > 1:
             X = st.rho * (cn[:, None] ** 2) / st.s
