@@ -40,7 +40,7 @@ import numpy as np
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
 from surfwave.layers.isotropic_deriv import secular_d
 
-__all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
@@ -74,6 +74,13 @@ class Rows:
 
     def __init__(self, base: np.ndarray, freq: bool) -> None:
         self.base, self.freq = np.asarray(base, dtype=float), freq
+        self.split: int | None = None          # set by both(): rows from here on are SH
+
+    def both(self) -> Rows:
+        """These rows twice: P-SV rows 0 ... n - 1, SH rows n ... 2n - 1 (prefix "RL" of the refinement)."""
+        out = Rows(np.concatenate([self.base, self.base]), self.freq)
+        out.split = self.base.size
+        return out
 
     def grid(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
         """kh (r, n) of rows (r,) at speeds c (n,)."""
@@ -277,6 +284,20 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI, C3, F3_))
 
 
+def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`secular_d` of each point's family at (row r, t, kh) (m,); prefix "RL": rows from ``rows_of.split``
+    on are SH, and a family without an active point (``act``) is not evaluated (its values are NaN)."""
+    if prefix != "RL":
+        return secular_d(st, prefix, t, kh)
+    sh = r >= rows_of.split
+    out = np.full((3, t.size), np.nan)
+    for m, p in ((~sh, "R"), (sh, "L")):
+        if (act & m).any():
+            out[:, m] = secular_d(st, p, t[m], kh[m])
+    return out[0], out[1], out[2]
+
+
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
             flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
@@ -321,7 +342,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     for it in range(MAX_ITER):
         c = c_lim * np.sqrt(1.0 - x * x)
         kh = rows_of.pairs(r, c)
-        fx, ft, fk = secular_d(st, prefix, x, kh)
+        fx, ft, fk = _at_d(st, prefix, rows_of, r, x, kh, act)
         rk = fk / ft
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
         step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
@@ -354,7 +375,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             width = right - left
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        fx, ft, fk = secular_d(st, prefix, x, rows_of.pairs(r, c))
+        fx, ft, fk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)
         out, ratio = np.where(act, x, out), np.where(act, fk / ft, ratio)
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
@@ -378,6 +399,43 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, gr
         ``speed_grid(st, rows_of)`` when already computed (both families share it).
     """
     n_rows = rows_of.base.size
+    r, lo, hi, flo, fhi, c3, f3 = _brackets(st, prefix, rows_of, modes, grid)
+    if r.size == 0:
+        return np.full((n_rows, 0), np.nan), np.full((n_rows, 0), np.nan)
+    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+    return _table(n_rows, r, roots, vg)
+
+
+def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray | None = None
+                  ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`family_roots` of P-SV and SH (in that order), the brackets of both refined in one Newton loop."""
+    n = rows_of.base.size
+    grid = speed_grid(st, rows_of) if grid is None else grid
+    bR, bL = (_brackets(st, p, rows_of, modes, grid) for p in ("R", "L"))
+    r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v]) for k, (u, v) in enumerate(zip(bR, bL)))
+    roots, vg = _refine(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3)
+    sh = r >= n
+    return [_table(n, r[~sh], roots[~sh], vg[~sh]), _table(n, r[sh] - n, roots[sh], vg[sh])]
+
+
+def _table(n_rows: int, r: np.ndarray, roots: np.ndarray, vg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds and group velocities of roots (m,) of rows r as (n_rows, width) tables, ascending, NaN-padded."""
+    width = int(np.bincount(r, minlength=n_rows).max(initial=0))
+    c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
+    if r.size == 0:
+        return c_out, v_out
+    srt = np.lexsort((roots, r))
+    r, roots, vg = r[srt], roots[srt], vg[srt]
+    start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
+    col = np.arange(r.size) - start[r]
+    c_out[r, col], v_out[r, col] = roots, vg
+    return c_out, v_out
+
+
+def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None
+              ) -> tuple[np.ndarray, ...]:
+    """The scan of :func:`family_roots` with its rescan of rows with too few modes: :func:`_scan`'s brackets."""
+    n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
     r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, speed_grid(st, rows_of) if grid is None else grid, rows_of, rows,
@@ -392,14 +450,4 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, gr
         keep, keep2 = ~better[r], better[more[0]]
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
                                        for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
-    width = int(np.bincount(r, minlength=n_rows).max(initial=0))
-    c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
-    if r.size == 0:
-        return c_out, v_out
-    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
-    srt = np.lexsort((roots, r))
-    r, roots, vg = r[srt], roots[srt], vg[srt]
-    start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
-    col = np.arange(r.size) - start[r]
-    c_out[r, col], v_out[r, col] = roots, vg
-    return c_out, v_out
+    return r, lo, hi, flo, fhi, c3, f3
