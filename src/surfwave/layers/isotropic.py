@@ -309,10 +309,21 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         t = kh * st.frac[layer]
         Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
         Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
-        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         if layer == 0:                                                     # the NT row only: F itself
             k0, k2, k3, k4 = _top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
-            return w[0] * k0 + w[1] * (m[..., 5] - k0) + w[2] * k2 + w[3] * k3 + w[4] * k4
+            # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
+            F = Cb * (m[..., 5] - k0)
+            F += Sb * k2
+            F *= Ca
+            P = Cb * k3
+            P += Sb * k4
+            P *= Sa
+            F += P
+            ga *= gb
+            ga *= k0
+            F += ga
+            return F
+        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
         Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
@@ -333,5 +344,7 @@ def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
         Cb, Sb, _ = wave_functions(rb2, kh * st.frac[layer])
         v, tau = Cb * v - Sb * tau / mu, -mu * rb2 * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
-        v, tau = v / nrm, tau / nrm
+        tau /= nrm
+        if layer:
+            v /= nrm
     return np.broadcast_to(tau, kh.shape)
