@@ -50,12 +50,13 @@ def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.nd
 
 
 def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tuple[np.ndarray, ...]:
-    """Scaled C, S and their tangents of one wave type at points (m,).
+    """Scaled C, S and their tangents of one wave type at points (m,) (or several: r2 (k, m), t (m,)).
 
     Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
     log-derivatives of g itself along t and along kh. C, S, g are those of :func:`wave_functions`
     (the same formulas, both branches evaluated on all points and selected: no indexing).
     """
+    t = np.broadcast_to(t, r2.shape)
     ev = r2 > 0
     r = np.sqrt(np.abs(r2))
     rt = r * t
@@ -98,8 +99,9 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
         lam, mu, f = st.lam[layer], st.mu[layer], st.frac[layer]
         M = lam + 2.0 * mu
         t = kh * f
-        Ca, Sa, ga, dCa, dSa, kCa, kSa, lta, lka = _layer_d(1.0 - X[:, layer] / M, -dX[:, layer] / M, t, f)
-        Cb, Sb, gb, dCb, dSb, kCb, kSb, ltb, lkb = _layer_d(1.0 - X[:, layer] / mu, -dX[:, layer] / mu, t, f)
+        inv = np.array([[1.0 / M], [1.0 / mu]])                            # both wave types in one pass
+        (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = (
+            _layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, t, f))
         Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
         if layer == 0:                                                     # the NT row only, closed form
             # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
