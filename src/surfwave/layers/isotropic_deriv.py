@@ -81,7 +81,7 @@ def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
     return (u, *(d / n - u * (u * d).sum(axis=-1, keepdims=True) / n for d in tangents))
 
 
-def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
     """(F, F_t, F_kh) of the P-SV secular function at points (m,)."""
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
@@ -94,7 +94,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
     L = st.frac.size
     m, mt = _unit(m, mt)
     if L == 0:
-        return m[:, 5], mt[:, 5], mk[:, 5]
+        return m[:, 5], mt[:, 5], mk[:, 5], mk[:, 5] / mt[:, 5]
     for layer in range(L - 1, -1, -1):
         lam, mu, f = st.lam[layer], st.mu[layer], st.frac[layer]
         M = lam + 2.0 * mu
@@ -122,7 +122,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
                 Fk = ga * gb * k0k + kCa * P + Ca * Pk + kSa * Q + Sa * Qk
             else:
                 Fk = kCa * P + Ca * Pk + kSa * Q + Sa * Qk
-            return F, Ft + F * Dt, Fk + F * Dk
+            return F, Ft + F * Dt, Fk + F * Dk, Fk / Ft        # the last: g held constant (module docstring)
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
         wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
@@ -140,7 +140,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.
     raise AssertionError("unreachable")
 
 
-def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
     """(F, F_t, F_kh) of the SH secular function tau / |(v, tau)| at the top, points (m,).
 
     F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
@@ -171,10 +171,12 @@ def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.n
     n2 = v * v + s * s
     n = np.sqrt(n2)
     vn3 = v / (n2 * n)
-    return s / n, vn3 * (st_ * v - s * vt), vn3 * (sk * v - s * vk)
+    Ft, Fk = vn3 * (st_ * v - s * vt), vn3 * (sk * v - s * vk)
+    return s / n, Ft, Fk, Fk / Ft
 
 
-def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio: bool = False
+              ) -> tuple[np.ndarray, ...]:
     """The family's secular function and its exact derivatives at points (m,).
 
     Parameters
@@ -186,12 +188,19 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray) -> tup
         t = sqrt(1 - c^2 / c_lim^2) in (0, 1).
     kh : ndarray, shape (m,)
         Wavenumber x total film thickness.
+    ratio : bool
+        Also return a smooth F_kh / F_t (below).
 
     Returns
     -------
     F, F_t, F_kh : ndarray, shape (m,)
         F (as :func:`secular_psv` / :func:`secular_sh`), dF/dt at fixed kh and dF/dkh at fixed c.
+    R : ndarray, shape (m,), with ``ratio``
+        F_kh / F_t of the function without the top film's overflow scale g (SH: of F itself, which has
+        none): equal to F_kh / F_t at a root, and smooth across a film's bulk speed, where g (so F_t
+        away from a root) has a kink; the group velocity carried from a near-root iterate uses it.
     """
     tau = np.asarray(tau, dtype=float)
     kh = np.asarray(kh, dtype=float)
-    return _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
+    out = _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
+    return out if ratio else out[:3]

@@ -10,7 +10,8 @@ c_lim, in c it has a square-root branch point there) with the exact derivative o
 :mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
 
 Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
-any layer to c_lim. (Below every shear speed each wave is evanescent and the only solutions are
+any layer (a grid point itself: a root between it and the next point is bracketed) to c_lim.
+(Below every shear speed each wave is evanescent and the only solutions are
 surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
 the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
 safety, not a proof.) It is the union of
@@ -117,14 +118,14 @@ def slowest_speed(st: IsoStack) -> float:
 
 
 def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
-    """Ascending speeds (n,) in (c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    """Ascending speeds (n,) in [c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
     top = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
-    parts = [c_lim * np.sqrt(1.0 - top * top)]
+    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo])]            # c_lo itself, always
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
         nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
@@ -142,7 +143,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
             base = base[near > 0.5 * dc]
     g = np.unique(np.concatenate(parts + [base]))
-    return g[(g > c_lo) & (g < c_lim)]
+    return g[(g >= c_lo) & (g < c_lim)]                              # c_lo itself: a root just above it is bracketed
 
 
 def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
@@ -285,17 +286,20 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
 
 
 def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
-          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`secular_d` of each point's family at (row r, t, kh) (m,); prefix "RL": rows from ``rows_of.split``
-    on are SH, and a family without an active point (``act``) is not evaluated (its values are NaN)."""
+          ) -> tuple[np.ndarray, ...]:
+    """:func:`secular_d` (with ``ratio``) of each point's family at (row r, t, kh) (m,).
+
+    Prefix "RL": rows from ``rows_of.split`` on are SH; a family without an active point (``act``)
+    is not evaluated (its values are NaN).
+    """
     if prefix != "RL":
-        return secular_d(st, prefix, t, kh)
+        return secular_d(st, prefix, t, kh, ratio=True)
     sh = r >= rows_of.split
-    out = np.full((3, t.size), np.nan)
+    out = np.full((4, t.size), np.nan)
     for m, p in ((~sh, "R"), (sh, "L")):
         if (act & m).any():
-            out[:, m] = secular_d(st, p, t[m], kh[m])
-    return out[0], out[1], out[2]
+            out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
+    return out[0], out[1], out[2], out[3]
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
@@ -342,8 +346,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     for it in range(MAX_ITER):
         c = c_lim * np.sqrt(1.0 - x * x)
         kh = rows_of.pairs(r, c)
-        fx, ft, fk = _at_d(st, prefix, rows_of, r, x, kh, act)
-        rk = fk / ft
+        fx, ft, fk, rk = _at_d(st, prefix, rows_of, r, x, kh, act)
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
         step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
         side_a = (fx > 0) == (fa > 0)
@@ -351,17 +354,21 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
         left, right = np.minimum(a, z), np.maximum(a, z)
         xn = x - step
-        tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
+        # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
+        tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
         # quadratic convergence: after a Newton step that follows a Newton step, the error left is
         # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
         # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
         # away): v_g to ~ the step times the previous step.
         ast = np.abs(step)
         conv = newt & (ast <= 0.1 * np.abs(prev))
-        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x)))
-                      | (right - left <= tol) | (fx == 0))
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
         carried = rk + (rk - rp) / (x - xp) * (fin - x)
+        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below 1e-7 c: its error,
+        # a small fraction of it (the ratio is smooth: :func:`secular_d`), cannot matter
+        small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= 1e-7 * c * c
+        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small))
+                      | (right - left <= tol) | (fx == 0))
         out = np.where(done, fin, out)
         ratio = np.where(done, np.where(conv & np.isfinite(carried), carried, rk), ratio)
         act &= ~done
@@ -375,8 +382,8 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             width = right - left
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        fx, ft, fk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)
-        out, ratio = np.where(act, x, out), np.where(act, fk / ft, ratio)
+        rk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)[3]
+        out, ratio = np.where(act, x, out), np.where(act, rk, ratio)
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
     return c, c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
