@@ -143,6 +143,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
             base = base[near > 0.5 * dc]
     g = np.unique(np.concatenate(parts + [base]))
+    g = g[(g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)]              # c_lo once (not also rounded from t_hi)
     return g[(g >= c_lo) & (g < c_lim)]                              # c_lo itself: a root just above it is bracketed
 
 
