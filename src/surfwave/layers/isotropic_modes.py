@@ -9,12 +9,12 @@ t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is 
 c_lim, in c it has a square-root branch point there) with the exact derivative of
 :mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
 
-Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
-any layer (a grid point itself: a root between it and the next point is bracketed) to c_lim.
-(Below every shear speed each wave is evanescent and the only solutions are
-surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
-the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
-safety, not a proof.) It is the union of
+Grid, and what it guarantees. The grid runs from ``c_floor`` = :data:`FLOOR` x the slowest shear
+speed of any layer (the floor of the general path) to c_lim. Above ``c_lo`` = 0.95 x the slowest
+Rayleigh speed of any layer it is dense; below, where every wave of every layer is evanescent and
+the function varies slowly, it has :data:`N_LOW` points geometric in c (a dense film loads the
+surface by its mass and takes the R mode below every layer's Rayleigh speed: 0.87 x the slowest
+in a random sample of stacks) and ``c_lo`` itself. It is the union of that, of
 (i) :data:`N_TOP` points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
 (ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
 spacing of a point of (iii)), and (iii) points where the total vertical phase
@@ -51,6 +51,10 @@ MAX_ITER = 60
 CHUNK = 32
 #: Points uniform in t and uniform in c.
 N_BASE = 20
+#: Lowest speed searched, in units of the slowest shear speed of any layer (the general path's floor).
+FLOOR = 0.05
+#: Points geometric in c from the floor to c_lo (mass loading by a dense film takes R below c_lo).
+N_LOW = 10
 #: Points geometric in t from 1e-7 to 0.02 (next to c_lim, where modes enter).
 N_TOP = 12
 #: Phase step of the grid, radians.
@@ -118,14 +122,16 @@ def slowest_speed(st: IsoStack) -> float:
 
 
 def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
-    """Ascending speeds (n,) in [c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    """Ascending speeds (n,) in [c_floor, c_lim) (module docstring), for the rows' largest kh at each speed."""
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
     top = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
-    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo])]            # c_lo itself, always
+    c_floor = FLOOR * float(st.shear.min())
+    low = np.geomspace(c_floor, c_lo, N_LOW, endpoint=False) if c_floor < c_lo else np.zeros(0)
+    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]       # c_lo itself, always
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
         nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
@@ -144,7 +150,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             base = base[near > 0.5 * dc]
     g = np.unique(np.concatenate(parts + [base]))
     g = g[(g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)]              # c_lo once (not also rounded from t_hi)
-    return g[(g >= c_lo) & (g < c_lim)]                              # c_lo itself: a root just above it is bracketed
+    return g[(g >= min(c_floor, c_lo)) & (g < c_lim)]
 
 
 def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
