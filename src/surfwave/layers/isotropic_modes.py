@@ -446,20 +446,30 @@ def _table(n_rows: int, r: np.ndarray, roots: np.ndarray, vg: np.ndarray) -> tup
     return c_out, v_out
 
 
+def _family_grid(st: IsoStack, prefix: str, grid: np.ndarray) -> np.ndarray:
+    """The grid a family scans: SH modes are faster than the slowest shear speed v of any layer
+    (omega^2 int rho v^2 = int mu (v'^2 + k^2 v^2) >= k^2 min(mu / rho) int rho v^2), so SH starts just
+    below v; P-SV scans all of it."""
+    if prefix != "L":
+        return grid
+    v = float(st.shear.min())
+    return np.concatenate([[v * (1.0 - 1e-9)], grid[grid > v]])
+
+
 def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None
               ) -> tuple[np.ndarray, ...]:
     """The scan of :func:`family_roots` with its rescan of rows with too few modes: :func:`_scan`'s brackets."""
     n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
     rows = np.arange(n_rows)
-    r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, speed_grid(st, rows_of) if grid is None else grid, rows_of, rows,
-                                        need)
+    grid = speed_grid(st, rows_of) if grid is None else grid
+    r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, _family_grid(st, prefix, grid), rows_of, rows, need)
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
     dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
     if dip.size:
-        more = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
+        more = _scan(st, prefix, _family_grid(st, prefix, speed_grid(st, rows_of, RESCAN)), rows_of, dip, need)
         better = np.bincount(more[0], minlength=n_rows) > counts
         keep, keep2 = ~better[r], better[more[0]]
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
