@@ -174,20 +174,37 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
         ev, pr = slice(0, k), slice(k, r2v.size)
     else:
         ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
-    if k:
+    if k:                                               # (in place: few passes over the block)
         re = r[ev]
-        e = np.expm1(-re * tb[..., ev])
-        ge = 1.0 + e
+        e = tb[..., ev] * -re
+        np.expm1(e, out=e)
+        ge = e + 1.0
         g[..., ev] = ge
-        C[..., ev] = 0.5 * (1.0 + ge * ge)
-        S[..., ev] = -e * (2.0 + e) / (2.0 * re)
+        np.multiply(ge, ge, out=ge)
+        ge += 1.0
+        ge *= 0.5
+        C[..., ev] = ge
+        h = e + 2.0
+        h *= e
+        h *= -0.5 / re
+        S[..., ev] = h
     if k < r2v.size:
         rp = r[pr]
         tp = tb[..., pr]
-        u = np.tan(0.5 * rp * tp)                    # half-angle tangent: cos and sin from one call
-        d = 1.0 / (1.0 + u * u)
-        C[..., pr] = (1.0 - u * u) * d
-        S[..., pr] = np.where(rp > 0, 2.0 * u * d / np.where(rp > 0, rp, 1.0), tp)
+        u = tp * (0.5 * rp)
+        np.tan(u, out=u)                                # half-angle tangent: cos and sin from one call
+        u2 = u * u
+        d = u2 + 1.0
+        np.divide(1.0, d, out=d)
+        c = 1.0 - u2
+        c *= d
+        C[..., pr] = c
+        u *= d
+        if (rp > 0).all():
+            u *= 2.0 / rp
+            S[..., pr] = u
+        else:
+            S[..., pr] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
     return C.reshape(shape), S.reshape(shape), g.reshape(shape)
 
 
@@ -212,7 +229,7 @@ def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
     """
     M = lam + 2.0 * mu
     n = X.size
-    A = np.zeros((n, 4, 4))
+    A = np.zeros((n, 4, 4), dtype=np.result_type(X, float))             # complex X: complex-step derivatives
     A[:, 0, 1] = 1.0
     A[:, 0, 3] = 1.0 / mu
     A[:, 1, 0] = -lam / M
@@ -292,10 +309,21 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         t = kh * st.frac[layer]
         Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
         Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
-        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         if layer == 0:                                                     # the NT row only: F itself
             k0, k2, k3, k4 = _top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
-            return w[0] * k0 + w[1] * (m[..., 5] - k0) + w[2] * k2 + w[3] * k3 + w[4] * k4
+            # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
+            F = Cb * (m[..., 5] - k0)
+            F += Sb * k2
+            F *= Ca
+            P = Cb * k3
+            P += Sb * k4
+            P *= Sa
+            F += P
+            ga *= gb
+            ga *= k0
+            F += ga
+            return F
+        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
         Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
@@ -316,5 +344,7 @@ def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
         Cb, Sb, _ = wave_functions(rb2, kh * st.frac[layer])
         v, tau = Cb * v - Sb * tau / mu, -mu * rb2 * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
-        v, tau = v / nrm, tau / nrm
+        tau /= nrm
+        if layer:
+            v /= nrm
     return np.broadcast_to(tau, kh.shape)

@@ -4,16 +4,18 @@ Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular fu
 on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
 :data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
 function has no poles, so every sign change is a mode and the n-th one from below is the n-th
-mode. All brackets are then refined together by a safeguarded secant iteration in
+mode. All brackets are then refined together by a safeguarded Newton iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
-c_lim, in c it has a square-root branch point there), to a relative width :data:`C_TOL` in c.
+c_lim, in c it has a square-root branch point there) with the exact derivative of
+:mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
 
-Grid, and what it guarantees. The grid runs from ``c_lo`` = 0.95 x the slowest Rayleigh speed of
-any layer to c_lim. (Below every shear speed each wave is evanescent and the only solutions are
-surface and interface waves; an interface (Stoneley) wave is not slower than the Rayleigh wave of
-the slower medium, so we know of no guided mode below the slowest Rayleigh speed; the 5 % margin is
-safety, not a proof.) It is the union of
-(i) 24 points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
+Grid, and what it guarantees. The grid runs from ``c_floor`` = :data:`FLOOR` x the slowest shear
+speed of any layer (the floor of the general path) to c_lim. Above ``c_lo`` = 0.95 x the slowest
+Rayleigh speed of any layer it is dense; below, where every wave of every layer is evanescent and
+the function varies slowly, it has :data:`N_LOW` points geometric in c (a dense film loads the
+surface by its mass and takes the R mode below every layer's Rayleigh speed: 0.87 x the slowest
+in a random sample of stacks) and ``c_lo`` itself. It is the union of that, of
+(i) :data:`N_TOP` points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
 (ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
 spacing of a point of (iii)), and (iii) points where the total vertical phase
 Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
@@ -26,10 +28,9 @@ cell into two brackets; the pair is missed only if the dip between the two roots
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
 so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
 
-Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c from differences of the scalar
-secular function at the root (fourth-order stencils, central or one-sided at t or kh = 0; steps
-from :data:`DIFF_STEP` and :data:`DIFF_STEP_K`; the positive normalisations of F drop out at a zero
-of F), 1e-7 or better against the general solver's energy velocity. Power flow is along x1 (angle 0).
+Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c, the exact derivatives of the
+secular function at the root (those of the last Newton evaluation; the positive normalisations of
+F drop out at a zero of F). Power flow is along x1 (angle 0).
 """
 from __future__ import annotations
 
@@ -38,27 +39,30 @@ import math
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
+from surfwave.layers.isotropic_deriv import secular_d
 
-__all__ = ["CHUNK", "C_TOL", "Rows", "family_roots", "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
 #: Refinement iterations at most.
 MAX_ITER = 60
-#: Speeds per chunk of the upward scan.
-CHUNK = 48
+#: Speeds per chunk of the upward scan (about: the grid is cut into near-equal chunks).
+CHUNK = 32
 #: Points uniform in t and uniform in c.
-N_BASE = 40
+N_BASE = 20
+#: Lowest speed searched, in units of the slowest shear speed of any layer (the general path's floor).
+FLOOR = 0.05
+#: Points geometric in c from the floor to c_lo (mass loading by a dense film takes R below c_lo).
+N_LOW = 10
+#: Points geometric in t from 1e-7 to 0.02 (next to c_lim, where modes enter).
+N_TOP = 12
 #: Phase step of the grid, radians.
-PHASE_STEP = math.pi / 8
+PHASE_STEP = math.pi / 4
 #: Parabolic / golden steps hunting two roots hidden in one grid cell.
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
-#: Largest phase change (radians) over a step of the fourth-order differences of the group velocity.
-DIFF_STEP = 1e-4
-#: The same for kh (F is noisier there, truncation milder: measured on fast films and three-film stacks).
-DIFF_STEP_K = 2e-3
 
 
 
@@ -75,6 +79,13 @@ class Rows:
 
     def __init__(self, base: np.ndarray, freq: bool) -> None:
         self.base, self.freq = np.asarray(base, dtype=float), freq
+        self.split: int | None = None          # set by both(): rows from here on are SH
+
+    def both(self) -> Rows:
+        """These rows twice: P-SV rows 0 ... n - 1, SH rows n ... 2n - 1 (prefix "RL" of the refinement)."""
+        out = Rows(np.concatenate([self.base, self.base]), self.freq)
+        out.split = self.base.size
+        return out
 
     def grid(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
         """kh (r, n) of rows (r,) at speeds c (n,)."""
@@ -111,14 +122,16 @@ def slowest_speed(st: IsoStack) -> float:
 
 
 def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
-    """Ascending speeds (n,) in (c_lo, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    """Ascending speeds (n,) in [c_floor, c_lim) (module docstring), for the rows' largest kh at each speed."""
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    top = np.geomspace(1e-7, 0.02, 24, endpoint=False)
+    top = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
-    parts = [c_lim * np.sqrt(1.0 - top * top)]
+    c_floor = FLOOR * float(st.shear.min())
+    low = np.geomspace(c_floor, c_lo, N_LOW, endpoint=False) if c_floor < c_lo else np.zeros(0)
+    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]       # c_lo itself, always
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
         nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
@@ -136,7 +149,8 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
             base = base[near > 0.5 * dc]
     g = np.unique(np.concatenate(parts + [base]))
-    return g[(g > c_lo) & (g < c_lim)]
+    g = g[(g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)]              # c_lo once (not also rounded from t_hi)
+    return g[(g >= min(c_floor, c_lo)) & (g < c_lim)]
 
 
 def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
@@ -204,7 +218,7 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
 
 def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
           ) -> tuple[np.ndarray, ...]:
-    """Brackets (row, lower speed, upper speed, F at both) of the first ``need`` roots of each row.
+    """Brackets (row, lower speed, upper speed, F at both, a third grid speed next to them or NaN, F there).
 
     The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
     change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
@@ -219,11 +233,14 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     hi: list[np.ndarray] = []
     flo: list[np.ndarray] = []
     fhi: list[np.ndarray] = []
+    c3: list[np.ndarray] = []                                          # a third grid point next to the bracket
+    f3: list[np.ndarray] = []
     cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-    for start in range(0, grid.size, CHUNK):
+    cuts = np.linspace(0, grid.size, max(round(grid.size / CHUNK), 1) + 1).astype(int)   # near-equal chunks
+    for start, stop in zip(cuts[:-1], cuts[1:]):
         if act.size == 0:
             break
-        cn = grid[start:start + CHUNK]
+        cn = grid[start:stop]
         kernels = None
         if prefix == "R" and st.frac.size > 1:
             X = st.rho * (cn[:, None] ** 2) / st.s
@@ -242,6 +259,9 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         hi.append(c[j1 + 1])
         flo.append(F[r1, j1])
         fhi.append(F[r1, j1 + 1])
+        j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, c.size - 1))
+        c3.append(np.where(j3 == j1 + 1, np.nan, c[j3]))
+        f3.append(F[r1, j3])
         if c.size >= 3:
             # a local minimum of |F| between cells without a sign change: two roots may hide there
             aF = np.abs(F)
@@ -254,121 +274,130 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         live = found[act] < need
         act, c_old, F_old = act[live], c[-2:], F[live][:, -2:]
     if cands:
-        r2, c3, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
+        r2, c3_, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
         if r2.size:
-            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3, F3)
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3_, F3)
             rr += [r2[ok], r2[ok]]
-            lo += [c3[ok, 0], x[ok]]
-            hi += [x[ok], c3[ok, 2]]
+            lo += [c3_[ok, 0], x[ok]]
+            hi += [x[ok], c3_[ok, 2]]
             flo += [F3[ok, 0], fx[ok]]
             fhi += [fx[ok], F3[ok, 2]]
+            c3 += [c3_[ok, 2], c3_[ok, 0]]
+            f3 += [F3[ok, 2], F3[ok, 0]]
     if not rr:
-        return np.zeros(0, dtype=int), np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0)
-    R, LO, HI, FLO, FHI = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi))
+        return np.zeros(0, dtype=int), *(np.zeros(0) for _ in range(6))
+    R, LO, HI, FLO, FHI, C3, F3_ = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi, c3, f3))
     srt = np.lexsort((LO, R))
     keep = np.arange(R.size) - np.searchsorted(R[srt], R[srt]) < need        # rank within the row
-    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI))
+    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI, C3, F3_))
+
+
+def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
+          ) -> tuple[np.ndarray, ...]:
+    """:func:`secular_d` (with ``ratio``) of each point's family at (row r, t, kh) (m,).
+
+    Prefix "RL": rows from ``rows_of.split`` on are SH; a family without an active point (``act``)
+    is not evaluated (its values are NaN).
+    """
+    if prefix != "RL":
+        return secular_d(st, prefix, t, kh, ratio=True)
+    sh = r >= rows_of.split
+    out = np.full((4, t.size), np.nan)
+    for m, p in ((~sh, "R"), (sh, "L")):
+        if (act & m).any():
+            out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
+    return out[0], out[1], out[2], out[3]
 
 
 def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
-            flo: np.ndarray, fhi: np.ndarray) -> np.ndarray:
-    """Safeguarded secant iteration in t on all brackets (c in (lo, hi), of rows r) at once; speeds (m,), m/s.
+            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
 
-    The secant through the two latest iterates (order 1.6); bisection where it leaves the bracket or
-    the bracket stalls. Converged: a secant step below the tolerance (C_TOL relative in c), a bracket
-    narrower than it, or F = 0 exactly.
+    Starts at the inverse quadratic interpolation through the bracket ends and the third grid point
+    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); Newton
+    steps along the row (at fixed kh, or at fixed frequency kh = omega H / c) with the exact
+    derivative (:func:`secular_d`); bisection where a step leaves the bracket or, every third
+    step, where the bracket has not halved and the steps do not shrink tenfold.
+    Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
+    returned) or, after two Newton steps, one whose predicted remaining error (quadratic
+    convergence: step^3 / previous step^2) is below a tenth of it; a bracket narrower than the
+    tolerance, or F = 0 exactly. The group velocity
+    v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
+    """
+    with np.errstate(all="ignore"):
+        return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+
+
+def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
+            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The loop of :func:`_refine` (floating-point warnings off: converged points ride along unused).
+
+    Every point is evaluated at every iteration (one vectorised call costs the same for a few
+    hundred points as for a few); a converged point's answer is frozen when it converges.
     """
     c_lim = st.c_lim
-
-    def fun(which: np.ndarray, t: np.ndarray) -> np.ndarray:
-        c = c_lim * np.sqrt(1.0 - t * t)
-        return _secular(st, prefix, c, rows_of.pairs(r[which], c)[None, :])[0]
-
-    idx = np.arange(lo.size)
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
-    x0, f0, x1, f1 = a.copy(), fa.copy(), z.copy(), fz.copy()   # the two latest iterates
-    width = np.abs(z - a)
-    out = 0.5 * (a + z)
+    y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
+    x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
+         + y * fa * fz / ((f3 - fa) * (f3 - fz)))
+    left, right = np.minimum(a, z), np.maximum(a, z)
+    x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
+    x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
+    width = right - left
+    out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
+    act = np.ones(lo.size, dtype=bool)
+    newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
+    xp, rp = np.full(lo.size, np.nan), np.full(lo.size, np.nan)            # the previous iterate and F_kh / F_t
     for it in range(MAX_ITER):
-        if idx.size == 0:
-            break
-        left, right = np.minimum(a, z), np.maximum(a, z)
-        with np.errstate(all="ignore"):
-            x = x1 - f1 * (x1 - x0) / (f1 - f0)
-        # bisection where the secant leaves the bracket or, every third step, where the bracket
-        # has not halved over the last three (a stalled secant)
-        slow = (it % 3 == 2) & (right - left > 0.5 * width)
-        bis = ~np.isfinite(x) | (x <= left) | (x >= right) | slow
-        # a secant step below the tolerance from the latest iterate that leaves the bracket (rounding:
-        # F there is at its noise level) ends the iteration at that iterate
-        edge = np.isfinite(x) & (np.abs(x - x1) <= np.minimum(C_TOL * (1.0 - x1 * x1) / x1, 1e-8 * x1))
-        if edge.any():
-            out[idx[edge]] = x1[edge]
-            keep = ~edge
-            idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right = (
-                v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, x, bis, left, right))
-            if idx.size == 0:
-                break
-        x = np.where(bis, 0.5 * (left + right), x)
-        if it % 3 == 2:
-            width = right - left
-        fx = fun(idx, x)
+        c = c_lim * np.sqrt(1.0 - x * x)
+        kh = rows_of.pairs(r, c)
+        fx, ft, fk, rk = _at_d(st, prefix, rows_of, r, x, kh, act)
+        # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
+        step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
         side_a = (fx > 0) == (fa > 0)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
-        tol = np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x)
-        done = ((np.abs(x - x1) <= tol) & ~bis) | (np.abs(z - a) <= tol) | (fx == 0)
-        x0, f0, x1, f1 = x1, f1, x, fx
-        out[idx[done]] = x[done]
-        keep = ~done
-        idx, a, fa, z, fz, x0, f0, x1, f1, width = (v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width))
-    out[idx] = x1
-    return c_lim * np.sqrt(1.0 - out * out)
+        left, right = np.minimum(a, z), np.maximum(a, z)
+        xn = x - step
+        # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
+        tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
+        # quadratic convergence: after a Newton step that follows a Newton step, the error left is
+        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
+        # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
+        # away): v_g to ~ the step times the previous step.
+        ast = np.abs(step)
+        conv = newt & (ast <= 0.1 * np.abs(prev))
+        fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
+        carried = rk + (rk - rp) / (x - xp) * (fin - x)
+        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below 1e-7 c: its error,
+        # a small fraction of it (the ratio is smooth: :func:`secular_d`), cannot matter
+        small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= 1e-7 * c * c
+        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small))
+                      | (right - left <= tol) | (fx == 0))
+        out = np.where(done, fin, out)
+        ratio = np.where(done, np.where(conv & np.isfinite(carried), carried, rk), ratio)
+        act &= ~done
+        if not act.any():
+            break
+        slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
+        bis = ~((xn > left) & (xn < right)) | slow
+        newt, prev, xp, rp = ~bis, step, x, rk
+        x = np.where(bis, 0.5 * (left + right), xn)
+        if it % 3 == 2:
+            width = right - left
+    else:                                          # not converged in MAX_ITER (not seen): the last iterate
+        c = c_lim * np.sqrt(1.0 - x * x)
+        rk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)[3]
+        out, ratio = np.where(act, x, out), np.where(act, rk, ratio)
+    c = c_lim * np.sqrt(1.0 - out * out)
+    kh = rows_of.pairs(r, c)
+    return c, c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
 
 
-def _group_velocity(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
-    """v_g = c + kh dc/dkh at modes (c, kh) (m,), by implicit differentiation of the secular function."""
-    if c.size == 0:
-        return np.zeros(0)
-    c_lim = st.c_lim
-    t = np.sqrt(1.0 - (c / c_lim) ** 2)
-    # steps: each film phase kh h_l/H nu (nu = |1 - c^2/v^2|^(1/2), at least 1/(kh h_l/H): F is analytic
-    # in nu^2) moves by at most DIFF_STEP (DIFF_STEP_K) radians, and t (kh) by at most as much
-    rate_t, rate_k = np.ones(c.size), np.ones(c.size)
-    for v in (st.shear[:-1], st.longitudinal[:-1]):
-        for f, vl in zip(st.frac, v):
-            kf = kh * f
-            nu = np.maximum(np.sqrt(np.abs(1.0 - (c / vl) ** 2)), 1.0 / np.maximum(kf, 1e-12))
-            rate_t += kf * c_lim * c_lim * t / (vl * vl * nu)
-            rate_k += f * nu
-    ht, hk = DIFF_STEP / rate_t, DIFF_STEP_K / rate_k
-    ot, wt = _stencil(t, ht)
-    ok, wk = _stencil(kh, hk)
-    m = c.size
-    tt = np.concatenate([t + ht * ot.T, np.broadcast_to(t, (5, m))]).ravel()
-    kk = np.concatenate([np.broadcast_to(kh, (5, m)), kh + hk * ok.T]).ravel()
-    F = _secular(st, prefix, c_lim * np.sqrt(1.0 - tt * tt), kk[None, :])[0].reshape(10, m)
-    F_t = (wt.T * F[:5]).sum(axis=0) / ht
-    F_k = (wk.T * F[5:]).sum(axis=0) / hk
-    with np.errstate(all="ignore"):
-        dc_dkh = F_k * c_lim * c_lim * t / (F_t * c)     # -F_k / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
-    return c + kh * dc_dkh
-
-
-_CENTRAL = (np.array([-2.0, -1.0, 0.0, 1.0, 2.0]), np.array([1.0, -8.0, 0.0, 8.0, -1.0]) / 12.0)
-_FORWARD = (np.arange(5.0), np.array([-25.0, 48.0, -36.0, 16.0, -3.0]) / 12.0)
-
-
-def _stencil(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets (in steps h) and weights (m, 5) of a fourth-order first derivative at x (m,) >= 0:
-    central where x >= 2 h, forward (no negative argument) otherwise."""
-    central = (x >= 2.0 * h)[:, None]
-    return (np.where(central, _CENTRAL[0], _FORWARD[0]), np.where(central, _CENTRAL[1], _FORWARD[1]))
-
-
-def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) -> tuple[np.ndarray, np.ndarray]:
+def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
     """Speeds and group velocities (n_rows, n_modes) of one family's guided modes, ascending, NaN-padded.
 
     Parameters
@@ -380,29 +409,69 @@ def family_roots(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None) ->
         The rows (kh or frequencies; the row-count guard compares neighbours in ascending order).
     modes : int or None
         At most this many modes per row (the slowest); None: all.
+    grid : ndarray, optional
+        ``speed_grid(st, rows_of)`` when already computed (both families share it).
     """
     n_rows = rows_of.base.size
-    need = np.inf if modes is None else modes
-    rows = np.arange(n_rows)
-    r, lo, hi, flo, fhi = _scan(st, prefix, speed_grid(st, rows_of), rows_of, rows, need)
-    counts = np.bincount(r, minlength=n_rows)
-    order = np.argsort(rows_of.base, kind="stable")
-    cs = counts[order]
-    dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
-    if dip.size:
-        more = _scan(st, prefix, speed_grid(st, rows_of, RESCAN), rows_of, dip, need)
-        better = np.bincount(more[0], minlength=n_rows) > counts
-        keep, keep2 = ~better[r], better[more[0]]
-        r, lo, hi, flo, fhi = (np.concatenate([u[keep], v[keep2]]) for u, v in zip((r, lo, hi, flo, fhi), more))
+    r, lo, hi, flo, fhi, c3, f3 = _brackets(st, prefix, rows_of, modes, grid)
+    if r.size == 0:
+        return np.full((n_rows, 0), np.nan), np.full((n_rows, 0), np.nan)
+    roots, vg = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+    return _table(n_rows, r, roots, vg)
+
+
+def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray | None = None
+                  ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`family_roots` of P-SV and SH (in that order), the brackets of both refined in one Newton loop."""
+    n = rows_of.base.size
+    grid = speed_grid(st, rows_of) if grid is None else grid
+    bR, bL = (_brackets(st, p, rows_of, modes, grid) for p in ("R", "L"))
+    r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v]) for k, (u, v) in enumerate(zip(bR, bL)))
+    roots, vg = _refine(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3)
+    sh = r >= n
+    return [_table(n, r[~sh], roots[~sh], vg[~sh]), _table(n, r[sh] - n, roots[sh], vg[sh])]
+
+
+def _table(n_rows: int, r: np.ndarray, roots: np.ndarray, vg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds and group velocities of roots (m,) of rows r as (n_rows, width) tables, ascending, NaN-padded."""
     width = int(np.bincount(r, minlength=n_rows).max(initial=0))
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
         return c_out, v_out
-    roots = _refine(st, prefix, lo, hi, rows_of, r, flo, fhi)
-    vg = _group_velocity(st, prefix, roots, rows_of.pairs(r, roots))
     srt = np.lexsort((roots, r))
     r, roots, vg = r[srt], roots[srt], vg[srt]
     start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
     col = np.arange(r.size) - start[r]
     c_out[r, col], v_out[r, col] = roots, vg
     return c_out, v_out
+
+
+def _family_grid(st: IsoStack, prefix: str, grid: np.ndarray) -> np.ndarray:
+    """The grid a family scans: SH modes are faster than the slowest shear speed v of any layer
+    (omega^2 int rho v^2 = int mu (v'^2 + k^2 v^2) >= k^2 min(mu / rho) int rho v^2), so SH starts just
+    below v; P-SV scans all of it."""
+    if prefix != "L":
+        return grid
+    v = float(st.shear.min())
+    return np.concatenate([[v * (1.0 - 1e-9)], grid[grid > v]])
+
+
+def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None
+              ) -> tuple[np.ndarray, ...]:
+    """The scan of :func:`family_roots` with its rescan of rows with too few modes: :func:`_scan`'s brackets."""
+    n_rows = rows_of.base.size
+    need = np.inf if modes is None else modes
+    rows = np.arange(n_rows)
+    grid = speed_grid(st, rows_of) if grid is None else grid
+    r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, _family_grid(st, prefix, grid), rows_of, rows, need)
+    counts = np.bincount(r, minlength=n_rows)
+    order = np.argsort(rows_of.base, kind="stable")
+    cs = counts[order]
+    dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
+    if dip.size:
+        more = _scan(st, prefix, _family_grid(st, prefix, speed_grid(st, rows_of, RESCAN)), rows_of, dip, need)
+        better = np.bincount(more[0], minlength=n_rows) > counts
+        keep, keep2 = ~better[r], better[more[0]]
+        r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
+                                       for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
+    return r, lo, hi, flo, fhi, c3, f3

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, iso_stack
-from surfwave.layers.isotropic_modes import Rows, family_roots
+from surfwave.layers.isotropic_modes import Rows, both_families, family_roots
 from surfwave.layers.modes import label as mode_label
 from surfwave.layers.partial import Family
 from surfwave.layers.stack import Stack
@@ -33,7 +33,7 @@ def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
     st = iso_stack(stack)
     rows_of = Rows(kh, freq=False)
     fams = _families(st)
-    sols = [family_roots(st, f.prefix, rows_of, modes) for f in fams]
+    sols = both_families(st, rows_of, modes)                          # [P-SV, SH], the order of fams
     cs = [s[0] for s in sols]
     pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
     C, labels, (vg, PF) = merge_families(fams, cs, [[s[1] for s in sols], pfs])
@@ -53,7 +53,7 @@ def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> d
     wH = 2 * np.pi * f * st.H
     rows_of = Rows(wH, freq=True)
     fams = _families(st)
-    sols = [family_roots(st, fm.prefix, rows_of, modes) for fm in fams]
+    sols = both_families(st, rows_of, modes)                          # [P-SV, SH], the order of fams
     cs = [s[0] for s in sols]
     pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
     C, labels, (vg, khm, PF) = merge_families(fams, cs, [[s[1] for s in sols], [wH[:, None] / c for c in cs], pfs])

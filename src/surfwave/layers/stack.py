@@ -25,6 +25,7 @@ normal, crystal X along the propagation).
 """
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, replace
@@ -278,13 +279,32 @@ def _euler_axes(euler, where: str) -> np.ndarray:
     return np.asarray(euler_lab_axes(a), dtype=float)
 
 
+@functools.lru_cache(maxsize=1)
+def _default_film_axes() -> np.ndarray:
+    """Lab axes of a film without Euler angles (crystal axes = lab axes), remembered (read-only)."""
+    R = np.asarray(euler_lab_axes(0, 0, 0), dtype=float)
+    R.setflags(write=False)
+    return R
+
+
+@functools.lru_cache(maxsize=64)
+def _named_axes(surface: str, direction: str) -> np.ndarray:
+    """:func:`lab_axes` of a named surface and direction, remembered (read-only; errors are not cached)."""
+    R = np.asarray(lab_axes(surface, direction), float)
+    R.setflags(write=False)
+    return R
+
+
 def _substrate_axes(euler, surface: str, direction) -> tuple[np.ndarray, str]:
     """Lab axes (3, 3) of the substrate and its surface in words (as :func:`surfwave.material` names it)."""
     if euler is not None:
         return _euler_axes(euler, "substrate"), "of the Euler angles"
     with _at("substrate"):
-        which = direction if isinstance(direction, str) else validate.angle_values(direction, "direction")
-        R = np.asarray(lab_axes(surface, which), float)
+        if isinstance(surface, str) and isinstance(direction, str):
+            R = _named_axes(surface, direction).copy()
+        else:
+            which = direction if isinstance(direction, str) else validate.angle_values(direction, "direction")
+            R = np.asarray(lab_axes(surface, which), float)
     if R.ndim != 2:
         raise InputError(f"substrate: one propagation direction at a time, got {direction!r}")
     return R, str(surface)
@@ -353,7 +373,7 @@ def resolve_stack(substrate, films: Sequence = (), *, euler=None, surface: str =
             raise InputError(f"{where}: give a mapping with a thickness, e.g. {{'name': {f!r}, 'thickness': 1e-6}}")
         if not isinstance(f, Mapping):
             raise InputError(f"{where} must be a mapping (a material and its thickness), got {f!r}")
-        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else np.asarray(euler_lab_axes(0, 0, 0))
+        R = _euler_axes(f["euler"], where) if f.get("euler") is not None else _default_film_axes().copy()
         rec = _material(f, where)
         t = _thickness(f.get("thickness"), where)
         sig = _stress(f.get("stress"), where, "of the film and its interfaces")

@@ -1,0 +1,206 @@
+"""The isotropic secular functions with their exact derivatives (forward mode), for Newton steps and group velocity.
+
+At points (t_j, kh_j), t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed), the recursions
+of :mod:`surfwave.layers.isotropic` are carried with two tangents: d/dt at fixed kh and d/dkh at
+fixed c. Each call returns the value of :func:`secular_psv` / :func:`secular_sh` and its two
+derivatives. P-SV: the tangents hold every positive factor (the overflow scale g of each
+evanescent wave, the renormalisation of the vector) constant, and the factors' own
+log-derivatives are added (d log g = -t dr / dt, d log |m| = m . m' / |m|^2), so the derivatives
+are those of the function itself (Newton on the scaled function, which is bounded,
+converges where Newton on the unscaled one, dominated by exp(r t), would crawl). SH: the function
+tau / |(v, tau)| is invariant under positive factors, so they are held constant and drop out.
+
+Derivatives of the layer functions (unscaled C(s) = cosh(sqrt(s) t), S(s) = sinh(sqrt(s) t) / sqrt(s),
+s = r^2, t the layer thickness in units of 1/k): dC/ds = t S / 2, dS/ds = (t C - S) / (2 s) (by its
+series t^3 sum_k>=1 (s t^2)^(k-1) k / (2k + 1)! where |s t^2| < 1/2: no cancellation at a bulk
+speed), dC/dt = s S, dS/dt = C. The c-dependence of the substrate's minors, the closed-form top row
+and the kernels of buried films (polynomial or rational in X, r_a, r_b, no branch switch) is taken
+by a complex step of :data:`STEP` in t: exact to rounding.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from surfwave.layers.isotropic import IsoStack, _substrate_psv, _top_row, psv_kernels
+
+__all__ = ["STEP", "secular_d"]
+
+#: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
+STEP = 1e-20
+#: Series coefficients k / (2k + 1)! of (t C - S) / (2 s t^3), k = 1 ... 8, highest first (Horner);
+#: for |s t^2| < 1/2 the next term is below 1e-16 of the sum.
+_SERIES = np.array([k / math.factorial(2 * k + 1) for k in range(8, 0, -1)])
+
+
+def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """g dS/ds of one wave type (scaled C, S, g of :func:`wave_functions`), elementwise (m,)."""
+    x = r2 * t * t
+    small = np.abs(x) < 0.5
+    with np.errstate(all="ignore"):
+        out = (t * C - S) / (2.0 * r2)
+    if small.any():
+        xs, ts = x[small], t[small]
+        acc = np.full(xs.shape, _SERIES[0])
+        for a in _SERIES[1:]:
+            acc = acc * xs + a
+        out[small] = g[small] * ts ** 3 * acc
+    return out
+
+
+def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tuple[np.ndarray, ...]:
+    """Scaled C, S and their tangents of one wave type at points (m,) (or several: r2 (k, m), t (m,)).
+
+    Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
+    log-derivatives of g itself along t and along kh. C, S, g are those of :func:`wave_functions`
+    (the same formulas, both branches evaluated on all points and selected: no indexing).
+    """
+    t = np.broadcast_to(t, r2.shape)
+    ev = r2 > 0
+    r = np.sqrt(np.abs(r2))
+    rt = r * t
+    with np.errstate(all="ignore"):
+        e = np.expm1(-rt)
+        u = np.tan(0.5 * rt)
+        d = 1.0 / (1.0 + u * u)
+        g = np.where(ev, 1.0 + e, 1.0)
+        C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - u * u) * d)
+        S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
+        S = np.where(r > 0, S, t)
+        lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
+    dC = 0.5 * t * S * dr2
+    dS = _dS_ds(r2, t, C, S, g) * dr2
+    return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
+
+
+def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
+    """m / |m| along the last axis and the derivatives of that unit vector from those of m."""
+    n = np.sqrt((m * m).sum(axis=-1, keepdims=True))
+    u = m / n
+    return (u, *(d / n - u * (u * d).sum(axis=-1, keepdims=True) / n for d in tangents))
+
+
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh) of the P-SV secular function at points (m,)."""
+    c_lim2 = st.c_lim ** 2
+    tc = tau + 1j * STEP
+    Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
+    X, dX = Xc.real, Xc.imag / STEP
+    Msub = st.lam[-1] + 2.0 * st.mu[-1]
+    mc = _substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
+    m, mt = mc.real, mc.imag / STEP
+    mk = np.zeros_like(m)
+    L = st.frac.size
+    m, mt = _unit(m, mt)
+    if L == 0:
+        return m[:, 5], mt[:, 5], mk[:, 5], mk[:, 5] / mt[:, 5]
+    for layer in range(L - 1, -1, -1):
+        lam, mu, f = st.lam[layer], st.mu[layer], st.frac[layer]
+        M = lam + 2.0 * mu
+        t = kh * f
+        inv = np.array([[1.0 / M], [1.0 / mu]])                            # both wave types in one pass
+        (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = (
+            _layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, t, f))
+        Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
+        if layer == 0:                                                     # the NT row only, closed form
+            # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
+            kc = _top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
+            k0, k2, k3, k4 = (v.real for v in kc)
+            k0t, k2t, k3t, k4t = (v.imag / STEP for v in kc)
+            q, qt = m[:, 5] - k0, mt[:, 5] - k0t
+            P, Q = Cb * q + Sb * k2, Cb * k3 + Sb * k4
+            F = ga * gb * k0 + Ca * P + Sa * Q
+            Pt = dCb * q + Cb * qt + dSb * k2 + Sb * k2t
+            Qt = dCb * k3 + Cb * k3t + dSb * k4 + Sb * k4t
+            Ft = ga * gb * k0t + dCa * P + Ca * Pt + dSa * Q + Sa * Qt
+            Pk, Qk = kCb * q + kSb * k2, kCb * k3 + kSb * k4
+            if L > 1:                                                      # the vector below depends on kh
+                k0k, k2k, k3k, k4k = _top_row(mu, M, X[:, 0], mk)
+                Pk = Pk + Cb * (mk[:, 5] - k0k) + Sb * k2k
+                Qk = Qk + Cb * k3k + Sb * k4k
+                Fk = ga * gb * k0k + kCa * P + Ca * Pk + kSa * Q + Sa * Qk
+            else:
+                Fk = kCa * P + Ca * Pk + kSa * Q + Sa * Qk
+            return F, Ft + F * Dt, Fk + F * Dk, Fk / Ft        # the last: g held constant (module docstring)
+        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
+        wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
+        wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
+        Kc = psv_kernels(lam, mu, Xc[:, layer])                            # (m, 5, 6, 6)
+        K, Kt = Kc.real, Kc.imag / STEP
+        Km = np.einsum("npij,nj->npi", K, m)
+        Ktm = np.einsum("npij,nj->npi", Kt, m)
+        Kmt = np.einsum("npij,nj->npi", K, mt)
+        Kmk = np.einsum("npij,nj->npi", K, mk)
+        W = np.stack(w, axis=1)[:, :, None]                                # (m, 5, 1)
+        m_new = (W * Km).sum(axis=1)
+        mt = (W * (Ktm + Kmt)).sum(axis=1) + sum(wt[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+        mk = (W * Kmk).sum(axis=1) + sum(wk[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+        m, mt, mk = _unit(m_new, mt + m_new * Dt[:, None], mk + m_new * Dk[:, None])
+    raise AssertionError("unreachable")
+
+
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh) of the SH secular function tau / |(v, tau)| at the top, points (m,).
+
+    F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
+    after each film) is held constant in the tangents and F's derivatives are exact (no N).
+    """
+    c_lim2 = st.c_lim ** 2
+    X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
+    dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
+    mu_s = st.mu[-1]
+    v, s = np.ones_like(tau), -mu_s * tau                              # substrate: (1, -mu r_b), r_b = t
+    vt, st_ = np.zeros_like(tau), np.full(tau.shape, -mu_s)
+    vk, sk = np.zeros_like(tau), np.zeros_like(tau)
+    for layer in range(st.frac.size - 1, -1, -1):
+        mu, f = st.mu[layer], st.frac[layer]
+        rb2 = 1.0 - X[:, layer] / mu
+        drb2 = -dX[:, layer] / mu
+        Cb, Sb, _, dC, dS, kC, kS, _, _ = _layer_d(rb2, drb2, kh * f, f)
+        v_new = Cb * v - Sb * s / mu
+        s_new = -mu * rb2 * Sb * v + Cb * s
+        vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
+                   -mu * ((drb2 * Sb + rb2 * dS) * v + rb2 * Sb * vt) + dC * s + Cb * st_)
+        vk, sk = (kC * v + Cb * vk - (kS * s + Sb * sk) / mu,
+                  -mu * rb2 * (kS * v + Sb * vk) + kC * s + Cb * sk)
+        v, s = v_new, s_new
+        if layer:                                                      # renormalise (held constant)
+            n = 1.0 / np.hypot(v, s)
+            v, s, vt, st_, vk, sk = v * n, s * n, vt * n, st_ * n, vk * n, sk * n
+    n2 = v * v + s * s
+    n = np.sqrt(n2)
+    vn3 = v / (n2 * n)
+    Ft, Fk = vn3 * (st_ * v - s * vt), vn3 * (sk * v - s * vk)
+    return s / n, Ft, Fk, Fk / Ft
+
+
+def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio: bool = False
+              ) -> tuple[np.ndarray, ...]:
+    """The family's secular function and its exact derivatives at points (m,).
+
+    Parameters
+    ----------
+    st : IsoStack
+    prefix : {"R", "L"}
+        P-SV or SH.
+    tau : ndarray, shape (m,)
+        t = sqrt(1 - c^2 / c_lim^2) in (0, 1).
+    kh : ndarray, shape (m,)
+        Wavenumber x total film thickness.
+    ratio : bool
+        Also return a smooth F_kh / F_t (below).
+
+    Returns
+    -------
+    F, F_t, F_kh : ndarray, shape (m,)
+        F (as :func:`secular_psv` / :func:`secular_sh`), dF/dt at fixed kh and dF/dkh at fixed c.
+    R : ndarray, shape (m,), with ``ratio``
+        F_kh / F_t of the function without the top film's overflow scale g (SH: of F itself, which has
+        none): equal to F_kh / F_t at a root, and smooth across a film's bulk speed, where g (so F_t
+        away from a root) has a kink; the group velocity carried from a near-root iterate uses it.
+    """
+    tau = np.asarray(tau, dtype=float)
+    kh = np.asarray(kh, dtype=float)
+    out = _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
+    return out if ratio else out[:3]
