@@ -16,12 +16,12 @@ import surfwave.layers.solve as solve
 from surfwave.errors import InputError
 from surfwave.layers.isotropic import (
     _c2,
-    _top_row,
     eligible,
     is_isotropic,
     iso_stack,
     psv_kernels,
     secular_psv,
+    top_row,
     wave_functions,
 )
 from surfwave.layers.stack import isotropic_voigt, resolve_stack
@@ -86,7 +86,7 @@ def test_compound_propagator_equals_the_second_compound_of_expm():
             ref = _c2(sl.expm(-A * t))
             assert np.abs(got - ref).max() <= 1e-13 * np.abs(ref).max()
         m = np.array([0.3, -0.2, 0.5, 0.1, 0.7, -0.4])
-        k0, k2, k3, k4 = _top_row(mu, M, np.array([X]), m)
+        k0, k2, k3, k4 = top_row(mu, M, np.array([X]), m)
         assert np.allclose([k0[0], k2[0], k3[0], k4[0]], K[[0, 2, 3, 4], 5] @ m, rtol=1e-13, atol=1e-13)
         assert np.isclose(K[1, 5] @ m, m[5] - k0[0], rtol=1e-13, atol=1e-13)
 

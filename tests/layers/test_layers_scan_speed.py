@@ -4,9 +4,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from surfwave.layers.modes import _hermitian_eigenvalues
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.recursion import top_impedance
+from surfwave.layers.scan import hermitian_eigenvalues
 from surfwave.layers.stack import resolve_stack
 
 
@@ -29,7 +29,7 @@ def test_closed_form_eigenvalues_match_lapack():
             Z[50:100] = np.einsum("mij,j,mkj->mik", U, d, np.conj(U))
             Z[100] = 3.0 * np.eye(3)
         Z[101] = np.nan
-        w, ref = _hermitian_eigenvalues(Z), np.linalg.eigvalsh(np.where(np.isnan(Z), 0.0, Z))
+        w, ref = hermitian_eigenvalues(Z), np.linalg.eigvalsh(np.where(np.isnan(Z), 0.0, Z))
         assert np.isnan(w[101]).all()
         ok = np.arange(len(Z)) != 101
         scale = np.abs(ref[ok]).max(axis=-1, keepdims=True)

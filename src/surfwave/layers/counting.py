@@ -30,8 +30,8 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.layers.partial import Blocks, Family
-from surfwave.layers.recursion import _expi, _layer_eigs, boundary_matrix
-from surfwave.layers.scan import _hermitian_eigenvalues
+from surfwave.layers.recursion import boundary_matrix, expi, layer_eigs
+from surfwave.layers.scan import hermitian_eigenvalues
 from surfwave.solvers.boundary import Boundary
 
 __all__ = ["applicable", "bisect_counts", "mode_count", "needed", "sublayers"]
@@ -104,13 +104,13 @@ def _right(Y: np.ndarray, X: np.ndarray) -> np.ndarray:
 def _inertia(Z: np.ndarray, fast: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Number of negative eigenvalues (-10^6 where not finite) and log |det| of Hermitian matrices (..., n, n).
 
-    ``fast``: closed-form eigenvalues for n <= 3 (:func:`surfwave.layers.scan._hermitian_eigenvalues`,
+    ``fast``: closed-form eigenvalues for n <= 3 (:func:`surfwave.layers.scan.hermitian_eigenvalues`,
     absolute error ~ 1e-13 |Z|: the grid's counts), else LAPACK (the root's last digits).
     """
     with np.errstate(all="ignore"):
         bad = ~np.isfinite(Z).all(axis=(-1, -2))
         Zs = np.where(bad[..., None, None], 0.0, Z)
-        w = _hermitian_eigenvalues(Zs) if fast else np.linalg.eigvalsh(Zs)
+        w = hermitian_eigenvalues(Zs) if fast else np.linalg.eigvalsh(Zs)
         return np.where(bad, -10**6, (w < 0).sum(axis=-1)), np.log(np.abs(w)).sum(axis=-1)
 
 
@@ -131,12 +131,12 @@ def stiffness(b: Blocks, fam: Family, c, kh, electrical: str | Boundary,
 
     det K is the product of the pivots' determinants (Schur); it is continuous in c (no member has
     a pole) and its sign, (-1)^count, changes at every mode: a pole-free secular function.
-    ``eigs``: the layers' eigen-solutions at c (``surfwave.layers.recursion._layer_eigs``), if known.
+    ``eigs``: the layers' eigen-solutions at c (``surfwave.layers.recursion.layer_eigs``), if known.
     """
     c = np.atleast_1d(np.asarray(c, dtype=float))
     kh = np.broadcast_to(np.asarray(kh, dtype=float), (c.size, np.shape(kh)[-1]))
     if eigs is None:
-        eigs = _layer_eigs(b, fam, c)
+        eigs = layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
     with np.errstate(all="ignore"):
@@ -149,8 +149,8 @@ def stiffness(b: Blocks, fam: Family, c, kh, electrical: str | Boundary,
         p, V = eigs[layer]
         t = kh * (b.frac[layer] / nsub[layer])                                 # (m, k)
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
-        Ed = _expi(p[:, None, nf:] * t[..., None], True)                      # (m, k, nf), |.| <= 1
-        Eu = _expi(-p[:, None, :nf] * t[..., None], True)
+        Ed = expi(p[:, None, nf:] * t[..., None], True)                      # (m, k, nf), |.| <= 1
+        Eu = expi(-p[:, None, :nf] * t[..., None], True)
         with np.errstate(all="ignore"):
             # the sublayer with its top clamped (and grounded): amplitudes [c_u; c_d] in the null space
             # of its top rows [A_u E_u, A_d]; its lower face's state is [V_u, V_d E_d] times them
@@ -318,7 +318,7 @@ def recount(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, ik: np.nda
         pts = np.r_[pts, grid[-1]]
     far = ~(np.abs(pts[:, None] / np.asarray(avoid)[None, :] - 1.0) <= 1e-8).any(axis=1)
     pts = pts[far | (np.arange(pts.size) == 0)]
-    eigs = _layer_eigs(b, fam, pts)
+    eigs = layer_eigs(b, fam, pts)
     keep = np.ones(ik.size, dtype=bool)
     add_k: list[np.ndarray] = []
     add_c: list[np.ndarray] = []

@@ -55,7 +55,8 @@ import numpy as np
 from surfwave.layers.stack import Stack
 from surfwave.solvers.tensors import tensor_to_voigt
 
-__all__ = ["IsoStack", "eligible", "is_isotropic", "iso_stack", "secular_psv", "secular_sh", "wave_functions"]
+__all__ = ["IsoStack", "eligible", "is_isotropic", "iso_stack", "secular_psv", "secular_sh", "substrate_psv", "top_row",
+           "wave_functions"]
 
 #: Relative tolerance of the isotropy test of a stiffness.
 ISO_TOL = 1e-12
@@ -248,7 +249,7 @@ def psv_kernels(lam: float, mu: float, X: np.ndarray) -> np.ndarray:
     return np.stack([_c2(Ma) + _c2(Mb), _mixed(Ma, Mb), -_mixed(Ma, AMb), -_mixed(AMa, Mb), _mixed(AMa, AMb)], axis=1)
 
 
-def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
+def substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
     """Minors (n, 6) of the substrate's decaying solutions [1, r_a, X-2mu, -2mu r_a], [r_b, 1, -2mu r_b, X-2mu]."""
     q = X - 2.0 * mu
     rr = ra * rb
@@ -256,7 +257,7 @@ def _substrate_psv(mu: float, X: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> 
                     axis=-1)
 
 
-def _top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, ...]:
+def top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarray, ...]:
     """The NT row of K0, K2, K3, K4 of the top film applied to m (..., 6) (K1's is m_NT - K0's), closed form.
 
     With q = X - 2 mu, r_a^2 = 1 - X/M, r_b^2 = 1 - X/mu and d = m_UT - m_WN (the forms of
@@ -295,12 +296,12 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         Wavenumber x total film thickness at each (row, speed).
     kernels : list of ndarray (n, 5, 6, 6), optional
         :func:`psv_kernels` of each film below the top one at ``c`` (computed when not given; entry
-        0 is not used: the top film's row is in closed form, :func:`_top_row`).
+        0 is not used: the top film's row is in closed form, :func:`top_row`).
     """
     X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
     ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
     rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
-    m = _substrate_psv(st.mu[-1], X[:, -1], ra, rb)
+    m = substrate_psv(st.mu[-1], X[:, -1], ra, rb)
     m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
     L = st.frac.size
     if L == 0:
@@ -310,7 +311,7 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
         Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
         if layer == 0:                                                     # the NT row only: F itself
-            k0, k2, k3, k4 = _top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+            k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
             # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
             F = Cb * (m[..., 5] - k0)
             F += Sb * k2

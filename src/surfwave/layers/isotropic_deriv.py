@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from surfwave.layers.isotropic import IsoStack, _substrate_psv, _top_row, psv_kernels
+from surfwave.layers.isotropic import IsoStack, psv_kernels, substrate_psv, top_row
 
 __all__ = ["STEP", "secular_d"]
 
@@ -88,7 +88,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
     X, dX = Xc.real, Xc.imag / STEP
     Msub = st.lam[-1] + 2.0 * st.mu[-1]
-    mc = _substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
+    mc = substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
     m, mt = mc.real, mc.imag / STEP
     mk = np.zeros_like(m)
     L = st.frac.size
@@ -105,7 +105,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...
         Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
         if layer == 0:                                                     # the NT row only, closed form
             # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
-            kc = _top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
+            kc = top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
             k0, k2, k3, k4 = (v.real for v in kc)
             k0t, k2t, k3t, k4t = (v.imag / STEP for v in kc)
             q, qt = m[:, 5] - k0, mt[:, 5] - k0t
@@ -116,7 +116,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...
             Ft = ga * gb * k0t + dCa * P + Ca * Pt + dSa * Q + Sa * Qt
             Pk, Qk = kCb * q + kSb * k2, kCb * k3 + kSb * k4
             if L > 1:                                                      # the vector below depends on kh
-                k0k, k2k, k3k, k4k = _top_row(mu, M, X[:, 0], mk)
+                k0k, k2k, k3k, k4k = top_row(mu, M, X[:, 0], mk)
                 Pk = Pk + Cb * (mk[:, 5] - k0k) + Sb * k2k
                 Qk = Qk + Cb * k3k + Sb * k4k
                 Fk = ga * gb * k0k + kCa * P + Ca * Pk + kSa * Q + Sa * Qk

@@ -32,8 +32,7 @@ from surfwave.layers.counting import needed, recount
 from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, top_impedance
 from surfwave.layers.scan import POLE_SPLIT as POLE_SPLIT  # noqa: F401  (re-exported)
-from surfwave.layers.scan import _eigvalsh, _near_poles, _scan
-from surfwave.layers.scan import _hermitian_eigenvalues as _hermitian_eigenvalues  # noqa: F401
+from surfwave.layers.scan import impedance_eigvalsh, near_poles, scan_grid
 from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
 
@@ -188,7 +187,7 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
             # noise); without this a bisection would follow, and a tail of steps halving the bracket
             edge = np.flatnonzero(np.isfinite(x) & (np.abs(x - x1) <= tol_at(x1)) & ((x <= left) | (x >= right)))
             out[idx[edge]] = to_c(x1[edge])
-            got.append((idx[edge], _eigvalsh(Z1[edge])))
+            got.append((idx[edge], impedance_eigvalsh(Z1[edge])))
             keep = np.ones(idx.size, dtype=bool)
             keep[edge] = False
             idx, a, fa, z, fz, x0, f0, x1, f1, width, x, left, right, Z1, s1, s0 = (
@@ -214,7 +213,7 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
             with np.errstate(all="ignore"):
                 fast = (s < s1) & (s1 < s0) & (1e3 * s * s <= tol * s0) & np.isfinite(s0)
             pre = np.flatnonzero(((s <= tol) | fast) & ~bis)
-            w1 = _eigvalsh(Z1[pre])
+            w1 = impedance_eigvalsh(Z1[pre])
             clear = _mode_margin(w1) > 0
             pre, w1 = pre[clear], w1[clear]
             out[idx[pre]] = to_c(x[pre])
@@ -233,13 +232,13 @@ def _refine(b: Blocks, fam: Family, lo, hi, flo, fhi, kh, electrical: str | Boun
         s0, s1 = s1, np.where(bis, np.inf, np.abs(x - x1))
         x0, f0, x1, f1, Z1 = x1, f1, x, fx, Zx
         out[idx[done]] = to_c(x[done])
-        got.append((idx[done], _eigvalsh(Zx[done])))
+        got.append((idx[done], impedance_eigvalsh(Zx[done])))
         keep = ~done
         idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0 = (
             v[keep] for v in (idx, a, fa, z, fz, x0, f0, x1, f1, width, Z1, s1, s0))
     out[idx] = to_c(x1)
     if Z1 is not None:
-        got.append((idx, _eigvalsh(Z1)))
+        got.append((idx, impedance_eigvalsh(Z1)))
     if not got:
         return out, np.zeros((out.size, 0))
     w = np.concatenate([g[1] for g in got])
@@ -369,7 +368,7 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     if lowest:
         grid, D, neg, W = _scan_from_bottom(b, fam, grid, kh, electrical, v_x1)
     else:
-        grid, D, neg, W = _scan(b, fam, grid, kh, electrical)
+        grid, D, neg, W = scan_grid(b, fam, grid, kh, electrical)
     # a negative eigenvalue already at the floor speed: a mode with c^2 < 0 (surface buckling of a
     # compressed stack) or below the floor; no mode of that row is reported (see floor_unstable)
     D[:, neg[0] > _electric(fam, electrical)] = np.nan
@@ -379,7 +378,7 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
     fenced = ((grid[:-1, None] < v_x1[None, :]) & (grid[1:, None] > v_x1[None, :])).any(axis=1)
     with np.errstate(invalid="ignore"):
         ic, ik = np.nonzero((step == 1) & (D[:-1] * D[1:] < 0) & ~fenced[:, None])
-    plo, phi_, pfl, pfh, pik = _near_poles(b, fam, grid, D, neg, W, kh, electrical, fenced)
+    plo, phi_, pfl, pfh, pik = near_poles(b, fam, grid, D, neg, W, kh, electrical, fenced)
     unstable_rows = neg[0] > _electric(fam, electrical)
     keep_p = ~unstable_rows[pik]
     lo = np.concatenate([grid[ic], plo[keep_p]])
@@ -414,7 +413,7 @@ def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Bound
 
 def _scan_from_bottom(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary,
                       v_x1: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_scan` of the grid's parts (:data:`LOWEST_PARTS`) from the bottom, until every kh has a bracket.
+    """:func:`scan_grid` of the grid's parts (:data:`LOWEST_PARTS`) from the bottom, until every kh has a bracket.
 
     Each part is scanned with the last point of the one below it (its cell, and that cell's
     bisections, belong to the new part); the parts joined are the full scan's arrays up to the
@@ -429,7 +428,7 @@ def _scan_from_bottom(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, 
         if end <= start:
             continue
         lo = max(start - 1, 0)
-        g, D, neg, W = _scan(b, fam, grid[lo:end], kh, electrical)
+        g, D, neg, W = scan_grid(b, fam, grid[lo:end], kh, electrical)
         if start > 0:  # the shared point is the previous part's last one
             g, D, neg, W = g[1:], D[1:], neg[1:], W[1:]
         parts.append((g, D, neg, W))

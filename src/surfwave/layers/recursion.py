@@ -35,10 +35,10 @@ import numpy as np
 from surfwave.layers.partial import Blocks, Family, eigen
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, as_boundary
 
-__all__ = ["secular", "top_impedance"]
+__all__ = ["expi", "layer_eigs", "secular", "top_impedance"]
 
 
-def _layer_eigs(b: Blocks, fam: Family, c: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+def layer_eigs(b: Blocks, fam: Family, c: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """Eigen-solutions (p, V) of every layer (top first) and the substrate (last) at speeds c (m,)."""
     ix = np.ix_(fam.idx, fam.idx)
     mech = fam.mech
@@ -49,7 +49,7 @@ def _layer_eigs(b: Blocks, fam: Family, c: np.ndarray) -> list[tuple[np.ndarray,
     return out
 
 
-def _expi(z: np.ndarray, decaying: bool) -> np.ndarray:
+def expi(z: np.ndarray, decaying: bool) -> np.ndarray:
     """exp(i z); with ``decaying`` (Im z >= 0 up to rounding: real speeds) as exp(-Im z) (cos + i sin) of z's parts.
 
     The product form skips the complex exponential's special-value handling, which is not needed
@@ -103,9 +103,9 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
                          (c.shape[0], np.shape(kh)[-1] if kh.ndim else 1))
     uc, inv = np.unique(c, return_inverse=True)
     if uc.size < c.size:                       # repeated speeds (e.g. bisection of one cell at many kh)
-        eigs = [(p[inv], V[inv]) for p, V in _layer_eigs(b, fam, uc)]
+        eigs = [(p[inv], V[inv]) for p, V in layer_eigs(b, fam, uc)]
     else:
-        eigs = _layer_eigs(b, fam, c)
+        eigs = layer_eigs(b, fam, c)
     nf = len(fam.idx)
     ps, Vs = eigs[-1]
     if M_sub is None:
@@ -120,8 +120,8 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
         p, V = eigs[layer]
         t = kh * b.frac[layer]                                                 # (m, k)
         Ad, Bd, Au, Bu = (V[:, None, :nf, nf:], V[:, None, nf:, nf:], V[:, None, :nf, :nf], V[:, None, nf:, :nf])
-        Ed = _expi(p[:, None, nf:] * t[..., None], real_c)                     # (m, k, nf)
-        Eu = _expi(-p[:, None, :nf] * t[..., None], real_c)
+        Ed = expi(p[:, None, nf:] * t[..., None], real_c)                     # (m, k, nf)
+        Eu = expi(-p[:, None, :nf] * t[..., None], real_c)
         electrode = METALLIZED if b.electrode_below and b.electrode_below[layer] else FREE
         G = electrode.interface_rows(M, fam.phi) if fam.phi is not None else None
         if G is not None:

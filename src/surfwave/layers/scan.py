@@ -1,8 +1,8 @@
 """The grid scan of the boundary matrix's eigenvalues, and the modes hidden next to a pole in one cell.
 
-Helpers of :mod:`surfwave.layers.modes`: :func:`_scan` evaluates the sorted eigenvalues of the
+Helpers of :mod:`surfwave.layers.modes`: :func:`scan_grid` evaluates the sorted eigenvalues of the
 Hermitian boundary matrix Z (closed forms for up to 3 x 3) on a speed grid for all kh at once and
-bisects cells whose negative count jumps oddly; :func:`_near_poles` finds a mode whose count change
+bisects cells whose negative count jumps oddly; :func:`near_poles` finds a mode whose count change
 is cancelled by a pole of Z in the same cell, when the pole shows at the cell's ends (a sorted
 eigenvalue grows: Foster). Modes whose pair with a pole is too narrow to show there (trapped under
 a stiff film) are the business of :mod:`surfwave.layers.counting`.
@@ -15,11 +15,13 @@ from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import boundary_eigenvalues, boundary_matrix, top_impedance
 from surfwave.solvers.boundary import Boundary
 
+__all__ = ["POLE_SPLIT", "hermitian_eigenvalues", "impedance_eigvalsh", "near_poles", "scan_grid"]
+
 #: Bisections of a cell holding a pole and, by its count, a mode (toward the pole).
 POLE_SPLIT = 8
 
 
-def _eigvalsh(Z: np.ndarray) -> np.ndarray:
+def impedance_eigvalsh(Z: np.ndarray) -> np.ndarray:
     """Ascending eigenvalues of Hermitian matrices (..., na, na); NaN rows where Z is not finite."""
     with np.errstate(all="ignore"):
         bad = ~np.isfinite(Z).all(axis=(-1, -2))
@@ -28,7 +30,7 @@ def _eigvalsh(Z: np.ndarray) -> np.ndarray:
     return w
 
 
-def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
+def hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
     """Ascending eigenvalues of Hermitian matrices Z (..., n, n): closed forms for n <= 3, else LAPACK.
 
     n = 3: the trigonometric solution of the (real) characteristic cubic of the shifted matrix
@@ -38,7 +40,7 @@ def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
     """
     n = Z.shape[-1]
     if n > 3 or n == 0:
-        return _eigvalsh(Z)
+        return impedance_eigvalsh(Z)
     a = Z[..., 0, 0].real
     if n == 1:
         return a[..., None].copy()
@@ -62,7 +64,7 @@ def _hermitian_eigenvalues(Z: np.ndarray) -> np.ndarray:
         w = np.stack([lo, 3.0 * m - hi - lo, hi], axis=-1)
     hard = ~(np.abs(r) <= 1.0 - 1e-6) & (p > 0) | ~np.isfinite(w).all(axis=-1)
     if hard.any():
-        w[hard] = _eigvalsh(Z[hard])
+        w[hard] = impedance_eigvalsh(Z[hard])
     return w
 
 
@@ -70,10 +72,10 @@ def _grid_eigenvalues(b: Blocks, fam: Family, c, kh, electrical: str | Boundary)
     """:func:`surfwave.layers.recursion.boundary_eigenvalues` for the grid scan (closed-form eigenvalues)."""
     M = top_impedance(b, fam, c, kh)["M"]
     Z, _ = boundary_matrix(b, fam, M, electrical)
-    return _hermitian_eigenvalues(Z)
+    return hermitian_eigenvalues(Z)
 
 
-def _scan(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
+def scan_grid(b: Blocks, fam: Family, grid: np.ndarray, kh: np.ndarray, electrical: str | Boundary, rounds: int = 6):
     """det Z, the number of negative eigenvalues and the sorted eigenvalues W (n_c, k, na) on the grid;
     cells whose count rises by more than one, or by one with det of the wrong sign pattern, are
     bisected (``rounds`` times)."""
@@ -109,7 +111,7 @@ def _pole_inside(wl: np.ndarray, wr: np.ndarray) -> np.ndarray:
         return (wr > wl + tol).any(axis=-1)
 
 
-def _near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str | Boundary, skip) -> tuple:
+def near_poles(b: Blocks, fam: Family, grid, D, neg, W, kh, electrical: str | Boundary, skip) -> tuple:
     """Brackets of modes hidden next to a pole in one grid cell (their count changes cancel).
 
     A cell whose count does not change but which holds a pole (:func:`_pole_inside`) holds a mode
