@@ -131,6 +131,19 @@ def run(args) -> int:
     return 0
 
 
+
+def _limits_text(r) -> str:
+    """``c_limit = ... m/s``, with each family's own limit where they differ (``mode_limit``)."""
+    by_family: dict[str, float] = {}
+    for lab, v in zip(np.ravel(r["mode"]), np.ravel(r["mode_limit"])):
+        if lab and np.isfinite(v):
+            by_family.setdefault({"R": "R, S", "S": "R, S", "L": "L", "M": "M"}.get(str(lab)[:1], "?"), float(v))
+    if len({round(v, 6) for v in by_family.values()}) <= 1:
+        return f"c_limit = {r['c_limit']:.3f} m/s"
+    ordered = sorted(by_family.items(), key=lambda x: x[1])
+    return "limits " + ", ".join(f"{v:.3f} m/s ({fam} modes)" for fam, v in ordered)
+
+
 def format_table(r, *, group: bool = False, by: str = "kh") -> str:
     """The record as a text table: one row per kh (or frequency), one column per mode label."""
     labels: dict[str, list[float]] = {}
@@ -140,8 +153,8 @@ def format_table(r, *, group: bool = False, by: str = "kh") -> str:
                 labels.setdefault(str(lab), []).append(float(c))
     cols = sorted(labels, key=lambda k: (np.mean(labels[k]), k))
     head = [by] + [f"c_{k}" for k in cols] + ([f"vg_{k}" for k in cols] if group else [])
-    lines = [f"# c_limit = {r['c_limit']:.3f} m/s; speeds in m/s" + ("; leaky attenuation in dB/wavelength"
-                                                                        if np.isfinite(r["attenuation"]).any() else ""),
+    lines = [f"# {_limits_text(r)}; speeds in m/s" + ("; leaky attenuation in dB/wavelength"
+                                                       if np.isfinite(r["attenuation"]).any() else ""),
              "  ".join(f"{h:>12}" for h in head)]
     first = r["kh"][:, 0] if by == "kh" else np.nanmax(r["frequency"], axis=1, initial=np.nan)
     for i in range(r["c"].shape[0]):

@@ -235,6 +235,10 @@ class LayeredResult(TypedDict):
     power_flow_angle : ndarray, shape (n, n_modes)
         Angle of the depth-integrated power flow from x1 toward the in-plane normal x2 of the SAW
         frame, degrees (0 in a mirror plane; NaN for leaky modes).
+    mode_limit : ndarray, shape (n, n_modes)
+        Limiting speed of each entry's family, m/s (NaN where no mode): a guided mode lies below
+        it. Where the motion decouples (a mirror plane) the sagittal modes (R, S1, ...) and the
+        shear-horizontal ones (L0, ...) have different limits and ``c_limit`` is the lower one.
     """
 
     c: _Array
@@ -247,6 +251,7 @@ class LayeredResult(TypedDict):
     frequency: _Array
     reason: _Array
     power_flow_angle: _Array
+    mode_limit: _Array
 
 
 class SurfacePhononsResult(TypedDict):

@@ -22,6 +22,17 @@ def test_table_matches_the_api(capsys):
     assert [float(v) for v in row[1:]] == pytest.approx(list(r["c"][2]), abs=6e-4)
 
 
+def test_header_names_each_family_limit(capsys):
+    """Si (001)[100] decouples: the header gives the sagittal and SH limits, the record's mode_limit values
+    (material()'s c_limit 5648.503 and sqrt(C44/rho) 5844.920 m/s); gold on fused silica (isotropic) one c_limit."""
+    assert main(["layered", "--substrate", "Si", "--film", "SiO2:1um", "--kh", "1:3:1"]) == 0
+    head = capsys.readouterr().out.splitlines()[0]
+    assert head.startswith("# limits 5648.503 m/s (R, S modes), 5844.920 m/s (L modes)")
+    assert main(["layered", "--substrate", "fused-SiO2", "--film", "Au-poly:100nm", "--kh", "1"]) == 0
+    c_lim = surfwave.layered("fused-SiO2", [{"name": "Au-poly", "thickness": 1e-7}], kh=[1.0])["c_limit"]
+    assert capsys.readouterr().out.startswith(f"# c_limit = {c_lim:.3f} m/s; ")
+
+
 def test_json_and_frequency(capsys):
     """--json gives the record; --frequency gives each mode its own kh (kh c = 2 pi f H)."""
     assert main(["layered", "--substrate", "Si", "--film", "SiO2:500nm", "--frequency", "1e9", "--json"]) == 0

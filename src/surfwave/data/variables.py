@@ -701,6 +701,8 @@ CUBES["dispersion_layered"] = {
                          "units": "degree"},
     "c_limit": {"long_name": "limiting speed of the substrate (slowest bulk wave's trace speed along x1)",
                 "units": "m s-1"},
+    "mode_limit": {"long_name": "limiting speed of the mode's family (sagittal or shear-horizontal where the motion "
+                   "decouples): a guided mode lies below it", "units": "m s-1"},
     "reason": {"long_name": "why a row holds no mode (empty where it holds one)"},
     "film_bulk_speed": {"long_name": "bulk wave speeds of each film along the propagation direction x1 "
                         "(unstressed), ascending", "units": "m s-1"},

@@ -6,7 +6,8 @@ Dimensions: ``film_stress`` (GPa, applied to every film, equibiaxial in the surf
 ``electrical`` ("free", "metallized"), ``kh`` (wavenumber x total film thickness) and ``mode``
 (the labels: "R", "S1", "L0", ..., sorted by their mean speed; an entry is NaN where that mode does
 not exist at that point). Variables: ``c``, ``group_velocity``, ``K2``, ``attenuation``,
-``frequency``, ``power_flow_angle``; ``c_limit`` (film_stress, electrical); ``reason`` (film_stress, electrical, kh);
+``frequency``, ``power_flow_angle``; ``c_limit`` (film_stress, electrical); ``mode_limit`` (film_stress,
+electrical, mode: the limiting speed of the mode's family); ``reason`` (film_stress, electrical, kh);
 ``film_bulk_speed`` (film, sheet): the films' bulk speeds along x1 (unstressed), for figures.
 """
 from __future__ import annotations
@@ -84,6 +85,7 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
     arrays = {k: np.full(shape, np.nan) for k in ("c", "group_velocity", "K2", "attenuation", "frequency",
                                                    "power_flow_angle")}
     c_lim = np.full((s.size, len(el)), np.nan)
+    mode_lim = np.full((s.size, len(el), len(modes)), np.nan)
     reason = np.full((s.size, len(el), kh.size), "", dtype=object)
     pos = {m: q for q, m in enumerate(modes)}
     for (i, j), r in runs.items():
@@ -93,11 +95,13 @@ def dispersion_cube(substrate, films: Sequence[Mapping], kh, *, film_stress=(0.0
         q = np.array([pos[str(r["mode"][a, b])] for a, b in zip(rows, cols)], dtype=int)
         for key in arrays:
             arrays[key][i, j, rows, q] = r[key][rows, cols]
+        mode_lim[i, j, q] = r["mode_limit"][rows, cols]          # one value per mode (its family's)
     stack = resolve_stack(substrate, [dict(f) for f in films], euler=euler, surface=surface, direction=direction)
     bulk = film_x1_speeds(scaled_blocks(stack)).reshape(len(films), 3) if films else np.zeros((0, 3))
     dims = ("film_stress", "electrical", "kh", "mode")
     data: dict[str, tuple] = {k: (dims, v, dict(VARIABLES[k])) for k, v in arrays.items()}
     data["c_limit"] = (("film_stress", "electrical"), c_lim, dict(VARIABLES["c_limit"]))
+    data["mode_limit"] = (("film_stress", "electrical", "mode"), mode_lim, dict(VARIABLES["mode_limit"]))
     data["reason"] = (("film_stress", "electrical", "kh"), reason.astype(str), dict(VARIABLES["reason"]))
     data["film_bulk_speed"] = (("film", "sheet"), np.sort(bulk, axis=1), dict(VARIABLES["film_bulk_speed"]))
     coords = {"film_stress": ("film_stress", s, COORDS["film_stress"]),

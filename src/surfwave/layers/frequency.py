@@ -87,7 +87,9 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
         REASON_NONE,
         assemble,
         empty_result,
+        family_limits,
         merge_families,
+        mode_limits,
         unstable_reason,
         use_fast_path,
     )
@@ -138,7 +140,8 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
             "c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
             "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
             "attenuation": np.full(Cm.shape, np.nan), "kh": khm,
-            "frequency": np.where(np.isfinite(Cm), f[:, None], np.nan), "reason": reason}
+            "frequency": np.where(np.isfinite(Cm), f[:, None], np.nan), "reason": reason,
+            "mode_limit": mode_limits(labels, family_limits(b, fams))}
 
 
 def _start_grid(b: Blocks, f: np.ndarray, H: float) -> tuple[np.ndarray, np.ndarray]:

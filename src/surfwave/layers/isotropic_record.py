@@ -42,7 +42,8 @@ def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
     reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
     nan = np.full(C.shape, np.nan)
     return {"c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
-            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF}
+            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF,
+            "mode_limit": np.where(np.isfinite(C), st.c_lim, np.nan)}   # both families: the substrate's shear speed
 
 
 def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> dict:
@@ -61,7 +62,7 @@ def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> d
     nan = np.full(C.shape, np.nan)
     return {"power_flow_angle": PF, "c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
             "attenuation": nan.copy(), "kh": khm, "frequency": np.where(np.isfinite(C), f[:, None], np.nan),
-            "reason": reason}
+            "reason": reason, "mode_limit": np.where(np.isfinite(C), st.c_lim, np.nan)}
 
 
 def labelled_speeds(stack: Stack, kh: np.ndarray, labels: np.ndarray) -> np.ndarray:

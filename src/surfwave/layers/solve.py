@@ -21,7 +21,8 @@ from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, Free, as_boundary
 
-__all__ = ["MAX_KH", "checked_modes", "layered", "mode_speeds", "solve_stack", "use_fast_path"]
+__all__ = ["MAX_KH", "checked_modes", "family_limits", "layered", "mode_limits", "mode_speeds", "solve_stack",
+           "use_fast_path"]
 
 #: Largest kh accepted (the speed grid grows with kh; beyond this the film is a half-space).
 MAX_KH = 1000.0
@@ -147,7 +148,9 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         ``c`` (n, n_modes) m/s ascending per row, NaN-padded; ``mode`` labels; ``group_velocity``
         (m/s); ``power_flow_angle`` (degrees); ``K2`` (piezoelectric stacks; NaN otherwise);
         ``c_limit``; ``attenuation`` (dB per wavelength; NaN for guided modes and when ``leaky``
-        is False); ``kh`` and ``frequency`` (n, n_modes); ``reason`` (n,).
+        is False); ``kh`` and ``frequency`` (n, n_modes); ``reason`` (n,); ``mode_limit`` (n,
+        n_modes): the limiting speed of each mode's family (sagittal and shear-horizontal differ
+        in a mirror plane; ``c_limit`` is the lower).
 
     Raises
     ------
@@ -276,13 +279,31 @@ def unstable_reason(stack: Stack) -> str:
             "direction: the stressed state buckles)")
 
 
+def family_limits(b: Blocks, fams: list[Family]) -> dict[str, float]:
+    """Limiting speed (m/s) of each family of the substrate, by label prefix ("R", "L", "M")."""
+    return {fam.prefix: float(np.sqrt(fam.X_limit * b.sA / b.rho[-1])) for fam in fams}
+
+
+def mode_limits(labels: np.ndarray, limits: dict[str, float]) -> np.ndarray:
+    """The limiting speed of each entry's family, shape of ``labels`` (m/s; NaN where no mode).
+
+    A guided mode lies below its family's limit; with decoupled families (a mirror plane) the
+    sagittal (R, S1, ...) and shear-horizontal (L0, ...) limits differ, and ``c_limit`` is the
+    lower of them.
+    """
+    out = np.full(labels.shape, np.nan)
+    for lab in set(labels.ravel().tolist()) - {""}:
+        out[labels == lab] = limits.get({"R": "R", "S": "R", "L": "L", "M": "M"}.get(str(lab)[:1], ""), np.nan)
+    return out
+
+
 def empty_result(kh: np.ndarray, c_limit: float, reason: str) -> dict:
     """A result with no mode at any kh (shape (n, 0) arrays), ``reason`` at every row."""
     shape = (kh.size, 0)
     nan = np.full(shape, np.nan)
     return {"c": nan, "mode": np.full(shape, "", dtype=object), "group_velocity": nan.copy(), "K2": nan.copy(),
             "c_limit": c_limit, "attenuation": nan.copy(), "kh": nan.copy(), "frequency": nan.copy(),
-            "reason": np.full(kh.size, reason, dtype=object), "power_flow_angle": nan.copy()}
+            "reason": np.full(kh.size, reason, dtype=object), "power_flow_angle": nan.copy(), "mode_limit": nan.copy()}
 
 
 def k2_pair(electrical: str | Boundary) -> tuple[Boundary, bool]:
@@ -347,4 +368,5 @@ def assemble(stack: Stack, kh: np.ndarray, electrical: str | Boundary, leaky: bo
         labels[buckled] = ""
         reason[buckled] = REASON_BUCKLED
     return {"c": C, "mode": labels, "group_velocity": vg, "K2": K2, "c_limit": sol["c_limit"],
-            "attenuation": A, "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF}
+            "attenuation": A, "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF,
+            "mode_limit": mode_limits(labels, family_limits(sol["blocks"], fams))}

@@ -65,10 +65,33 @@ def bulk_marks(bulk: np.ndarray) -> list[tuple[float, str]]:
     return marks
 
 
+FAMILY_NAMES = {"R": "sagittal", "S": "sagittal", "L": "SH", "M": "coupled"}
+
+
+def family_limits(sub: xr.Dataset) -> list[tuple[float, str]]:
+    """(speed, label) of the substrate limits to draw for ``sub`` (dims kh, mode): one per family
+    whose limit differs (``mode_limit``; sagittal and SH differ in a mirror plane), else the one
+    ``c_limit`` ("substrate limit")."""
+    c_lim = float(sub["c_limit"])
+    if "mode_limit" not in sub:
+        return [(c_lim, "substrate limit")]
+    found: dict[float, list[str]] = {}
+    for mode, v in zip(sub["mode"].values, sub["mode_limit"].values):
+        if np.isfinite(v):
+            key = next((k for k in found if abs(k - v) <= 5e-4 * v), float(v))
+            name = FAMILY_NAMES.get(str(mode)[:1], "")
+            if name not in found.setdefault(key, []):
+                found[key].append(name)
+    if len(found) <= 1:
+        return [(c_lim, "substrate limit")]
+    return [(v, f"limit, {' / '.join(names)} modes") for v, names in sorted(found.items())]
+
+
 def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     """Phase speed of every mode against kh, per orientation, at the film stress nearest zero.
 
-    The substrate's limiting speed is a dashed black line; each film's bulk speeds along x1
+    The substrate's limiting speed is a dashed black line (one per family where the sagittal and
+    shear-horizontal limits differ, from ``mode_limit``); each film's bulk speeds along x1
     (``film_bulk_speed``) are dotted grey lines labelled on the right.
 
     Parameters
@@ -87,7 +110,8 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     for ax, orient in zip(axes, ds["orientation"].values):
         sub = ds.sel(orientation=orient).isel(film_stress=i).sel(electrical=el)
         _modes(ax, sub, "c")
-        c_lim = float(sub["c_limit"])
+        limits = family_limits(sub)
+        c_lim = max(v for v, _ in limits)
         c = sub["c"].values
         top = max(np.nanmax(c) if np.isfinite(c).any() else c_lim, c_lim) * 1.06
         bottom = (np.nanmin(c) if np.isfinite(c).any() else c_lim) * 0.94
@@ -95,7 +119,8 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         shown = [(v, lab) for v, lab in marks if bottom * 0.9 <= v <= top * 1.15]
         top = max([top] + [v * 1.02 for v, _ in shown])
         bottom = min([bottom] + [v * 0.98 for v, _ in shown])
-        ax.axhline(c_lim, color="k", ls="--", lw=1.2, label="substrate limit")
+        for (v, lab), ls in zip(limits, ("--", "-.", ":")):
+            ax.axhline(v, color="k", ls=ls, lw=1.2, label=lab)
         groups: list[list[tuple[float, str]]] = []  # marks closer than 3.5 % of the axis share one label
         for v, lab in sorted(shown):
             if groups and v - groups[-1][-1][0] < 0.035 * (top - bottom):
@@ -194,7 +219,8 @@ def stress_shift(ds: xr.Dataset, path: str | Path, title: str = "", max_modes: i
         ok = np.flatnonzero(np.isfinite(y))
         if ok.size:
             left.annotate(str(mode), (kh[ok[0]], y[ok[0]]), xytext=(2, 4), textcoords="offset points", fontsize=8)
-    left.axhline(float(sub["c_limit"].isel(film_stress=i)), color="k", ls="--", lw=1.0, label="substrate limit")
+    for (v, lab), ls in zip(family_limits(sub.isel(film_stress=i)), ("--", "-.", ":")):
+        left.axhline(v, color="k", ls=ls, lw=1.0, label=lab)
     left.set_ylabel("phase speed c (m/s)")
     left.legend(fontsize=8, loc="lower left")
     ref = float(stresses[i])
