@@ -41,7 +41,8 @@ import numpy as np
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
 from surfwave.layers.isotropic_deriv import secular_d
 
-__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_brackets", "roots_table", "secular_at",
+           "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
@@ -475,3 +476,10 @@ def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid:
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
                                        for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
     return r, lo, hi, flo, fhi, c3, f3
+
+
+#: Public names of the pieces :mod:`surfwave.layers.isotropic_guard` reuses: the secular function at
+#: (row, speed) pairs, the Newton refinement of brackets, and the (rows, width) table of roots.
+secular_at = _at
+refine_brackets = _refine
+roots_table = _table
