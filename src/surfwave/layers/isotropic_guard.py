@@ -169,7 +169,7 @@ def _check(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, c: 
 def _modes_by_count(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, rows: np.ndarray,
                     lo: np.ndarray, hi: np.ndarray, n_lo: np.ndarray, n_hi: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every mode in (lo, hi) of each row (r,) (counts ``n_lo``, ``n_hi`` at the ends): rows, speeds, group velocities (m,).
+    """Every mode in (lo, hi) of each row (r,) (counts ``n_lo``, ``n_hi`` there): rows, speeds, group velocities (m,).
 
     Bisection on the count until each interval holds one mode and the secular function changes sign
     across it; then the fast path's Newton refinement of those brackets.
