@@ -81,8 +81,20 @@ def row_counts(b: Blocks, fam: Family, rows_of: Rows, rows: np.ndarray, c: np.nd
         return out
     kh = rows_of.pairs(rows, c)
     nsub = sublayers(b, float(kh.max()), float(c.max()))
-    if nsub is None:
-        return out
+    if nsub is not None:
+        return _count(b, fam, c, kh, nsub)
+    # some point needs too many sublayers: count the others in bins of kh (powers of two)
+    key = np.ceil(np.log2(np.maximum(kh, 1e-300)))
+    for k in np.unique(key):
+        m = key == k
+        nsub = sublayers(b, float(kh[m].max()), float(c[m].max()))
+        if nsub is not None:
+            out[m] = _count(b, fam, c[m], kh[m], nsub)
+    return out
+
+
+def _count(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, nsub: np.ndarray) -> np.ndarray:
+    """:func:`row_counts` at pairs (c, kh) (m,) with these sublayers."""
     if np.all(c == c[0]):                           # one speed: the layers' eigen-solutions shared by all rows
         n = mode_count(b, fam, c[:1], kh[None, :], "free", nsub)[0]
     else:
