@@ -15,7 +15,9 @@ N-th mode instead (the count there must be N: no slower mode missed). Rows at fi
 of branches with omega_n(k) < omega at k = omega / c, which is the number of modes slower than c at
 that frequency for branches whose frequency rises with k (positive group velocity, as every
 guided mode below c_lim here). Modes above c_top (within t = sqrt(2 TOP) of the cut-off, where a
-mode enters alone) are not checked.
+mode enters alone) are not checked, nor rows at kh = 0 (the bare substrate) or rows whose films
+would need more than :data:`surfwave.layers.counting.MAX_SUB` sublayers for the count (buried gold:
+kh ~ 1000); their answer is the grid's.
 
 Repair. In a row that fails, the modes are located by bisection on the count until every interval
 holds exactly one mode with a sign change of the secular function at its ends, and those brackets

@@ -27,6 +27,8 @@ hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite s
 cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
 so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
+This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
+films or more against the exact mode count and re-solves those that fail.
 
 Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c, the exact derivatives of the
 secular function at the root (those of the last Newton evaluation; the positive normalisations of
