@@ -27,6 +27,8 @@ hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite s
 cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
 so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
+This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
+films or more against the exact mode count and re-solves those that fail.
 
 Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c, the exact derivatives of the
 secular function at the root (those of the last Newton evaluation; the positive normalisations of
@@ -41,7 +43,8 @@ import numpy as np
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
 from surfwave.layers.isotropic_deriv import secular_d
 
-__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_brackets", "roots_table", "secular_at",
+           "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
@@ -475,3 +478,10 @@ def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid:
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
                                        for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
     return r, lo, hi, flo, fhi, c3, f3
+
+
+#: Public names of the pieces :mod:`surfwave.layers.isotropic_guard` reuses: the secular function at
+#: (row, speed) pairs, the Newton refinement of brackets, and the (rows, width) table of roots.
+secular_at = _at
+refine_brackets = _refine
+roots_table = _table

@@ -4,13 +4,15 @@
 the general path for the same stack (same keys, column order by speed, labels R, S1, ... and
 L0, L1, ..., NaN padding, reasons; K2 and attenuation NaN, power-flow angle 0);
 :func:`labelled_speeds` is :func:`surfwave.layers.solve.mode_speeds` for such a stack. The modes
-come from :func:`surfwave.layers.isotropic_modes.family_roots`.
+come from :func:`surfwave.layers.isotropic_modes.family_roots`, checked against the exact mode
+count where modes can pair up closely (:mod:`surfwave.layers.isotropic_guard`).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, iso_stack
+from surfwave.layers.isotropic_guard import check_families
 from surfwave.layers.isotropic_modes import Rows, both_families, family_roots
 from surfwave.layers.modes import label as mode_label
 from surfwave.layers.partial import Family
@@ -33,7 +35,7 @@ def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
     st = iso_stack(stack)
     rows_of = Rows(kh, freq=False)
     fams = _families(st)
-    sols = both_families(st, rows_of, modes)                          # [P-SV, SH], the order of fams
+    sols = check_families(stack, st, rows_of, ("R", "L"), both_families(st, rows_of, modes), modes)   # [P-SV, SH]
     cs = [s[0] for s in sols]
     pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
     C, labels, (vg, PF) = merge_families(fams, cs, [[s[1] for s in sols], pfs])
@@ -54,7 +56,7 @@ def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> d
     wH = 2 * np.pi * f * st.H
     rows_of = Rows(wH, freq=True)
     fams = _families(st)
-    sols = both_families(st, rows_of, modes)                          # [P-SV, SH], the order of fams
+    sols = check_families(stack, st, rows_of, ("R", "L"), both_families(st, rows_of, modes), modes)   # [P-SV, SH]
     cs = [s[0] for s in sols]
     pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
     C, labels, (vg, khm, PF) = merge_families(fams, cs, [[s[1] for s in sols], [wH[:, None] / c for c in cs], pfs])
@@ -73,7 +75,8 @@ def labelled_speeds(stack: Stack, kh: np.ndarray, labels: np.ndarray) -> np.ndar
         idx = np.array([_index(str(lab), first) for lab in labels])
         if not (idx >= 0).any():
             continue
-        c, _ = family_roots(st, prefix, Rows(kh, freq=False), int(idx.max()) + 1)
+        rows_of, n = Rows(kh, freq=False), int(idx.max()) + 1
+        c, _ = check_families(stack, st, rows_of, (prefix,), [family_roots(st, prefix, rows_of, n)], n)[0]
         hit = np.flatnonzero((idx >= 0) & (idx < c.shape[1]))
         out[hit] = c[hit, idx[hit]]
     return out

@@ -1,0 +1,237 @@
+"""The isotropic fast path checked against the exact Wittrick-Williams count: all its modes, or the count's.
+
+Why. The fast path (:mod:`surfwave.layers.isotropic_modes`) finds the zeros of a pole-free secular
+function on a speed grid. Every sign change is a mode, but two modes in one grid cell leave none;
+its hunt for such pairs (parabolic steps at local minima of |F|) is a heuristic, and where a film
+lies under a faster one, modes trapped in the buried film pair up with modes of the films above
+within far less than a cell (SiO2 / AlN / gold on Si at kh = 20 lost two of 26 modes).
+
+Check. Per family and per row, the number of modes found below c_top = c_lim (1 - :data:`TOP`)
+must equal the count's rise from the grid's floor to c_top (:func:`surfwave.layers.counting.mode_count`
+on the general Stroh blocks of the same stack: exact, pole-free), and the count at the floor must
+be 0 (no mode below it). With ``modes`` = N, a row holding N modes is checked at just above its
+N-th mode instead (the count there must be N: no slower mode missed). Rows at fixed frequency
+(kh = omega H / c) are counted at each speed's own kh: the count at (c, omega H / c) is the number
+of branches with omega_n(k) < omega at k = omega / c, which is the number of modes slower than c at
+that frequency for branches whose frequency rises with k (positive group velocity, as every
+guided mode below c_lim here). Modes above c_top (within t = sqrt(2 TOP) of the cut-off, where a
+mode enters alone) are not checked, nor rows at kh = 0 (the bare substrate) or rows whose films
+would need more than :data:`surfwave.layers.counting.MAX_SUB` sublayers for the count (buried gold:
+kh ~ 1000); their answer is the grid's.
+
+Repair. In a row that fails, the modes are located by bisection on the count until every interval
+holds exactly one mode with a sign change of the secular function at its ends, and those brackets
+go to the fast path's own Newton refinement (:func:`surfwave.layers.isotropic_modes.refine_brackets`:
+the same speeds to ~1e-14 and the same exact group velocities). Bisection stops at intervals of
+relative width 1e-14 (a degenerate pair: the midpoint, twice).
+
+Which stacks are checked (:func:`guarded`): every stack with two films or more. Close pairs need
+two places a mode can live in: a film buried under a faster one (SiO2 / AlN / gold on Si) but
+also, less often, films whose speeds rise downward (a slow top film over a film barely slower
+than the substrate: 2 of 186 random such stacks lost two sagittal modes at kh ~ 79 on the grid
+alone), so no cheaper criterion (such as :func:`surfwave.layers.counting.needed`) is safe. One
+film on a half-space is not counted: the count would double the cost there (200 kh rows: 7 ms on
+top of 8 ms), and its modes are those of one guide, spaced by about pi of vertical phase in the
+film, wider than the grid's phase step (pi / 4); on 600 random one-film stacks (kh 0.1 ... 100)
+the grid found every mode the count has (a seeded sample of them, with the multi-film ones, is in
+tests/layers/test_isotropic_guard.py). That is evidence, not a proof. :data:`ALWAYS` checks every
+stack. The cost on a guarded stack: about 15 % (buried gold, 200 kh rows 0.5 ... 20: 0.30 s
+against 0.26 s unchecked).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from surfwave.layers.counting import applicable, mode_count, sublayers
+from surfwave.layers.isotropic import IsoStack
+from surfwave.layers.isotropic_deriv import secular_d
+from surfwave.layers.isotropic_modes import FLOOR, Rows, refine_brackets, roots_table, secular_at
+from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
+from surfwave.layers.stack import Stack
+
+__all__ = ["ALWAYS", "TOP", "check_families", "guarded", "row_counts"]
+
+#: The count's top speed is c_lim (1 - TOP).
+TOP = 1e-9
+#: Check every stack (tests; default: only those of :func:`guarded`).
+ALWAYS = False
+#: Bisection steps on the count at most.
+MAX_SPLIT = 80
+#: Relative width at which two modes are taken as one degenerate pair.
+DEGENERATE = 1e-14
+#: Marks a count that could not be taken (too many sublayers, or a failed evaluation).
+UNCOUNTED = -10**6
+
+
+def guarded(stack: Stack) -> bool:
+    """True when :func:`check_families` counts this stack's modes: two films or more (or :data:`ALWAYS`)."""
+    return ALWAYS or sum(f.thickness > 0 for f in stack.films) >= 2
+
+
+def row_counts(b: Blocks, fam: Family, rows_of: Rows, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The Wittrick-Williams count at (row, speed) pairs (m,), each at its row's kh; :data:`UNCOUNTED` where not taken.
+
+    Parameters
+    ----------
+    rows : ndarray of int, shape (m,)
+        Rows of ``rows_of`` (kh > 0).
+    c : ndarray, shape (m,)
+        Speeds, m/s.
+    """
+    out = np.full(rows.size, UNCOUNTED)
+    if rows.size == 0:
+        return out
+    kh = rows_of.pairs(rows, c)
+    nsub = sublayers(b, float(kh.max()), float(c.max()))
+    if nsub is not None:
+        return _count(b, fam, c, kh, nsub)
+    # some point needs too many sublayers: count the others in bins of kh (powers of two)
+    key = np.ceil(np.log2(np.maximum(kh, 1e-300)))
+    for k in np.unique(key):
+        m = key == k
+        nsub = sublayers(b, float(kh[m].max()), float(c[m].max()))
+        if nsub is not None:
+            out[m] = _count(b, fam, c[m], kh[m], nsub)
+    return out
+
+
+def _count(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, nsub: np.ndarray) -> np.ndarray:
+    """:func:`row_counts` at pairs (c, kh) (m,) with these sublayers."""
+    if np.all(c == c[0]):                           # one speed: the layers' eigen-solutions shared by all rows
+        n = mode_count(b, fam, c[:1], kh[None, :], "free", nsub)[0]
+    else:
+        n = mode_count(b, fam, c, kh[:, None], "free", nsub)[:, 0]
+    return np.where(n > -1000, n, UNCOUNTED)
+
+
+def check_families(stack: Stack, st: IsoStack, rows_of: Rows, prefixes: tuple[str, ...],
+                   sols: list[tuple[np.ndarray, np.ndarray]], modes: int | None) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The fast path's (speeds, group velocities) per family, each row checked against the count and repaired.
+
+    Parameters
+    ----------
+    stack : Stack
+        The resolved stack (its general Stroh blocks give the count).
+    st : IsoStack
+        The same stack for the fast path.
+    rows_of : Rows
+        The rows (kh or frequencies).
+    prefixes : tuple of {"R", "L"}
+        The family of each entry of ``sols``.
+    sols : list of (ndarray, ndarray), each (n_rows, width)
+        Speeds and group velocities (m/s), ascending per row, NaN-padded.
+    modes : int or None
+        At most this many modes per row and family (as asked of the fast path).
+
+    Returns
+    -------
+    list of (ndarray, ndarray)
+        ``sols`` where every row agrees with the count; the count's modes (refined by the fast
+        path's Newton iteration) in rows that did not. Unchanged for a stack :func:`guarded` leaves alone.
+    """
+    if not guarded(stack):
+        return sols
+    b = scaled_blocks(stack)
+    if not applicable(b):
+        return sols
+    fams = {f.prefix: f for f in families(b)}
+    return [_check(b, fams[p], st, p, rows_of, c, vg, modes) for p, (c, vg) in zip(prefixes, sols)]
+
+
+def _check(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, c: np.ndarray, vg: np.ndarray,
+           modes: int | None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`check_families` for one family: the table (n_rows, width) of speeds and group velocities."""
+    n_rows = c.shape[0]
+    rows = np.flatnonzero(rows_of.base > 0)         # kh = 0 (or f = 0): the bare substrate, one Rayleigh root
+    if rows.size == 0:
+        return c, vg
+    c_top = st.c_lim * (1.0 - TOP)
+    c_floor = FLOOR * float(st.shear.min())
+    chk = np.full(n_rows, c_top)
+    if modes is not None and c.shape[1] >= modes:
+        full = np.isfinite(c[:, modes - 1])
+        chk[full] = np.minimum(c[full, modes - 1] * (1.0 + 1e-10), c_top)
+    with np.errstate(invalid="ignore"):
+        expected = (c < chk[:, None]).sum(axis=1)
+    n0 = row_counts(b, fam, rows_of, rows, np.full(rows.size, c_floor))
+    n1 = row_counts(b, fam, rows_of, rows, chk[rows])
+    counted = (n0 != UNCOUNTED) & (n1 != UNCOUNTED)
+    bad = counted & ((n0 != 0) | (n1 - n0 != expected[rows]))
+    if not bad.any():
+        return c, vg
+    fix = rows[bad]
+    # a mode below the floor (not seen in unstressed stacks): search from far below it, where the count is 0
+    lo = np.where(n0[bad] == 0, c_floor, 1e-3 * c_floor)
+    r, cr, vr = _modes_by_count(b, fam, st, prefix, rows_of, fix, lo, chk[fix], np.zeros(fix.size, dtype=int), n1[bad])
+    keep = ~np.isin(np.arange(n_rows), fix)
+    ik, jm = np.nonzero(np.isfinite(c) & keep[:, None])
+    R = np.concatenate([ik, r])
+    C = np.concatenate([c[ik, jm], cr])
+    V = np.concatenate([vg[ik, jm], vr])
+    # modes above the check speed of a fixed row (found by the fast path, not counted) stay
+    for row in fix:
+        above = np.isfinite(c[row]) & (c[row] >= chk[row])
+        R, C, V = np.r_[R, np.full(int(above.sum()), row)], np.r_[C, c[row, above]], np.r_[V, vg[row, above]]
+    if modes is not None:
+        srt = np.lexsort((C, R))
+        R, C, V = R[srt], C[srt], V[srt]
+        rank = np.arange(R.size) - np.searchsorted(R, R)
+        R, C, V = R[rank < modes], C[rank < modes], V[rank < modes]
+    return roots_table(n_rows, R, C, V)
+
+
+def _modes_by_count(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, rows: np.ndarray,
+                    lo: np.ndarray, hi: np.ndarray, n_lo: np.ndarray, n_hi: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every mode in (lo, hi) of each row (r,) (counts ``n_lo``, ``n_hi`` there): rows, speeds, group velocities (m,).
+
+    Bisection on the count until each interval holds one mode and the secular function changes sign
+    across it; then the fast path's Newton refinement of those brackets.
+    """
+    br: list[tuple[np.ndarray, ...]] = []
+    deg: list[tuple[np.ndarray, np.ndarray]] = []
+    r = rows.copy()
+    lo, hi, nl, nh = lo.astype(float), hi.astype(float), n_lo.copy(), n_hi.copy()
+    for _ in range(MAX_SPLIT):
+        live = (nh > nl) & (nl != UNCOUNTED) & (nh != UNCOUNTED)
+        r, lo, hi, nl, nh = r[live], lo[live], hi[live], nl[live], nh[live]
+        if r.size == 0:
+            break
+        one = np.flatnonzero(nh - nl == 1)
+        if one.size:
+            f_lo = secular_at(st, prefix, rows_of, r[one], lo[one])
+            f_hi = secular_at(st, prefix, rows_of, r[one], hi[one])
+            sc = f_lo * f_hi < 0
+            br.append((r[one[sc]], lo[one[sc]], hi[one[sc]], f_lo[sc], f_hi[sc]))
+            out = np.zeros(r.size, dtype=bool)
+            out[one[sc]] = True
+        else:
+            out = np.zeros(r.size, dtype=bool)
+        tiny = ~out & (hi - lo <= DEGENERATE * hi)
+        if tiny.any():
+            deg.append((np.repeat(r[tiny], nh[tiny] - nl[tiny]), np.repeat(0.5 * (lo + hi)[tiny], nh[tiny] - nl[tiny])))
+        go = ~out & ~tiny
+        r, lo, hi, nl, nh = r[go], lo[go], hi[go], nl[go], nh[go]
+        if r.size == 0:
+            break
+        mid = 0.5 * (lo + hi)
+        nm = row_counts(b, fam, rows_of, r, mid)
+        r, lo, hi = np.r_[r, r], np.r_[lo, mid], np.r_[mid, hi]
+        nl, nh = np.r_[nl, nm], np.r_[nm, nh]
+    rr, cc, vv = [np.zeros(0, dtype=int)], [np.zeros(0)], [np.zeros(0)]
+    if br:
+        R, LO, HI, FLO, FHI = (np.concatenate([x[k] for x in br]) for k in range(5))
+        if R.size:
+            nan = np.full(R.size, np.nan)
+            c, v = refine_brackets(st, prefix, LO, HI, rows_of, R, FLO, FHI, nan, nan)
+            rr.append(R)
+            cc.append(c)
+            vv.append(v)
+    for R, c in deg:
+        t = np.sqrt(1.0 - (c / st.c_lim) ** 2)
+        kh = rows_of.pairs(R, c)
+        ratio = secular_d(st, prefix, t, kh, ratio=True)[3]
+        rr.append(R)
+        cc.append(c)
+        vv.append(c + kh * ratio * st.c_lim ** 2 * t / c)
+    return np.concatenate(rr), np.concatenate(cc), np.concatenate(vv)
