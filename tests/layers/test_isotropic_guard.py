@@ -165,3 +165,21 @@ def test_group_velocity_of_trapped_and_repaired_modes(kh):
     ok = np.isfinite(r["c"][1])
     fd = r["c"][1] + kh * (r["c"][2] - r["c"][0]) / (2 * h)
     assert np.allclose(r["group_velocity"][1][ok], fd[ok], rtol=1e-6, atol=0)
+
+
+def test_group_velocity_of_a_deeply_trapped_love_mode():
+    """A Love mode trapped in the slow bottom film of three, under a barrier of a faster, heavy film
+    (kh = 60, L0 at 2590.4 m/s): F = tau / |(v, tau)| swings through 0 within rounding of c there, so
+    the group velocity must come from the ratio of tau's own derivatives: equal to central
+    differences of c(kh) (steps 1e-4 and 1e-3 in kh, which agree to 1e-9) to 1e-7 (it was 2550.75
+    against 2549.83 m/s)."""
+    sub = {"E": 559.09, "nu": 0.3387, "rho": 3759.5}
+    films = [{"E": 538.46, "nu": 0.2405, "rho": 18129.5, "thickness": 0.9321e-6},
+             {"E": 345.16, "nu": 0.2762, "rho": 5291.4, "thickness": 0.3108e-6},
+             {"E": 145.86, "nu": 0.4103, "rho": 7833.0, "thickness": 0.8185e-6}]
+    kh = 60.0
+    for h in (1e-4, 1e-3):
+        r = surfwave.layered(sub, films, kh=[kh - h, kh, kh + h])
+        j = [list(r["mode"][q]).index("L0") for q in range(3)]
+        fd = r["c"][1, j[1]] + kh * (r["c"][2, j[2]] - r["c"][0, j[0]]) / (2 * h)
+        assert r["group_velocity"][1, j[1]] == pytest.approx(fd, rel=1e-7)
