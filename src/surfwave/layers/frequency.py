@@ -135,7 +135,7 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
                         dtype=bool)
         if mine.any():
             pf[rows[mine], cols[mine]] = mode_fields(b, fam, Cm[rows[mine], cols[mine]], khm[rows[mine], cols[mine]],
-                                                     electrical)["power_flow_angle"]
+                                                     electrical, check=False)["power_flow_angle"]
     return {"power_flow_angle": pf,
             "c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
             "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
