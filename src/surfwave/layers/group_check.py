@@ -95,8 +95,9 @@ def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray
     from surfwave.layers.modes import family_modes
 
     cb, kb = cr[bad], kr[bad]
-    d = DKH * kb
-    allc = family_modes(b, fam, np.r_[kb + d, kb - d], electrical=electrical)
-    cp, cm = _nearest(cb, allc[:cb.size]), _nearest(cb, allc[cb.size:])
+    uk, inv = np.unique(kb, return_inverse=True)                  # one pair of solves per distinct kh
+    allc = family_modes(b, fam, np.r_[uk * (1 + DKH), uk * (1 - DKH)], electrical=electrical)
+    cp, cm = _nearest(cb, allc[inv]), _nearest(cb, allc[uk.size + inv])
+    d = DKH * uk[inv]
     v[rows[bad]] = (cp * (kb + d) - cm * (kb - d)) / (2 * d)
     return v
