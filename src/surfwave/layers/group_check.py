@@ -11,7 +11,8 @@ the eigenvalue lambda(c, kh) of the Hermitian boundary matrix that vanishes at t
 with central differences of relative step :data:`STEP`. Where the energy velocity differs from it by
 more than :data:`TOL` (relative) -- or either is not finite -- the group velocity is taken from
 central differences of c(kh) itself: the family's modes are solved afresh
-(:func:`surfwave.layers.modes.family_modes`, with the exact count) at kh (1 +- :data:`DKH`) and the one
+(:func:`surfwave.layers.modes.family_modes`, with the exact count) at kh (1 +- :data:`DKH`) and
+kh (1 +- 2 :data:`DKH`) (Richardson's extrapolation of the two central differences) and the one
 nearest the known root taken (NaN where that is ambiguous); this needs no amplitudes at all. The
 zero of lambda of a trapped mode sits next to a pole (relative distance 1e-6 and less), hence the
 check's small step; where the check itself is spoilt by rounding the robust route is merely taken
@@ -31,8 +32,9 @@ __all__ = ["checked_group_velocity"]
 STEP = (1e-9, 1e-11)
 #: Largest relative difference between the energy velocity and the check.
 TOL = 1e-6
-#: Relative kh step of the fallback's central differences (truncation and the roots' rounding: ~1e-7 of v_g).
-DKH = 2e-5
+#: Relative kh step of the fallback's central differences (with the doubled step and
+#: Richardson's extrapolation; the roots' rounding gives ~1e-8 of v_g).
+DKH = 1e-4
 
 
 def _eig(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, electrical: str | Boundary,
@@ -95,9 +97,15 @@ def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray
     from surfwave.layers.modes import family_modes
 
     cb, kb = cr[bad], kr[bad]
-    uk, inv = np.unique(kb, return_inverse=True)                  # one pair of solves per distinct kh
-    allc = family_modes(b, fam, np.r_[uk * (1 + DKH), uk * (1 - DKH)], electrical=electrical)
-    cp, cm = _nearest(cb, allc[inv]), _nearest(cb, allc[uk.size + inv])
-    d = DKH * uk[inv]
-    v[rows[bad]] = (cp * (kb + d) - cm * (kb - d)) / (2 * d)
+    uk, inv = np.unique(kb, return_inverse=True)                  # solves per distinct kh
+    steps = (DKH, 2 * DKH)
+    allc = family_modes(b, fam, np.concatenate([uk * (1 + s * q) for s in steps for q in (1, -1)]),
+                        electrical=electrical)
+    nk = uk.size
+    diff = []
+    for i, s in enumerate(steps):
+        cp, cm = _nearest(cb, allc[2 * i * nk + inv]), _nearest(cb, allc[(2 * i + 1) * nk + inv])
+        d = s * kb
+        diff.append((cp * (kb + d) - cm * (kb - d)) / (2 * d))
+    v[rows[bad]] = (4 * diff[0] - diff[1]) / 3                   # Richardson: truncation O(DKH^4)
     return v
