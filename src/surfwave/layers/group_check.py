@@ -99,12 +99,12 @@ def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray
     cb, kb = cr[bad], kr[bad]
     uk, inv = np.unique(kb, return_inverse=True)                  # solves per distinct kh
     steps = (DKH, 2 * DKH)
-    allc = family_modes(b, fam, np.concatenate([uk * (1 + s * q) for s in steps for q in (1, -1)]),
+    allc = family_modes(b, fam, np.concatenate([uk * (1 + s * sign) for s in steps for sign in (1, -1)]),
                         electrical=electrical)
     nk = uk.size
     diff = []
-    for i, s in enumerate(steps):
-        cp, cm = _nearest(cb, allc[2 * i * nk + inv]), _nearest(cb, allc[(2 * i + 1) * nk + inv])
+    for q, s in enumerate(steps):
+        cp, cm = _nearest(cb, allc[2 * q * nk + inv]), _nearest(cb, allc[(2 * q + 1) * nk + inv])
         d = s * kb
         diff.append((cp * (kb + d) - cm * (kb - d)) / (2 * d))
     v[rows[bad]] = (4 * diff[0] - diff[1]) / 3                   # Richardson: truncation O(DKH^4)
