@@ -44,13 +44,13 @@ def _differences(sub, films, kh, r, d=1e-5):
     return out
 
 
-@pytest.mark.parametrize("seed", [1, 7])
-def test_group_velocity_of_trapped_modes_on_random_stacks(seed):
+@pytest.mark.parametrize(("seed", "n"), [(1, 3), (7, 2)])
+def test_group_velocity_of_trapped_modes_on_random_stacks(seed, n):
     """Seeded random isotropic stacks (2-3 films, kh 20 ... 60; seed 1 includes a stack whose energy
     velocity was 0.9 off before the check): every mode's group velocity from the general solver equals
     the isotropic path's (exact derivatives) and central differences of the general c(kh), 1e-6."""
     rng = np.random.default_rng(seed)
-    for _ in range(3):
+    for _ in range(n):
         sub = _mat(rng, (150.0, 600.0), (2000.0, 5000.0))
         films = [{**_mat(rng, (40.0, 600.0), (1800.0, 20000.0)), "thickness": float(rng.uniform(0.1, 1.0)) * 1e-6}
                  for _ in range(int(rng.integers(2, 4)))]
