@@ -148,7 +148,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
     with np.errstate(all="ignore"):
         vg = c * num / den
     if check:
-        vg = checked_group_velocity(b, fam, c, kh, vg, electrical)
+        vg = checked_group_velocity(b, fam, c, kh, vg, electrical, np.where(bad[:, None], np.nan, w))
     out = {"group_velocity": vg, "a_top": a_top,
            "power_flow_angle": np.degrees(np.arctan2(num3, num))}
     if U is not None:

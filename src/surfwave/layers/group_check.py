@@ -8,9 +8,9 @@ the eigenvalue lambda(c, kh) of the Hermitian boundary matrix that vanishes at t
 
     dc/dkh = -(d lambda / d kh) / (d lambda / d c),    v_g = c + kh dc/dkh,
 
-with central differences of relative step :data:`STEP`. Where the energy velocity differs from it by
-more than :data:`TOL` (relative) -- or either is not finite -- the group velocity is taken from
-central differences of c(kh) itself: the family's modes are solved afresh
+with differences of relative step :data:`STEP` (one-sided from the mode first, then central).
+Where the energy velocity differs from it by more than :data:`TOL` (relative) -- or either is not
+finite -- the group velocity is taken from central differences of c(kh) itself: the family's modes are solved afresh
 (:func:`surfwave.layers.modes.family_modes`, with the exact count) at kh (1 +- :data:`DKH`) and
 kh (1 +- 2 :data:`DKH`) (Richardson's extrapolation of the two central differences) and the one
 nearest the known root taken (NaN where that is ambiguous); this needs no amplitudes at all. The
@@ -28,7 +28,8 @@ from surfwave.solvers.boundary import Boundary
 
 __all__ = ["checked_group_velocity"]
 
-#: Relative steps of the implicit-differentiation check (it passes with either).
+#: Relative steps of the implicit-differentiation check: one-sided and central with the first, central
+#: with the second (it passes with any).
 STEP = (1e-9, 1e-11)
 #: Largest relative difference between the energy velocity and the check.
 TOL = 1e-6
@@ -56,7 +57,7 @@ def _nearest(c0: np.ndarray, allc: np.ndarray) -> np.ndarray:
 
 
 def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, v: np.ndarray,
-                           electrical: str | Boundary) -> np.ndarray:
+                           electrical: str | Boundary, w: np.ndarray | None = None) -> np.ndarray:
     """The energy velocity ``v`` (m,) of modes (c, kh) (m,), replaced by differences of c(kh) where it fails the check.
 
     Parameters
@@ -68,6 +69,8 @@ def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray
     v : ndarray, shape (m,)
         Their energy velocities (m/s), :func:`surfwave.layers.fields.mode_fields`.
     electrical : str or Boundary
+    w : ndarray, shape (m, na), optional
+        The boundary matrix's eigenvalues at the modes (if already computed).
 
     Returns
     -------
@@ -79,16 +82,22 @@ def checked_group_velocity(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray
     if rows.size == 0:
         return v
     cr, kr = c[rows], kh[rows]
-    w0 = boundary_eigenvalues(b, fam, cr, kr[:, None], electrical)[:, 0, :]
+    w0 = boundary_eigenvalues(b, fam, cr, kr[:, None], electrical)[:, 0, :] if w is None else np.asarray(w)[rows]
     j = np.argmin(np.where(np.isfinite(w0), np.abs(w0), np.inf), axis=-1)
+    l0 = w0[np.arange(rows.size), j]
     bad = np.ones(rows.size, dtype=bool)
-    for h in STEP:
+    for h, central in ((STEP[0], False), (STEP[0], True), (STEP[1], True)):
         i = np.flatnonzero(bad)
         if i.size == 0:
             break
         ci, ki, ji = cr[i], kr[i], j[i]
-        lc = _eig(b, fam, ci * (1 + h), ki, electrical, ji) - _eig(b, fam, ci * (1 - h), ki, electrical, ji)
-        lk = _eig(b, fam, ci, ki * (1 + h), electrical, ji) - _eig(b, fam, ci, ki * (1 - h), electrical, ji)
+        lc = _eig(b, fam, ci * (1 + h), ki, electrical, ji)
+        lk = _eig(b, fam, ci, ki * (1 + h), electrical, ji)
+        if central:
+            lc = lc - _eig(b, fam, ci * (1 - h), ki, electrical, ji)
+            lk = lk - _eig(b, fam, ci, ki * (1 - h), electrical, ji)
+        else:
+            lc, lk = lc - l0[i], lk - l0[i]
         with np.errstate(all="ignore"):
             est = ci - ki * (lk / ki) / (lc / ci)
             bad[i] = ~(np.isfinite(est) & (np.abs(est - v[rows][i]) <= TOL * np.abs(est)))
