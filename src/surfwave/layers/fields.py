@@ -31,6 +31,11 @@ from surfwave.solvers.boundary import Boundary, as_boundary
 
 __all__ = ["mode_fields"]
 
+#: Largest |eigenvalue| of the (dimensionless) boundary matrix at a mode whose surface vector counts
+#: as resolved (its energy velocity is then taken without a check); well-resolved roots give 1e-13,
+#: the trapped modes whose energy velocity was wrong 0.15 ... 0.2.
+RESOLVED = 1e-9
+
 
 def _overlap(p, e0, et, t) -> np.ndarray:
     """I_ij = int_0^t conj(e_i(z)) e_j(z) dz for e_j(z) = e0_j exp(i p_j z); e0, et: values at 0 and t.
@@ -66,8 +71,10 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
         Depths below the free surface in units of the total film thickness (kh * depth = k x2);
         with it the profile U (m, d, nf) is returned (normalised to max |u| = 1).
     check : bool
-        Check the energy velocity against implicit differentiation of the secular eigenvalue and
-        replace it by differences of c(kh) where it fails (:mod:`surfwave.layers.group_check`).
+        For modes whose boundary matrix has no eigenvalue below :data:`RESOLVED` (a zero on a
+        pole: trapped under a barrier) or whose energy velocity is not finite, check the energy
+        velocity against implicit differentiation of the secular eigenvalue and replace it by
+        differences of c(kh) where it fails (:mod:`surfwave.layers.group_check`).
 
     Returns
     -------
@@ -148,7 +155,13 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
     with np.errstate(all="ignore"):
         vg = c * num / den
     if check:
-        vg = checked_group_velocity(b, fam, c, kh, vg, electrical, np.where(bad[:, None], np.nan, w))
+        # a mode trapped under a barrier: its zero of the boundary matrix sits on a pole, the
+        # matrix has no small eigenvalue at the root and its null vector (the surface vector) is
+        # not resolved; check those (and failed ones) against differences (surfwave.layers.group_check)
+        sus = ~(np.abs(w).min(axis=-1) <= RESOLVED) | ~np.isfinite(vg)
+        if sus.any():
+            vg[sus] = checked_group_velocity(b, fam, c[sus], kh[sus], vg[sus], electrical,
+                                             np.where(bad[:, None], np.nan, w)[sus])
     out = {"group_velocity": vg, "a_top": a_top,
            "power_flow_angle": np.degrees(np.arctan2(num3, num))}
     if U is not None:
