@@ -1,9 +1,11 @@
 """A check of the energy velocity of guided modes, and a robust second route where it fails.
 
 The energy velocity of :func:`surfwave.layers.fields.mode_fields` is exact in exact arithmetic, but
-for a mode trapped under a barrier at large kh the surface vector is tiny and the partial-wave
-amplitudes carried down from it lose their accuracy (random three-film stacks at kh = 60 gave
-12741.7 m/s against 1645.07 m/s from differences of c(kh)). The check: implicit differentiation of
+for a mode trapped under a barrier at large kh the zero of the boundary matrix sits on one of its
+poles, the matrix has no small eigenvalue at the root in floating point and its null vector (the
+surface vector) is not resolved (random three-film stacks at kh = 60 gave 12741.7 m/s against
+1645.07 m/s from differences of c(kh)); :func:`surfwave.layers.fields.mode_fields` sends such modes
+here. The check: implicit differentiation of
 the eigenvalue lambda(c, kh) of the Hermitian boundary matrix that vanishes at the mode,
 
     dc/dkh = -(d lambda / d kh) / (d lambda / d c),    v_g = c + kh dc/dkh,
