@@ -23,11 +23,18 @@ from __future__ import annotations
 
 import numpy as np
 
+from surfwave.layers.group_check import checked_group_velocity
+from surfwave.layers.linalg import safe_solve
 from surfwave.layers.partial import Blocks, Family
 from surfwave.layers.recursion import boundary_matrix, top_impedance
 from surfwave.solvers.boundary import Boundary, as_boundary
 
 __all__ = ["mode_fields"]
+
+#: Largest |eigenvalue| of the (dimensionless) boundary matrix at a mode whose surface vector counts
+#: as resolved (its energy velocity is then taken without a check); well-resolved roots give 1e-13,
+#: the trapped modes whose energy velocity was wrong 0.15 ... 0.2.
+RESOLVED = 1e-9
 
 
 def _overlap(p, e0, et, t) -> np.ndarray:
@@ -48,7 +55,8 @@ def _overlap(p, e0, et, t) -> np.ndarray:
     return np.where(np.abs(D * tt) < 1e-3, series, exact)
 
 
-def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "free", depth=None) -> dict:
+def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "free", depth=None,
+                check: bool = True) -> dict:
     """Group velocity and (optionally) the depth profile of modes of one family.
 
     Parameters
@@ -62,6 +70,11 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
     depth : array_like, shape (d,), optional
         Depths below the free surface in units of the total film thickness (kh * depth = k x2);
         with it the profile U (m, d, nf) is returned (normalised to max |u| = 1).
+    check : bool
+        For modes whose boundary matrix has no eigenvalue below :data:`RESOLVED` (a zero on a
+        pole: trapped under a barrier) or whose energy velocity is not finite, check the energy
+        velocity against implicit differentiation of the secular eigenvalue and replace it by
+        differences of c(kh) where it fails (:mod:`surfwave.layers.group_check`).
 
     Returns
     -------
@@ -75,7 +88,9 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
     m, nf = c.size, len(fam.idx)
     r = top_impedance(b, fam, c, kh[:, None], keep=True)
     Z, active = boundary_matrix(b, fam, r["M"][:, 0], electrical)
-    w, v = np.linalg.eigh(Z)
+    bad = ~np.isfinite(Z).all(axis=(-1, -2))                             # a singular solve on the way (NaN)
+    w, v = np.linalg.eigh(np.where(bad[:, None, None], np.eye(Z.shape[-1]), Z))
+    v[bad] = np.nan
     j = np.argmin(np.abs(w), axis=-1)
     u = np.take_along_axis(v, j[:, None, None], axis=-1)[..., 0]
     a = np.zeros((m, nf), dtype=complex)
@@ -99,7 +114,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
         X = b.rho[layer] * c * c / b.sA
         if layer < L:
             Xm, Rr, t = r["Xm"][layer][:, 0], r["Rr"][layer][:, 0], r["t"][layer][:, 0]
-            cd = np.linalg.solve(Xm, a[..., None])[..., 0]
+            cd = safe_solve(Xm, a[..., None])[..., 0]
             cu = (Rr @ cd[..., None])[..., 0]
             gam = np.concatenate([cu, cd], axis=-1)                      # order of p: up then down
             e0 = np.concatenate([np.exp(-1j * p[:, :nf] * t[:, None]), np.ones((m, nf))], axis=-1)
@@ -109,7 +124,7 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
             a = (Av @ (gam * et)[..., None])[..., 0]                     # displacement at the bottom
         else:
             Av = V[:, :nf, nf:]
-            gam = np.linalg.solve(Av, a[..., None])[..., 0]
+            gam = safe_solve(Av, a[..., None])[..., 0]
             p = p[:, nf:]
             e0 = np.ones((m, nf), dtype=complex)
             I = _overlap(p, e0, e0, None)
@@ -137,7 +152,17 @@ def mode_fields(b: Blocks, fam: Family, c, kh, electrical: str | Boundary = "fre
             U = np.where(inside[..., None], val, U)
         if t is not None:
             z_top = z_top + t
-    out = {"group_velocity": c * num / den, "a_top": a_top,
+    with np.errstate(all="ignore"):
+        vg = c * num / den
+    if check:
+        # a mode trapped under a barrier: its zero of the boundary matrix sits on a pole, the
+        # matrix has no small eigenvalue at the root and its null vector (the surface vector) is
+        # not resolved; check those (and failed ones) against differences (surfwave.layers.group_check)
+        sus = ~(np.abs(w).min(axis=-1) <= RESOLVED) | ~np.isfinite(vg)
+        if sus.any():
+            vg[sus] = checked_group_velocity(b, fam, c[sus], kh[sus], vg[sus], electrical,
+                                             np.where(bad[:, None], np.nan, w)[sus])
+    out = {"group_velocity": vg, "a_top": a_top,
            "power_flow_angle": np.degrees(np.arctan2(num3, num))}
     if U is not None:
         scale = np.abs(U[..., :3] if nf > 3 else U).max(axis=(1, 2), keepdims=True)

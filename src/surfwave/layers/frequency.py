@@ -18,6 +18,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
+from surfwave.layers.group_check import checked_group_velocity
 from surfwave.layers.modes import family_modes, lowest_speed
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack
@@ -135,7 +136,7 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
                         dtype=bool)
         if mine.any():
             pf[rows[mine], cols[mine]] = mode_fields(b, fam, Cm[rows[mine], cols[mine]], khm[rows[mine], cols[mine]],
-                                                     electrical)["power_flow_angle"]
+                                                     electrical, check=False)["power_flow_angle"]
     return {"power_flow_angle": pf,
             "c": Cm, "mode": labels, "group_velocity": vg, "K2": np.full(Cm.shape, np.nan),
             "c_limit": float(np.sqrt(min(fm.X_limit for fm in fams) * b.sA / b.rho[-1])),
@@ -165,8 +166,6 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
     on its own (the start from the curve on ``grid``, then Newton), so the numbers do not depend
     on which others are solved.
     """
-    from surfwave.layers.solve import MAX_KH
-
     slowest = columns is not None and list(columns) == [0]             # the scans may stop above it
     cg = family_modes(b, fam, grid, electrical=electrical, lowest=slowest)  # (GRID, n_f)
     C = np.full((wH.size, cg.shape[1]), np.nan)
@@ -182,7 +181,7 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
         ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
         if ok.size < 2:
             continue
-        vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical)["group_velocity"]
+        vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical, check=False)["group_velocity"]
         w = cg[ok, j] * grid[ok]                                     # omega H along the curve
         kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
         # between the last grid point without the mode and the first with it: the cut-off is
@@ -190,25 +189,43 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
         below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
         kh[below] = wH[below] / c_lim
         rows = np.flatnonzero(np.isfinite(kh))
-        for _ in range(NEWTON):
-            live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
-            kh[rows[~live]] = np.nan
-            C[rows[~live], j] = np.nan
-            rows = rows[live]
-            if rows.size == 0:
-                break
-            allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
-            c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
-            good = np.isfinite(c)
-            v = np.full(rows.size, np.nan)
-            if good.any():
-                v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical)["group_velocity"]
-            C[rows, j], V[rows, j] = c, v
-            step = (c * kh[rows] - wH[rows]) / v
-            kh[rows] = np.where(good, kh[rows] - step, np.nan)
-            if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
-                break
+        _newton(b, fam, j, kh, rows, wH, C, V, electrical, slowest, check=False)
+        # the energy velocity checked once at the converged modes (surfwave.layers.group_check);
+        # where the check replaced it (a mode trapped under a barrier), Newton again with checked slopes
+        rows = np.flatnonzero(np.isfinite(C[:, j]) & np.isfinite(kh) & (kh > 0))
+        if rows.size:
+            vc = checked_group_velocity(b, fam, C[rows, j], wH[rows] / C[rows, j], V[rows, j], electrical)
+            redo = rows[~(vc == V[rows, j])]
+            V[rows, j] = vc
+            if redo.size:
+                _newton(b, fam, j, kh, redo, wH, C, V, electrical, slowest, check=True)
     return C, V
+
+
+def _newton(b: Blocks, fam: Family, j: int, kh: np.ndarray, rows: np.ndarray, wH: np.ndarray, C: np.ndarray,
+            V: np.ndarray, electrical: str | Boundary, slowest: bool, check: bool) -> None:
+    """Newton steps on c_j(kh) kh = omega H for mode j at ``rows``, updating kh (n,), C and V (n, n_f) in place."""
+    from surfwave.layers.solve import MAX_KH
+
+    for _ in range(NEWTON):
+        live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
+        kh[rows[~live]] = np.nan
+        C[rows[~live], j] = np.nan
+        rows = rows[live]
+        if rows.size == 0:
+            break
+        allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
+        c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
+        good = np.isfinite(c)
+        v = np.full(rows.size, np.nan)
+        if good.any():
+            v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical,
+                                 check=check)["group_velocity"]
+        C[rows, j], V[rows, j] = c, v
+        step = (c * kh[rows] - wH[rows]) / v
+        kh[rows] = np.where(good, kh[rows] - step, np.nan)
+        if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
+            break
 
 
 def mode_speeds_at_frequency(stack: Stack, frequency, labels, electrical: str | Boundary = "free") -> np.ndarray:

@@ -65,7 +65,7 @@ def mode_profile(substrate, films, kh, depth, *, mode: str = "R", euler=None, su
     c = family_modes(b, fam, kh, electrical=electrical)
     if c.shape[1] <= j or not np.all(np.isfinite(c[:, j])):
         raise InputError(f"mode {mode!r} does not exist at every kh given")
-    r = mode_fields(b, fam, c[:, j], kh, electrical, depth=depth)
+    r = mode_fields(b, fam, c[:, j], kh, electrical, depth=depth, check=False)
     U = np.zeros((kh.size, depth.size, 4), dtype=complex)
     U[:, :, list(fam.idx)] = r["U"]
     # potential back to V per m of displacement: phi was scaled by sqrt(se / sA)

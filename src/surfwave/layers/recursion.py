@@ -32,6 +32,7 @@ from typing import Any
 
 import numpy as np
 
+from surfwave.layers.linalg import safe_solve, safe_solve_right
 from surfwave.layers.partial import Blocks, Family, eigen
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, as_boundary
 
@@ -65,8 +66,8 @@ def expi(z: np.ndarray, decaying: bool) -> np.ndarray:
 
 
 def _solve_right(Y: np.ndarray, Xm: np.ndarray) -> np.ndarray:
-    """Y Xm^-1 for stacks of square matrices."""
-    return np.swapaxes(np.linalg.solve(np.swapaxes(Xm, -1, -2), np.swapaxes(Y, -1, -2)), -1, -2)
+    """Y Xm^-1 for stacks of square matrices (NaN where Xm is exactly singular)."""
+    return safe_solve_right(Y, Xm)
 
 
 def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=None) -> dict:
@@ -133,9 +134,9 @@ def top_impedance(b: Blocks, fam: Family, c, kh, *, keep: bool = False, M_sub=No
             GVu, GVd = Bu - M @ Au, Bd - M @ Ad
         with np.errstate(all="ignore"):
             if GVu.shape[-3] == 1 < t.shape[-1]:
-                Rr = -np.linalg.solve(GVu, GVd) * Ed[..., None, :]     # (GVu^-1 GVd) diag(Ed)
+                Rr = -safe_solve(GVu, GVd) * Ed[..., None, :]     # (GVu^-1 GVd) diag(Ed)
             else:
-                Rr = -np.linalg.solve(GVu, GVd * Ed[..., None, :])
+                Rr = -safe_solve(GVu, GVd * Ed[..., None, :])
             ER = Eu[..., :, None] * Rr
             XY = V[:, None, :, nf:] + V[:, None, :, :nf] @ ER               # [A_d; B_d] + [A_u; B_u] ER
             Xm = XY[..., :nf, :]
