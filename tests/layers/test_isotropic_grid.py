@@ -5,20 +5,16 @@ Reference: the general Stroh solver of surfwave.layers (forced with ``solve.FAST
 from __future__ import annotations
 
 import numpy as np
+from general_path import layered_general
 
 import surfwave
-import surfwave.layers.solve as solve
 from surfwave.layers.isotropic import iso_stack
 from surfwave.layers.isotropic_modes import Rows, slowest_speed, speed_grid
 from surfwave.layers.stack import resolve_stack
 
 
 def _general(sub, films, kh):
-    try:
-        solve.FAST_ISOTROPIC = False
-        return surfwave.layered(sub, films, kh=kh)
-    finally:
-        solve.FAST_ISOTROPIC = True
+    return layered_general(sub, films, kh=kh)
 
 SUB = {"E": 573.25, "nu": 0.1077, "rho": 8614.9}
 FILMS = [{"E": 294.41, "nu": 0.1905, "rho": 16726.3, "thickness": 0.848e-6},

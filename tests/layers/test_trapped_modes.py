@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from general_path import layered_general
 from layers_collocation import collocation_speeds
 
 import surfwave
-import surfwave.layers.solve as solve
 from surfwave.layers.counting import mode_count, sublayers
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.stack import resolve_stack
@@ -26,12 +26,7 @@ AU_CUBIC = {"voigt": [[192.3, 163.1, 163.1, 0, 0, 0], [163.1, 192.3, 163.1, 0, 0
                       [0, 0, 0, 42.0, 0, 0], [0, 0, 0, 0, 42.0, 0], [0, 0, 0, 0, 0, 42.0]], "rho": 19300.0}
 
 
-def _general(sub, films, **kw):
-    try:
-        solve.FAST_ISOTROPIC = False
-        return surfwave.layered(sub, films, **kw)
-    finally:
-        solve.FAST_ISOTROPIC = True
+_general = layered_general
 
 
 def _same_record(fast, gen, rtol):
