@@ -13,6 +13,7 @@ import sys
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.layers.modes import label_family
 
 EPILOG = """\
 Films from the top down, each NAME:THICKNESS[:STRESS]: a material name (film database first:
@@ -137,7 +138,7 @@ def _limits_text(r) -> str:
     by_family: dict[str, float] = {}
     for lab, v in zip(np.ravel(r["mode"]), np.ravel(r["mode_limit"])):
         if lab and np.isfinite(v):
-            by_family.setdefault({"R": "R, S", "S": "R, S", "L": "L", "M": "M"}.get(str(lab)[:1], "?"), float(v))
+            by_family.setdefault({"R": "R, S"}.get(label_family(lab), label_family(lab) or "?"), float(v))
     if len({round(v, 6) for v in by_family.values()}) <= 1:
         return f"c_limit = {r['c_limit']:.3f} m/s"
     ordered = sorted(by_family.items(), key=lambda x: x[1])

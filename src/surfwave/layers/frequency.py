@@ -19,7 +19,7 @@ from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
 from surfwave.layers.group_check import checked_group_velocity
-from surfwave.layers.modes import family_modes, lowest_speed
+from surfwave.layers.modes import family_modes, label_family, lowest_speed
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack
 from surfwave.solvers.boundary import Boundary
@@ -130,10 +130,9 @@ def _at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free
     reason = np.where(np.isfinite(Cm).any(axis=1), "", REASON_NONE).astype(object)
     pf = np.full(Cm.shape, np.nan)
     rows, cols = np.nonzero(np.isfinite(Cm))
+    fam_of = np.array([label_family(lab) for lab in labels[rows, cols]], dtype=object)
     for fam in fams:
-        mine = np.array([(str(labels[r, c])[:1] in ("R", "S")) == (fam.prefix == "R")
-                         and (fam.prefix == "R" or str(labels[r, c])[:1] == fam.prefix) for r, c in zip(rows, cols)],
-                        dtype=bool)
+        mine = fam_of == fam.prefix
         if mine.any():
             pf[rows[mine], cols[mine]] = mode_fields(b, fam, Cm[rows[mine], cols[mine]], khm[rows[mine], cols[mine]],
                                                      electrical, check=False)["power_flow_angle"]

@@ -36,7 +36,7 @@ from surfwave.layers.scan import impedance_eigvalsh, near_poles, scan_grid
 from surfwave.solvers.boundary import Boundary, as_boundary
 from surfwave.solvers.impedance import limiting_x as elastic_limiting_x
 
-__all__ = ["C_TOL", "family_modes", "label", "lowest_speed"]
+__all__ = ["C_TOL", "FAMILY_OF_LETTER", "family_modes", "label_family", "label", "lowest_speed"]
 
 #: Relative width of a converged bracket in c.
 C_TOL = 4e-15
@@ -57,6 +57,16 @@ def label(prefix: str, j: int) -> str:
     if prefix == "R":
         return "R" if j == 0 else f"S{j}"
     return f"{prefix}{j}"
+
+
+#: The family of each label's first letter: R (Rayleigh) and S (Sezawa) share the sagittal family "R".
+FAMILY_OF_LETTER = {"R": "R", "S": "R", "L": "L", "M": "M"}
+
+
+def label_family(text: str) -> str:
+    """The family prefix ("R", "L", "M") of a mode label, leaky ("...~") or not: the inverse of
+    :func:`label`'s prefix; "" for an unknown label."""
+    return FAMILY_OF_LETTER.get(str(text)[:1], "")
 
 
 def lowest_speed(b: Blocks) -> float:

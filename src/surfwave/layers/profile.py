@@ -10,7 +10,7 @@ import numpy as np
 
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
-from surfwave.layers.modes import family_modes
+from surfwave.layers.modes import family_modes, label_family
 from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.stack import resolve_stack
 from surfwave.solvers.boundary import Boundary
@@ -53,7 +53,7 @@ def mode_profile(substrate, films, kh, depth, *, mode: str = "R", euler=None, su
     if not (np.all(np.isfinite(kh)) and np.all(kh >= 0) and np.all(np.isfinite(depth)) and np.all(depth >= 0)):
         raise InputError("kh and depth must be finite and >= 0")
     b = scaled_blocks(stack)
-    prefix = {"R": "R", "S": "R", "L": "L", "M": "M"}.get(mode[:1])
+    prefix = label_family(mode)
     fam = next((f for f in families(b) if f.prefix == prefix), None)
     try:
         j = 0 if mode == "R" else int(mode[1:])

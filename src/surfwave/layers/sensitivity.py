@@ -27,6 +27,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from surfwave.errors import InputError
+from surfwave.layers.modes import label_family
 from surfwave.layers.partial import COUPLING_TOL, Blocks, Family, families, scaled_blocks
 from surfwave.layers.recursion import boundary_matrix, top_impedance
 from surfwave.layers.stack import Stack
@@ -49,8 +50,8 @@ def family_prefix(label: str) -> str:
     text = str(label)
     if text.endswith("~"):
         raise InputError(f"mode {text!r} is leaky: its sensitivities are not those of a guided mode")
-    prefix = {"R": "R", "S": "R", "L": "L", "M": "M"}.get(text[:1])
-    if prefix is None:
+    prefix = label_family(text)
+    if not prefix:
         raise InputError(f"unknown mode label {text!r}: expected R, S<n>, L<n> or M<n>")
     return prefix
 

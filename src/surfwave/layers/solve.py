@@ -15,7 +15,7 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
-from surfwave.layers.modes import family_modes, floor_unstable, label
+from surfwave.layers.modes import family_modes, floor_unstable, label, label_family
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
@@ -255,7 +255,7 @@ def mode_speeds(stack: Stack, kh, labels, electrical: str = "free") -> np.ndarra
 
 def _prefix(text: str) -> str:
     """Family prefix of a guided mode's label ("" for a leaky or unknown one: no such mode)."""
-    return "" if text.endswith("~") else {"R": "R", "S": "R", "L": "L", "M": "M"}.get(text[:1], "")
+    return "" if text.endswith("~") else label_family(text)
 
 
 def unstable_reason(stack: Stack) -> str:
@@ -293,7 +293,7 @@ def mode_limits(labels: np.ndarray, limits: dict[str, float]) -> np.ndarray:
     """
     out = np.full(labels.shape, np.nan)
     for lab in set(labels.ravel().tolist()) - {""}:
-        out[labels == lab] = limits.get({"R": "R", "S": "R", "L": "L", "M": "M"}.get(str(lab)[:1], ""), np.nan)
+        out[labels == lab] = limits.get(label_family(lab), np.nan)
     return out
 
 

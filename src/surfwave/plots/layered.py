@@ -22,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
+from surfwave.layers.modes import label_family  # noqa: E402
 from surfwave.plots.output import savefig  # noqa: E402
 
 #: Names of a film's three bulk sheets along x1 (ascending speed).
@@ -65,7 +66,7 @@ def bulk_marks(bulk: np.ndarray) -> list[tuple[float, str]]:
     return marks
 
 
-FAMILY_NAMES = {"R": "sagittal", "S": "sagittal", "L": "SH", "M": "coupled"}
+FAMILY_NAMES = {"R": "sagittal", "L": "SH", "M": "coupled"}  # by family prefix (surfwave.layers.modes)
 
 
 def family_limits(sub: xr.Dataset) -> list[tuple[float, str]]:
@@ -79,7 +80,7 @@ def family_limits(sub: xr.Dataset) -> list[tuple[float, str]]:
     for mode, v in zip(sub["mode"].values, sub["mode_limit"].values):
         if np.isfinite(v):
             key = next((k for k in found if abs(k - v) <= 5e-4 * v), float(v))
-            name = FAMILY_NAMES.get(str(mode)[:1], "")
+            name = FAMILY_NAMES.get(label_family(mode), "")
             if name not in found.setdefault(key, []):
                 found[key].append(name)
     if len(found) <= 1:
