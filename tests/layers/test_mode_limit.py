@@ -60,3 +60,20 @@ def test_cube_carries_one_limit_per_mode():
         hit = r["mode"] == mode
         assert float(ds["mode_limit"].sel(mode=mode).squeeze()) == pytest.approx(float(r["mode_limit"][hit][0]),
                                                                                  rel=1e-14)
+
+
+def test_figure_draws_one_limit_per_family():
+    """plots.layered.limit_lines: Si (001)[100] gives the sagittal (material()'s c_limit) and the SH
+    (sqrt(C44/rho)) lines, ascending; an isotropic substrate one "substrate limit" line at c_limit."""
+    from surfwave.plots.layered import limit_lines
+
+    si = get_material("Si")
+    ds = dispersion_cube("Si", [SIO2], np.array([1.0, 3.0])).isel(film_stress=0, electrical=0)
+    (v1, lab1), (v2, lab2) = limit_lines(ds)
+    assert (lab1, lab2) == ("limit, sagittal modes", "limit, SH modes")
+    assert v1 == pytest.approx(float(surfwave.material("Si", direction="[100]")["c_limit"]), rel=1e-9)
+    assert v2 == pytest.approx(np.sqrt(si.voigt[3, 3] * 1e9 / si.rho), rel=1e-9)
+    iso = dispersion_cube({"E": 400.0, "nu": 0.25, "rho": 3500.0},
+                          [{"E": 73.0, "nu": 0.17, "rho": 2200.0, "thickness": 1e-6}], np.array([1.0]))
+    iso = iso.isel(film_stress=0, electrical=0)
+    assert limit_lines(iso) == [(float(iso["c_limit"]), "substrate limit")]

@@ -69,7 +69,7 @@ def bulk_marks(bulk: np.ndarray) -> list[tuple[float, str]]:
 FAMILY_NAMES = {"R": "sagittal", "L": "SH", "M": "coupled"}  # by family prefix (surfwave.layers.modes)
 
 
-def family_limits(sub: xr.Dataset) -> list[tuple[float, str]]:
+def limit_lines(sub: xr.Dataset) -> list[tuple[float, str]]:
     """(speed, label) of the substrate limits to draw for ``sub`` (dims kh, mode): one per family
     whose limit differs (``mode_limit``; sagittal and SH differ in a mirror plane), else the one
     ``c_limit`` ("substrate limit")."""
@@ -86,6 +86,12 @@ def family_limits(sub: xr.Dataset) -> list[tuple[float, str]]:
     if len(found) <= 1:
         return [(c_lim, "substrate limit")]
     return [(v, f"limit, {' / '.join(names)} modes") for v, names in sorted(found.items())]
+
+
+def _draw_limits(ax, limits: list[tuple[float, str]], lw: float) -> None:
+    """Black horizontal lines at the limits of :func:`limit_lines` (dashed, then dash-dotted)."""
+    for (v, lab), ls in zip(limits, ("--", "-.", ":")):
+        ax.axhline(v, color="k", ls=ls, lw=lw, label=lab)
 
 
 def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
@@ -111,7 +117,7 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
     for ax, orient in zip(axes, ds["orientation"].values):
         sub = ds.sel(orientation=orient).isel(film_stress=i).sel(electrical=el)
         _modes(ax, sub, "c")
-        limits = family_limits(sub)
+        limits = limit_lines(sub)
         c_lim = max(v for v, _ in limits)
         c = sub["c"].values
         top = max(np.nanmax(c) if np.isfinite(c).any() else c_lim, c_lim) * 1.06
@@ -120,8 +126,7 @@ def dispersion(ds: xr.Dataset, path: str | Path, title: str = "") -> Path:
         shown = [(v, lab) for v, lab in marks if bottom * 0.9 <= v <= top * 1.15]
         top = max([top] + [v * 1.02 for v, _ in shown])
         bottom = min([bottom] + [v * 0.98 for v, _ in shown])
-        for (v, lab), ls in zip(limits, ("--", "-.", ":")):
-            ax.axhline(v, color="k", ls=ls, lw=1.2, label=lab)
+        _draw_limits(ax, limits, lw=1.2)
         groups: list[list[tuple[float, str]]] = []  # marks closer than 3.5 % of the axis share one label
         for v, lab in sorted(shown):
             if groups and v - groups[-1][-1][0] < 0.035 * (top - bottom):
@@ -220,8 +225,7 @@ def stress_shift(ds: xr.Dataset, path: str | Path, title: str = "", max_modes: i
         ok = np.flatnonzero(np.isfinite(y))
         if ok.size:
             left.annotate(str(mode), (kh[ok[0]], y[ok[0]]), xytext=(2, 4), textcoords="offset points", fontsize=8)
-    for (v, lab), ls in zip(family_limits(sub.isel(film_stress=i)), ("--", "-.", ":")):
-        left.axhline(v, color="k", ls=ls, lw=1.0, label=lab)
+    _draw_limits(left, limit_lines(sub.isel(film_stress=i)), lw=1.0)
     left.set_ylabel("phase speed c (m/s)")
     left.legend(fontsize=8, loc="lower left")
     ref = float(stresses[i])
