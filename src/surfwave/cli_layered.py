@@ -21,7 +21,8 @@ SiO2 = fused silica, Si3N4, Pt-film, sapphire; the piezoelectric crystals ZnO, A
 elastic crystals Al, Au, Cu, diamond, ...; '<cubic metal>-poly' for an untextured polycrystal),
 a thickness with a unit (nm, um, mm or m) and optionally an equibiaxial in-plane stress in GPa
 (negative = compression). kh = wavenumber x total film thickness; --kh takes values or a sweep
-START:STOP:STEP (stop included). Lab frame: x1 propagation, x3 outward normal (SAW frame).
+START:STOP:STEP (stop included); --frequency the same, in Hz or with a unit on each number (Hz, kHz,
+MHz, GHz), e.g. 100MHz:2GHz:100MHz. Lab frame: x1 propagation, x3 outward normal (SAW frame).
 
 examples:
   surfwave layered --substrate Si --film SiO2:1um --kh 0:5:0.05
@@ -29,11 +30,13 @@ examples:
   surfwave layered --substrate LiNbO3 --euler 0 38 0 --film SiO2:0.5um --kh 0:2:0.25
   surfwave layered --substrate Si --film diamond:1um --kh 0:1.5:0.1 --leaky
   surfwave layered --substrate Si --film Au-poly:100nm --frequency 1e8 5e8 1e9 --json
+  surfwave layered --substrate Si --film SiO2:1um --frequency 100MHz:2GHz:100MHz --modes 2
 """
 
 _UNITS = {"nm": 1e-9, "um": 1e-6, "µm": 1e-6, "mm": 1e-3, "m": 1.0}
 #: Most kh values of one sweep.
 MAX_KH_POINTS = 100000
+_HERTZ = {"": 1.0, "Hz": 1.0, "kHz": 1e3, "MHz": 1e6, "GHz": 1e9}
 
 
 def add_parser(sub, parser_class) -> argparse.ArgumentParser:
@@ -49,7 +52,8 @@ def add_parser(sub, parser_class) -> argparse.ArgumentParser:
                     help="a film (repeat from the top down), e.g. SiO2:1um or SiO2:500nm:-0.2")
     grid = lp.add_mutually_exclusive_group(required=True)
     grid.add_argument("--kh", nargs="+", help="kh values or START:STOP:STEP")
-    grid.add_argument("--frequency", nargs="+", type=float, help="frequencies in Hz")
+    grid.add_argument("--frequency", nargs="+",
+                      help="frequencies (Hz, or with a unit: 500MHz, 2GHz) or START:STOP:STEP")
     lp.add_argument("--surface", default="(001)", help="substrate surface (hkl) (default (001))")
     lp.add_argument("--direction", default="[100]", help="propagation direction [uvw] or angle in degrees")
     lp.add_argument("--euler", nargs=3, type=float, metavar=("PHI", "THETA", "PSI"),
@@ -84,21 +88,54 @@ def parse_film(text: str) -> dict:
 
 def parse_kh(values: list[str]) -> np.ndarray:
     """kh values, or one sweep START:STOP:STEP (stop included)."""
+    return parse_sweep(values, "--kh")
+
+
+def parse_frequency(values: list[str]) -> np.ndarray:
+    """Frequencies (Hz), or one sweep START:STOP:STEP; each number may carry a unit (Hz, kHz, MHz, GHz)."""
+    return parse_sweep(values, "--frequency", _HERTZ)
+
+
+def parse_sweep(values: list[str], option: str, units: dict[str, float] | None = None) -> np.ndarray:
+    """Values of ``option`` (n,), or one sweep START:STOP:STEP (stop included).
+
+    Parameters
+    ----------
+    values : list of str
+        The option's words.
+    option : str
+        The option's name, for the error line.
+    units : dict, optional
+        Unit suffixes and their factors (e.g. {"MHz": 1e6}); None: plain numbers only.
+
+    Raises
+    ------
+    InputError
+        Not numbers (with a known unit), a sweep with STEP <= 0 or STOP < START, or more than
+        :data:`MAX_KH_POINTS` values.
+    """
+    def number(text: str) -> float:
+        m = re.fullmatch(r"\s*([-+0-9.eE]+(?:[eE][-+]?[0-9]+)?)\s*([A-Za-z]*)\s*", text)
+        if m is None or m.group(2) not in (units or {"": 1.0}):
+            raise ValueError(text)
+        return float(m.group(1)) * (units or {"": 1.0})[m.group(2)]
+
+    unit_words = f" (units: {', '.join(k for k in units if k)})" if units else ""
     if len(values) == 1 and ":" in values[0]:
         try:
-            a, b, s = (float(v) for v in values[0].split(":"))
+            a, b, s = (number(v) for v in values[0].split(":"))
         except ValueError:
-            raise InputError(f"--kh sweep must be START:STOP:STEP, got {values[0]!r}") from None
+            raise InputError(f"{option} sweep must be START:STOP:STEP{unit_words}, got {values[0]!r}") from None
         if not (np.isfinite([a, b, s]).all() and s > 0 and b >= a):
-            raise InputError(f"--kh sweep must have STEP > 0 and STOP >= START, got {values[0]!r}")
+            raise InputError(f"{option} sweep must have STEP > 0 and STOP >= START, got {values[0]!r}")
         n = int(np.floor((b - a) / s + 1e-9)) + 1
         if n > MAX_KH_POINTS:
-            raise InputError(f"--kh sweep {values[0]!r} has {n} values, more than {MAX_KH_POINTS}")
+            raise InputError(f"{option} sweep {values[0]!r} has {n} values, more than {MAX_KH_POINTS}")
         return a + s * np.arange(n)
     try:
-        return np.array([float(v) for v in values])
+        return np.array([number(v) for v in values])
     except ValueError:
-        raise InputError(f"--kh must be numbers or START:STOP:STEP, got {values!r}") from None
+        raise InputError(f"{option} must be numbers or START:STOP:STEP{unit_words}, got {values!r}") from None
 
 
 def run(args) -> int:
@@ -121,7 +158,7 @@ def run(args) -> int:
     if args.kh is not None:
         kw["kh"] = parse_kh(args.kh)
     else:
-        kw["frequency"] = np.array(args.frequency)
+        kw["frequency"] = parse_frequency(args.frequency)
     r = surfwave.layered(args.substrate, films, **kw)
     if args.json:
         out = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in r.items()}

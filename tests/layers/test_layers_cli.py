@@ -8,7 +8,7 @@ import pytest
 
 import surfwave
 from surfwave.cli import main
-from surfwave.cli_layered import parse_film, parse_kh
+from surfwave.cli_layered import parse_film, parse_frequency, parse_kh
 
 
 def test_table_matches_the_api(capsys):
@@ -46,6 +46,9 @@ def test_json_and_frequency(capsys):
     (["--film", "SiO2:-1um", "--kh", "1"], ">= 0"),
     (["--film", "SiO2:1um", "--kh", "3:1:0.5"], "STOP >= START"),
     (["--film", "unobtainium:1um", "--kh", "1"], "unknown material"),
+    (["--film", "SiO2:1um", "--frequency", "1THz"], "units: Hz, kHz, MHz, GHz"),
+    (["--film", "SiO2:1um", "--frequency", "2GHz:1GHz:1MHz"], "STOP >= START"),
+    (["--film", "SiO2:1um", "--kh", "1MHz"], "--kh must be numbers"),
 ])
 def test_errors_are_one_line(capsys, argv, words):
     """Bad input: exit code 2 and one line on stderr naming the problem."""
@@ -58,3 +61,21 @@ def test_parsers():
     """Film and kh parsing: units and the inclusive sweep."""
     assert parse_film("Au-poly:50nm:-0.5") == {"name": "Au-poly", "thickness": pytest.approx(5e-8), "stress": -0.5}
     assert parse_kh(["0:5:0.05"]).size == 101
+
+
+def test_frequency_units_and_sweep():
+    """--frequency words: plain Hz, a unit on each number, and an inclusive sweep whose ends carry units
+    (reference: the values written out by hand)."""
+    assert parse_frequency(["1e8", "0.5GHz", "250 MHz", "3kHz", "7Hz"]).tolist() == pytest.approx([1e8, 5e8, 2.5e8, 3e3, 7.0])
+    sweep = parse_frequency(["100MHz:1GHz:300MHz"])
+    assert sweep.tolist() == pytest.approx([1e8, 4e8, 7e8, 1e9])
+    assert parse_frequency(["1e8:1e9:3e8"]).tolist() == pytest.approx(sweep.tolist())
+
+
+def test_frequency_sweep_matches_the_api(capsys):
+    """A --frequency sweep with units prints the rows of surfwave.layered at those frequencies."""
+    assert main(["layered", "--substrate", "Si", "--film", "SiO2:1um", "--frequency", "0.2GHz:0.6GHz:0.2GHz",
+                 "--modes", "1", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ref = surfwave.layered("Si", [{"name": "SiO2", "thickness": 1e-6}], frequency=[2e8, 4e8, 6e8], modes=1)
+    assert np.array(out["c"], dtype=float) == pytest.approx(ref["c"], rel=1e-12)
