@@ -55,8 +55,8 @@ import numpy as np
 from surfwave.layers.stack import Stack
 from surfwave.solvers.tensors import tensor_to_voigt
 
-__all__ = ["IsoStack", "eligible", "is_isotropic", "iso_stack", "secular_psv", "secular_sh", "substrate_psv", "top_row",
-           "wave_functions"]
+__all__ = ["IsoStack", "Speeds", "eligible", "is_isotropic", "iso_stack", "psv_at", "psv_speeds", "secular_psv",
+           "secular_sh", "sh_at", "sh_speeds", "substrate_psv", "top_row", "wave_functions"]
 
 #: Relative tolerance of the isotropy test of a stiffness.
 ISO_TOL = 1e-12
@@ -165,48 +165,83 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     shape = np.broadcast_shapes(r2.shape, t.shape)
     r2v = np.broadcast_to(r2, shape[-1:] if shape else ()).reshape(-1)
     tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
-    r = np.sqrt(np.abs(r2v))
-    C, S, g = np.empty(tb.shape), np.empty(tb.shape), np.ones(tb.shape)
-    pos = r2v > 0
-    k = int(pos.sum())
-    ev: slice | np.ndarray
-    pr: slice | np.ndarray
-    if pos[:k].all():                                   # ascending speeds: evanescent columns first
-        ev, pr = slice(0, k), slice(k, r2v.size)
-    else:
-        ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
-    if k:                                               # (in place: few passes over the block)
-        re = r[ev]
-        e = tb[..., ev] * -re
-        np.expm1(e, out=e)
-        ge = e + 1.0
-        g[..., ev] = ge
-        np.multiply(ge, ge, out=ge)
-        ge += 1.0
-        ge *= 0.5
-        C[..., ev] = ge
-        h = e + 2.0
-        h *= e
-        h *= -0.5 / re
-        S[..., ev] = h
-    if k < r2v.size:
-        rp = r[pr]
-        tp = tb[..., pr]
-        u = tp * (0.5 * rp)
-        np.tan(u, out=u)                                # half-angle tangent: cos and sin from one call
-        u2 = u * u
-        d = u2 + 1.0
-        np.divide(1.0, d, out=d)
-        c = 1.0 - u2
-        c *= d
-        C[..., pr] = c
-        u *= d
-        if (rp > 0).all():
-            u *= 2.0 / rp
-            S[..., pr] = u
-        else:
-            S[..., pr] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
+    C, S, g = _wave(r2v, tb, True)
+    assert g is not None
     return C.reshape(shape), S.reshape(shape), g.reshape(shape)
+
+
+def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """:func:`wave_functions` of r2 (n,) at t (..., n) (float arrays of those shapes); g only if ``want_g``.
+
+    Each element is computed by the same operations whatever the shapes (the scan's chunks, the
+    hunt's pairs): writing into column blocks of C, S (ascending speeds: the evanescent columns
+    first) or, for speeds in another order, into copies by index.
+    """
+    n = r2.size
+    r = np.sqrt(np.abs(r2))
+    pos = r2 > 0
+    k = int(pos.sum())
+    C, S = np.empty(t.shape), np.empty(t.shape)
+    g = np.empty(t.shape) if want_g else None
+    if not pos[:k].all():                               # not ascending: index the two branches
+        ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
+        if k:
+            re = r[ev]
+            e = t[..., ev] * -re
+            np.expm1(e, out=e)
+            ge = e + 1.0
+            if g is not None:
+                g[..., ev] = ge
+            np.multiply(ge, ge, out=ge)
+            ge += 1.0
+            ge *= 0.5
+            C[..., ev] = ge
+            h = e + 2.0
+            h *= e
+            h *= -0.5 / re
+            S[..., ev] = h
+        if k < n:
+            Cp, Sp = np.empty(t.shape[:-1] + (n - k,)), np.empty(t.shape[:-1] + (n - k,))
+            _propagating(r[pr], t[..., pr], Cp, Sp)
+            C[..., pr], S[..., pr] = Cp, Sp
+            if g is not None:
+                g[..., pr] = 1.0
+        return C, S, g
+    if k:                                               # evanescent columns 0 ... k - 1, in place
+        re = r[:k]
+        Ce, Se = C[..., :k], S[..., :k]
+        e = t[..., :k] * -re
+        np.expm1(e, out=e)
+        np.add(e, 1.0, out=Ce)
+        if g is not None:
+            g[..., :k] = Ce
+        np.multiply(Ce, Ce, out=Ce)
+        Ce += 1.0
+        Ce *= 0.5
+        np.add(e, 2.0, out=Se)
+        Se *= e
+        Se *= -0.5 / re
+    if k < n:
+        _propagating(r[k:], t[..., k:], C[..., k:], S[..., k:])
+        if g is not None:
+            g[..., k:] = 1.0
+    return C, S, g
+
+
+def _propagating(rp: np.ndarray, tp: np.ndarray, C: np.ndarray, S: np.ndarray) -> None:
+    """C = cos(q t), S = sin(q t) / q (S = t at q = 0) into C, S (..., m) from q = rp (m,), t = tp (..., m)."""
+    u = tp * (0.5 * rp)
+    np.tan(u, out=u)                                    # half-angle tangent: cos and sin from one call
+    np.multiply(u, u, out=C)                            # u^2, then 1 - u^2
+    d = C + 1.0
+    np.divide(1.0, d, out=d)
+    np.subtract(1.0, C, out=C)
+    C *= d
+    u *= d
+    if (rp > 0).all():
+        np.multiply(u, 2.0 / rp, out=S)
+    else:
+        S[...] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
 
 
 def _c2(M: np.ndarray) -> np.ndarray:
@@ -281,6 +316,66 @@ def top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarr
     return k0, k2, k3, k4
 
 
+@dataclass(frozen=True, eq=False)
+class Speeds:
+    """The kh-independent parts of a family's secular function at speeds c (n,) (cut by :meth:`cut`).
+
+    Attributes
+    ----------
+    X : ndarray, shape (n, L + 1)
+        rho c^2 / s of every layer.
+    r2 : ndarray, shape (L, 2, n)
+        r_a^2 and r_b^2 of each film (P-SV; SH: r_b^2 twice).
+    head : ndarray, shape (k, n)
+        P-SV: the substrate's unit minor vector m (6 rows) and, with one film, the top row's
+        m_NT - K0 m, K2 m, K3 m, K4 m, K0 m (5 more); SH: the substrate's unit (v, tau) and
+        -mu r_b^2 of each film.
+    """
+
+    X: np.ndarray
+    r2: np.ndarray
+    head: np.ndarray
+
+    def cut(self, sl: slice) -> Speeds:
+        """These parts at the speeds ``sl`` of the last axis."""
+        return Speeds(self.X[sl], self.r2[..., sl], self.head[:, sl])
+
+
+def psv_speeds(st: IsoStack, c: np.ndarray) -> Speeds:
+    """:class:`Speeds` of the P-SV family at speeds c (n,) below the substrate's shear speed, m/s."""
+    X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
+    ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
+    rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    m = substrate_psv(st.mu[-1], X[:, -1], ra, rb)
+    m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
+    L = st.frac.size
+    r2 = np.empty((L, 2, c.size))
+    for layer in range(L):
+        r2[layer, 0] = 1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer])
+        r2[layer, 1] = 1.0 - X[:, layer] / st.mu[layer]
+    rows = [m.T]
+    if L == 1:
+        k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+        rows.append(np.stack([m[..., 5] - k0, k2, k3, k4, k0]))
+    return Speeds(X, r2, np.concatenate(rows))
+
+
+def sh_speeds(st: IsoStack, c: np.ndarray) -> Speeds:
+    """:class:`Speeds` of the SH family at speeds c (n,) below the substrate's shear speed, m/s."""
+    X = st.rho * (c[:, None] ** 2) / st.s
+    v = np.ones(c.size)
+    tau = -st.mu[-1] * np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    nrm = np.hypot(v, tau)
+    L = st.frac.size
+    r2 = np.empty((L, 2, c.size))
+    head = np.empty((2 + L, c.size))
+    head[0], head[1] = v / nrm, tau / nrm
+    for layer in range(L):
+        r2[layer, :] = 1.0 - X[:, layer] / st.mu[layer]
+        head[2 + layer] = -st.mu[layer] * r2[layer, 1]
+    return Speeds(X, r2, head)
+
+
 def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
     """Pole-free P-SV secular function: the minor m_NT at the free top, shape (r, n).
 
@@ -298,34 +393,42 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         :func:`psv_kernels` of each film below the top one at ``c`` (computed when not given; entry
         0 is not used: the top film's row is in closed form, :func:`top_row`).
     """
-    X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
-    ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
-    rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
-    m = substrate_psv(st.mu[-1], X[:, -1], ra, rb)
-    m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
+    return psv_at(st, psv_speeds(st, c), kh, kernels)
+
+
+def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
+    """:func:`secular_psv` from its kh-independent parts ``sp`` (:func:`psv_speeds`) at kh (r, n)."""
+    m = sp.head[:6].T
     L = st.frac.size
     if L == 0:
         return np.broadcast_to(m[:, 5], kh.shape)
     for layer in range(L - 1, -1, -1):
         t = kh * st.frac[layer]
-        Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
-        Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
+        Ca, Sa, ga = _wave(sp.r2[layer, 0], t, True)
+        Cb, Sb, gb = _wave(sp.r2[layer, 1], t, True)
+        assert ga is not None and gb is not None
         if layer == 0:                                                     # the NT row only: F itself
-            k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+            if L == 1:
+                d, k2, k3, k4, k0 = sp.head[6:]
+            else:
+                k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], sp.X[:, 0], m)
+                d = m[..., 5] - k0
             # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
-            F = Cb * (m[..., 5] - k0)
-            F += Sb * k2
+            F = Cb * d
+            T = Sb * k2
+            F += T
             F *= Ca
-            P = Cb * k3
-            P += Sb * k4
-            P *= Sa
-            F += P
+            np.multiply(Cb, k3, out=Cb)
+            np.multiply(Sb, k4, out=T)
+            Cb += T
+            Cb *= Sa
+            F += Cb
             ga *= gb
             ga *= k0
             F += ga
             return F
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
-        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
+        K = psv_kernels(st.lam[layer], st.mu[layer], sp.X[:, layer]) if kernels is None else kernels[layer]
         Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
         m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))
@@ -334,18 +437,19 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
 
 def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
     """Pole-free SH secular function tau / |(v, tau)| at the free top, shape (r, n) (arguments: :func:`secular_psv`)."""
-    X = st.rho * (c[:, None] ** 2) / st.s
-    v = np.ones(c.size)
-    tau = -st.mu[-1] * np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
-    nrm = np.hypot(v, tau)
-    v, tau = v / nrm, tau / nrm
+    return sh_at(st, sh_speeds(st, c), kh)
+
+
+def sh_at(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
+    """:func:`secular_sh` from its kh-independent parts ``sp`` (:func:`sh_speeds`) at kh (r, n)."""
+    v, tau = sp.head[0], sp.head[1]
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
-        rb2 = 1.0 - X[:, layer] / mu
-        Cb, Sb, _ = wave_functions(rb2, kh * st.frac[layer])
-        v, tau = Cb * v - Sb * tau / mu, -mu * rb2 * Sb * v + Cb * tau
+        Cb, Sb, _ = _wave(sp.r2[layer, 1], kh * st.frac[layer], False)
+        v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer] * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
         tau /= nrm
         if layer:
             v /= nrm
     return np.broadcast_to(tau, kh.shape)
+

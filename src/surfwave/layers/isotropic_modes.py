@@ -1,8 +1,8 @@
 """Guided modes of isotropic stacks from the pole-free secular functions of :mod:`surfwave.layers.isotropic`.
 
 Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular function is evaluated
-on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of
-:data:`CHUNK` speeds from the bottom up; a row stops once it holds ``modes`` sign changes. The
+on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of about
+:data:`CHUNK_ELEMENTS` (row, speed) points from the bottom up; a row stops once it holds ``modes`` sign changes. The
 function has no poles, so every sign change is a mode and the n-th one from below is the n-th
 mode. All brackets are then refined together by a safeguarded Newton iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
@@ -40,7 +40,16 @@ import math
 
 import numpy as np
 
-from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
+from surfwave.layers.isotropic import (
+    IsoStack,
+    psv_at,
+    psv_kernels,
+    psv_speeds,
+    secular_psv,
+    secular_sh,
+    sh_at,
+    sh_speeds,
+)
 from surfwave.layers.isotropic_deriv import secular_d
 
 __all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_brackets", "roots_table", "secular_at",
@@ -50,8 +59,12 @@ __all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_br
 C_TOL = 5e-14
 #: Refinement iterations at most.
 MAX_ITER = 60
-#: Speeds per chunk of the upward scan (about: the grid is cut into near-equal chunks).
+#: Speeds per chunk of the upward scan of the hunt's rescans (kept for callers; the scan chunks by elements).
 CHUNK = 32
+#: (row, speed) points per chunk of the upward scan, about (small blocks keep every temporary in cache).
+CHUNK_ELEMENTS = 8192
+#: Speeds per chunk at least.
+CHUNK_MIN = 8
 #: Points uniform in t and uniform in c.
 N_BASE = 20
 #: Lowest speed searched, in units of the slowest shear speed of any layer (the general path's floor).
@@ -223,76 +236,71 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
           ) -> tuple[np.ndarray, ...]:
     """Brackets (row, lower speed, upper speed, F at both, a third grid speed next to them or NaN, F there).
 
-    The grid is evaluated chunk by chunk until each row holds ``need`` sign changes; a root is a sign
-    change between grid speeds, or one of two roots hidden in a grid cell next to a local minimum of
-    |F| (:func:`_hidden_pairs`, all candidates of all chunks at once). Per row the brackets are
-    sorted and the first ``need`` kept.
+    The grid is evaluated chunk by chunk (about :data:`CHUNK_ELEMENTS` (row, speed) points each,
+    the kh-independent parts once for the whole grid) until each row holds ``need`` sign changes;
+    a root is a sign change between grid speeds, or one of two roots hidden in a grid cell next to
+    a local minimum of |F| (:func:`_hidden_pairs`). Per row the brackets are sorted and the first
+    ``need`` kept; so a local minimum whose cells lie above the row's ``need``-th sign change
+    (both its roots would rank above ``need``) is not hunted. Which speeds a row is evaluated at
+    beyond its ``need``-th sign change (the chunking) changes nothing kept.
     """
-    found = np.zeros(rows.size, dtype=int)
-    act = np.arange(rows.size)
-    c_old, F_old = grid[:0], np.zeros((rows.size, 0))                 # the last two columns seen
-    rr: list[np.ndarray] = []
-    lo: list[np.ndarray] = []
-    hi: list[np.ndarray] = []
-    flo: list[np.ndarray] = []
-    fhi: list[np.ndarray] = []
-    c3: list[np.ndarray] = []                                          # a third grid point next to the bracket
-    f3: list[np.ndarray] = []
-    cands: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-    cuts = np.linspace(0, grid.size, max(round(grid.size / CHUNK), 1) + 1).astype(int)   # near-equal chunks
-    for start, stop in zip(cuts[:-1], cuts[1:]):
-        if act.size == 0:
-            break
-        cn = grid[start:stop]
+    n_r, n_c = rows.size, grid.size
+    sh = prefix == "L"
+    sp = sh_speeds(st, grid) if sh else psv_speeds(st, grid)
+    F = np.empty((n_r, n_c))
+    upto = np.zeros(n_r, dtype=int)                                    # columns evaluated per row
+    found = np.zeros(n_r, dtype=int)
+    act = np.arange(n_r)
+    start = 0
+    while start < n_c and act.size:
+        width = max(CHUNK_MIN, CHUNK_ELEMENTS // act.size)
+        stop = n_c if n_c - start < width + CHUNK_MIN else start + width     # no sliver at the end
+        cn, sl = grid[start:stop], slice(start, stop)
         kernels = None
-        if prefix == "R" and st.frac.size > 1:
-            X = st.rho * (cn[:, None] ** 2) / st.s
-            kernels = [X[:0, 0]] + [psv_kernels(st.lam[i], st.mu[i], X[:, i]) for i in range(1, st.frac.size)]
+        if not sh and st.frac.size > 1:
+            kernels = [cn[:0]] + [psv_kernels(st.lam[i], st.mu[i], sp.X[sl, i]) for i in range(1, st.frac.size)]
         kh = rows_of.grid(rows[act], cn)
-        Fn = secular_sh(st, cn, kh) if prefix == "L" else secular_psv(st, cn, kh, kernels)
-        c, F = np.concatenate([c_old, cn]), np.concatenate([F_old, Fn], axis=1)
-        n0 = c_old.size
-        pos = F > 0
-        sc_all = pos[:, 1:] != pos[:, :-1]
-        sc = sc_all.copy()
-        sc[:, :max(n0 - 1, 0)] = False                                    # counted with the last chunk
-        r1, j1 = np.nonzero(sc)
-        rr.append(rows[act[r1]])
-        lo.append(c[j1])
-        hi.append(c[j1 + 1])
-        flo.append(F[r1, j1])
-        fhi.append(F[r1, j1 + 1])
-        j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, c.size - 1))
-        c3.append(np.where(j3 == j1 + 1, np.nan, c[j3]))
-        f3.append(F[r1, j3])
-        if c.size >= 3:
-            # a local minimum of |F| between cells without a sign change: two roots may hide there
-            aF = np.abs(F)
-            cand = (aF[:, 1:-1] < aF[:, :-2]) & (aF[:, 1:-1] <= aF[:, 2:]) & ~sc_all[:, :-1] & ~sc_all[:, 1:]
-            cand[:, :max(n0 - 2, 0)] = False
-            r2, j2 = np.nonzero(cand)
-            cols = j2[:, None] + np.arange(3)
-            cands.append((rows[act[r2]], c[cols], F[r2[:, None], cols]))
-        found[act] += sc.sum(axis=1)
-        live = found[act] < need
-        act, c_old, F_old = act[live], c[-2:], F[live][:, -2:]
-    if cands:
-        r2, c3_, F3 = (np.concatenate([x[k] for x in cands]) for k in range(3))
+        Fn = sh_at(st, sp.cut(sl), kh) if sh else psv_at(st, sp.cut(sl), kh, kernels)
+        pos = Fn > 0
+        n_sc = (pos[:, 1:] != pos[:, :-1]).sum(axis=1)
+        if start:
+            n_sc += pos[:, 0] != (F[act, start - 1] > 0)
+        F[act, sl] = Fn
+        upto[act] = stop
+        found[act] += n_sc
+        act = act[found[act] < need]
+        start = stop
+    cols = np.arange(n_c)
+    seen = cols[None, 1:] < upto[:, None]                              # cell j (c_j, c_j+1) evaluated
+    pos = F > 0
+    sc_all = (pos[:, 1:] != pos[:, :-1]) & seen
+    r1, j1 = np.nonzero(sc_all)
+    j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, n_c - 1))
+    out = [rows[r1], grid[j1], grid[j1 + 1], F[r1, j1], F[r1, j1 + 1], np.where(j3 == j1 + 1, np.nan, grid[j3]),
+           F[r1, j3]]
+    if n_c >= 3:
+        # a local minimum of |F| between cells without a sign change: two roots may hide there,
+        # unless at least ``need`` sign changes lie below its lower cell
+        aF = np.abs(F)
+        cand = ((aF[:, 1:-1] < aF[:, :-2]) & (aF[:, 1:-1] <= aF[:, 2:]) & ~sc_all[:, :-1] & ~sc_all[:, 1:]
+                & seen[:, 1:])
+        if need < n_c:
+            cand &= (np.cumsum(sc_all, axis=1) - sc_all)[:, :-1] < need
+        r2, j2 = np.nonzero(cand)
         if r2.size:
-            ok, x, fx = _hidden_pairs(st, prefix, rows_of, r2, c3_, F3)
-            rr += [r2[ok], r2[ok]]
-            lo += [c3_[ok, 0], x[ok]]
-            hi += [x[ok], c3_[ok, 2]]
-            flo += [F3[ok, 0], fx[ok]]
-            fhi += [fx[ok], F3[ok, 2]]
-            c3 += [c3_[ok, 2], c3_[ok, 0]]
-            f3 += [F3[ok, 2], F3[ok, 0]]
-    if not rr:
-        return np.zeros(0, dtype=int), *(np.zeros(0) for _ in range(6))
-    R, LO, HI, FLO, FHI, C3, F3_ = (np.concatenate(v) for v in (rr, lo, hi, flo, fhi, c3, f3))
+            c3_ = grid[j2[:, None] + np.arange(3)]
+            F3 = F[r2[:, None], j2[:, None] + np.arange(3)]
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, rows[r2], c3_, F3)
+            rk = rows[r2[ok]]
+            more = [np.concatenate([rk, rk]), np.concatenate([c3_[ok, 0], x[ok]]), np.concatenate([x[ok], c3_[ok, 2]]),
+                    np.concatenate([F3[ok, 0], fx[ok]]), np.concatenate([fx[ok], F3[ok, 2]]),
+                    np.concatenate([c3_[ok, 2], c3_[ok, 0]]), np.concatenate([F3[ok, 2], F3[ok, 0]])]
+            out = [np.concatenate([u, v]) for u, v in zip(out, more)]
+    R, LO = out[0], out[1]
     srt = np.lexsort((LO, R))
-    keep = np.arange(R.size) - np.searchsorted(R[srt], R[srt]) < need        # rank within the row
-    return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI, C3, F3_))
+    Rs = R[srt]
+    keep = np.arange(R.size) - np.searchsorted(Rs, Rs) < need               # rank within the row
+    return tuple(v[srt][keep] for v in out)
 
 
 def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
