@@ -50,7 +50,7 @@ def fake(monkeypatch):
         return hunt(st, prefix, rows_of, r, cs, Fs)
 
     monkeypatch.setattr(im, "psv_speeds", lambda st, c: _Speeds(c))
-    monkeypatch.setattr(im, "psv_at", lambda st, sp, kh, kernels=None: _F(sp.c, kh))
+    monkeypatch.setattr(im, "psv_block", lambda st, sp, kh, kernels=None: _F(sp.c, kh.T).T)
     monkeypatch.setattr(im, "secular_psv", lambda st, c, kh, kernels=None: _F(c, kh))
     monkeypatch.setattr(im, "_hidden_pairs", spy)
     return seen
@@ -85,3 +85,6 @@ def test_scan_finds_a_hidden_pair_below_the_needed_sign_changes(fake):
     for a, b in zip(two, full):                                   # the first two brackets of each row of the full scan
         keep = np.concatenate([np.flatnonzero(full[0] == i)[:2] for i in rows])
         np.testing.assert_array_equal(a, b[keep])
+    shuffled = im._scan(st, "R", GRID, rows_of, rows[::-1].copy(), 2)    # rows in another order: the same brackets
+    for a, b in zip(shuffled, two):
+        np.testing.assert_array_equal(a, b)

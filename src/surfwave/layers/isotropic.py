@@ -55,8 +55,8 @@ import numpy as np
 from surfwave.layers.stack import Stack
 from surfwave.solvers.tensors import tensor_to_voigt
 
-__all__ = ["IsoStack", "Speeds", "eligible", "is_isotropic", "iso_stack", "psv_at", "psv_speeds", "secular_psv",
-           "secular_sh", "sh_at", "sh_speeds", "substrate_psv", "top_row", "wave_functions"]
+__all__ = ["IsoStack", "Speeds", "eligible", "is_isotropic", "iso_stack", "psv_at", "psv_block", "psv_speeds",
+           "secular_psv", "secular_sh", "sh_at", "sh_block", "sh_speeds", "substrate_psv", "top_row", "wave_functions"]
 
 #: Relative tolerance of the isotropy test of a stiffness.
 ISO_TOL = 1e-12
@@ -164,18 +164,19 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     t = np.asarray(t, dtype=float)
     shape = np.broadcast_shapes(r2.shape, t.shape)
     r2v = np.broadcast_to(r2, shape[-1:] if shape else ()).reshape(-1)
-    tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
-    C, S, g = _wave(r2v, tb, True)
+    tb = np.broadcast_to(t, shape).reshape((-1, r2v.size))
+    C, S, g = _wave(r2v, np.ascontiguousarray(tb.T), True)             # speed-major blocks
     assert g is not None
-    return C.reshape(shape), S.reshape(shape), g.reshape(shape)
+    return C.T.reshape(shape), S.T.reshape(shape), g.T.reshape(shape)
 
 
 def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """:func:`wave_functions` of r2 (n,) at t (..., n) (float arrays of those shapes); g only if ``want_g``.
+    """:func:`wave_functions` of r2 (n,) at t (n, r) (speed-major float arrays); g only if ``want_g``.
 
-    Each element is computed by the same operations whatever the shapes (the scan's chunks, the
-    hunt's pairs): writing into column blocks of C, S (ascending speeds: the evanescent columns
-    first) or, for speeds in another order, into copies by index.
+    Each element is computed by the same operations whatever the block (the scan's chunks, the
+    hunt's pairs). Ascending speeds put the evanescent ones (r^2 > 0) first: the branch of the
+    majority runs on the whole block (finite where it does not apply) and the other overwrites its
+    rows (contiguous in memory); speeds in another order are indexed.
     """
     n = r2.size
     r = np.sqrt(np.abs(r2))
@@ -185,52 +186,52 @@ def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.n
     g = np.empty(t.shape) if want_g else None
     if not pos[:k].all():                               # not ascending: index the two branches
         ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
-        if k:
-            re = r[ev]
-            e = t[..., ev] * -re
-            np.expm1(e, out=e)
-            ge = e + 1.0
-            if g is not None:
-                g[..., ev] = ge
-            np.multiply(ge, ge, out=ge)
-            ge += 1.0
-            ge *= 0.5
-            C[..., ev] = ge
-            h = e + 2.0
-            h *= e
-            h *= -0.5 / re
-            S[..., ev] = h
-        if k < n:
-            Cp, Sp = np.empty(t.shape[:-1] + (n - k,)), np.empty(t.shape[:-1] + (n - k,))
-            _propagating(r[pr], t[..., pr], Cp, Sp)
-            C[..., pr], S[..., pr] = Cp, Sp
-            if g is not None:
-                g[..., pr] = 1.0
+        Ce, Se = np.empty((k,) + t.shape[1:]), np.empty((k,) + t.shape[1:])
+        ge = np.empty((k,) + t.shape[1:]) if g is not None else None
+        _evanescent(r[ev], t[ev], Ce, Se, ge)
+        Cp, Sp = np.empty((n - k,) + t.shape[1:]), np.empty((n - k,) + t.shape[1:])
+        _propagating(r[pr], t[pr], Cp, Sp)
+        C[ev], S[ev], C[pr], S[pr] = Ce, Se, Cp, Sp
+        if g is not None:
+            g[ev], g[pr] = ge, 1.0
         return C, S, g
-    if k:                                               # evanescent columns 0 ... k - 1, in place
-        re = r[:k]
-        Ce, Se = C[..., :k], S[..., :k]
-        e = t[..., :k] * -re
-        np.expm1(e, out=e)
-        np.add(e, 1.0, out=Ce)
+    if 2 * k <= n or not (r > 0).all():                 # mostly propagating (or a speed at r = 0)
+        _propagating(r, t, C, S)
         if g is not None:
-            g[..., :k] = Ce
-        np.multiply(Ce, Ce, out=Ce)
-        Ce += 1.0
-        Ce *= 0.5
-        np.add(e, 2.0, out=Se)
-        Se *= e
-        Se *= -0.5 / re
-    if k < n:
-        _propagating(r[k:], t[..., k:], C[..., k:], S[..., k:])
-        if g is not None:
-            g[..., k:] = 1.0
+            g[...] = 1.0
+        if k:
+            _evanescent(r[:k], t[:k], C[:k], S[:k], None if g is None else g[:k])
+    else:                                               # mostly evanescent (r > 0 everywhere)
+        _evanescent(r, t, C, S, g)
+        if k < n:
+            if g is not None:
+                g[k:] = 1.0
+            _propagating(r[k:], t[k:], C[k:], S[k:])
     return C, S, g
 
 
+def _evanescent(re: np.ndarray, te: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray | None) -> None:
+    """Scaled C, S (and g) into C, S, g (m, r) from r = re (m,) > 0 and t = te (m, r) (:func:`wave_functions`)."""
+    if re.size == 0:
+        return
+    e = te * (-re)[:, None]
+    np.expm1(e, out=e)
+    np.add(e, 1.0, out=C)
+    if g is not None:
+        g[...] = C
+    np.multiply(C, C, out=C)
+    C += 1.0
+    C *= 0.5
+    np.add(e, 2.0, out=S)
+    S *= e
+    S *= (-0.5 / re)[:, None]
+
+
 def _propagating(rp: np.ndarray, tp: np.ndarray, C: np.ndarray, S: np.ndarray) -> None:
-    """C = cos(q t), S = sin(q t) / q (S = t at q = 0) into C, S (..., m) from q = rp (m,), t = tp (..., m)."""
-    u = tp * (0.5 * rp)
+    """C = cos(q t), S = sin(q t) / q (S = t at q = 0) into C, S (m, r) from q = rp (m,), t = tp (m, r)."""
+    if rp.size == 0:
+        return
+    u = tp * (0.5 * rp)[:, None]
     np.tan(u, out=u)                                    # half-angle tangent: cos and sin from one call
     np.multiply(u, u, out=C)                            # u^2, then 1 - u^2
     d = C + 1.0
@@ -239,9 +240,10 @@ def _propagating(rp: np.ndarray, tp: np.ndarray, C: np.ndarray, S: np.ndarray) -
     C *= d
     u *= d
     if (rp > 0).all():
-        np.multiply(u, 2.0 / rp, out=S)
+        np.multiply(u, (2.0 / rp)[:, None], out=S)
     else:
-        S[...] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
+        ok = (rp > 0)[:, None]
+        S[...] = np.where(ok, 2.0 * u / np.where(ok, rp[:, None], 1.0), tp)
 
 
 def _c2(M: np.ndarray) -> np.ndarray:
@@ -398,10 +400,15 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
 
 def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
     """:func:`secular_psv` from its kh-independent parts ``sp`` (:func:`psv_speeds`) at kh (r, n)."""
-    m = sp.head[:6].T
+    return psv_block(st, sp, np.ascontiguousarray(kh.T), kernels).T
+
+
+def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
+    """:func:`psv_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``)."""
     L = st.frac.size
     if L == 0:
-        return np.broadcast_to(m[:, 5], kh.shape)
+        return np.broadcast_to(sp.head[5][:, None], kh.shape)
+    m = sp.head[:6].T[:, None, :]                                          # (n, 1, 6), then (n, r, 6)
     for layer in range(L - 1, -1, -1):
         t = kh * st.frac[layer]
         Ca, Sa, ga = _wave(sp.r2[layer, 0], t, True)
@@ -409,9 +416,9 @@ def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] |
         assert ga is not None and gb is not None
         if layer == 0:                                                     # the NT row only: F itself
             if L == 1:
-                d, k2, k3, k4, k0 = sp.head[6:]
+                d, k2, k3, k4, k0 = (h[:, None] for h in sp.head[6:])
             else:
-                k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], sp.X[:, 0], m)
+                k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], sp.X[:, :1], m)
                 d = m[..., 5] - k0
             # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
             F = Cb * d
@@ -429,7 +436,7 @@ def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] |
             return F
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
         K = psv_kernels(st.lam[layer], st.mu[layer], sp.X[:, layer]) if kernels is None else kernels[layer]
-        Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
+        Km = (K[:, None] * m[..., None, None, :]).sum(axis=-1)              # (n, 1 or r, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
         m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))
     raise AssertionError("unreachable")
@@ -442,11 +449,16 @@ def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
 
 def sh_at(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
     """:func:`secular_sh` from its kh-independent parts ``sp`` (:func:`sh_speeds`) at kh (r, n)."""
-    v, tau = sp.head[0], sp.head[1]
+    return sh_block(st, sp, np.ascontiguousarray(kh.T)).T
+
+
+def sh_block(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
+    """:func:`sh_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``)."""
+    v, tau = sp.head[0][:, None], sp.head[1][:, None]
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
         Cb, Sb, _ = _wave(sp.r2[layer, 1], kh * st.frac[layer], False)
-        v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer] * Sb * v + Cb * tau
+        v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer][:, None] * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
         tau /= nrm
         if layer:

@@ -42,12 +42,12 @@ import numpy as np
 
 from surfwave.layers.isotropic import (
     IsoStack,
-    psv_at,
+    psv_block,
     psv_kernels,
     psv_speeds,
     secular_psv,
     secular_sh,
-    sh_at,
+    sh_block,
     sh_speeds,
 )
 from surfwave.layers.isotropic_deriv import secular_d
@@ -107,6 +107,11 @@ class Rows:
         """kh (r, n) of rows (r,) at speeds c (n,)."""
         b = self.base[rows][:, None]
         return b / c[None, :] if self.freq else np.broadcast_to(b, (rows.size, c.size))
+
+    def grid_t(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (n, r) of rows (r,) at speeds c (n,), speed-major (:meth:`grid` transposed)."""
+        b = self.base[rows][None, :]
+        return b / c[:, None] if self.freq else np.broadcast_to(b, (c.size, rows.size))
 
     def pairs(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
         """kh (m,) of (row, speed) pairs (m,)."""
@@ -247,59 +252,70 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     n_r, n_c = rows.size, grid.size
     sh = prefix == "L"
     sp = sh_speeds(st, grid) if sh else psv_speeds(st, grid)
-    F = np.empty((n_r, n_c))
-    upto = np.zeros(n_r, dtype=int)                                    # columns evaluated per row
+    F = np.empty((n_c, n_r))                                           # speed-major
+    upto = np.zeros(n_r, dtype=int)                                    # speeds evaluated per row
     found = np.zeros(n_r, dtype=int)
     act = np.arange(n_r)
     start = 0
     while start < n_c and act.size:
         width = max(CHUNK_MIN, CHUNK_ELEMENTS // act.size)
         stop = n_c if n_c - start < width + CHUNK_MIN else start + width     # no sliver at the end
-        cn, sl = grid[start:stop], slice(start, stop)
+        sl = slice(start, stop)
         kernels = None
         if not sh and st.frac.size > 1:
-            kernels = [cn[:0]] + [psv_kernels(st.lam[i], st.mu[i], sp.X[sl, i]) for i in range(1, st.frac.size)]
-        kh = rows_of.grid(rows[act], cn)
-        Fn = sh_at(st, sp.cut(sl), kh) if sh else psv_at(st, sp.cut(sl), kh, kernels)
+            kernels = [grid[:0]] + [psv_kernels(st.lam[i], st.mu[i], sp.X[sl, i]) for i in range(1, st.frac.size)]
+        kh = rows_of.grid_t(rows[act], grid[sl])
+        Fn = sh_block(st, sp.cut(sl), kh) if sh else psv_block(st, sp.cut(sl), kh, kernels)
         pos = Fn > 0
-        n_sc = (pos[:, 1:] != pos[:, :-1]).sum(axis=1)
+        n_sc = (pos[1:] != pos[:-1]).sum(axis=0)
+        whole = act.size == n_r
         if start:
-            n_sc += pos[:, 0] != (F[act, start - 1] > 0)
-        F[act, sl] = Fn
+            n_sc += pos[0] != (F[start - 1] > 0 if whole else F[start - 1, act] > 0)
+        if whole:
+            F[sl] = Fn
+        else:
+            F[sl, act] = Fn
         upto[act] = stop
         found[act] += n_sc
         act = act[found[act] < need]
         start = stop
-    cols = np.arange(n_c)
-    seen = cols[None, 1:] < upto[:, None]                              # cell j (c_j, c_j+1) evaluated
     pos = F > 0
-    sc_all = (pos[:, 1:] != pos[:, :-1]) & seen
-    r1, j1 = np.nonzero(sc_all)
+    seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
+    sc = pos[1:] != pos[:-1]
+    sc &= seen
+    j1, r1 = np.nonzero(sc)
+    srt = np.lexsort((j1, r1))
+    j1, r1 = j1[srt], r1[srt]
     j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, n_c - 1))
-    out = [rows[r1], grid[j1], grid[j1 + 1], F[r1, j1], F[r1, j1 + 1], np.where(j3 == j1 + 1, np.nan, grid[j3]),
-           F[r1, j3]]
+    out = [rows[r1], grid[j1], grid[j1 + 1], F[j1, r1], F[j1 + 1, r1], np.where(j3 == j1 + 1, np.nan, grid[j3]),
+           F[j3, r1]]
     if n_c >= 3:
         # a local minimum of |F| between cells without a sign change: two roots may hide there,
-        # unless at least ``need`` sign changes lie below its lower cell
+        # unless ``need`` sign changes lie below its lower cell (then both rank above ``need``)
         aF = np.abs(F)
-        cand = ((aF[:, 1:-1] < aF[:, :-2]) & (aF[:, 1:-1] <= aF[:, 2:]) & ~sc_all[:, :-1] & ~sc_all[:, 1:]
-                & seen[:, 1:])
+        cand = aF[1:-1] < aF[:-2]
+        cand &= aF[1:-1] <= aF[2:]
+        cand &= ~(sc[:-1] | sc[1:])
+        cand &= seen[1:]
+        k2, r2 = np.nonzero(cand)                                      # k2: the lower cell
         if need < n_c:
-            cand &= (np.cumsum(sc_all, axis=1) - sc_all)[:, :-1] < need
-        r2, j2 = np.nonzero(cand)
+            lim = np.full(n_r, n_c)                                    # the cell of each row's need-th sign change
+            nth = np.arange(r1.size) - np.searchsorted(r1, r1) == need - 1
+            lim[r1[nth]] = j1[nth]
+            near = k2 <= lim[r2]
+            k2, r2 = k2[near], r2[near]
         if r2.size:
-            c3_ = grid[j2[:, None] + np.arange(3)]
-            F3 = F[r2[:, None], j2[:, None] + np.arange(3)]
+            cols = k2[:, None] + np.arange(3)
+            c3_, F3 = grid[cols], F[cols, r2[:, None]]
             ok, x, fx = _hidden_pairs(st, prefix, rows_of, rows[r2], c3_, F3)
             rk = rows[r2[ok]]
             more = [np.concatenate([rk, rk]), np.concatenate([c3_[ok, 0], x[ok]]), np.concatenate([x[ok], c3_[ok, 2]]),
                     np.concatenate([F3[ok, 0], fx[ok]]), np.concatenate([fx[ok], F3[ok, 2]]),
                     np.concatenate([c3_[ok, 2], c3_[ok, 0]]), np.concatenate([F3[ok, 2], F3[ok, 0]])]
             out = [np.concatenate([u, v]) for u, v in zip(out, more)]
-    R, LO = out[0], out[1]
-    srt = np.lexsort((LO, R))
-    Rs = R[srt]
-    keep = np.arange(R.size) - np.searchsorted(Rs, Rs) < need               # rank within the row
+    srt = np.lexsort((out[1], out[0]))                                 # by row, then lower speed
+    R = out[0][srt]
+    keep = np.arange(R.size) - np.searchsorted(R, R) < need               # rank within the row
     return tuple(v[srt][keep] for v in out)
 
 
