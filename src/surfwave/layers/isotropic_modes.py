@@ -36,6 +36,7 @@ F drop out at a zero of F). Power flow is along x1 (angle 0).
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -82,6 +83,11 @@ RESCAN = 4
 
 
 
+#: The points of (i) in t (module docstring).
+_TOP_T = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
+_TOP_T.setflags(write=False)
+
+
 class Rows:
     """The rows of a call: fixed kh (``base`` = kh) or fixed frequency (``base`` = omega H, kh = omega H / c).
 
@@ -123,6 +129,7 @@ class Rows:
         return top / c if self.freq else np.full(c.shape, top)
 
 
+@functools.lru_cache(maxsize=256)
 def _rayleigh_ratio(kappa: float) -> float:
     """c_R^2 / beta^2 of an isotropic half-space with beta^2 / alpha^2 = kappa (bisection, 1e-12)."""
     lo, hi = 1e-9, 1.0
@@ -147,7 +154,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    top = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
+    top = _TOP_T
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
     c_floor = FLOOR * float(st.shear.min())
@@ -155,8 +162,13 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]       # c_lo itself, always
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
-        nu = sum(st.frac[i] * (np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0)))
-                 for v in (st.shear, st.longitudinal) for i in range(st.frac.size))
+        nu = np.zeros(aux.size)
+        for v in (st.shear, st.longitudinal):
+            for i in range(st.frac.size):
+                j = int(np.searchsorted(aux, v[i], side="right"))        # the term is 0 below v (exactly)
+                if j < aux.size:
+                    a = aux[j:]
+                    nu[j:] += st.frac[i] * (np.sqrt(np.maximum((a / v[i]) ** 2 - 1.0, 0.0)))
         phase = rows_of.kh_max(aux) * nu
         levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
         if levels.size:
