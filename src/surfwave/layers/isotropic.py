@@ -48,6 +48,7 @@ Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,10 +86,27 @@ def is_isotropic(C6, tol: float = ISO_TOL) -> bool:
 
 def eligible(stack: Stack) -> bool:
     """True when the fast isotropic path applies: every layer isotropic, unstressed, no piezoelectricity."""
-    if stack.piezo:
-        return False
+    return _resolved(stack) is not None
+
+
+#: :func:`_resolved` of each live stack (a stack is immutable: frozen, its tensors not written after resolution).
+_RESOLVED: weakref.WeakKeyDictionary[Stack, IsoStack | None] = weakref.WeakKeyDictionary()
+
+
+def _resolved(stack: Stack) -> IsoStack | None:
+    """The :class:`IsoStack` of an eligible stack, None for any other; remembered per stack object."""
+    try:
+        return _RESOLVED[stack]
+    except KeyError:
+        pass
     layers = [*stack.films, stack.substrate]
-    return all(not np.any(lay.sigma) and is_isotropic(tensor_to_voigt(lay.A)) for lay in layers)
+    out = None
+    if not stack.piezo and not any(np.any(lay.sigma) for lay in layers):
+        V = np.stack([tensor_to_voigt(lay.A) for lay in layers])
+        if all(is_isotropic(v) for v in V):
+            out = _lame(stack, V)
+    _RESOLVED[stack] = out
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,8 +150,15 @@ class IsoStack:
 
 def iso_stack(stack: Stack) -> IsoStack:
     """The Lame constants of an :func:`eligible` stack (lab-frame tensors are isotropic: any frame)."""
+    st = _resolved(stack)
+    if st is None:
+        return _lame(stack, np.stack([tensor_to_voigt(lay.A) for lay in [*stack.films, stack.substrate]]))
+    return st
+
+
+def _lame(stack: Stack, V: np.ndarray) -> IsoStack:
+    """:class:`IsoStack` from the Voigt stiffnesses V (L + 1, 6, 6), Pa, of the films and the substrate."""
     layers = [*stack.films, stack.substrate]
-    V = np.stack([tensor_to_voigt(lay.A) for lay in layers])
     s = float(np.abs(V).max())
     H = stack.total_thickness
     frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
@@ -181,7 +206,7 @@ def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.n
     n = r2.size
     r = np.sqrt(np.abs(r2))
     pos = r2 > 0
-    k = int(pos.sum())
+    k = int(np.count_nonzero(pos))
     C, S = np.empty(t.shape), np.empty(t.shape)
     g = np.empty(t.shape) if want_g else None
     if not pos[:k].all():                               # not ascending: index the two branches

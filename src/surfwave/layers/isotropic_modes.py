@@ -62,10 +62,11 @@ C_TOL = 5e-14
 MAX_ITER = 60
 #: Speeds per chunk of the upward scan of the hunt's rescans (kept for callers; the scan chunks by elements).
 CHUNK = 32
-#: (row, speed) points per chunk of the upward scan, about. Every temporary of a chunk (float64) then
-#: stays below 64 KiB even with the last chunk's extension: the C allocator (glibc) may hand larger
-#: freed blocks back to the system, and the next call pays them again in page faults (measured:
-#: +0.6 ms on a 3 ms call with 8192 points per chunk, in a process where that happens; none here).
+#: (row, speed) points per chunk of the upward scan at most (the rest of the grid is cut into the
+#: fewest equal chunks within it; at least :data:`CHUNK_MIN` speeds). Every float64 temporary of a
+#: chunk then stays below 64 KiB: the C allocator (glibc) may hand larger freed blocks back to the
+#: system, and the next call pays them again in page faults (measured: +0.6 ms on a 3 ms call with
+#: 8192 points per chunk, in a process where that happens).
 CHUNK_ELEMENTS = 6144
 #: Speeds per chunk at least.
 CHUNK_MIN = 8
@@ -278,8 +279,9 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     act = np.arange(n_r)
     start = 0
     while start < n_c and act.size:
-        width = max(CHUNK_MIN, CHUNK_ELEMENTS // act.size)
-        stop = n_c if n_c - start < width + CHUNK_MIN else start + width     # no sliver at the end
+        most = max(CHUNK_MIN, CHUNK_ELEMENTS // act.size)                 # speeds per chunk at most
+        left = n_c - start
+        stop = start - (-left // -(-left // most))                        # the rest in equal chunks
         sl = slice(start, stop)
         kernels = None
         if not sh and st.frac.size > 1:
@@ -303,7 +305,7 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
     sc = pos[1:] != pos[:-1]
     sc &= seen
-    j1, r1 = np.nonzero(sc)
+    j1, r1 = np.divmod(np.flatnonzero(sc), n_r)                        # (flat: far cheaper than 2-D nonzero)
     srt = np.lexsort((j1, r1))
     j1, r1 = j1[srt], r1[srt]
     j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, n_c - 1))
@@ -317,7 +319,7 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         cand &= aF[1:-1] <= aF[2:]
         cand &= ~(sc[:-1] | sc[1:])
         cand &= seen[1:]
-        k2, r2 = np.nonzero(cand)                                      # k2: the lower cell
+        k2, r2 = np.divmod(np.flatnonzero(cand), n_r)                  # k2: the lower cell
         if need < n_c:
             lim = np.full(n_r, n_c)                                    # the cell of each row's need-th sign change
             nth = np.arange(r1.size) - np.searchsorted(r1, r1) == need - 1
