@@ -102,10 +102,33 @@ def _resolved(stack: Stack) -> IsoStack | None:
     layers = [*stack.films, stack.substrate]
     out = None
     if not stack.piezo and not any(np.any(lay.sigma) for lay in layers):
-        V = np.stack([tensor_to_voigt(lay.A) for lay in layers])
-        if all(is_isotropic(v) for v in V):
-            out = _lame(stack, V)
+        vs = [v for v in (_voigt(lay.A) for lay in layers) if v is not None]
+        if len(vs) == len(layers):
+            out = _lame(stack, np.stack(vs))
     _RESOLVED[stack] = out
+    return out
+
+
+#: :func:`_voigt` of recent layer tensors, by value (:data:`VOIGT_MEMO` entries at most).
+_VOIGT: dict[bytes, np.ndarray | None] = {}
+VOIGT_MEMO = 64
+
+
+def _voigt(A: np.ndarray) -> np.ndarray | None:
+    """The Voigt matrix (6, 6) of a wave-propagation tensor A (3, 3, 3, 3) if isotropic, else None.
+
+    Isotropic: :func:`is_isotropic`. Remembered by the values of A (read-only results).
+    """
+    key = np.ascontiguousarray(A, dtype=float).tobytes()
+    if key in _VOIGT:
+        return _VOIGT[key]
+    V = tensor_to_voigt(A)
+    out = V if is_isotropic(V) else None
+    if out is not None:
+        out.setflags(write=False)
+    if len(_VOIGT) >= VOIGT_MEMO:
+        _VOIGT.pop(next(iter(_VOIGT)), None)
+    _VOIGT[key] = out
     return out
 
 
@@ -435,7 +458,7 @@ def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray
         return np.broadcast_to(sp.head[5][:, None], kh.shape)
     m = sp.head[:6].T[:, None, :]                                          # (n, 1, 6), then (n, r, 6)
     for layer in range(L - 1, -1, -1):
-        t = kh * st.frac[layer]
+        t = kh if st.frac[layer] == 1.0 else kh * st.frac[layer]            # (kh x 1.0 is kh, bit for bit)
         Ca, Sa, ga = _wave(sp.r2[layer, 0], t, True)
         Cb, Sb, gb = _wave(sp.r2[layer, 1], t, True)
         assert ga is not None and gb is not None
@@ -482,7 +505,7 @@ def sh_block(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
     v, tau = sp.head[0][:, None], sp.head[1][:, None]
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
-        Cb, Sb, _ = _wave(sp.r2[layer, 1], kh * st.frac[layer], False)
+        Cb, Sb, _ = _wave(sp.r2[layer, 1], kh if st.frac[layer] == 1.0 else kh * st.frac[layer], False)
         v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer][:, None] * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
         tau /= nrm

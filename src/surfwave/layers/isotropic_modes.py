@@ -90,6 +90,9 @@ RESCAN = 4
 #: The points of (i) in t (module docstring).
 _TOP_T = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
 _TOP_T.setflags(write=False)
+#: sqrt(1 - t^2) of those points (c / c_lim).
+_TOP_ROOT = np.sqrt(1.0 - _TOP_T * _TOP_T)
+_TOP_ROOT.setflags(write=False)
 
 
 class Rows:
@@ -158,12 +161,11 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    top = _TOP_T
     t = np.linspace(0.02, t_hi, N_BASE * fine)
     base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
     c_floor = FLOOR * float(st.shear.min())
-    low = np.geomspace(c_floor, c_lo, N_LOW, endpoint=False) if c_floor < c_lo else np.zeros(0)
-    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]       # c_lo itself, always
+    low = _geometric(c_floor, c_lo, N_LOW) if c_floor < c_lo else np.zeros(0)
+    parts = [c_lim * _TOP_ROOT, np.array([c_lo]), low]                      # c_lo itself, always
     if st.frac.size:
         aux = np.linspace(c_lo, c_lim, 4000)
         nu = np.zeros(aux.size)
@@ -185,9 +187,20 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             k = np.clip(np.searchsorted(pts, base), 1, pts.size - 1) if pts.size > 1 else np.zeros(base.size, int)
             near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
             base = base[near > 0.5 * dc]
-    g = np.unique(np.concatenate(parts + [base]))
-    g = g[(g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)]              # c_lo once (not also rounded from t_hi)
-    return g[(g >= min(c_floor, c_lo)) & (g < c_lim)]
+    g = np.sort(np.concatenate(parts + [base]))
+    keep = np.empty(g.size, dtype=bool)                                  # distinct values (np.unique's rule)
+    keep[:1] = True
+    np.not_equal(g[1:], g[:-1], out=keep[1:])
+    keep &= (g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)              # c_lo once (not also rounded from t_hi)
+    keep &= (g >= min(c_floor, c_lo)) & (g < c_lim)
+    return g[keep]
+
+
+def _geometric(a: float, b: float, n: int) -> np.ndarray:
+    """n points from a (exactly) towards b (excluded), uniform in log10 (numpy's geomspace without its generality)."""
+    out = np.power(10.0, np.linspace(np.log10(a), np.log10(b), n, endpoint=False))
+    out[0] = a
+    return out
 
 
 def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
