@@ -161,13 +161,13 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
-    t = np.linspace(0.02, t_hi, N_BASE * fine)
-    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, N_BASE * fine)])
+    t = _linspace(0.02, t_hi, N_BASE * fine)
+    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), _linspace(c_lo, c_lim, N_BASE * fine)])
     c_floor = FLOOR * float(st.shear.min())
     low = _geometric(c_floor, c_lo, N_LOW) if c_floor < c_lo else np.zeros(0)
     parts = [c_lim * _TOP_ROOT, np.array([c_lo]), low]                      # c_lo itself, always
     if st.frac.size:
-        aux = np.linspace(c_lo, c_lim, 4000)
+        aux = _linspace(c_lo, c_lim, 4000)
         nu = np.zeros(aux.size)
         for v in (st.shear, st.longitudinal):
             for i in range(st.frac.size):
@@ -184,7 +184,8 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
             t_base = np.sqrt(np.maximum(1.0 - (base / c_lim) ** 2, 0.0))
             step_c = (c_lim - c_lo) / (N_BASE * fine)                       # of the c-uniform part
             dc = np.minimum(step_c, c_lim * c_lim * t_base * t_hi / (base * N_BASE * fine))   # and the t-uniform
-            k = np.clip(np.searchsorted(pts, base), 1, pts.size - 1) if pts.size > 1 else np.zeros(base.size, int)
+            k = (np.minimum(np.maximum(np.searchsorted(pts, base), 1), pts.size - 1) if pts.size > 1
+                 else np.zeros(base.size, int))
             near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
             base = base[near > 0.5 * dc]
     g = np.sort(np.concatenate(parts + [base]))
@@ -198,9 +199,19 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
 
 def _geometric(a: float, b: float, n: int) -> np.ndarray:
     """n points from a (exactly) towards b (excluded), uniform in log10 (numpy's geomspace without its generality)."""
-    out = np.power(10.0, np.linspace(np.log10(a), np.log10(b), n, endpoint=False))
+    out = np.power(10.0, _linspace(np.log10(a), np.log10(b), n, endpoint=False))
     out[0] = a
     return out
+
+
+def _linspace(a: float, b: float, n: int, endpoint: bool = True) -> np.ndarray:
+    """n >= 2 points from a to b (or towards b), uniform: numpy's linspace of two scalars, without its generality."""
+    y = np.arange(n, dtype=float)
+    y *= (b - a) / (n - 1 if endpoint else n)
+    y += a
+    if endpoint:
+        y[-1] = b
+    return y
 
 
 def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
@@ -334,7 +345,7 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
         cand &= seen[1:]
         k2, r2 = np.divmod(np.flatnonzero(cand), n_r)                  # k2: the lower cell
         if need < n_c:
-            lim = np.full(n_r, n_c)                                    # the cell of each row's need-th sign change
+            lim = np.full(n_r, n_c, dtype=np.intp)                     # the cell of each row's need-th sign change
             nth = np.arange(r1.size) - np.searchsorted(r1, r1) == need - 1
             lim[r1[nth]] = j1[nth]
             near = k2 <= lim[r2]
