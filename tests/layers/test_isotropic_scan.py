@@ -88,3 +88,24 @@ def test_scan_finds_a_hidden_pair_below_the_needed_sign_changes(fake):
     shuffled = im._scan(st, "R", GRID, rows_of, rows[::-1].copy(), 2)    # rows in another order: the same brackets
     for a, b in zip(shuffled, two):
         np.testing.assert_array_equal(a, b)
+
+
+def test_one_pass_scan_of_both_families_equals_the_separate_scans():
+    """With one film, P-SV and SH are scanned in one pass sharing the film's shear-wave functions
+    (_brackets_both): their brackets equal, bit for bit, those of the two separate scans
+    (_brackets, the reference), for 6 seeded random one-film stacks (slow and fast films), rows at
+    kh and at frequency, all modes and modes = 1, 2."""
+    rng = np.random.default_rng(11)
+    for _ in range(6):
+        def mat(E, rho):
+            return {"E": float(rng.uniform(*E)), "nu": float(rng.uniform(0.05, 0.42)), "rho": float(rng.uniform(*rho))}
+        st = iso_stack(resolve_stack(mat((150.0, 600.0), (2000.0, 5000.0)),
+                                     [{**mat((40.0, 600.0), (1800.0, 20000.0)), "thickness": 1e-6}]))
+        kh = np.sort(rng.uniform(0.0, float(rng.choice([2.0, 20.0])), 40))
+        for rows_of in (im.Rows(kh, freq=False), im.Rows(kh * st.c_lim * 0.9, freq=True)):
+            grid = im.speed_grid(st, rows_of)
+            for modes in (None, 1, 2):
+                joint = im._brackets_both(st, rows_of, modes, grid)
+                for prefix, got in zip("RL", joint):
+                    for a, b in zip(got, im._brackets(st, prefix, rows_of, modes, grid)):
+                        np.testing.assert_array_equal(a, b)

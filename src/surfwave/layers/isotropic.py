@@ -57,7 +57,8 @@ from surfwave.layers.stack import Stack
 from surfwave.solvers.tensors import tensor_to_voigt
 
 __all__ = ["IsoStack", "Speeds", "eligible", "is_isotropic", "iso_stack", "psv_at", "psv_block", "psv_speeds",
-           "secular_psv", "secular_sh", "sh_at", "sh_block", "sh_speeds", "substrate_psv", "top_row", "wave_functions"]
+           "secular_psv", "secular_sh", "sh_at", "sh_block", "sh_speeds", "substrate_psv", "top_row", "wave_block",
+           "wave_functions"]
 
 #: Relative tolerance of the isotropy test of a stiffness.
 ISO_TOL = 1e-12
@@ -258,6 +259,10 @@ def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.n
     return C, S, g
 
 
+#: :func:`_wave` for callers that share one wave type's block between families.
+wave_block = _wave
+
+
 def _evanescent(re: np.ndarray, te: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray | None) -> None:
     """Scaled C, S (and g) into C, S, g (m, r) from r = re (m,) > 0 and t = te (m, r) (:func:`wave_functions`)."""
     if re.size == 0:
@@ -289,9 +294,10 @@ def _propagating(rp: np.ndarray, tp: np.ndarray, C: np.ndarray, S: np.ndarray) -
     u *= d
     if (rp > 0).all():
         np.multiply(u, (2.0 / rp)[:, None], out=S)
-    else:
-        ok = (rp > 0)[:, None]
-        S[...] = np.where(ok, 2.0 * u / np.where(ok, rp[:, None], 1.0), tp)
+    else:                                               # the same rule per element, S = t at r = 0
+        zero = rp == 0
+        np.multiply(u, (2.0 / np.where(zero, 1.0, rp))[:, None], out=S)
+        S[zero] = tp[zero]
 
 
 def _c2(M: np.ndarray) -> np.ndarray:
@@ -451,8 +457,13 @@ def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] |
     return psv_block(st, sp, np.ascontiguousarray(kh.T), kernels).T
 
 
-def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
-    """:func:`psv_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``)."""
+def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None,
+              wave_b: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """:func:`psv_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``).
+
+    ``wave_b``: C, S, g of the top film's shear wave at t = kh (:func:`wave_functions`, speed-major),
+    when already computed (one film only; they are overwritten).
+    """
     L = st.frac.size
     if L == 0:
         return np.broadcast_to(sp.head[5][:, None], kh.shape)
@@ -460,8 +471,13 @@ def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray
     for layer in range(L - 1, -1, -1):
         t = kh if st.frac[layer] == 1.0 else kh * st.frac[layer]            # (kh x 1.0 is kh, bit for bit)
         Ca, Sa, ga = _wave(sp.r2[layer, 0], t, True)
-        Cb, Sb, gb = _wave(sp.r2[layer, 1], t, True)
-        assert ga is not None and gb is not None
+        if wave_b is not None and L == 1:
+            Cb, Sb, gb = wave_b
+        else:
+            Cb, Sb, g = _wave(sp.r2[layer, 1], t, True)
+            assert g is not None
+            gb = g
+        assert ga is not None
         if layer == 0:                                                     # the NT row only: F itself
             if L == 1:
                 d, k2, k3, k4, k0 = (h[:, None] for h in sp.head[6:])
@@ -500,12 +516,19 @@ def sh_at(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
     return sh_block(st, sp, np.ascontiguousarray(kh.T)).T
 
 
-def sh_block(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
-    """:func:`sh_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``)."""
+def sh_block(st: IsoStack, sp: Speeds, kh: np.ndarray, wave: tuple[np.ndarray, np.ndarray] | None = None
+             ) -> np.ndarray:
+    """:func:`sh_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``).
+
+    ``wave``: C, S of the film's shear wave at t = kh when already computed (one film only; not written).
+    """
     v, tau = sp.head[0][:, None], sp.head[1][:, None]
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
-        Cb, Sb, _ = _wave(sp.r2[layer, 1], kh if st.frac[layer] == 1.0 else kh * st.frac[layer], False)
+        if wave is not None and st.frac.size == 1:
+            Cb, Sb = wave
+        else:
+            Cb, Sb, _ = _wave(sp.r2[layer, 1], kh if st.frac[layer] == 1.0 else kh * st.frac[layer], False)
         v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer][:, None] * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
         tau /= nrm

@@ -50,6 +50,7 @@ from surfwave.layers.isotropic import (
     secular_sh,
     sh_block,
     sh_speeds,
+    wave_block,
 )
 from surfwave.layers.isotropic_deriv import secular_d
 
@@ -294,6 +295,12 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     (both its roots would rank above ``need``) is not hunted. Which speeds a row is evaluated at
     beyond its ``need``-th sign change (the chunking) changes nothing kept.
     """
+    return _assemble(st, prefix, grid, rows_of, rows, need, *_evaluate(st, prefix, grid, rows_of, rows, need))
+
+
+def _evaluate(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The upward evaluation of :func:`_scan`: F (n, r) speed-major (valid below ``upto``) and ``upto`` (r,)."""
     n_r, n_c = rows.size, grid.size
     sh = prefix == "L"
     sp = sh_speeds(st, grid) if sh else psv_speeds(st, grid)
@@ -312,19 +319,15 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
             kernels = [grid[:0]] + [psv_kernels(st.lam[i], st.mu[i], sp.X[sl, i]) for i in range(1, st.frac.size)]
         kh = rows_of.grid_t(rows[act], grid[sl])
         Fn = sh_block(st, sp.cut(sl), kh) if sh else psv_block(st, sp.cut(sl), kh, kernels)
-        pos = Fn > 0
-        n_sc = (pos[1:] != pos[:-1]).sum(axis=0)
-        whole = act.size == n_r
-        if start:
-            n_sc += pos[0] != (F[start - 1] > 0 if whole else F[start - 1, act] > 0)
-        if whole:
-            F[sl] = Fn
-        else:
-            F[sl, act] = Fn
-        upto[act] = stop
-        found[act] += n_sc
-        act = act[found[act] < need]
+        act = _record(F, upto, found, act, start, stop, Fn, need)
         start = stop
+    return F, upto
+
+
+def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float,
+              F: np.ndarray, upto: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,))."""
+    n_r, n_c = rows.size, grid.size
     pos = F > 0
     seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
     sc = pos[1:] != pos[:-1]
@@ -498,7 +501,7 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
     """:func:`family_roots` of P-SV and SH (in that order), the brackets of both refined in one Newton loop."""
     n = rows_of.base.size
     grid = speed_grid(st, rows_of) if grid is None else grid
-    bR, bL = (_brackets(st, p, rows_of, modes, grid) for p in ("R", "L"))
+    bR, bL = _brackets_both(st, rows_of, modes, grid)
     r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v]) for k, (u, v) in enumerate(zip(bR, bL)))
     roots, vg = _refine(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3)
     sh = r >= n
@@ -532,11 +535,19 @@ def _family_grid(st: IsoStack, prefix: str, grid: np.ndarray) -> np.ndarray:
 def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None
               ) -> tuple[np.ndarray, ...]:
     """The scan of :func:`family_roots` with its rescan of rows with too few modes: :func:`_scan`'s brackets."""
-    n_rows = rows_of.base.size
     need = np.inf if modes is None else modes
-    rows = np.arange(n_rows)
+    rows = np.arange(rows_of.base.size)
     grid = speed_grid(st, rows_of) if grid is None else grid
-    r, lo, hi, flo, fhi, c3, f3 = _scan(st, prefix, _family_grid(st, prefix, grid), rows_of, rows, need)
+    first = _scan(st, prefix, _family_grid(st, prefix, grid), rows_of, rows, need)
+    return _rescan_dips(st, prefix, rows_of, need, first)
+
+
+def _rescan_dips(st: IsoStack, prefix: str, rows_of: Rows, need: float, first: tuple[np.ndarray, ...]
+                 ) -> tuple[np.ndarray, ...]:
+    """Brackets ``first`` of :func:`_scan`, with the rows holding fewer modes than rows on both sides of
+    them (in ascending kh or frequency) scanned again on the :data:`RESCAN` times finer grid."""
+    n_rows = rows_of.base.size
+    r, lo, hi, flo, fhi, c3, f3 = first
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
@@ -548,6 +559,84 @@ def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid:
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
                                        for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
     return r, lo, hi, flo, fhi, c3, f3
+
+
+def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray
+                   ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`)."""
+    if st.frac.size != 1:
+        return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
+    need = np.inf if modes is None else modes
+    rows = np.arange(rows_of.base.size)
+    grid_l = _family_grid(st, "L", grid)
+    FR, upR, FL, upL = _evaluate_both(st, grid, grid_l, rows_of, rows, need)
+    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
+            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
+
+
+def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: Rows, rows: np.ndarray,
+                   need: float) -> tuple[np.ndarray, ...]:
+    """:func:`_evaluate` of P-SV on ``grid`` and of SH on ``grid_l`` (:func:`_family_grid`) for one film, in one pass.
+
+    Both families need the film's shear-wave functions (C_b, S_b at t = kh): they are computed once
+    per chunk of ``grid`` for the rows either family still scans (the SH grid is ``grid`` above the
+    slowest shear speed after its own first point, evaluated first). Every value is the one of
+    the separate scans (:func:`surfwave.layers.isotropic.psv_block`, ``sh_block``: elementwise).
+    """
+    n_r, n_c = rows.size, grid.size
+    j0 = n_c - (grid_l.size - 1)                                       # grid[j0:] is grid_l[1:]
+    sp_r, sp_l = psv_speeds(st, grid), sh_speeds(st, grid_l)
+    FR, FL = np.empty((n_c, n_r)), np.empty((grid_l.size, n_r))
+    up_r, up_l = np.zeros(n_r, dtype=int), np.ones(n_r, dtype=int)
+    found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
+    FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
+    act_r, act_l = np.arange(n_r), np.arange(n_r)
+    start = 0
+    while start < n_c and (act_r.size or act_l.size):
+        if start < j0:                                                 # below the SH grid: P-SV rows alone
+            if not act_r.size:
+                start = j0
+                continue
+            union, end = act_r, j0
+        else:
+            both = np.zeros(n_r, dtype=bool)
+            both[act_r] = True
+            both[act_l] = True
+            union, end = np.flatnonzero(both), n_c
+        most = max(CHUNK_MIN, CHUNK_ELEMENTS // union.size)
+        left = end - start
+        stop = start - (-left // -(-left // most))
+        sl = slice(start, stop)
+        kh = rows_of.grid_t(rows[union], grid[sl])
+        Cb, Sb, gb = wave_block(sp_r.r2[0, 1, sl], kh, True)
+        assert gb is not None
+        if start >= j0 and act_l.size:                                 # SH first: P-SV overwrites C_b
+            cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
+            Fn = sh_block(st, sp_l.cut(slice(start - j0 + 1, stop - j0 + 1)), kh[:, cols], (Cb[:, cols], Sb[:, cols]))
+            act_l = _record(FL, up_l, found_l, act_l, start - j0 + 1, stop - j0 + 1, Fn, need)
+        if act_r.size:
+            cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
+            Fn = psv_block(st, sp_r.cut(sl), kh[:, cols], None, (Cb[:, cols], Sb[:, cols], gb[:, cols]))
+            act_r = _record(FR, up_r, found_r, act_r, start, stop, Fn, need)
+        start = stop
+    return FR, up_r, FL, up_l
+
+
+def _record(F: np.ndarray, upto: np.ndarray, found: np.ndarray, act: np.ndarray, start: int, stop: int,
+            Fn: np.ndarray, need: float) -> np.ndarray:
+    """Store the block Fn (stop - start, act) of a family into F, count its new sign changes; the rows still active."""
+    pos = Fn > 0
+    n_sc = (pos[1:] != pos[:-1]).sum(axis=0)
+    whole = act.size == F.shape[1]
+    if start:
+        n_sc += pos[0] != (F[start - 1] > 0 if whole else F[start - 1, act] > 0)
+    if whole:
+        F[start:stop] = Fn
+    else:
+        F[start:stop, act] = Fn
+    upto[act] = stop
+    found[act] += n_sc
+    return act[found[act] < need]
 
 
 #: Public names of the pieces :mod:`surfwave.layers.isotropic_guard` reuses: the secular function at
