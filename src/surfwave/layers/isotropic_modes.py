@@ -580,16 +580,18 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
 
     Both families need the film's shear-wave functions (C_b, S_b at t = kh): they are computed once
     per chunk of ``grid`` for the rows either family still scans (the SH grid is ``grid`` above the
-    slowest shear speed after its own first point, evaluated first). Every value is the one of
+    slowest shear speed after its own first point, which tops the first chunk there). Every value is the one of
     the separate scans (:func:`surfwave.layers.isotropic.psv_block`, ``sh_block``: elementwise).
     """
     n_r, n_c = rows.size, grid.size
     j0 = n_c - (grid_l.size - 1)                                       # grid[j0:] is grid_l[1:]
     sp_r, sp_l = psv_speeds(st, grid), sh_speeds(st, grid_l)
     FR, FL = np.empty((n_c, n_r)), np.empty((grid_l.size, n_r))
-    up_r, up_l = np.zeros(n_r, dtype=int), np.ones(n_r, dtype=int)
+    up_r, up_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
-    FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
+    if j0 == n_c:                                                      # the SH grid is its first point alone
+        FL[0] = sh_block(st, sp_l, rows_of.grid_t(rows, grid_l))[0]
+        up_l[:] = 1
     act_r, act_l = np.arange(n_r), np.arange(n_r)
     start = 0
     while start < n_c and (act_r.size or act_l.size):
@@ -607,16 +609,22 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         left = end - start
         stop = start - (-left // -(-left // most))
         sl = slice(start, stop)
-        kh = rows_of.grid_t(rows[union], grid[sl])
-        Cb, Sb, gb = wave_block(sp_r.r2[0, 1, sl], kh, True)
+        first = int(start == j0)                                       # the SH grid's own first point on top
+        speeds, r2 = grid[sl], sp_r.r2[0, 1, sl]
+        if first:
+            speeds, r2 = np.concatenate([grid_l[:1], speeds]), np.concatenate([sp_l.r2[0, 1, :1], r2])
+        kh = rows_of.grid_t(rows[union], speeds)
+        Cb, Sb, gb = wave_block(r2, kh, True)
         assert gb is not None
         if start >= j0 and act_l.size:                                 # SH first: P-SV overwrites C_b
             cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
-            Fn = sh_block(st, sp_l.cut(slice(start - j0 + 1, stop - j0 + 1)), kh[:, cols], (Cb[:, cols], Sb[:, cols]))
-            act_l = _record(FL, up_l, found_l, act_l, start - j0 + 1, stop - j0 + 1, Fn, need)
+            a, b = start - j0 + 1 - first, stop - j0 + 1
+            Fn = sh_block(st, sp_l.cut(slice(a, b)), kh[:, cols], (Cb[:, cols], Sb[:, cols]))
+            act_l = _record(FL, up_l, found_l, act_l, a, b, Fn, need)
         if act_r.size:
             cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
-            Fn = psv_block(st, sp_r.cut(sl), kh[:, cols], None, (Cb[:, cols], Sb[:, cols], gb[:, cols]))
+            Fn = psv_block(st, sp_r.cut(sl), kh[first:, cols], None, (Cb[first:, cols], Sb[first:, cols],
+                                                                       gb[first:, cols]))
             act_r = _record(FR, up_r, found_r, act_r, start, stop, Fn, need)
         start = stop
     return FR, up_r, FL, up_l

@@ -85,14 +85,14 @@ def merge_families(fams: list[Family], cs: list[np.ndarray], extra: list[list[np
     # one block (1 + len(extra), k, columns): the speeds, then each extra array, families side by side
     block = np.stack([np.concatenate(cs, axis=1)] + [np.concatenate(x, axis=1) for x in extra])
     C = block[0]
-    names = np.array([label(fam.prefix, j) for fam, c in zip(fams, cs) for j in range(c.shape[1])], dtype=object)
+    names = np.array([label(fam.prefix, j) for fam, c in zip(fams, cs) for j in range(c.shape[1])] + [""],
+                     dtype=object)
     finite = np.isfinite(C)
-    Lb = np.where(finite, names, "")
     order = np.argsort(np.where(finite, C, np.inf), axis=1, kind="stable")
     block = np.take_along_axis(block, order[None], axis=2)
-    Lb = np.take_along_axis(Lb, order, axis=1)
-    n = int(finite.sum(axis=1).max(initial=0))
-    return block[0, :, :n], Lb[:, :n], [x[:, :n] for x in block[1:]]
+    n = int(np.count_nonzero(finite, axis=1).max(initial=0))
+    code = np.where(np.isfinite(block[0, :, :n]), order[:, :n], -1)    # the column's label; "" where no mode
+    return block[0, :, :n], names[code], [x[:, :n] for x in block[1:]]
 
 
 def layered(substrate, films=(), *, euler=None, surface: str = "(001)", direction="[100]", kh=None,
