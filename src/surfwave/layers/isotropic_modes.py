@@ -61,14 +61,14 @@ __all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_br
 C_TOL = 5e-14
 #: Refinement iterations at most.
 MAX_ITER = 60
-#: Speeds per chunk of the upward scan of the hunt's rescans (kept for callers; the scan chunks by elements).
+#: Speeds per chunk of the former upward scan (a public name, kept; the scan chunks by points: CHUNK_ELEMENTS).
 CHUNK = 32
 #: (row, speed) points per chunk of the upward scan at most (the rest of the grid is cut into the
 #: fewest equal chunks within it; at least :data:`CHUNK_MIN` speeds). Every float64 temporary of a
 #: chunk then stays below 64 KiB: the C allocator (glibc) may hand larger freed blocks back to the
-#: system, and the next call pays them again in page faults (measured: +0.6 ms on a 3 ms call with
-#: 8192 points per chunk, in a process where that happens).
-CHUNK_ELEMENTS = 6144
+#: system, and the next call pays them again in page faults (measured up to +0.6 ms on a 3 ms call
+#: with larger blocks, in a process whose allocator trims).
+CHUNK_ELEMENTS = 8000
 #: Speeds per chunk at least.
 CHUNK_MIN = 8
 #: Points uniform in t and uniform in c.
