@@ -45,6 +45,13 @@ without poles (the substrate's r_a, r_b are analytic there and every layer's fac
 its zeros are exactly the modes.
 
 Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
+
+Evaluation. What depends on c only (X, r^2 of every wave, the substrate's unit vector, with one
+film the top row's coefficients) is computed once per set of speeds (:class:`Speeds`); blocks of
+(speed, row) points are evaluated speed-major (:func:`psv_block`, :func:`sh_block`), so the
+evanescent speeds of a wave (ascending speeds: the first ones) are contiguous rows, each branch
+runs on whole rows, and every element is computed by the same operations whatever block it is in
+(a scan's chunk or a hunt's pairs give the same value for the same (c, kh)).
 """
 from __future__ import annotations
 

@@ -1,10 +1,12 @@
 """Guided modes of isotropic stacks from the pole-free secular functions of :mod:`surfwave.layers.isotropic`.
 
 Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular function is evaluated
-on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), in chunks of about
-:data:`CHUNK_ELEMENTS` (row, speed) points from the bottom up; a row stops once it holds ``modes`` sign changes. The
-function has no poles, so every sign change is a mode and the n-th one from below is the n-th
-mode. All brackets are then refined together by a safeguarded Newton iteration in
+on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), from the
+bottom up in chunks of at most :data:`CHUNK_ELEMENTS` (row, speed) points, its kh-independent parts
+once per grid (:class:`surfwave.layers.isotropic.Speeds`); with one film both families are
+scanned in one pass sharing the film's shear-wave functions. A row stops once it holds ``modes``
+sign changes. The function has no poles, so every sign change is a mode and the n-th one from
+below is the n-th mode. All brackets are then refined together by a safeguarded Newton iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
 c_lim, in c it has a square-root branch point there) with the exact derivative of
 :mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
@@ -25,6 +27,8 @@ pi in depth, so a cell holds a fraction of a mode spacing. Every sign change on 
 coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
 hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite sign splits the
 cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
+(With ``modes`` = N a minimum above a row's N-th sign change is not hunted: both its roots would
+rank above N, so nothing kept changes.)
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
 so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
 This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
