@@ -71,3 +71,16 @@ def test_memo_is_bounded():
         resolve_stack(HALF, [{**FILM, "E": 50.0 + k}])
     assert len(stack_mod._MATERIALS) <= stack_mod.MEMO_SIZE
     assert len(stack_mod._TENSORS) <= stack_mod.MEMO_SIZE
+
+
+def test_named_films_are_remembered_by_name():
+    """A film given by ``material`` (or ``name``) is remembered under that name: another name after
+    it resolves to its own constants, an unknown one is refused as on a fresh resolution."""
+    a = resolve_stack(HALF, [{"material": "fused-SiO2", "thickness": 1e-6}])
+    b = resolve_stack(HALF, [{"material": "Al", "thickness": 1e-6}])
+    assert _same(a, _fresh(HALF, [{"material": "fused-SiO2", "thickness": 1e-6}]))
+    assert _same(b, _fresh(HALF, [{"material": "Al", "thickness": 1e-6}]))
+    assert not _same(a, b)
+    resolve_stack(HALF, [{"name": "fused-SiO2", "thickness": 1e-6}])
+    with pytest.raises(InputError, match="unknown material 'SiO3'"):
+        resolve_stack(HALF, [{"material": "SiO3", "thickness": 1e-6}])

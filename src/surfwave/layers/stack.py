@@ -180,6 +180,8 @@ def _checked_eps(e6, value, where: str) -> np.ndarray:
 _PLAIN = (int, float, str, bool, type(None))
 #: Entries of each remembered resolution (materials, layer tensors) at most; the oldest go first.
 MEMO_SIZE = 64
+#: Keys of a film mapping that its material does not depend on (read by :func:`resolve_stack` itself).
+_LAYER_ONLY_KEYS = frozenset({"thickness", "euler", "stress", "electrode_below"})
 _MATERIALS: dict[tuple, dict] = {}
 _TENSORS: dict[tuple, np.ndarray] = {}
 
@@ -194,9 +196,10 @@ def _remember(memo: dict, key: tuple, value) -> None:
 def _material_key(spec, film: bool) -> tuple | None:
     """A key of a material mapping by value, or None when its resolution is not remembered.
 
-    Only mappings whose keys are all accepted ones and whose material values are immutable
-    scalars of exactly the :data:`_PLAIN` types (the isotropic {E, nu, rho} and a name with a
-    density are the common cases) have a key; the type is part of it (1 and 1.0 and True differ).
+    Only mappings whose keys are all accepted ones and whose values other than a layer's own
+    (thickness, euler, stress, electrode_below) are immutable scalars of exactly the :data:`_PLAIN`
+    types (the isotropic {E, nu, rho} and a name with a density are the common cases) have a key;
+    the type is part of it (1 and 1.0 and True differ).
     """
     if not isinstance(spec, Mapping):
         return None
@@ -204,7 +207,7 @@ def _material_key(spec, film: bool) -> tuple | None:
     for k, v in spec.items():
         if not isinstance(k, str) or k not in _FILM_KEYS:
             return None
-        if k in _MATERIAL_KEYS:
+        if k not in _LAYER_ONLY_KEYS:                                   # every key _resolved_material reads
             if type(v) not in _PLAIN:
                 return None
             items.append((k, type(v).__name__, v))
