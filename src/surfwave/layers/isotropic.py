@@ -55,6 +55,7 @@ runs on whole rows, and every element is computed by the same operations whateve
 """
 from __future__ import annotations
 
+import functools
 import weakref
 from dataclasses import dataclass
 
@@ -163,20 +164,24 @@ class IsoStack:
     s: float
     H: float
 
-    @property
+    @functools.cached_property
     def c_lim(self) -> float:
         """The substrate's shear speed (the guided limit of both families), m/s."""
         return float(np.sqrt(self.mu[-1] * self.s / self.rho[-1]))
 
-    @property
+    @functools.cached_property
     def shear(self) -> np.ndarray:
-        """Shear speeds of every layer, m/s, shape (L + 1,)."""
-        return np.sqrt(self.mu * self.s / self.rho)
+        """Shear speeds of every layer, m/s, shape (L + 1,) (read-only)."""
+        v = np.sqrt(self.mu * self.s / self.rho)
+        v.setflags(write=False)
+        return v
 
-    @property
+    @functools.cached_property
     def longitudinal(self) -> np.ndarray:
-        """Longitudinal speeds of every layer, m/s, shape (L + 1,)."""
-        return np.sqrt((self.lam + 2 * self.mu) * self.s / self.rho)
+        """Longitudinal speeds of every layer, m/s, shape (L + 1,) (read-only)."""
+        v = np.sqrt((self.lam + 2 * self.mu) * self.s / self.rho)
+        v.setflags(write=False)
+        return v
 
 
 def iso_stack(stack: Stack) -> IsoStack:

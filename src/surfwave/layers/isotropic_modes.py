@@ -518,14 +518,14 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
 
 def _table(n_rows: int, r: np.ndarray, roots: np.ndarray, vg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Speeds and group velocities of roots (m,) of rows r as (n_rows, width) tables, ascending, NaN-padded."""
-    width = int(np.bincount(r, minlength=n_rows).max(initial=0))
+    counts = np.bincount(r, minlength=n_rows)
+    width = int(counts.max(initial=0))
     c_out, v_out = np.full((n_rows, width), np.nan), np.full((n_rows, width), np.nan)
     if r.size == 0:
         return c_out, v_out
     srt = np.lexsort((roots, r))
     r, roots, vg = r[srt], roots[srt], vg[srt]
-    start = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n_rows))[:-1]])
-    col = np.arange(r.size) - start[r]
+    col = np.arange(r.size) - (np.cumsum(counts) - counts)[r]         # rank within the row
     c_out[r, col], v_out[r, col] = roots, vg
     return c_out, v_out
 
