@@ -1,4 +1,4 @@
-"""The upward scan of the isotropic path (surfwave.layers.isotropic_modes._scan) on a secular function with known roots.
+"""The upward scan of the isotropic path (surfwave.layers.isotropic_scan) on a secular function with known roots.
 
 Reference: a polynomial stand-in for the secular function whose roots are chosen (a close pair
 inside one grid cell, single roots elsewhere): the brackets must hold exactly those roots, in
@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import surfwave.layers.isotropic_modes as im
+import surfwave.layers.isotropic_scan as im
 from surfwave.layers.isotropic import iso_stack
 from surfwave.layers.stack import resolve_stack
 

@@ -57,6 +57,7 @@ BENCH_MODULES = {
         "layers.films",
         "layers.frequency",
         "layers.isotropic",
+        "layers.isotropic_scan",
         "layers.isotropic_modes",
         "layers.isotropic_deriv",
         "layers.isotropic_record",
