@@ -94,8 +94,8 @@ def test_one_pass_scan_of_both_families_equals_the_separate_scans():
     """With one film, P-SV and SH are scanned in one pass sharing the film's shear-wave functions
     (_brackets_both): their brackets equal, bit for bit, those of the two separate scans
     (_brackets, the reference), for 6 seeded random one-film stacks and a film faster than the
-    substrate (the SH grid is then one point), rows at
-    kh and at frequency, all modes and modes = 1, 2."""
+    substrate (the SH grid is then one point), 40 and 200 rows (one chunk; several, cut at the SH
+    grid or across it) at kh and at frequency, all modes and modes = 1, 2."""
     rng = np.random.default_rng(11)
 
     def mat(E, rho):
@@ -104,8 +104,10 @@ def test_one_pass_scan_of_both_families_equals_the_separate_scans():
     stacks.append(({"E": 150.0, "nu": 0.3, "rho": 5000.0}, {"E": 600.0, "nu": 0.2, "rho": 1800.0}))  # a fast film
     for sub, film in stacks:
         st = iso_stack(resolve_stack(sub, [{**film, "thickness": 1e-6}]))
-        kh = np.sort(rng.uniform(0.0, float(rng.choice([2.0, 20.0])), 40))
-        for rows_of in (im.Rows(kh, freq=False), im.Rows(kh * st.c_lim * 0.9, freq=True)):
+        top = float(rng.choice([2.0, 20.0]))
+        kh40, kh200 = np.sort(rng.uniform(0.0, top, 40)), np.sort(rng.uniform(0.0, top, 200))
+        for rows_of in (im.Rows(kh40, freq=False), im.Rows(kh40 * st.c_lim * 0.9, freq=True),
+                        im.Rows(kh200, freq=False), im.Rows(kh200 * st.c_lim * 0.9, freq=True)):
             grid = im.speed_grid(st, rows_of)
             for modes in (None, 1, 2):
                 joint = im._brackets_both(st, rows_of, modes, grid)

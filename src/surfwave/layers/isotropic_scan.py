@@ -425,7 +425,7 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
 
     Both families need the film's shear-wave functions (C_b, S_b at t = kh): they are computed once
     per chunk of ``grid`` for the rows either family still scans (the SH grid is ``grid`` above the
-    slowest shear speed after its own first point, which tops the first chunk there). Every value is the one of
+    slowest shear speed after its own first point). Every value is the one of
     the separate scans (:func:`surfwave.layers.isotropic.psv_block`, ``sh_block``: elementwise).
     """
     n_r, n_c = rows.size, grid.size
@@ -434,16 +434,19 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
     FR, FL = np.empty((n_c, n_r)), np.empty((grid_l.size, n_r))
     up_r, up_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
-    if j0 == n_c:                                                      # the SH grid is its first point alone
-        FL[0] = sh_block(st, sp_l, rows_of.grid_t(rows, grid_l))[0]
+    # P-SV alone below j0 and the SH grid's first point on top of the chunk at j0, or chunks across
+    # j0 and that point alone: whichever takes fewer evaluations (with every row active)
+    at_j0 = j0 < n_c and 1 - (-(n_c - j0) * n_r // CHUNK_ELEMENTS) <= -(-n_c * n_r // CHUNK_ELEMENTS)
+    if not at_j0:
+        FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
         up_l[:] = 1
     act_r, act_l = np.arange(n_r), np.arange(n_r)
     start = 0
     while start < n_c and (act_r.size or act_l.size):
-        if start < j0:                                                 # below the SH grid: P-SV rows alone
-            if not act_r.size:
-                start = j0
-                continue
+        if not act_r.size and start < j0:                              # SH rows alone: from their grid on
+            start = j0
+            continue
+        if at_j0 and start < j0:
             union, end = act_r, j0
         else:
             both = np.zeros(n_r, dtype=bool)
@@ -452,24 +455,26 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
             union, end = np.flatnonzero(both), n_c
         most = max(CHUNK_MIN, CHUNK_ELEMENTS // union.size)
         left = end - start
-        stop = start - (-left // -(-left // most))
+        stop = start - (-left // -(-left // most))                     # the rest in equal chunks
         sl = slice(start, stop)
-        first = int(start == j0)                                       # the SH grid's own first point on top
+        first = int(at_j0 and start == j0)                             # the SH grid's first point on top
         speeds, r2 = grid[sl], sp_r.r2[0, 1, sl]
         if first:
             speeds, r2 = np.concatenate([grid_l[:1], speeds]), np.concatenate([sp_l.r2[0, 1, :1], r2])
         kh = rows_of.grid_t(rows[union], speeds)
         Cb, Sb, gb = wave_block(r2, kh, True)
         assert gb is not None
-        if start >= j0 and act_l.size:                                 # SH first: P-SV overwrites C_b
+        if act_l.size and stop > j0:                                   # SH first: P-SV overwrites C_b
+            a = max(start, j0)
+            blk = slice(a - start, None)                               # (the first point included)
             cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
-            a, b = start - j0 + 1 - first, stop - j0 + 1
-            Fn = sh_block(st, sp_l.cut(slice(a, b)), kh[:, cols], (Cb[:, cols], Sb[:, cols]))
-            act_l = _record(FL, up_l, found_l, act_l, a, b, Fn, need)
+            lo_l, hi_l = a - j0 + 1 - first, stop - j0 + 1
+            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kh[blk, cols], (Cb[blk, cols], Sb[blk, cols]))
+            act_l = _record(FL, up_l, found_l, act_l, lo_l, hi_l, Fn, need)
         if act_r.size:
             cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
-            Fn = psv_block(st, sp_r.cut(sl), kh[first:, cols], None, (Cb[first:, cols], Sb[first:, cols],
-                                                                       gb[first:, cols]))
+            Fn = psv_block(st, sp_r.cut(sl), kh[first:, cols], None,
+                           (Cb[first:, cols], Sb[first:, cols], gb[first:, cols]))
             act_r = _record(FR, up_r, found_r, act_r, start, stop, Fn, need)
         start = stop
     return FR, up_r, FL, up_l
