@@ -335,9 +335,12 @@ def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: 
     if n_c >= 3:
         # a local minimum of |F| between cells without a sign change: two roots may hide there,
         # unless ``need`` sign changes lie below its lower cell (then both rank above ``need``)
-        aF = np.abs(F)
-        cand = aF[1:-1] < aF[:-2]
-        cand &= aF[1:-1] <= aF[2:]
+        # (|F| compared through F's sign, the same on all three points: no temporary the size of F)
+        mid = F[1:-1]
+        up = (mid < F[:-2]) & (mid <= F[2:]) & pos[1:-1]                # F > 0 there: |F| = F
+        down = (mid > F[:-2]) & (mid >= F[2:])
+        down &= ~pos[1:-1]                                               # F <= 0 there: |F| = -F
+        cand = up | down
         cand &= ~(sc[:-1] | sc[1:])
         cand &= seen[1:]
         k2, r2 = np.divmod(np.flatnonzero(cand), n_r)                  # k2: the lower cell
