@@ -7,6 +7,11 @@ Cases (one core, CPU time of this process, numpy pinned to one thread):
 * ``Si(001)[100] + SiO2``: 1 um fused silica on Si (001) along [100] (mirror: sagittal and SH
   families), ``surfwave.layered`` at N_KH kh in [0, 5] in one call;
 * ``Si(001)20deg + SiO2``: the same at 20 degrees from [100] (no mirror: one coupled family);
+* ``isotropic film, modes=2``: the isotropic stack of ``benchmarks/compare/layered_vs_disba.py``
+  (1 um of E 73 GPa, nu 0.17, rho 2200 on E 400 GPa, nu 0.25, rho 3500; the exact isotropic path)
+  at N_FREQ frequencies (disba's 200 periods 0.05 ... 2 s as 1e9 / T Hz), ``modes=2`` (R, S1, L0,
+  L1): the question that comparison times, here against the same-run yardstick (no target of its
+  own: issue 26 asks "as fast or faster" than disba, measured there);
 * yardstick: ``surfwave.material("Si", direction=N_ANGLES angles in [0, 90])`` (the bare
   substrate) in the same round.
 
@@ -42,6 +47,7 @@ import surfwave  # noqa: E402
 REPEATS = 7
 N_KH = 200
 N_ANGLES = 200
+N_FREQ = 200
 KH_MAX = 5.0
 FILM = [{"name": "SiO2", "thickness": 1e-6}]
 TARGET_CURVES, TARGET_RATIO = 10.0, 10.0
@@ -49,6 +55,10 @@ CASES: dict[str, tuple[str | float, str]] = {  # name -> (direction, description
     "Si(001)[100] + SiO2": ("[100]", "along [100] (mirror: sagittal and SH families)"),
     "Si(001)20deg + SiO2": (20.0, "at 20 degrees from [100] (no mirror: one coupled family)"),
 }
+#: The isotropic case (the stack of benchmarks/compare/layered_vs_disba.py).
+ISO_CASE = "isotropic film, modes=2"
+ISO_FILM = {"E": 73.0, "nu": 0.17, "rho": 2200.0, "thickness": 1e-6}
+ISO_HALF = {"E": 400.0, "nu": 0.25, "rho": 3500.0}
 
 
 def _calls() -> dict[str, Callable[[], Any]]:
@@ -60,6 +70,8 @@ def _calls() -> dict[str, Callable[[], Any]]:
         return lambda: surfwave.layered("Si", FILM, direction=direction, kh=kh)
 
     calls = {name: stack(d) for name, (d, _) in CASES.items()}
+    freq = 1e9 / np.linspace(0.05, 2.0, N_FREQ)
+    calls[ISO_CASE] = lambda: surfwave.layered(ISO_HALF, [ISO_FILM], frequency=freq, modes=2)
     calls["yardstick"] = lambda: surfwave.material("Si", direction=angles)
     return calls
 
@@ -94,6 +106,7 @@ def main(outdir: str) -> Path:
     curves = 1.0 / ts[:-1, 1]
     yard_ms = ts[-1, 1] * 1e3
     rows = []
+    names = list(CASES) + [ISO_CASE]
     for i, (_, where) in enumerate(CASES.values()):
         met = curves[i] >= TARGET_CURVES and qs[i, 1] <= TARGET_RATIO
         verdict = "met" if met else "NOT met" + (
@@ -111,10 +124,23 @@ def main(outdir: str) -> Path:
             f"(median {yard_ms:.3g} ms)",
             f"targets >= {TARGET_CURVES:g} curves/s/core and <= {TARGET_RATIO:g} x material() (issue 26): "
             f"{verdict}"])
+    i = names.index(ISO_CASE)
+    rows.append([
+        "`surfwave.layered`, isotropic 1 um film (E 73 GPa, nu 0.17) on an isotropic half-space (E 400 GPa, "
+        f"nu 0.25), `modes=2` (R, S1, L0, L1) at {N_FREQ} frequencies in one call (the exact isotropic path; "
+        "the question of benchmarks/compare/layered_vs_disba.py)",
+        "frequencies per call", f"{N_FREQ}",
+        f"{int(points[i])} (frequency, mode) points found, the same in every round (accuracy: tests/layers, "
+        "benchmarks/compare/layered_vs_disba.py)",
+        f"{ts[i, 1] * 1e3:.3g} ms per call (min / median / max {ts[i, 0] * 1e3:.3g} / {ts[i, 1] * 1e3:.3g} / "
+        f"{ts[i, 2] * 1e3:.3g} over {REPEATS} rounds, CPU, one core); {qs[i, 0]:.3g} / {qs[i, 1]:.3g} / "
+        f"{qs[i, 2]:.3g} x `material(\"Si\")` at {N_ANGLES} angles timed in the same rounds "
+        f"(median {yard_ms:.3g} ms)",
+        "no target of its own (issue 26: as fast as disba at equal accuracy, timed side by side in "
+        "benchmarks/compare/layered_vs_disba.py)"])
     for row in rows:
         print(" | ".join(row))
 
-    names = list(CASES)
     ds = xr.Dataset(
         {
             "time": (("case", "round"), t[:-1], {"long_name": "CPU time of one surfwave.layered call", "units": "s"}),

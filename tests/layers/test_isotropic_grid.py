@@ -52,3 +52,54 @@ def test_mass_loading_below_every_rayleigh_speed():
     assert np.allclose(fast["c"][ok], gen["c"][ok], rtol=1e-10, atol=0)
     st = iso_stack(resolve_stack(sub, films))
     assert np.nanmin(fast["c"][:, 0]) < 0.95 * slowest_speed(st)            # below c_lo
+
+
+def _reference_grid(st, rows_of, fine=1):
+    """The speed grid written out as the module docstring defines it (unique points of all parts)."""
+    import math
+
+    import surfwave.layers.isotropic_modes as im
+    c_lim = st.c_lim
+    c_lo = 0.95 * slowest_speed(st)
+    t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
+    top = np.geomspace(1e-7, 0.02, im.N_TOP, endpoint=False)
+    t = np.linspace(0.02, t_hi, im.N_BASE * fine)
+    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, im.N_BASE * fine)])
+    c_floor = im.FLOOR * float(st.shear.min())
+    low = np.geomspace(c_floor, c_lo, im.N_LOW, endpoint=False) if c_floor < c_lo else np.zeros(0)
+    parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]
+    aux = np.linspace(c_lo, c_lim, 4000)
+    nu = sum(st.frac[i] * np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0))
+             for v in (st.shear, st.longitudinal) for i in range(st.frac.size))
+    phase = rows_of.kh_max(aux) * nu
+    levels = np.arange(im.PHASE_STEP / fine, float(phase[-1]), im.PHASE_STEP / fine)
+    if levels.size:
+        pts = np.interp(levels, phase, aux)
+        parts.append(pts)
+        t_base = np.sqrt(np.maximum(1.0 - (base / c_lim) ** 2, 0.0))
+        dc = np.minimum((c_lim - c_lo) / (im.N_BASE * fine), c_lim * c_lim * t_base * t_hi / (base * im.N_BASE * fine))
+        k = np.clip(np.searchsorted(pts, base), 1, pts.size - 1) if pts.size > 1 else np.zeros(base.size, int)
+        near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
+        base = base[near > 0.5 * dc]
+    g = np.unique(np.concatenate(parts + [base]))
+    g = g[(g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)]
+    return g[(g >= min(c_floor, c_lo)) & (g < c_lim)]
+
+
+def test_speed_grid_equals_its_definition():
+    """speed_grid (its cheaper evaluation: phase terms only above their bulk speed, remembered
+    constants, its own geometric spacing and de-duplication) gives bit for bit the points of the
+    grid written out as the module docstring defines it (numpy's geomspace and unique, every phase
+    term everywhere), for 12 seeded random stacks (1-3 films), rows at kh and at frequency, and the
+    rescan's fine grid."""
+    rng = np.random.default_rng(7)
+    for _ in range(12):
+        def mat(E, rho):
+            return {"E": float(rng.uniform(*E)), "nu": float(rng.uniform(0.05, 0.42)), "rho": float(rng.uniform(*rho))}
+        films = [{**mat((40.0, 600.0), (1800.0, 20000.0)), "thickness": float(rng.uniform(0.1, 1.0)) * 1e-6}
+                 for _ in range(int(rng.integers(1, 4)))]
+        st = iso_stack(resolve_stack(mat((150.0, 600.0), (2000.0, 5000.0)), films))
+        top = float(rng.choice([0.5, 5.0, 60.0]))
+        for rows_of in (Rows(np.linspace(0.0, top, 7), freq=False), Rows(np.linspace(0.0, top * st.c_lim, 7), freq=True)):
+            for fine in (1, 4):
+                np.testing.assert_array_equal(speed_grid(st, rows_of, fine), _reference_grid(st, rows_of, fine))

@@ -133,16 +133,18 @@ def test_readme_rows_need_one_cell_per_column(tmp_path):
 
 
 def test_bench_layered_small_run(tmp_path, monkeypatch):
-    """One row per stack (Si (001) along [100], mirror; 20 deg off it, coupled), each with the
-    (kh, mode) points found, its time as a ratio to material() on the bare substrate timed in the
-    same rounds, and a verdict against issue 26's targets (a timing: only its form is tested)."""
-    mod = _load("layered", monkeypatch, N_KH=6, N_ANGLES=6, REPEATS=2)
+    """One row per stack (Si (001) along [100], mirror; 20 deg off it, coupled; the isotropic film
+    of the disba comparison at frequencies with modes=2), each with the points found and its time
+    as a ratio to material() on the bare substrate timed in the same rounds; the crystal rows with
+    a verdict against issue 26's targets (a timing: only its form is tested)."""
+    mod = _load("layered", monkeypatch, N_KH=6, N_ANGLES=6, N_FREQ=5, REPEATS=2)
     nc = mod.main(str(tmp_path))
     rows = _rows(nc)
-    assert len(rows) == 2 and all(r[2] == "6" for r in rows)
+    assert len(rows) == 3 and [r[2] for r in rows] == ["6", "6", "5"]
     assert all('x `material("Si")` at 6 angles timed in the same rounds' in r[4] for r in rows)
     assert all(re.search(r"targets >= 10 curves/s/core and <= 10 x material\(\) \(issue 26\): (NOT )?met", r[5])
-               for r in rows)
+               for r in rows[:2])
+    assert "modes=2" in rows[2][0] and "no target of its own" in rows[2][5]
     ds = xr.open_dataset(nc, engine="h5netcdf")
     assert (ds["points"] > 0).all() and (ds["ratio"] > 0).all()
     assert np.allclose(ds["ratio"], ds["time"] / ds["time_yardstick"])

@@ -55,6 +55,12 @@ BENCH_MODULES = {
         "layers.fields",
         "layers.stack",
         "layers.films",
+        "layers.frequency",
+        "layers.isotropic",
+        "layers.isotropic_scan",
+        "layers.isotropic_modes",
+        "layers.isotropic_deriv",
+        "layers.isotropic_record",
     ),
     "surface_phonons": (
         "dynamics.fcc_surface_phonons",

@@ -45,9 +45,18 @@ without poles (the substrate's r_a, r_b are analytic there and every layer's fac
 its zeros are exactly the modes.
 
 Scaled units: stiffnesses by the stack's largest, so X = rho c^2 / s.
+
+Evaluation. What depends on c only (X, r^2 of every wave, the substrate's unit vector, with one
+film the top row's coefficients) is computed once per set of speeds (:class:`Speeds`); blocks of
+(speed, row) points are evaluated speed-major (:func:`psv_block`, :func:`sh_block`), so the
+evanescent speeds of a wave (ascending speeds: the first ones) are contiguous rows, each branch
+runs on whole rows, and every element is computed by the same operations whatever block it is in
+(a scan's chunk or a hunt's pairs give the same value for the same (c, kh)).
 """
 from __future__ import annotations
 
+import functools
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -55,7 +64,8 @@ import numpy as np
 from surfwave.layers.stack import Stack
 from surfwave.solvers.tensors import tensor_to_voigt
 
-__all__ = ["IsoStack", "eligible", "is_isotropic", "iso_stack", "secular_psv", "secular_sh", "substrate_psv", "top_row",
+__all__ = ["IsoStack", "Speeds", "eligible", "is_isotropic", "iso_stack", "psv_at", "psv_block", "psv_speeds",
+           "secular_psv", "secular_sh", "sh_at", "sh_block", "sh_speeds", "substrate_psv", "top_row", "wave_block",
            "wave_functions"]
 
 #: Relative tolerance of the isotropy test of a stiffness.
@@ -85,10 +95,50 @@ def is_isotropic(C6, tol: float = ISO_TOL) -> bool:
 
 def eligible(stack: Stack) -> bool:
     """True when the fast isotropic path applies: every layer isotropic, unstressed, no piezoelectricity."""
-    if stack.piezo:
-        return False
+    return _resolved(stack) is not None
+
+
+#: :func:`_resolved` of each live stack (a stack is immutable: frozen, its tensors not written after resolution).
+_RESOLVED: weakref.WeakKeyDictionary[Stack, IsoStack | None] = weakref.WeakKeyDictionary()
+
+
+def _resolved(stack: Stack) -> IsoStack | None:
+    """The :class:`IsoStack` of an eligible stack, None for any other; remembered per stack object."""
+    try:
+        return _RESOLVED[stack]
+    except KeyError:
+        pass
     layers = [*stack.films, stack.substrate]
-    return all(not np.any(lay.sigma) and is_isotropic(tensor_to_voigt(lay.A)) for lay in layers)
+    out = None
+    if not stack.piezo and not any(np.any(lay.sigma) for lay in layers):
+        vs = [v for v in (_voigt(lay.A) for lay in layers) if v is not None]
+        if len(vs) == len(layers):
+            out = _lame(stack, np.stack(vs))
+    _RESOLVED[stack] = out
+    return out
+
+
+#: :func:`_voigt` of recent layer tensors, by value (:data:`VOIGT_MEMO` entries at most).
+_VOIGT: dict[bytes, np.ndarray | None] = {}
+VOIGT_MEMO = 64
+
+
+def _voigt(A: np.ndarray) -> np.ndarray | None:
+    """The Voigt matrix (6, 6) of a wave-propagation tensor A (3, 3, 3, 3) if isotropic, else None.
+
+    Isotropic: :func:`is_isotropic`. Remembered by the values of A (read-only results).
+    """
+    key = np.ascontiguousarray(A, dtype=float).tobytes()
+    if key in _VOIGT:
+        return _VOIGT[key]
+    V = tensor_to_voigt(A)
+    out = V if is_isotropic(V) else None
+    if out is not None:
+        out.setflags(write=False)
+    if len(_VOIGT) >= VOIGT_MEMO:
+        _VOIGT.pop(next(iter(_VOIGT)), None)
+    _VOIGT[key] = out
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,26 +164,37 @@ class IsoStack:
     s: float
     H: float
 
-    @property
+    @functools.cached_property
     def c_lim(self) -> float:
         """The substrate's shear speed (the guided limit of both families), m/s."""
         return float(np.sqrt(self.mu[-1] * self.s / self.rho[-1]))
 
-    @property
+    @functools.cached_property
     def shear(self) -> np.ndarray:
-        """Shear speeds of every layer, m/s, shape (L + 1,)."""
-        return np.sqrt(self.mu * self.s / self.rho)
+        """Shear speeds of every layer, m/s, shape (L + 1,) (read-only)."""
+        v = np.sqrt(self.mu * self.s / self.rho)
+        v.setflags(write=False)
+        return v
 
-    @property
+    @functools.cached_property
     def longitudinal(self) -> np.ndarray:
-        """Longitudinal speeds of every layer, m/s, shape (L + 1,)."""
-        return np.sqrt((self.lam + 2 * self.mu) * self.s / self.rho)
+        """Longitudinal speeds of every layer, m/s, shape (L + 1,) (read-only)."""
+        v = np.sqrt((self.lam + 2 * self.mu) * self.s / self.rho)
+        v.setflags(write=False)
+        return v
 
 
 def iso_stack(stack: Stack) -> IsoStack:
     """The Lame constants of an :func:`eligible` stack (lab-frame tensors are isotropic: any frame)."""
+    st = _resolved(stack)
+    if st is None:
+        return _lame(stack, np.stack([tensor_to_voigt(lay.A) for lay in [*stack.films, stack.substrate]]))
+    return st
+
+
+def _lame(stack: Stack, V: np.ndarray) -> IsoStack:
+    """:class:`IsoStack` from the Voigt stiffnesses V (L + 1, 6, 6), Pa, of the films and the substrate."""
     layers = [*stack.films, stack.substrate]
-    V = np.stack([tensor_to_voigt(lay.A) for lay in layers])
     s = float(np.abs(V).max())
     H = stack.total_thickness
     frac = np.array([f.thickness / H if H > 0 else 0.0 for f in stack.films])
@@ -164,49 +225,91 @@ def wave_functions(r2: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarra
     t = np.asarray(t, dtype=float)
     shape = np.broadcast_shapes(r2.shape, t.shape)
     r2v = np.broadcast_to(r2, shape[-1:] if shape else ()).reshape(-1)
-    tb = np.broadcast_to(t, shape).reshape(shape[:-1] + (r2v.size,) if shape else (1,))
-    r = np.sqrt(np.abs(r2v))
-    C, S, g = np.empty(tb.shape), np.empty(tb.shape), np.ones(tb.shape)
-    pos = r2v > 0
-    k = int(pos.sum())
-    ev: slice | np.ndarray
-    pr: slice | np.ndarray
-    if pos[:k].all():                                   # ascending speeds: evanescent columns first
-        ev, pr = slice(0, k), slice(k, r2v.size)
-    else:
+    tb = np.broadcast_to(t, shape).reshape((-1, r2v.size))
+    C, S, g = _wave(r2v, np.ascontiguousarray(tb.T), True)             # speed-major blocks
+    assert g is not None
+    return C.T.reshape(shape), S.T.reshape(shape), g.T.reshape(shape)
+
+
+def _wave(r2: np.ndarray, t: np.ndarray, want_g: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """:func:`wave_functions` of r2 (n,) at t (n, r) (speed-major float arrays); g only if ``want_g``.
+
+    Each element is computed by the same operations whatever the block (the scan's chunks, the
+    hunt's pairs). Ascending speeds put the evanescent ones (r^2 > 0) first: the branch of the
+    majority runs on the whole block (finite where it does not apply) and the other overwrites its
+    rows (contiguous in memory); speeds in another order are indexed.
+    """
+    n = r2.size
+    r = np.sqrt(np.abs(r2))
+    pos = r2 > 0
+    k = int(np.count_nonzero(pos))
+    C, S = np.empty(t.shape), np.empty(t.shape)
+    g = np.empty(t.shape) if want_g else None
+    if not pos[:k].all():                               # not ascending: index the two branches
         ev, pr = np.flatnonzero(pos), np.flatnonzero(~pos)
-    if k:                                               # (in place: few passes over the block)
-        re = r[ev]
-        e = tb[..., ev] * -re
-        np.expm1(e, out=e)
-        ge = e + 1.0
-        g[..., ev] = ge
-        np.multiply(ge, ge, out=ge)
-        ge += 1.0
-        ge *= 0.5
-        C[..., ev] = ge
-        h = e + 2.0
-        h *= e
-        h *= -0.5 / re
-        S[..., ev] = h
-    if k < r2v.size:
-        rp = r[pr]
-        tp = tb[..., pr]
-        u = tp * (0.5 * rp)
-        np.tan(u, out=u)                                # half-angle tangent: cos and sin from one call
-        u2 = u * u
-        d = u2 + 1.0
-        np.divide(1.0, d, out=d)
-        c = 1.0 - u2
-        c *= d
-        C[..., pr] = c
-        u *= d
-        if (rp > 0).all():
-            u *= 2.0 / rp
-            S[..., pr] = u
-        else:
-            S[..., pr] = np.where(rp > 0, 2.0 * u / np.where(rp > 0, rp, 1.0), tp)
-    return C.reshape(shape), S.reshape(shape), g.reshape(shape)
+        Ce, Se = np.empty((k,) + t.shape[1:]), np.empty((k,) + t.shape[1:])
+        ge = np.empty((k,) + t.shape[1:]) if g is not None else None
+        _evanescent(r[ev], t[ev], Ce, Se, ge)
+        Cp, Sp = np.empty((n - k,) + t.shape[1:]), np.empty((n - k,) + t.shape[1:])
+        _propagating(r[pr], t[pr], Cp, Sp)
+        C[ev], S[ev], C[pr], S[pr] = Ce, Se, Cp, Sp
+        if g is not None:
+            g[ev], g[pr] = ge, 1.0
+        return C, S, g
+    if 2 * k <= n or not (r > 0).all():                 # mostly propagating (or a speed at r = 0)
+        _propagating(r, t, C, S)
+        if g is not None:
+            g[...] = 1.0
+        if k:
+            _evanescent(r[:k], t[:k], C[:k], S[:k], None if g is None else g[:k])
+    else:                                               # mostly evanescent (r > 0 everywhere)
+        _evanescent(r, t, C, S, g)
+        if k < n:
+            if g is not None:
+                g[k:] = 1.0
+            _propagating(r[k:], t[k:], C[k:], S[k:])
+    return C, S, g
+
+
+#: :func:`_wave` for callers that share one wave type's block between families.
+wave_block = _wave
+
+
+def _evanescent(re: np.ndarray, te: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray | None) -> None:
+    """Scaled C, S (and g) into C, S, g (m, r) from r = re (m,) > 0 and t = te (m, r) (:func:`wave_functions`)."""
+    if re.size == 0:
+        return
+    e = te * (-re)[:, None]
+    np.expm1(e, out=e)
+    np.add(e, 1.0, out=C)
+    if g is not None:
+        g[...] = C
+    np.multiply(C, C, out=C)
+    C += 1.0
+    C *= 0.5
+    np.add(e, 2.0, out=S)
+    S *= e
+    S *= (-0.5 / re)[:, None]
+
+
+def _propagating(rp: np.ndarray, tp: np.ndarray, C: np.ndarray, S: np.ndarray) -> None:
+    """C = cos(q t), S = sin(q t) / q (S = t at q = 0) into C, S (m, r) from q = rp (m,), t = tp (m, r)."""
+    if rp.size == 0:
+        return
+    u = tp * (0.5 * rp)[:, None]
+    np.tan(u, out=u)                                    # half-angle tangent: cos and sin from one call
+    np.multiply(u, u, out=C)                            # u^2, then 1 - u^2
+    d = C + 1.0
+    np.divide(1.0, d, out=d)
+    np.subtract(1.0, C, out=C)
+    C *= d
+    u *= d
+    if (rp > 0).all():
+        np.multiply(u, (2.0 / rp)[:, None], out=S)
+    else:                                               # the same rule per element, S = t at r = 0
+        zero = rp == 0
+        np.multiply(u, (2.0 / np.where(zero, 1.0, rp))[:, None], out=S)
+        S[zero] = tp[zero]
 
 
 def _c2(M: np.ndarray) -> np.ndarray:
@@ -281,6 +384,66 @@ def top_row(mu: float, M: float, X: np.ndarray, m: np.ndarray) -> tuple[np.ndarr
     return k0, k2, k3, k4
 
 
+@dataclass(frozen=True, eq=False)
+class Speeds:
+    """The kh-independent parts of a family's secular function at speeds c (n,) (cut by :meth:`cut`).
+
+    Attributes
+    ----------
+    X : ndarray, shape (n, L + 1)
+        rho c^2 / s of every layer.
+    r2 : ndarray, shape (L, 2, n)
+        r_a^2 and r_b^2 of each film (P-SV; SH: r_b^2 twice).
+    head : ndarray, shape (k, n)
+        P-SV: the substrate's unit minor vector m (6 rows) and, with one film, the top row's
+        m_NT - K0 m, K2 m, K3 m, K4 m, K0 m (5 more); SH: the substrate's unit (v, tau) and
+        -mu r_b^2 of each film.
+    """
+
+    X: np.ndarray
+    r2: np.ndarray
+    head: np.ndarray
+
+    def cut(self, sl: slice) -> Speeds:
+        """These parts at the speeds ``sl`` of the last axis."""
+        return Speeds(self.X[sl], self.r2[..., sl], self.head[:, sl])
+
+
+def psv_speeds(st: IsoStack, c: np.ndarray) -> Speeds:
+    """:class:`Speeds` of the P-SV family at speeds c (n,) below the substrate's shear speed, m/s."""
+    X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
+    ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
+    rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    m = substrate_psv(st.mu[-1], X[:, -1], ra, rb)
+    m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
+    L = st.frac.size
+    r2 = np.empty((L, 2, c.size))
+    for layer in range(L):
+        r2[layer, 0] = 1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer])
+        r2[layer, 1] = 1.0 - X[:, layer] / st.mu[layer]
+    rows = [m.T]
+    if L == 1:
+        k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+        rows.append(np.stack([m[..., 5] - k0, k2, k3, k4, k0]))
+    return Speeds(X, r2, np.concatenate(rows))
+
+
+def sh_speeds(st: IsoStack, c: np.ndarray) -> Speeds:
+    """:class:`Speeds` of the SH family at speeds c (n,) below the substrate's shear speed, m/s."""
+    X = st.rho * (c[:, None] ** 2) / st.s
+    v = np.ones(c.size)
+    tau = -st.mu[-1] * np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
+    nrm = np.hypot(v, tau)
+    L = st.frac.size
+    r2 = np.empty((L, 2, c.size))
+    head = np.empty((2 + L, c.size))
+    head[0], head[1] = v / nrm, tau / nrm
+    for layer in range(L):
+        r2[layer, :] = 1.0 - X[:, layer] / st.mu[layer]
+        head[2 + layer] = -st.mu[layer] * r2[layer, 1]
+    return Speeds(X, r2, head)
+
+
 def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
     """Pole-free P-SV secular function: the minor m_NT at the free top, shape (r, n).
 
@@ -298,35 +461,58 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
         :func:`psv_kernels` of each film below the top one at ``c`` (computed when not given; entry
         0 is not used: the top film's row is in closed form, :func:`top_row`).
     """
-    X = st.rho * (c[:, None] ** 2) / st.s                                 # (n, L + 1)
-    ra = np.sqrt(np.maximum(1.0 - X[:, -1] / (st.lam[-1] + 2 * st.mu[-1]), 0.0))
-    rb = np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
-    m = substrate_psv(st.mu[-1], X[:, -1], ra, rb)
-    m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))                 # (n, 6), kh-independent
+    return psv_at(st, psv_speeds(st, c), kh, kernels)
+
+
+def psv_at(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None) -> np.ndarray:
+    """:func:`secular_psv` from its kh-independent parts ``sp`` (:func:`psv_speeds`) at kh (r, n)."""
+    return psv_block(st, sp, np.ascontiguousarray(kh.T), kernels).T
+
+
+def psv_block(st: IsoStack, sp: Speeds, kh: np.ndarray, kernels: list[np.ndarray] | None = None,
+              wave_b: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """:func:`psv_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``).
+
+    ``wave_b``: C, S, g of the top film's shear wave at t = kh (:func:`wave_functions`, speed-major),
+    when already computed (one film only; they are overwritten).
+    """
     L = st.frac.size
     if L == 0:
-        return np.broadcast_to(m[:, 5], kh.shape)
+        return np.broadcast_to(sp.head[5][:, None], kh.shape)
+    m = sp.head[:6].T[:, None, :]                                          # (n, 1, 6), then (n, r, 6)
     for layer in range(L - 1, -1, -1):
-        t = kh * st.frac[layer]
-        Ca, Sa, ga = wave_functions(1.0 - X[:, layer] / (st.lam[layer] + 2 * st.mu[layer]), t)
-        Cb, Sb, gb = wave_functions(1.0 - X[:, layer] / st.mu[layer], t)
+        t = kh if st.frac[layer] == 1.0 else kh * st.frac[layer]            # (kh x 1.0 is kh, bit for bit)
+        Ca, Sa, ga = _wave(sp.r2[layer, 0], t, True)
+        if wave_b is not None and L == 1:
+            Cb, Sb, gb = wave_b
+        else:
+            Cb, Sb, g = _wave(sp.r2[layer, 1], t, True)
+            assert g is not None
+            gb = g
+        assert ga is not None
         if layer == 0:                                                     # the NT row only: F itself
-            k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], X[:, 0], m)
+            if L == 1:
+                d, k2, k3, k4, k0 = (h[:, None] for h in sp.head[6:])
+            else:
+                k0, k2, k3, k4 = top_row(st.mu[0], st.lam[0] + 2 * st.mu[0], sp.X[:, :1], m)
+                d = m[..., 5] - k0
             # g_a g_b k0 + C_a (C_b (m_NT - k0) + S_b k2) + S_a (C_b k3 + S_b k4), in place
-            F = Cb * (m[..., 5] - k0)
-            F += Sb * k2
+            F = Cb * d
+            T = Sb * k2
+            F += T
             F *= Ca
-            P = Cb * k3
-            P += Sb * k4
-            P *= Sa
-            F += P
+            np.multiply(Cb, k3, out=Cb)
+            np.multiply(Sb, k4, out=T)
+            Cb += T
+            Cb *= Sa
+            F += Cb
             ga *= gb
             ga *= k0
             F += ga
             return F
         w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
-        K = psv_kernels(st.lam[layer], st.mu[layer], X[:, layer]) if kernels is None else kernels[layer]
-        Km = (K * m[..., None, None, :]).sum(axis=-1)                      # (n, 5, 6) or (r, n, 5, 6)
+        K = psv_kernels(st.lam[layer], st.mu[layer], sp.X[:, layer]) if kernels is None else kernels[layer]
+        Km = (K[:, None] * m[..., None, None, :]).sum(axis=-1)              # (n, 1 or r, 5, 6)
         m = sum(w[p][..., None] * Km[..., p, :] for p in range(5))
         m = m / np.sqrt((m * m).sum(axis=-1, keepdims=True))
     raise AssertionError("unreachable")
@@ -334,18 +520,31 @@ def secular_psv(st: IsoStack, c: np.ndarray, kh: np.ndarray, kernels: list[np.nd
 
 def secular_sh(st: IsoStack, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
     """Pole-free SH secular function tau / |(v, tau)| at the free top, shape (r, n) (arguments: :func:`secular_psv`)."""
-    X = st.rho * (c[:, None] ** 2) / st.s
-    v = np.ones(c.size)
-    tau = -st.mu[-1] * np.sqrt(np.maximum(1.0 - X[:, -1] / st.mu[-1], 0.0))
-    nrm = np.hypot(v, tau)
-    v, tau = v / nrm, tau / nrm
+    return sh_at(st, sh_speeds(st, c), kh)
+
+
+def sh_at(st: IsoStack, sp: Speeds, kh: np.ndarray) -> np.ndarray:
+    """:func:`secular_sh` from its kh-independent parts ``sp`` (:func:`sh_speeds`) at kh (r, n)."""
+    return sh_block(st, sp, np.ascontiguousarray(kh.T)).T
+
+
+def sh_block(st: IsoStack, sp: Speeds, kh: np.ndarray, wave: tuple[np.ndarray, np.ndarray] | None = None
+             ) -> np.ndarray:
+    """:func:`sh_at` speed-major: kh and F of shape (n, r) (n the speeds of ``sp``).
+
+    ``wave``: C, S of the film's shear wave at t = kh when already computed (one film only; not written).
+    """
+    v, tau = sp.head[0][:, None], sp.head[1][:, None]
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
-        rb2 = 1.0 - X[:, layer] / mu
-        Cb, Sb, _ = wave_functions(rb2, kh * st.frac[layer])
-        v, tau = Cb * v - Sb * tau / mu, -mu * rb2 * Sb * v + Cb * tau
+        if wave is not None and st.frac.size == 1:
+            Cb, Sb = wave
+        else:
+            Cb, Sb, _ = _wave(sp.r2[layer, 1], kh if st.frac[layer] == 1.0 else kh * st.frac[layer], False)
+        v, tau = Cb * v - Sb * tau / mu, sp.head[2 + layer][:, None] * Sb * v + Cb * tau
         nrm = np.hypot(v, tau)
         tau /= nrm
         if layer:
             v /= nrm
     return np.broadcast_to(tau, kh.shape)
+

@@ -36,16 +36,15 @@ def kh_record(stack: Stack, kh: np.ndarray, modes: int | None = None) -> dict:
     rows_of = Rows(kh, freq=False)
     fams = _families(st)
     sols = check_families(stack, st, rows_of, ("R", "L"), both_families(st, rows_of, modes), modes)   # [P-SV, SH]
-    cs = [s[0] for s in sols]
-    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
-    C, labels, (vg, PF) = merge_families(fams, cs, [[s[1] for s in sols], pfs])
+    C, labels, (vg,) = merge_families(fams, [s[0] for s in sols], [[s[1] for s in sols]])
+    finite = np.isfinite(C)
     khm = np.broadcast_to(kh[:, None], C.shape).copy()
     freq = C * khm / (2 * np.pi * st.H) if st.H > 0 else np.full(C.shape, np.nan)
-    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
     nan = np.full(C.shape, np.nan)
     return {"c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
-            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": reason, "power_flow_angle": PF,
-            "mode_limit": np.where(np.isfinite(C), st.c_lim, np.nan)}   # both families: the substrate's shear speed
+            "attenuation": nan.copy(), "kh": khm, "frequency": freq, "reason": _reasons(finite, REASON_NONE),
+            "power_flow_angle": np.where(finite, 0.0, np.nan),
+            "mode_limit": np.where(finite, st.c_lim, np.nan)}   # both families: the substrate's shear speed
 
 
 def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> dict:
@@ -57,14 +56,20 @@ def frequency_record(stack: Stack, f: np.ndarray, modes: int | None = None) -> d
     rows_of = Rows(wH, freq=True)
     fams = _families(st)
     sols = check_families(stack, st, rows_of, ("R", "L"), both_families(st, rows_of, modes), modes)   # [P-SV, SH]
-    cs = [s[0] for s in sols]
-    pfs = [np.where(np.isfinite(c), 0.0, np.nan) for c in cs]
-    C, labels, (vg, khm, PF) = merge_families(fams, cs, [[s[1] for s in sols], [wH[:, None] / c for c in cs], pfs])
-    reason = np.where(np.isfinite(C).any(axis=1), "", REASON_NONE).astype(object)
+    C, labels, (vg,) = merge_families(fams, [s[0] for s in sols], [[s[1] for s in sols]])
+    finite = np.isfinite(C)
     nan = np.full(C.shape, np.nan)
-    return {"power_flow_angle": PF, "c": C, "mode": labels, "group_velocity": vg, "K2": nan, "c_limit": st.c_lim,
-            "attenuation": nan.copy(), "kh": khm, "frequency": np.where(np.isfinite(C), f[:, None], np.nan),
-            "reason": reason, "mode_limit": np.where(np.isfinite(C), st.c_lim, np.nan)}
+    return {"power_flow_angle": np.where(finite, 0.0, np.nan), "c": C, "mode": labels, "group_velocity": vg,
+            "K2": nan, "c_limit": st.c_lim, "attenuation": nan.copy(), "kh": wH[:, None] / C,
+            "frequency": np.where(finite, f[:, None], np.nan), "reason": _reasons(finite, REASON_NONE),
+            "mode_limit": np.where(finite, st.c_lim, np.nan)}
+
+
+def _reasons(finite: np.ndarray, none: str) -> np.ndarray:
+    """Per row (n,), object: "" where a mode was found (``finite`` (n, m)), else ``none``."""
+    out = np.full(finite.shape[0], "", dtype=object)
+    out[~finite.any(axis=1)] = none
+    return out
 
 
 def labelled_speeds(stack: Stack, kh: np.ndarray, labels: np.ndarray) -> np.ndarray:

@@ -80,26 +80,19 @@ def solve_stack(stack: Stack, kh, electrical: str | Boundary = "free") -> dict:
 def merge_families(fams: list[Family], cs: list[np.ndarray], extra: list[list[np.ndarray]]) -> tuple:
     """Columns of all families merged, ascending per row; labels; the extra arrays in the same order."""
     k = cs[0].shape[0] if cs else 0
-    cols_c: list[np.ndarray] = []
-    cols_l: list[np.ndarray] = []
-    cols_x: list[list[np.ndarray]] = [[] for _ in extra]
-    for f, (fam, c) in enumerate(zip(fams, cs)):
-        for j in range(c.shape[1]):
-            cols_c.append(c[:, j])
-            cols_l.append(np.where(np.isfinite(c[:, j]), label(fam.prefix, j), ""))
-            for i, x in enumerate(extra):
-                cols_x[i].append(x[f][:, j])
-    if not cols_c:
+    if not any(c.shape[1] for c in cs):
         return np.full((k, 0), np.nan), np.full((k, 0), "", dtype=object), [np.full((k, 0), np.nan) for _ in extra]
-    C = np.stack(cols_c, axis=1)
-    Lb = np.stack(cols_l, axis=1).astype(object)
-    Xs = [np.stack(x, axis=1) for x in cols_x]
-    order = np.argsort(np.where(np.isfinite(C), C, np.inf), axis=1, kind="stable")
-    C = np.take_along_axis(C, order, axis=1)
-    Lb = np.take_along_axis(Lb, order, axis=1)
-    Xs = [np.take_along_axis(x, order, axis=1) for x in Xs]
-    n = int(np.isfinite(C).sum(axis=1).max(initial=0))
-    return C[:, :n], Lb[:, :n], [x[:, :n] for x in Xs]
+    # one block (1 + len(extra), k, columns): the speeds, then each extra array, families side by side
+    block = np.stack([np.concatenate(cs, axis=1)] + [np.concatenate(x, axis=1) for x in extra])
+    C = block[0]
+    names = np.array([label(fam.prefix, j) for fam, c in zip(fams, cs) for j in range(c.shape[1])] + [""],
+                     dtype=object)
+    finite = np.isfinite(C)
+    order = np.argsort(np.where(finite, C, np.inf), axis=1, kind="stable")
+    block = np.take_along_axis(block, order[None], axis=2)
+    n = int(np.count_nonzero(finite, axis=1).max(initial=0))
+    code = np.where(np.isfinite(block[0, :, :n]), order[:, :n], -1)    # the column's label; "" where no mode
+    return block[0, :, :n], names[code], [x[:, :n] for x in block[1:]]
 
 
 def layered(substrate, films=(), *, euler=None, surface: str = "(001)", direction="[100]", kh=None,

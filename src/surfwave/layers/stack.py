@@ -14,6 +14,12 @@ and sigma . n = 0 at the surface and at every interface (:func:`surfwave.validat
 :func:`surfwave.case.check_stress`). What only a layer has stays here: thickness in metres,
 isotropic {E, nu, rho} with -1 < nu < 0.5, the film list, electrodes and conductors.
 
+Remembered. Resolving a material and building a layer's lab-frame tensor cost far more than the
+waves of a small isotropic stack; both are remembered by the values of their inputs (a material
+mapping of plain scalars, and the Voigt matrix, axes and stress of a layer; :data:`MEMO_SIZE`
+entries each). Only successful resolutions are remembered, so a refusal is the same line every
+time, and every caller receives its own copy of a layer's tensor.
+
 Frames
 ------
 The solver works in the project's lab frame: x1 = propagation, x2 = INWARD normal (into the
@@ -170,7 +176,64 @@ def _checked_eps(e6, value, where: str) -> np.ndarray:
         return validate.piezo_constants(np.zeros((3, 6)) if e6 is None else e6, _eps_matrix(value))[1]
 
 
+#: Types of the values of a material mapping whose resolution is remembered (immutable scalars).
+_PLAIN = (int, float, str, bool, type(None))
+#: Entries of each remembered resolution (materials, layer tensors) at most; the oldest go first.
+MEMO_SIZE = 64
+#: Keys of a film mapping that its material does not depend on (read by :func:`resolve_stack` itself).
+_LAYER_ONLY_KEYS = frozenset({"thickness", "euler", "stress", "electrode_below"})
+_MATERIALS: dict[tuple, dict] = {}
+_TENSORS: dict[tuple, np.ndarray] = {}
+
+
+def _remember(memo: dict, key: tuple, value) -> None:
+    """Store ``value`` under ``key``, dropping the oldest entry beyond :data:`MEMO_SIZE`."""
+    if len(memo) >= MEMO_SIZE:
+        memo.pop(next(iter(memo)), None)
+    memo[key] = value
+
+
+def _material_key(spec, film: bool) -> tuple | None:
+    """A key of a material mapping by value, or None when its resolution is not remembered.
+
+    Only mappings whose keys are all accepted ones and whose values other than a layer's own
+    (thickness, euler, stress, electrode_below) are immutable scalars of exactly the :data:`_PLAIN`
+    types (the isotropic {E, nu, rho} and a name with a density are the common cases) have a key;
+    the type is part of it (1 and 1.0 and True differ).
+    """
+    if not isinstance(spec, Mapping):
+        return None
+    items = []
+    for k, v in spec.items():
+        if not isinstance(k, str) or k not in _FILM_KEYS:
+            return None
+        if k not in _LAYER_ONLY_KEYS:                                   # every key _resolved_material reads
+            if type(v) not in _PLAIN:
+                return None
+            items.append((k, type(v).__name__, v))
+    return (film, *sorted(items))
+
+
 def _material(spec, where: str, film: bool = True) -> dict:
+    """:func:`_resolved_material`, remembered by value for plain mappings (:func:`_material_key`).
+
+    A remembered record is returned as a new dict whose arrays are read-only (they are shared);
+    only successful resolutions are remembered, so a refusal is raised anew each time.
+    """
+    key = _material_key(spec, film)
+    if key is not None and key in _MATERIALS:
+        return dict(_MATERIALS[key])
+    rec = _resolved_material(spec, where, film)
+    if key is not None:
+        for v in rec.values():
+            if isinstance(v, np.ndarray):
+                v.setflags(write=False)
+        _remember(_MATERIALS, key, rec)
+        rec = dict(rec)
+    return rec
+
+
+def _resolved_material(spec, where: str, film: bool = True) -> dict:
     """Voigt C (GPa, crystal axes), rho, e (3, 6) or None, eps_r (3, 3) or None from a name or a mapping.
 
     Names: :func:`surfwave.layers.films.lookup`; constants: :func:`surfwave.resolve.resolve_constants`
@@ -249,13 +312,27 @@ def _stress(stress, where: str, surface: str) -> np.ndarray:
     return SAW_TO_LAB @ sig @ SAW_TO_LAB.T
 
 
+def _propagation_tensor(voigt: np.ndarray, R: np.ndarray, sigma: np.ndarray, where: str) -> np.ndarray:
+    """Wave-propagation tensor (3, 3, 3, 3), Pa, of Voigt C (GPa) in lab axes R under sigma (Pa).
+
+    Remembered by the values of its inputs (a new copy is returned each time).
+    """
+    v, r, s = (np.ascontiguousarray(a, dtype=float) for a in (voigt, R, sigma))
+    key = (v.tobytes(), r.tobytes(), s.tobytes())
+    A = _TENSORS.get(key)
+    if A is None:
+        C = rotate4(voigt_to_tensor(v), r) * GPA
+        try:
+            A = wave_propagation_tensor(C, s)
+        except InputError as exc:
+            raise InputError(f"{where}: {exc}") from None
+        _remember(_TENSORS, key, A)
+    return A.copy()
+
+
 def _layer(rec: dict, R: np.ndarray, thickness: float, sigma_gpa: np.ndarray, piezo_stack: bool, where: str) -> Layer:
-    C = rotate4(voigt_to_tensor(rec["voigt"]), R) * GPA
     sigma = sigma_gpa * GPA
-    try:
-        A = wave_propagation_tensor(C, sigma)
-    except InputError as exc:
-        raise InputError(f"{where}: {exc}") from None
+    A = _propagation_tensor(rec["voigt"], R, sigma, where)
     e = eps = None
     if piezo_stack:
         if rec.get("conductor"):

@@ -1,0 +1,500 @@
+"""The upward scan of the isotropic path: the speed grid and the brackets of every mode on it.
+
+The secular functions are those of :mod:`surfwave.layers.isotropic`; the brackets found here are
+refined by :mod:`surfwave.layers.isotropic_modes` (Newton, group velocities, the record's tables).
+
+Search. Per family (P-SV: labels R, S1, S2, ...; SH: L0, L1, ...) the secular function is evaluated
+on one speed grid shared by all rows (kh values, or frequencies with kh = omega H / c), from the
+bottom up in chunks of at most :data:`CHUNK_ELEMENTS` (row, speed) points, its kh-independent parts
+once per grid (:class:`surfwave.layers.isotropic.Speeds`); with one film both families are
+scanned in one pass sharing the film's shear-wave functions. A row stops once it holds ``modes``
+sign changes. The function has no poles, so every sign change is a mode and the n-th one from
+below is the n-th mode (c_lim below is the substrate's shear speed).
+
+Grid, and what it guarantees. The grid runs from ``c_floor`` = :data:`FLOOR` x the slowest shear
+speed of any layer (the floor of the general path) to c_lim. Above ``c_lo`` = 0.95 x the slowest
+Rayleigh speed of any layer it is dense; below, where every wave of every layer is evanescent and
+the function varies slowly, it has :data:`N_LOW` points geometric in c (a dense film loads the
+surface by its mass and takes the R mode below every layer's Rayleigh speed: 0.87 x the slowest
+in a random sample of stacks) and ``c_lo`` itself. It is the union of that, of
+(i) :data:`N_TOP` points geometric in t from 1e-7 to 0.02 (modes enter at c_lim with t ~ kh - kh_cutoff),
+(ii) :data:`N_BASE` points uniform in t and as many uniform in c (less those within half their
+spacing of a point of (iii)), and (iii) points where the total vertical phase
+Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
+:data:`PHASE_STEP`. Between consecutive modes of one family the field of some film turns by about
+pi in depth, so a cell holds a fraction of a mode spacing. Every sign change on the grid is a mode
+(the function has no poles). Two modes in one cell (modes localised in different films, weakly
+coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
+hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite sign splits the
+cell into two brackets; the pair is missed only if the dip between the two roots escapes that hunt.
+(With ``modes`` = N a minimum above a row's N-th sign change is not hunted: both its roots would
+rank above N, so nothing kept changes.)
+As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
+so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
+This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
+films or more against the exact mode count and re-solves those that fail.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from surfwave.layers.isotropic import (
+    IsoStack,
+    psv_block,
+    psv_kernels,
+    psv_speeds,
+    secular_psv,
+    secular_sh,
+    sh_block,
+    sh_speeds,
+    wave_block,
+)
+
+__all__ = ["CHUNK", "CHUNK_ELEMENTS", "CHUNK_MIN", "FLOOR", "N_BASE", "N_LOW", "N_TOP", "PAIR_STEPS", "PHASE_STEP",
+           "RESCAN", "Rows", "slowest_speed", "speed_grid"]
+
+#: Speeds per chunk of the former upward scan (a public name, kept; the scan chunks by points: CHUNK_ELEMENTS).
+CHUNK = 32
+#: (row, speed) points per chunk of the upward scan at most (the rest of the grid is cut into the
+#: fewest equal chunks within it; at least :data:`CHUNK_MIN` speeds). Every float64 temporary of a
+#: chunk then stays below 64 KiB: the C allocator (glibc) may hand larger freed blocks back to the
+#: system, and the next call pays them again in page faults (measured up to +0.6 ms on a 3 ms call
+#: with larger blocks, in a process whose allocator trims).
+CHUNK_ELEMENTS = 8000
+#: Speeds per chunk at least.
+CHUNK_MIN = 8
+#: Points uniform in t and uniform in c.
+N_BASE = 20
+#: Lowest speed searched, in units of the slowest shear speed of any layer (the general path's floor).
+FLOOR = 0.05
+#: Points geometric in c from the floor to c_lo (mass loading by a dense film takes R below c_lo).
+N_LOW = 10
+#: Points geometric in t from 1e-7 to 0.02 (next to c_lim, where modes enter).
+N_TOP = 12
+#: Phase step of the grid, radians.
+PHASE_STEP = math.pi / 4
+#: Parabolic / golden steps hunting two roots hidden in one grid cell.
+PAIR_STEPS = 10
+#: Refinement factor of the rescan of rows with too few modes.
+RESCAN = 4
+
+
+
+#: The points of (i) in t (module docstring).
+_TOP_T = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
+_TOP_T.setflags(write=False)
+#: sqrt(1 - t^2) of those points (c / c_lim).
+_TOP_ROOT = np.sqrt(1.0 - _TOP_T * _TOP_T)
+_TOP_ROOT.setflags(write=False)
+
+
+class Rows:
+    """The rows of a call: fixed kh (``base`` = kh) or fixed frequency (``base`` = omega H, kh = omega H / c).
+
+    Parameters
+    ----------
+    base : ndarray, shape (n,)
+        kh, or 2 pi f H (m/s).
+    freq : bool
+        True at fixed frequency.
+    """
+
+    def __init__(self, base: np.ndarray, freq: bool) -> None:
+        self.base, self.freq = np.asarray(base, dtype=float), freq
+        self.split: int | None = None          # set by both(): rows from here on are SH
+
+    def both(self) -> Rows:
+        """These rows twice: P-SV rows 0 ... n - 1, SH rows n ... 2n - 1 (prefix "RL" of the refinement)."""
+        out = Rows(np.concatenate([self.base, self.base]), self.freq)
+        out.split = self.base.size
+        return out
+
+    def grid(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (r, n) of rows (r,) at speeds c (n,)."""
+        b = self.base[rows][:, None]
+        return b / c[None, :] if self.freq else np.broadcast_to(b, (rows.size, c.size))
+
+    def grid_t(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (n, r) of rows (r,) at speeds c (n,), speed-major (:meth:`grid` transposed)."""
+        b = self.base[rows][None, :]
+        return b / c[:, None] if self.freq else np.broadcast_to(b, (c.size, rows.size))
+
+    def pairs(self, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """kh (m,) of (row, speed) pairs (m,)."""
+        return self.base[rows] / c if self.freq else self.base[rows]
+
+    def kh_max(self, c: np.ndarray) -> np.ndarray:
+        """An upper bound (n,) of every row's kh at speeds c (n,)."""
+        top = float(self.base.max(initial=0.0))
+        return top / c if self.freq else np.full(c.shape, top)
+
+
+@functools.lru_cache(maxsize=256)
+def _rayleigh_ratio(kappa: float) -> float:
+    """c_R^2 / beta^2 of an isotropic half-space with beta^2 / alpha^2 = kappa (bisection, 1e-12)."""
+    lo, hi = 1e-9, 1.0
+    for _ in range(42):
+        x = 0.5 * (lo + hi)
+        if (2.0 - x) ** 2 - 4.0 * math.sqrt((1.0 - x) * (1.0 - kappa * x)) < 0.0:
+            lo = x
+        else:
+            hi = x
+    return lo
+
+
+def slowest_speed(st: IsoStack) -> float:
+    """The slowest Rayleigh speed of any layer as a half-space, m/s."""
+    beta = st.shear
+    kap = st.mu / (st.lam + 2 * st.mu)
+    return float(min(b * math.sqrt(_rayleigh_ratio(float(k))) for b, k in zip(beta, kap)))
+
+
+def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
+    """Ascending speeds (n,) in [c_floor, c_lim) (module docstring), for the rows' largest kh at each speed."""
+    c_lim = st.c_lim
+    c_lo = 0.95 * slowest_speed(st)
+    t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
+    t = _linspace(0.02, t_hi, N_BASE * fine)
+    base = np.concatenate([c_lim * np.sqrt(1.0 - t * t), _linspace(c_lo, c_lim, N_BASE * fine)])
+    c_floor = FLOOR * float(st.shear.min())
+    low = _geometric(c_floor, c_lo, N_LOW) if c_floor < c_lo else np.zeros(0)
+    parts = [c_lim * _TOP_ROOT, np.array([c_lo]), low]                      # c_lo itself, always
+    if st.frac.size:
+        aux = _linspace(c_lo, c_lim, 4000)
+        nu = np.zeros(aux.size)
+        for v in (st.shear, st.longitudinal):
+            for i in range(st.frac.size):
+                j = int(np.searchsorted(aux, v[i], side="right"))        # the term is 0 below v (exactly)
+                if j < aux.size:
+                    a = aux[j:]
+                    nu[j:] += st.frac[i] * (np.sqrt(np.maximum((a / v[i]) ** 2 - 1.0, 0.0)))
+        phase = rows_of.kh_max(aux) * nu
+        levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
+        if levels.size:
+            pts = np.interp(levels, phase, aux)
+            parts.append(pts)
+            # a base point within half the base spacing of a phase point adds nothing
+            t_base = np.sqrt(np.maximum(1.0 - (base / c_lim) ** 2, 0.0))
+            step_c = (c_lim - c_lo) / (N_BASE * fine)                       # of the c-uniform part
+            dc = np.minimum(step_c, c_lim * c_lim * t_base * t_hi / (base * N_BASE * fine))   # and the t-uniform
+            k = (np.minimum(np.maximum(np.searchsorted(pts, base), 1), pts.size - 1) if pts.size > 1
+                 else np.zeros(base.size, int))
+            near = np.minimum(np.abs(pts[k] - base), np.abs(pts[np.maximum(k - 1, 0)] - base))
+            base = base[near > 0.5 * dc]
+    g = np.sort(np.concatenate(parts + [base]))
+    keep = np.empty(g.size, dtype=bool)                                  # distinct values (np.unique's rule)
+    keep[:1] = True
+    np.not_equal(g[1:], g[:-1], out=keep[1:])
+    keep &= (g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)              # c_lo once (not also rounded from t_hi)
+    keep &= (g >= min(c_floor, c_lo)) & (g < c_lim)
+    return g[keep]
+
+
+def _geometric(a: float, b: float, n: int) -> np.ndarray:
+    """n points from a (exactly) towards b (excluded), uniform in log10 (numpy's geomspace without its generality)."""
+    out = np.power(10.0, _linspace(np.log10(a), np.log10(b), n, endpoint=False))
+    out[0] = a
+    return out
+
+
+def _linspace(a: float, b: float, n: int, endpoint: bool = True) -> np.ndarray:
+    """n >= 2 points from a to b (or towards b), uniform: numpy's linspace of two scalars, without its generality."""
+    y = np.arange(n, dtype=float)
+    y *= (b - a) / (n - 1 if endpoint else n)
+    y += a
+    if endpoint:
+        y[-1] = b
+    return y
+
+
+def _secular(st: IsoStack, prefix: str, c: np.ndarray, kh: np.ndarray) -> np.ndarray:
+    """The family's secular function at speeds c (n,) and kh (r, n)."""
+    if prefix == "L":
+        return secular_sh(st, c, kh)
+    return secular_psv(st, c, kh)
+
+
+def _at(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The secular function at (row, speed) pairs r, c (m,) (evaluated in ascending c: contiguous wave branches)."""
+    o = np.argsort(c, kind="stable")
+    cs = c[o]
+    out = np.empty(c.size)
+    out[o] = _secular(st, prefix, cs, rows_of.pairs(r[o], cs)[None, :])[0]
+    return out
+
+
+def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: np.ndarray, Fs: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split points of two roots hidden between grid speeds: (found (m,), x (m,), F at x (m,)).
+
+    ``cs``, ``Fs`` (m, 3): three consecutive grid speeds around a local minimum of |F| without a sign
+    change. The minimum of s F (s its sign) is hunted by parabolic steps (golden-section fallback)
+    for :data:`PAIR_STEPS` steps; where s F < 0 at some point x, (c_left, x) and (x, c_right) each
+    hold one root. From the second step on, a candidate whose parabola puts the minimum above 0.7 x
+    the lowest value seen is dropped (a near miss).
+    """
+    s = np.sign(Fs[:, 1])
+    (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
+    found = np.zeros(r.size, dtype=bool)
+    x_out = np.full(r.size, np.nan)
+    f_out = np.full(r.size, np.nan)
+    idx = np.arange(r.size)
+    for step in range(PAIR_STEPS):
+        if idx.size == 0:
+            break
+        with np.errstate(all="ignore"):
+            a, b = cm - cl, cm - ch
+            dh, dl = gm - gh, gm - gl
+            x = cm - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
+            if step > 0:
+                # after one step the parabola models the dip: a minimum it puts well above zero is a
+                # near miss, not two roots
+                curv = ((gl - gm) / a - (gh - gm) / b) / (a - b)
+                g_min = gm - curv * (cm - x) ** 2                        # the parabola's minimum
+                keep = ~(np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm))
+                if not keep.any():
+                    break
+                if not keep.all():
+                    idx, cl, cm, ch, gl, gm, gh, a, b, x = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh, a, b, x))
+        gold = np.where(a > -b, cm - 0.382 * a, cm - 0.382 * b)
+        bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
+        x = np.where(bad, gold, x)
+        gx = _at(st, prefix, rows_of, r[idx], x) * s[idx]
+        hit = gx < 0
+        if hit.any():
+            found[idx[hit]], x_out[idx[hit]], f_out[idx[hit]] = True, x[hit], gx[hit] * s[idx[hit]]
+        better, left = gx < gm, x < cm
+        cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
+                  np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
+        gl, gh = (np.where(better, np.where(left, gl, gm), np.where(left, gx, gl)),
+                  np.where(better, np.where(left, gm, gh), np.where(left, gh, gx)))
+        cm, gm = np.where(better, x, cm), np.where(better, gx, gm)
+        keep = ~hit & (ch - cl > 1e-9 * cm)
+        if not keep.all():
+            idx, cl, cm, ch, gl, gm, gh = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh))
+    return found, x_out, f_out
+
+
+def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
+          ) -> tuple[np.ndarray, ...]:
+    """Brackets (row, lower speed, upper speed, F at both, a third grid speed next to them or NaN, F there).
+
+    The grid is evaluated chunk by chunk (about :data:`CHUNK_ELEMENTS` (row, speed) points each,
+    the kh-independent parts once for the whole grid) until each row holds ``need`` sign changes;
+    a root is a sign change between grid speeds, or one of two roots hidden in a grid cell next to
+    a local minimum of |F| (:func:`_hidden_pairs`). Per row the brackets are sorted and the first
+    ``need`` kept; so a local minimum whose cells lie above the row's ``need``-th sign change
+    (both its roots would rank above ``need``) is not hunted. Which speeds a row is evaluated at
+    beyond its ``need``-th sign change (the chunking) changes nothing kept.
+    """
+    return _assemble(st, prefix, grid, rows_of, rows, need, *_evaluate(st, prefix, grid, rows_of, rows, need))
+
+
+def _evaluate(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The upward evaluation of :func:`_scan`: F (n, r) speed-major (valid below ``upto``) and ``upto`` (r,)."""
+    n_r, n_c = rows.size, grid.size
+    sh = prefix == "L"
+    sp = sh_speeds(st, grid) if sh else psv_speeds(st, grid)
+    F = np.empty((n_c, n_r))                                           # speed-major
+    upto = np.zeros(n_r, dtype=int)                                    # speeds evaluated per row
+    found = np.zeros(n_r, dtype=int)
+    act = np.arange(n_r)
+    start = 0
+    while start < n_c and act.size:
+        most = max(CHUNK_MIN, CHUNK_ELEMENTS // act.size)                 # speeds per chunk at most
+        left = n_c - start
+        stop = start - (-left // -(-left // most))                        # the rest in equal chunks
+        sl = slice(start, stop)
+        kernels = None
+        if not sh and st.frac.size > 1:
+            kernels = [grid[:0]] + [psv_kernels(st.lam[i], st.mu[i], sp.X[sl, i]) for i in range(1, st.frac.size)]
+        kh = rows_of.grid_t(rows[act], grid[sl])
+        Fn = sh_block(st, sp.cut(sl), kh) if sh else psv_block(st, sp.cut(sl), kh, kernels)
+        act = _record(F, upto, found, act, start, stop, Fn, need)
+        start = stop
+    return F, upto
+
+
+def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float,
+              F: np.ndarray, upto: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,))."""
+    n_r, n_c = rows.size, grid.size
+    pos = F > 0
+    seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
+    sc = pos[1:] != pos[:-1]
+    sc &= seen
+    r1, j1 = np.divmod(np.flatnonzero(sc.T), n_c - 1)                  # by row, then speed (flat: cheaper than 2-D)
+    j3 = np.where(j1 > 0, j1 - 1, np.minimum(j1 + 2, n_c - 1))
+    out = [rows[r1], grid[j1], grid[j1 + 1], F[j1, r1], F[j1 + 1, r1], np.where(j3 == j1 + 1, np.nan, grid[j3]),
+           F[j3, r1]]
+    ordered = bool(np.all(rows[1:] > rows[:-1]))                       # out is sorted by (row, lower speed)
+    if n_c >= 3:
+        # a local minimum of |F| between cells without a sign change: two roots may hide there,
+        # unless ``need`` sign changes lie below its lower cell (then both rank above ``need``)
+        # (|F| compared through F's sign, the same on all three points: no temporary the size of F)
+        mid = F[1:-1]
+        up = (mid < F[:-2]) & (mid <= F[2:]) & pos[1:-1]                # F > 0 there: |F| = F
+        down = (mid > F[:-2]) & (mid >= F[2:])
+        down &= ~pos[1:-1]                                               # F <= 0 there: |F| = -F
+        cand = up | down
+        cand &= ~(sc[:-1] | sc[1:])
+        cand &= seen[1:]
+        k2, r2 = np.divmod(np.flatnonzero(cand), n_r)                  # k2: the lower cell
+        if need < n_c:
+            lim = np.full(n_r, n_c, dtype=np.intp)                     # the cell of each row's need-th sign change
+            nth = np.arange(r1.size) - np.searchsorted(r1, r1) == need - 1
+            lim[r1[nth]] = j1[nth]
+            near = k2 <= lim[r2]
+            k2, r2 = k2[near], r2[near]
+        if r2.size:
+            cols = k2[:, None] + np.arange(3)
+            c3_, F3 = grid[cols], F[cols, r2[:, None]]
+            ok, x, fx = _hidden_pairs(st, prefix, rows_of, rows[r2], c3_, F3)
+            if ok.any():
+                rk, c3_, F3, x, fx = rows[r2[ok]], c3_[ok], F3[ok], x[ok], fx[ok]
+                more = [(rk, rk), (c3_[:, 0], x), (x, c3_[:, 2]), (F3[:, 0], fx), (fx, F3[:, 2]),
+                        (c3_[:, 2], c3_[:, 0]), (F3[:, 2], F3[:, 0])]
+                out = [np.concatenate([u, *v]) for u, v in zip(out, more)]
+                ordered = False
+    if not ordered:
+        srt = np.lexsort((out[1], out[0]))                             # by row, then lower speed
+        out = [v[srt] for v in out]
+    R = out[0]
+    if need >= n_c:                                                    # (no row holds more than n_c brackets)
+        return tuple(out)
+    take = np.arange(R.size) - np.searchsorted(R, R) < need            # rank within the row
+    return tuple(v[take] for v in out)
+
+
+def _family_grid(st: IsoStack, prefix: str, grid: np.ndarray) -> np.ndarray:
+    """The grid a family scans: SH modes are faster than the slowest shear speed v of any layer
+    (omega^2 int rho v^2 = int mu (v'^2 + k^2 v^2) >= k^2 min(mu / rho) int rho v^2), so SH starts just
+    below v; P-SV scans all of it."""
+    if prefix != "L":
+        return grid
+    v = float(st.shear.min())
+    return np.concatenate([[v * (1.0 - 1e-9)], grid[grid > v]])
+
+
+def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid: np.ndarray | None
+              ) -> tuple[np.ndarray, ...]:
+    """The scan of :func:`family_roots` with its rescan of rows with too few modes: :func:`_scan`'s brackets."""
+    need = np.inf if modes is None else modes
+    rows = np.arange(rows_of.base.size)
+    grid = speed_grid(st, rows_of) if grid is None else grid
+    first = _scan(st, prefix, _family_grid(st, prefix, grid), rows_of, rows, need)
+    return _rescan_dips(st, prefix, rows_of, need, first)
+
+
+def _rescan_dips(st: IsoStack, prefix: str, rows_of: Rows, need: float, first: tuple[np.ndarray, ...]
+                 ) -> tuple[np.ndarray, ...]:
+    """Brackets ``first`` of :func:`_scan`, with the rows holding fewer modes than rows on both sides of
+    them (in ascending kh or frequency) scanned again on the :data:`RESCAN` times finer grid."""
+    n_rows = rows_of.base.size
+    r, lo, hi, flo, fhi, c3, f3 = first
+    counts = np.bincount(r, minlength=n_rows)
+    order = np.argsort(rows_of.base, kind="stable")
+    cs = counts[order]
+    dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
+    if dip.size:
+        more = _scan(st, prefix, _family_grid(st, prefix, speed_grid(st, rows_of, RESCAN)), rows_of, dip, need)
+        better = np.bincount(more[0], minlength=n_rows) > counts
+        keep, keep2 = ~better[r], better[more[0]]
+        r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
+                                       for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
+    return r, lo, hi, flo, fhi, c3, f3
+
+
+def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray
+                   ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`)."""
+    if st.frac.size != 1:
+        return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
+    need = np.inf if modes is None else modes
+    rows = np.arange(rows_of.base.size)
+    grid_l = _family_grid(st, "L", grid)
+    FR, upR, FL, upL = _evaluate_both(st, grid, grid_l, rows_of, rows, need)
+    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
+            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
+
+
+def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: Rows, rows: np.ndarray,
+                   need: float) -> tuple[np.ndarray, ...]:
+    """:func:`_evaluate` of P-SV on ``grid`` and of SH on ``grid_l`` (:func:`_family_grid`) for one film, in one pass.
+
+    Both families need the film's shear-wave functions (C_b, S_b at t = kh): they are computed once
+    per chunk of ``grid`` for the rows either family still scans (the SH grid is ``grid`` above the
+    slowest shear speed after its own first point). Every value is the one of
+    the separate scans (:func:`surfwave.layers.isotropic.psv_block`, ``sh_block``: elementwise).
+    """
+    n_r, n_c = rows.size, grid.size
+    j0 = n_c - (grid_l.size - 1)                                       # grid[j0:] is grid_l[1:]
+    sp_r, sp_l = psv_speeds(st, grid), sh_speeds(st, grid_l)
+    FR, FL = np.empty((n_c, n_r)), np.empty((grid_l.size, n_r))
+    up_r, up_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
+    found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
+    # P-SV alone below j0 and the SH grid's first point on top of the chunk at j0, or chunks across
+    # j0 and that point alone: whichever takes fewer evaluations (with every row active)
+    at_j0 = j0 < n_c and 1 - (-(n_c - j0) * n_r // CHUNK_ELEMENTS) <= -(-n_c * n_r // CHUNK_ELEMENTS)
+    if not at_j0:
+        FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
+        up_l[:] = 1
+    act_r, act_l = np.arange(n_r), np.arange(n_r)
+    start = 0
+    while start < n_c and (act_r.size or act_l.size):
+        if not act_r.size and start < j0:                              # SH rows alone: from their grid on
+            start = j0
+            continue
+        if at_j0 and start < j0:
+            union, end = act_r, j0
+        else:
+            both = np.zeros(n_r, dtype=bool)
+            both[act_r] = True
+            both[act_l] = True
+            union, end = np.flatnonzero(both), n_c
+        most = max(CHUNK_MIN, CHUNK_ELEMENTS // union.size)
+        left = end - start
+        stop = start - (-left // -(-left // most))                     # the rest in equal chunks
+        sl = slice(start, stop)
+        first = int(at_j0 and start == j0)                             # the SH grid's first point on top
+        speeds, r2 = grid[sl], sp_r.r2[0, 1, sl]
+        if first:
+            speeds, r2 = np.concatenate([grid_l[:1], speeds]), np.concatenate([sp_l.r2[0, 1, :1], r2])
+        kh = rows_of.grid_t(rows[union], speeds)
+        Cb, Sb, gb = wave_block(r2, kh, True)
+        assert gb is not None
+        if act_l.size and stop > j0:                                   # SH first: P-SV overwrites C_b
+            a = max(start, j0)
+            blk = slice(a - start, None)                               # (the first point included)
+            cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
+            lo_l, hi_l = a - j0 + 1 - first, stop - j0 + 1
+            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kh[blk, cols], (Cb[blk, cols], Sb[blk, cols]))
+            act_l = _record(FL, up_l, found_l, act_l, lo_l, hi_l, Fn, need)
+        if act_r.size:
+            cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
+            Fn = psv_block(st, sp_r.cut(sl), kh[first:, cols], None,
+                           (Cb[first:, cols], Sb[first:, cols], gb[first:, cols]))
+            act_r = _record(FR, up_r, found_r, act_r, start, stop, Fn, need)
+        start = stop
+    return FR, up_r, FL, up_l
+
+
+def _record(F: np.ndarray, upto: np.ndarray, found: np.ndarray, act: np.ndarray, start: int, stop: int,
+            Fn: np.ndarray, need: float) -> np.ndarray:
+    """Store the block Fn (stop - start, act) of a family into F, count its new sign changes; the rows still active."""
+    pos = Fn > 0
+    n_sc = (pos[1:] != pos[:-1]).sum(axis=0)
+    whole = act.size == F.shape[1]
+    if start:
+        n_sc += pos[0] != (F[start - 1] > 0 if whole else F[start - 1, act] > 0)
+    if whole:
+        F[start:stop] = Fn
+    else:
+        F[start:stop, act] = Fn
+    upto[act] = stop
+    found[act] += n_sc
+    return act[found[act] < need]
