@@ -25,7 +25,7 @@ import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, psv_kernels, substrate_psv, top_row
 
-__all__ = ["STEP", "secular_d"]
+__all__ = ["STEP", "secular_d", "secular_d_pair"]
 
 #: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
 STEP = 1e-20
@@ -38,10 +38,9 @@ def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.nd
     """g dS/ds of one wave type (scaled C, S, g of :func:`wave_functions`), elementwise (m,)."""
     x = r2 * t * t
     small = np.abs(x) < 0.5
-    with np.errstate(all="ignore"):
-        out = (t * C - S) / (2.0 * r2)
+    out = (t * C - S) / (2.0 * r2)
     if small.any():
-        xs, ts = x[small], t[small]
+        xs, ts = x[small], np.broadcast_to(t, small.shape)[small]
         acc = np.full(xs.shape, _SERIES[0])
         for a in _SERIES[1:]:
             acc = acc * xs + a
@@ -55,20 +54,19 @@ def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tup
     Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
     log-derivatives of g itself along t and along kh. C, S, g are those of :func:`wave_functions`
     (the same formulas, both branches evaluated on all points and selected: no indexing).
+    Floating-point warnings are the caller's (:func:`secular_d` turns them off).
     """
-    t = np.broadcast_to(t, r2.shape)
     ev = r2 > 0
     r = np.sqrt(np.abs(r2))
     rt = r * t
-    with np.errstate(all="ignore"):
-        e = np.expm1(-rt)
-        u = np.tan(0.5 * rt)
-        d = 1.0 / (1.0 + u * u)
-        g = np.where(ev, 1.0 + e, 1.0)
-        C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - u * u) * d)
-        S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
-        S = np.where(r > 0, S, t)
-        lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
+    e = np.expm1(-rt)
+    u = np.tan(0.5 * rt)
+    d = 1.0 / (1.0 + u * u)
+    g = np.where(ev, 1.0 + e, 1.0)
+    C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - u * u) * d)
+    S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
+    S = np.where(r > 0, S, t)
+    lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
     dC = 0.5 * t * S * dr2
     dS = _dS_ds(r2, t, C, S, g) * dr2
     return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
@@ -76,13 +74,14 @@ def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tup
 
 def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
     """m / |m| along the last axis and the derivatives of that unit vector from those of m."""
-    n = np.sqrt((m * m).sum(axis=-1, keepdims=True))
+    n = np.sqrt(np.einsum("ij,ij->i", m, m))[:, None]
     u = m / n
-    return (u, *(d / n - u * (u * d).sum(axis=-1, keepdims=True) / n for d in tangents))
+    return (u, *(d / n - u * np.einsum("ij,ij->i", u, d)[:, None] / n for d in tangents))
 
 
-def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
-    """(F, F_t, F_kh) of the P-SV secular function at points (m,)."""
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarray, ...]] | None = None
+         ) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` at them)."""
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
@@ -100,8 +99,8 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...
         M = lam + 2.0 * mu
         t = kh * f
         inv = np.array([[1.0 / M], [1.0 / mu]])                            # both wave types in one pass
-        (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = (
-            _layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, t, f))
+        ld = _layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, t, f) if lds is None else lds[layer]
+        (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = ld
         Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
         if layer == 0:                                                     # the NT row only, closed form
             # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
@@ -140,8 +139,9 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...
     raise AssertionError("unreachable")
 
 
-def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]:
-    """(F, F_t, F_kh) of the SH secular function tau / |(v, tau)| at the top, points (m,).
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarray, ...]] | None = None
+        ) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh, R) of the SH secular function tau / |(v, tau)| at the top, points (m,).
 
     F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
     after each film) is held constant in the tangents and F's derivatives are exact (no N).
@@ -157,7 +157,7 @@ def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> tuple[np.ndarray, ...]
         mu, f = st.mu[layer], st.frac[layer]
         rb2 = 1.0 - X[:, layer] / mu
         drb2 = -dX[:, layer] / mu
-        Cb, Sb, _, dC, dS, kC, kS, _, _ = _layer_d(rb2, drb2, kh * f, f)
+        Cb, Sb, _, dC, dS, kC, kS, _, _ = _layer_d(rb2, drb2, kh * f, f) if lds is None else lds[layer]
         v_new = Cb * v - Sb * s / mu
         s_new = -mu * rb2 * Sb * v + Cb * s
         vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
@@ -207,5 +207,40 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio:
     """
     tau = np.asarray(tau, dtype=float)
     kh = np.asarray(kh, dtype=float)
-    out = _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
+    with np.errstate(all="ignore"):
+        out = _sh(st, tau, kh) if prefix == "L" else _psv(st, tau, kh)
     return out if ratio else out[:3]
+
+
+def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> list[tuple[np.ndarray, ...]]:
+    """:func:`_layer_d` of every film (from the top) for both wave types (P first, S) at points (m,): (2, m) each."""
+    c_lim2 = st.c_lim ** 2
+    X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
+    dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
+    out = []
+    for layer in range(st.frac.size):
+        inv = np.array([[1.0 / (st.lam[layer] + 2.0 * st.mu[layer])], [1.0 / st.mu[layer]]])
+        out.append(_layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, kh * st.frac[layer], st.frac[layer]))
+    return out
+
+
+def secular_d_pair(st: IsoStack, tau: np.ndarray, kh: np.ndarray, k: int) -> tuple[np.ndarray, ...]:
+    """:func:`secular_d` with ``ratio`` of P-SV at the first ``k`` points (m,) and of SH at the rest, in one pass.
+
+    The layer functions of both wave types are computed once for all points (the SH function uses
+    the S wave's); the result is that of the two calls of :func:`secular_d` to rounding.
+
+    Returns
+    -------
+    F, F_t, F_kh, R : ndarray, shape (m,)
+    """
+    tau = np.asarray(tau, dtype=float)
+    kh = np.asarray(kh, dtype=float)
+    if k == 0 or k == tau.size:
+        return secular_d(st, "R" if k else "L", tau, kh, ratio=True)
+    out = np.empty((4, tau.size))
+    with np.errstate(all="ignore"):
+        lds = _layers(st, tau, kh)
+        out[:, :k] = _psv(st, tau[:k], kh[:k], [tuple(v[..., :k] for v in ld) for ld in lds])
+        out[:, k:] = _sh(st, tau[k:], kh[k:], [tuple(v[1, k:] for v in ld) for ld in lds])
+    return out[0], out[1], out[2], out[3]

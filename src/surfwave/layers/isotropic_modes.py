@@ -41,7 +41,7 @@ import math
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
-from surfwave.layers.isotropic_deriv import secular_d
+from surfwave.layers.isotropic_deriv import secular_d, secular_d_pair
 
 __all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_brackets", "roots_table", "secular_at",
            "slowest_speed", "speed_grid"]
@@ -295,20 +295,23 @@ def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.n
     return tuple(v[srt][keep] for v in (R, LO, HI, FLO, FHI, C3, F3_))
 
 
-def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
+def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray
           ) -> tuple[np.ndarray, ...]:
     """:func:`secular_d` (with ``ratio``) of each point's family at (row r, t, kh) (m,).
 
-    Prefix "RL": rows from ``rows_of.split`` on are SH; a family without an active point (``act``)
-    is not evaluated (its values are NaN).
+    Prefix "RL": rows from ``rows_of.split`` on are SH; the points of P-SV rows come first (as
+    :func:`both_families` orders its brackets), and both families are evaluated in one pass
+    (:func:`secular_d_pair`).
     """
     if prefix != "RL":
         return secular_d(st, prefix, t, kh, ratio=True)
     sh = r >= rows_of.split
-    out = np.full((4, t.size), np.nan)
+    k = int(np.count_nonzero(~sh))
+    if not sh[:k].any():
+        return secular_d_pair(st, t, kh, k)
+    out = np.empty((4, t.size))                    # not in that order (not met): each family on its own
     for m, p in ((~sh, "R"), (sh, "L")):
-        if (act & m).any():
-            out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
+        out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
     return out[0], out[1], out[2], out[3]
 
 
@@ -333,10 +336,10 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
 
 def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
             flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The loop of :func:`_refine` (floating-point warnings off: converged points ride along unused).
+    """The loop of :func:`_refine` (floating-point warnings off).
 
-    Every point is evaluated at every iteration (one vectorised call costs the same for a few
-    hundred points as for a few); a converged point's answer is frozen when it converges.
+    Only the brackets not yet converged are evaluated (the state of the loop is carried for those
+    only); a converged point's answer is written out when it converges.
     """
     c_lim = st.c_lim
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
@@ -349,16 +352,19 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
     x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
     width = right - left
-    out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
-    act = np.ones(lo.size, dtype=bool)
-    newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
-    xp, rp = np.full(lo.size, np.nan), np.full(lo.size, np.nan)            # the previous iterate and F_kh / F_t
+    n = lo.size
+    out, ratio = 0.5 * (a + z), np.full(n, np.nan)                  # t of the roots, F_kh / F_t there
+    idx, rr = np.arange(n), r                                        # the brackets still iterated
+    newt, prev = np.zeros(n, dtype=bool), np.full(n, np.inf)        # last move a Newton step; its size
+    nan = np.full(n, np.nan)
+    xp, rp = nan, nan                                                # previous iterate: t, F_kh / F_t
     for it in range(MAX_ITER):
         c = c_lim * np.sqrt(1.0 - x * x)
-        kh = rows_of.pairs(r, c)
-        fx, ft, fk, rk = _at_d(st, prefix, rows_of, r, x, kh, act)
+        kh = rows_of.pairs(rr, c)
+        fx, ft, fk, rk = _at_d(st, prefix, rows_of, rr, x, kh)
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
-        step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
+        d = ft + fk * kh * x / (1.0 - x * x) if rows_of.freq else ft
+        step = fx / d
         side_a = (fx > 0) == (fa > 0)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
@@ -366,10 +372,6 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         xn = x - step
         # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
         tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
-        # quadratic convergence: after a Newton step that follows a Newton step, the error left is
-        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
-        # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
-        # away): v_g to ~ the step times the previous step.
         ast = np.abs(step)
         conv = newt & (ast <= 0.1 * np.abs(prev))
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
@@ -377,23 +379,26 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below 1e-7 c: its error,
         # a small fraction of it (the ratio is smooth: :func:`secular_d`), cannot matter
         small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= 1e-7 * c * c
-        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small))
-                      | (right - left <= tol) | (fx == 0))
-        out = np.where(done, fin, out)
-        ratio = np.where(done, np.where(conv & np.isfinite(carried), carried, rk), ratio)
-        act &= ~done
-        if not act.any():
-            break
+        done = ((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small)
+                | (right - left <= tol) | (fx == 0))
+        if done.any():
+            j = idx[done]
+            out[j] = fin[done]
+            ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
+            if done.all():
+                break
         slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
         bis = ~((xn > left) & (xn < right)) | slow
-        newt, prev, xp, rp = ~bis, step, x, rk
-        x = np.where(bis, 0.5 * (left + right), xn)
         if it % 3 == 2:
             width = right - left
+        keep = ~done
+        nxt = np.where(bis, 0.5 * (left + right), xn)[keep]
+        newt, prev, xp, rp = ~bis[keep], step[keep], x[keep], rk[keep]
+        a, z, fa, fz, width, idx, rr, x = a[keep], z[keep], fa[keep], fz[keep], width[keep], idx[keep], rr[keep], nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        rk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)[3]
-        out, ratio = np.where(act, x, out), np.where(act, rk, ratio)
+        rk = _at_d(st, prefix, rows_of, rr, x, rows_of.pairs(rr, c))[3]
+        out[idx], ratio[idx] = x, rk
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
     return c, c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
