@@ -27,6 +27,9 @@ from surfwave.layers.isotropic import IsoStack, psv_kernels, substrate_psv, top_
 
 __all__ = ["STEP", "secular_d", "secular_d_pair"]
 
+#: Per film: r^2 (2, m), dr^2/dt (2, m) of the P and S waves and their :func:`_layer_d`.
+Layer = tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]
+
 #: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
 STEP = 1e-20
 #: Series coefficients k / (2k + 1)! of (t C - S) / (2 s t^3), k = 1 ... 8, highest first (Horner);
@@ -79,13 +82,13 @@ def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
     return (u, *(d / n - u * np.einsum("ij,ij->i", u, d)[:, None] / n for d in tangents))
 
 
-def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarray, ...]] | None = None
-         ) -> tuple[np.ndarray, ...]:
-    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` at them)."""
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` there)."""
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
-    X, dX = Xc.real, Xc.imag / STEP
+    X = Xc.real
+    lds = _layers(st, tau, kh) if lds is None else lds
     Msub = st.lam[-1] + 2.0 * st.mu[-1]
     mc = substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
     m, mt = mc.real, mc.imag / STEP
@@ -95,11 +98,9 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarr
     if L == 0:
         return m[:, 5], mt[:, 5], mk[:, 5], mk[:, 5] / mt[:, 5]
     for layer in range(L - 1, -1, -1):
-        lam, mu, f = st.lam[layer], st.mu[layer], st.frac[layer]
+        lam, mu = st.lam[layer], st.mu[layer]
         M = lam + 2.0 * mu
-        t = kh * f
-        inv = np.array([[1.0 / M], [1.0 / mu]])                            # both wave types in one pass
-        ld = _layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, t, f) if lds is None else lds[layer]
+        ld = lds[layer][2]
         (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = ld
         Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
         if layer == 0:                                                     # the NT row only, closed form
@@ -139,25 +140,23 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarr
     raise AssertionError("unreachable")
 
 
-def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[tuple[np.ndarray, ...]] | None = None
-        ) -> tuple[np.ndarray, ...]:
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
     """(F, F_t, F_kh, R) of the SH secular function tau / |(v, tau)| at the top, points (m,).
 
     F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
     after each film) is held constant in the tangents and F's derivatives are exact (no N).
+    ``lds``: :func:`_layers` there (the S wave's functions are used).
     """
-    c_lim2 = st.c_lim ** 2
-    X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
-    dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
+    lds = _layers(st, tau, kh) if lds is None else lds
     mu_s = st.mu[-1]
     v, s = np.ones_like(tau), -mu_s * tau                              # substrate: (1, -mu r_b), r_b = t
     vt, st_ = np.zeros_like(tau), np.full(tau.shape, -mu_s)
     vk, sk = np.zeros_like(tau), np.zeros_like(tau)
     for layer in range(st.frac.size - 1, -1, -1):
-        mu, f = st.mu[layer], st.frac[layer]
-        rb2 = 1.0 - X[:, layer] / mu
-        drb2 = -dX[:, layer] / mu
-        Cb, Sb, _, dC, dS, kC, kS, _, _ = _layer_d(rb2, drb2, kh * f, f) if lds is None else lds[layer]
+        mu = st.mu[layer]
+        r2, dr2, ld = lds[layer]
+        rb2, drb2 = r2[-1], dr2[-1]
+        Cb, Sb, _, dC, dS, kC, kS, _, _ = (v[-1] for v in ld)
         v_new = Cb * v - Sb * s / mu
         s_new = -mu * rb2 * Sb * v + Cb * s
         vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
@@ -212,15 +211,18 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio:
     return out if ratio else out[:3]
 
 
-def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> list[tuple[np.ndarray, ...]]:
-    """:func:`_layer_d` of every film (from the top) for both wave types (P first, S) at points (m,): (2, m) each."""
+def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> list[Layer]:
+    """Per film (from the top): r^2 and dr^2/dt (2, m) of both wave types (P, S) at points (m,) and their
+    :func:`_layer_d` ((2, m) each). Both families use these, so a point's values do not depend on
+    which other points (or family) are evaluated with it."""
     c_lim2 = st.c_lim ** 2
     X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
     dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
     out = []
     for layer in range(st.frac.size):
         inv = np.array([[1.0 / (st.lam[layer] + 2.0 * st.mu[layer])], [1.0 / st.mu[layer]]])
-        out.append(_layer_d(1.0 - X[:, layer] * inv, -dX[:, layer] * inv, kh * st.frac[layer], st.frac[layer]))
+        r2, dr2 = 1.0 - X[:, layer] * inv, -dX[:, layer] * inv
+        out.append((r2, dr2, _layer_d(r2, dr2, kh * st.frac[layer], st.frac[layer])))
     return out
 
 
@@ -241,6 +243,8 @@ def secular_d_pair(st: IsoStack, tau: np.ndarray, kh: np.ndarray, k: int) -> tup
     out = np.empty((4, tau.size))
     with np.errstate(all="ignore"):
         lds = _layers(st, tau, kh)
-        out[:, :k] = _psv(st, tau[:k], kh[:k], [tuple(v[..., :k] for v in ld) for ld in lds])
-        out[:, k:] = _sh(st, tau[k:], kh[k:], [tuple(v[1, k:] for v in ld) for ld in lds])
+        out[:, :k] = _psv(st, tau[:k], kh[:k], [(r2[:, :k], dr2[:, :k], tuple(v[:, :k] for v in ld))
+                                                for r2, dr2, ld in lds])
+        out[:, k:] = _sh(st, tau[k:], kh[k:], [(r2[:, k:], dr2[:, k:], tuple(v[:, k:] for v in ld))
+                                               for r2, dr2, ld in lds])
     return out[0], out[1], out[2], out[3]

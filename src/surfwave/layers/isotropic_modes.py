@@ -48,6 +48,8 @@ __all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_br
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
+#: Largest carried correction of v_g (relative) accepted without another evaluation.
+VG_CARRY = 1e-8
 #: Refinement iterations at most.
 MAX_ITER = 60
 #: Speeds per chunk of the upward scan (about: the grid is cut into near-equal chunks).
@@ -357,7 +359,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     idx, rr = np.arange(n), r                                        # the brackets still iterated
     newt, prev = np.zeros(n, dtype=bool), np.full(n, np.inf)        # last move a Newton step; its size
     nan = np.full(n, np.nan)
-    xp, rp = nan, nan                                                # previous iterate: t, F_kh / F_t
+    xp, dp, rp = nan, nan, nan                                       # previous iterate: t, F', F_kh / F_t
     for it in range(MAX_ITER):
         c = c_lim * np.sqrt(1.0 - x * x)
         kh = rows_of.pairs(rr, c)
@@ -365,21 +367,31 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
         d = ft + fk * kh * x / (1.0 - x * x) if rows_of.freq else ft
         step = fx / d
+        if it == 0:
+            # first step: t(F) by Hermite interpolation through (F, t, dt/dF) here and the bracket's ends
+            q1 = ((a - x) / (fa - fx) - 1.0 / d) / (fa - fx)
+            q2 = (((z - a) / (fz - fa) - (a - x) / (fa - fx)) / (fz - fx) - q1) / (fz - fx)
+            step = fx * (1.0 / d - fx * (q1 - fa * q2))
         side_a = (fx > 0) == (fa > 0)
         a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
         z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
         left, right = np.minimum(a, z), np.maximum(a, z)
         xn = x - step
+        if it == 0:                                # Newton's step where that one is unusable
+            off = ~((xn > left) & (xn < right))
+            step = np.where(off, fx / d, step)
+            xn = np.where(off, x - step, xn)
         # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
         tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
         ast = np.abs(step)
         conv = newt & (ast <= 0.1 * np.abs(prev))
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
         carried = rk + (rk - rp) / (x - xp) * (fin - x)
-        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below 1e-7 c: its error,
-        # a small fraction of it (the ratio is smooth: :func:`secular_d`), cannot matter
-        small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= 1e-7 * c * c
-        done = ((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small)
+        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below VG_CARRY c
+        small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= VG_CARRY * c * c
+        # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
+        K = (d - dp) / (2.0 * d * (x - xp))
+        done = ((ast <= tol) | (conv & (np.abs(K) * ast * ast <= 0.1 * tol) & (ast <= 1e-7 * x) & small)
                 | (right - left <= tol) | (fx == 0))
         if done.any():
             j = idx[done]
@@ -393,7 +405,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             width = right - left
         keep = ~done
         nxt = np.where(bis, 0.5 * (left + right), xn)[keep]
-        newt, prev, xp, rp = ~bis[keep], step[keep], x[keep], rk[keep]
+        newt, prev, xp, dp, rp = ~bis[keep], step[keep], x[keep], d[keep], rk[keep]
         a, z, fa, fz, width, idx, rr, x = a[keep], z[keep], fa[keep], fz[keep], width[keep], idx[keep], rr[keep], nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
