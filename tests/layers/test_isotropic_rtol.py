@@ -7,6 +7,8 @@ with the same modes and labels.
 """
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 from general_path import layered_general
@@ -73,3 +75,18 @@ def test_bad_rtol_is_one_input_error_line(bad):
     with pytest.raises(InputError, match=r"rtol must be a number in \[1e-13, 0.1\)") as err:
         surfwave.layered(HARD, [{**SIO2, "thickness": 1e-6}], kh=[1.0], rtol=bad)
     assert "\n" not in str(err.value)
+
+
+def test_cli_rtol(capsys):
+    """``surfwave layered --rtol``: the record of surfwave.layered(..., rtol=...) (reference: the API call);
+    a bad value is one error line (exit 2)."""
+    from surfwave.cli import main
+
+    argv = ["layered", "--substrate", "fused-SiO2", "--film", "Au-poly:100nm", "--kh", "0.5", "2", "--json"]
+    assert main([*argv, "--rtol", "1e-6"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    ref = surfwave.layered("fused-SiO2", [{"name": "Au-poly", "thickness": 1e-7}], kh=[0.5, 2.0], rtol=1e-6)
+    np.testing.assert_array_equal(np.array(got["c"], dtype=float), ref["c"])
+    assert main([*argv, "--rtol", "0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "rtol must be a number" in err and "\n" not in err

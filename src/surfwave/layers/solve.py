@@ -148,9 +148,10 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         On isotropic stacks (the fast path) the refinement of a mode may also stop once its speed is
         predicted within ``rtol / 10`` and the last correction of its group velocity is below
         ``rtol / 10`` (tested: within ``rtol`` of the default answer); which modes are found does not
-        depend on it, and only the refinement (about a third of the time) can get faster. Every
-        other stack is solved at the default accuracy (speeds to about 1e-14), which meets any
-        ``rtol``; there it saves no time.
+        depend on it, and only the refinement (about a third of the time) can get faster (measured:
+        by a few per cent at most, benchmarks/compare/layered_vs_disba.py: the group velocity needs
+        its last evaluation near the root anyway). Every other stack is solved exactly as without
+        ``rtol`` (speeds to about 1e-14): there it changes nothing.
 
     Returns
     -------
