@@ -8,6 +8,7 @@ with the same modes and labels.
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import numpy as np
 import pytest
@@ -22,7 +23,7 @@ GOLD = {"E": 79.0, "nu": 0.42, "rho": 19300.0}
 ALN_ISO = {"E": 300.0, "nu": 0.22, "rho": 3200.0}
 SI_ISO = {"E": 170.0, "nu": 0.28, "rho": 2330.0}
 
-CASES = {
+CASES: dict[str, tuple[dict, list[dict], dict[str, Any]]] = {
     # the disba comparison's stack at its 200 periods (modes of both families, fixed frequency)
     "film on half-space, frequencies": (HARD, [{**SIO2, "thickness": 1e-6}],
                                         {"frequency": 1e9 / np.linspace(0.05, 2.0, 200)}),
