@@ -377,38 +377,37 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     left, right = np.minimum(a, z), np.maximum(a, z)
     x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
     x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
-    width = right - left
     n = lo.size
     out, ratio = 0.5 * (a + z), np.full(n, np.nan)                  # t of the roots, F_kh / F_t there
     idx, rr = np.arange(n), r                                        # the brackets still iterated
-    newt, prev = np.zeros(n, dtype=bool), np.full(n, np.inf)        # last move a Newton step; its size
+    sl, width = np.where(a == left, fa > 0, fz > 0), right - left    # F > 0 at left; the bracket's width
+    newt, aprev = np.zeros(n, dtype=bool), np.full(n, np.inf)       # last move a Newton step; its size
     nan = np.full(n, np.nan)
     xp, dp, rp = nan, nan, nan                                       # previous iterate: t, F', F_kh / F_t
     for it in range(MAX_ITER):
-        c = c_lim * np.sqrt(1.0 - x * x)
+        w = 1.0 - x * x
+        c = c_lim * np.sqrt(w)
         kh = rows_of.pairs(rr, c)
         fx, ft, fk, rk = _at_d(st, prefix, rows_of, rr, x, kh)
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
-        d = ft + fk * kh * x / (1.0 - x * x) if rows_of.freq else ft
+        d = ft + fk * kh * x / w if rows_of.freq else ft
         step = fx / d
         if it == 0:
             # first step: t(F) by Hermite interpolation through (F, t, dt/dF) here and the bracket's ends
             q1 = ((a - x) / (fa - fx) - 1.0 / d) / (fa - fx)
             q2 = (((z - a) / (fz - fa) - (a - x) / (fa - fx)) / (fz - fx) - q1) / (fz - fx)
             step = fx * (1.0 / d - fx * (q1 - fa * q2))
-        side_a = (fx > 0) == (fa > 0)
-        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
-        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
-        left, right = np.minimum(a, z), np.maximum(a, z)
+        at_left = (fx > 0) == sl                   # x replaces the end where F has its sign
+        left, right = np.where(at_left, x, left), np.where(at_left, right, x)
         xn = x - step
         if it == 0:                                # Newton's step where that one is unusable
             off = ~((xn > left) & (xn < right))
             step = np.where(off, fx / d, step)
             xn = np.where(off, x - step, xn)
         # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
-        tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
+        tol = np.maximum(np.minimum(C_TOL * w / x, 1e-8 * x), 8.9e-16 * x)
         ast = np.abs(step)
-        conv = newt & (ast <= 0.1 * np.abs(prev))
+        conv = newt & (ast <= 0.1 * aprev)
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
         carried = rk + (rk - rp) / (x - xp) * (fin - x)
         # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
@@ -423,7 +422,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             # taken from an iterate less than 1e-4 (in t) from the previous one (so that the slope
             # carrying R = F_kh / F_t is a local one: R need not be monotonic near a root), and the
             # carried correction of v_g below rtol / 10
-            tol_r = np.minimum(rtol * (1.0 - x * x) / x, max(rtol, 1e-8) * x)
+            tol_r = np.minimum(rtol * w / x, max(rtol, 1e-8) * x)
             done |= (conv & (pred <= 0.1 * tol_r) & (np.abs(x - xp) <= 1e-4 * x) & (carry <= 0.1 * rtol)
                      & (xn > left) & (xn < right))
         if done.any():
@@ -432,16 +431,16 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
             if done.all():
                 break
-        slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
         # (a step below the tolerance that rounding puts on the bracket's end is no reason to bisect:
         # with rtol, v_g may still need an evaluation there)
-        bis = (~((xn > left) & (xn < right)) & (ast > tol)) | slow
-        if it % 3 == 2:
+        bis = ~((xn > left) & (xn < right)) & (ast > tol)
+        if it % 3 == 2:                            # every third step: bisect where the bracket did not halve
+            bis |= (right - left > 0.5 * width) & ~conv
             width = right - left
         keep = ~done
         nxt = np.where(bis, 0.5 * (left + right), np.clip(xn, left, right))[keep]
-        newt, prev, xp, dp, rp = ~bis[keep], step[keep], x[keep], d[keep], rk[keep]
-        a, z, fa, fz, width, idx, rr, x = a[keep], z[keep], fa[keep], fz[keep], width[keep], idx[keep], rr[keep], nxt
+        newt, aprev, xp, dp, rp = ~bis[keep], ast[keep], x[keep], d[keep], rk[keep]
+        left, right, sl, width, idx, rr, x = left[keep], right[keep], sl[keep], width[keep], idx[keep], rr[keep], nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
         rk = _at_d(st, prefix, rows_of, rr, x, rows_of.pairs(rr, c))[3]
