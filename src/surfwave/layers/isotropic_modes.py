@@ -345,15 +345,19 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
 
     Starts at the inverse quadratic interpolation through the bracket ends and the third grid point
-    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); Newton
+    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); the
+    first step is the inverse Hermite interpolation through that first evaluation (F and its
+    derivative) and the bracket's ends (Newton's where it would leave the bracket), then Newton
     steps along the row (at fixed kh, or at fixed frequency kh = omega H / c) with the exact
     derivative (:func:`secular_d`); bisection where a step leaves the bracket or, every third
     step, where the bracket has not halved and the steps do not shrink tenfold.
     Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
-    returned) or, after two Newton steps, one whose predicted remaining error (quadratic
-    convergence: step^3 / previous step^2) is below a tenth of it; a bracket narrower than the
-    tolerance, or F = 0 exactly. The group velocity
-    v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
+    returned) or, once the steps shrink tenfold, one whose predicted remaining error |K| step^2
+    (K = F'' / 2F' from the derivatives of the last two iterates) is below a tenth of it, and
+    whose carried group velocity correction is below :data:`VG_CARRY`; a bracket narrower than
+    the tolerance, or F = 0 exactly; with an ``rtol`` (:func:`tolerance`) also the looser test
+    described there. The group velocity v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from
+    the derivatives of the last evaluation (F_kh / F_t carried linearly to the root).
     """
     with np.errstate(all="ignore"):
         return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
