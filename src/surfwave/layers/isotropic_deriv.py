@@ -16,6 +16,11 @@ series t^3 sum_k>=1 (s t^2)^(k-1) k / (2k + 1)! where |s t^2| < 1/2: no cancella
 speed), dC/dt = s S, dS/dt = C. The c-dependence of the substrate's minors, the closed-form top row
 and the kernels of buried films (polynomial or rational in X, r_a, r_b, no branch switch) is taken
 by a complex step of :data:`STEP` in t: exact to rounding.
+
+:func:`secular_d_pair` evaluates P-SV at some points and SH at others in one pass (the layer
+functions of both wave types once for all of them, :func:`_layers`); both families always take
+their layer functions from :func:`_layers`, so a point's numbers do not depend on which other
+points are evaluated with it.
 """
 from __future__ import annotations
 
