@@ -60,9 +60,6 @@ def add_parser(sub, parser_class) -> argparse.ArgumentParser:
     lp.add_argument("--leaky", action="store_true", help="also continue modes above c_limit as leaky waves")
     lp.add_argument("--modes", type=int, default=None, metavar="N",
                     help="only the N slowest guided modes of each family (e.g. 2: R, S1, L0, L1)")
-    lp.add_argument("--rtol", type=float, default=None, metavar="R",
-                    help="relative accuracy of speeds and group velocities, in [1e-13, 0.1) (default: the most "
-                         "accurate; only isotropic stacks can use a looser one)")
     lp.add_argument("--group", action="store_true", help="also print the group velocities")
     lp.add_argument("--json", action="store_true", help="print the result record as JSON")
     return lp
@@ -120,7 +117,7 @@ def run(args) -> int:
     except ValueError:
         pass
     kw: dict = {"surface": args.surface, "direction": direction, "euler": args.euler, "stress": stress,
-                "electrical": args.electrical, "leaky": args.leaky, "modes": args.modes, "rtol": args.rtol}
+                "electrical": args.electrical, "leaky": args.leaky, "modes": args.modes}
     if args.kh is not None:
         kw["kh"] = parse_kh(args.kh)
     else:

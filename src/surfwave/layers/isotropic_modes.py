@@ -37,26 +37,19 @@ F drop out at a zero of F). Power flow is along x1 (angle 0).
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from contextlib import contextmanager
-from contextvars import ContextVar
 
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack, psv_kernels, secular_psv, secular_sh
 from surfwave.layers.isotropic_deriv import secular_d, secular_d_pair
 
-__all__ = ["CHUNK", "C_TOL", "RTOL_MIN", "Rows", "VG_CARRY", "both_families", "family_roots", "refine_brackets",
-           "roots_table", "secular_at", "slowest_speed", "speed_grid", "tolerance"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "VG_CARRY", "both_families", "family_roots", "refine_brackets", "roots_table",
+           "secular_at", "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
-#: Largest carried correction of v_g (relative) accepted without another evaluation (default accuracy).
+#: Largest carried correction of v_g (relative) accepted without another evaluation.
 VG_CARRY = 1e-8
-#: Smallest ``rtol`` accepted by :func:`surfwave.layered` (the rounding noise of the secular function
-#: moves roots by up to about 1e-13 relative).
-RTOL_MIN = 1e-13
-_RTOL: ContextVar[float | None] = ContextVar("surfwave_isotropic_rtol", default=None)
 #: Refinement iterations at most.
 MAX_ITER = 60
 #: Speeds per chunk of the upward scan (about: the grid is cut into near-equal chunks).
@@ -76,22 +69,6 @@ PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
 
-
-
-@contextmanager
-def tolerance(rtol: float | None) -> Iterator[None]:
-    """Within this block the refinement may stop at relative accuracy ``rtol`` (checked by the caller).
-
-    None: the default accuracy only. Otherwise a root is also accepted once its speed is predicted
-    within ``rtol / 10`` and the carried correction of its group velocity is below ``rtol / 10``
-    (:func:`_refine`); the default criteria still apply, so a call with ``rtol`` never iterates more
-    than the default one. Which modes are found (the scan) does not depend on it.
-    """
-    token = _RTOL.set(rtol)
-    try:
-        yield
-    finally:
-        _RTOL.reset(token)
 
 
 class Rows:
@@ -355,9 +332,8 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     returned) or, once the steps shrink tenfold, one whose predicted remaining error |K| step^2
     (K = F'' / 2F' from the derivatives of the last two iterates) is below a tenth of it, and
     whose carried group velocity correction is below :data:`VG_CARRY`; a bracket narrower than
-    the tolerance, or F = 0 exactly; with an ``rtol`` (:func:`tolerance`) also the looser test
-    described there. The group velocity v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from
-    the derivatives of the last evaluation (F_kh / F_t carried linearly to the root).
+    the tolerance, or F = 0 exactly. The group velocity v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c,
+    comes from the derivatives of the last evaluation (F_kh / F_t carried linearly to the root).
     """
     with np.errstate(all="ignore"):
         return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
@@ -371,7 +347,6 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     only); a converged point's answer is written out when it converges.
     """
     c_lim = st.c_lim
-    rtol = _RTOL.get()                              # None: the default accuracy only (:func:`tolerance`)
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
@@ -421,28 +396,18 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         pred = np.abs(K) * ast * ast
         done = ((ast <= tol) | (conv & (pred <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY))
                 | (right - left <= tol) | (fx == 0))
-        if rtol is not None:
-            # or, with rtol: c predicted within rtol / 10 by a Newton step that stays in the bracket,
-            # taken from an iterate less than 1e-4 (in t) from the previous one (so that the slope
-            # carrying R = F_kh / F_t is a local one: R need not be monotonic near a root), and the
-            # carried correction of v_g below rtol / 10
-            tol_r = np.minimum(rtol * w / x, max(rtol, 1e-8) * x)
-            done |= (conv & (pred <= 0.1 * tol_r) & (np.abs(x - xp) <= 1e-4 * x) & (carry <= 0.1 * rtol)
-                     & (xn > left) & (xn < right))
         if done.any():
             j = idx[done]
             out[j] = fin[done]
             ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
             if done.all():
                 break
-        # (a step below the tolerance that rounding puts on the bracket's end is no reason to bisect:
-        # with rtol, v_g may still need an evaluation there)
-        bis = ~((xn > left) & (xn < right)) & (ast > tol)
+        bis = ~((xn > left) & (xn < right))
         if it % 3 == 2:                            # every third step: bisect where the bracket did not halve
             bis |= (right - left > 0.5 * width) & ~conv
             width = right - left
         keep = ~done
-        nxt = np.where(bis, 0.5 * (left + right), np.clip(xn, left, right))[keep]
+        nxt = np.where(bis, 0.5 * (left + right), xn)[keep]
         newt, aprev, xp, dp, rp = ~bis[keep], ast[keep], x[keep], d[keep], rk[keep]
         left, right, sl, width, idx, rr, x = left[keep], right[keep], sl[keep], width[keep], idx[keep], rr[keep], nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate

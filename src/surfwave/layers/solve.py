@@ -15,15 +15,14 @@ import numpy as np
 from surfwave import validate
 from surfwave.errors import InputError
 from surfwave.layers.fields import mode_fields
-from surfwave.layers.isotropic_modes import RTOL_MIN, tolerance
 from surfwave.layers.modes import family_modes, floor_unstable, label, label_family
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack, resolve_stack
 from surfwave.records import LayeredResult
 from surfwave.solvers.boundary import FREE, METALLIZED, Boundary, Free, as_boundary
 
-__all__ = ["MAX_KH", "RTOL_RANGE", "checked_modes", "checked_rtol", "family_limits", "layered", "mode_limits",
-           "mode_speeds", "solve_stack", "use_fast_path"]
+__all__ = ["MAX_KH", "checked_modes", "family_limits", "layered", "mode_limits", "mode_speeds", "solve_stack",
+           "use_fast_path"]
 
 #: Largest kh accepted (the speed grid grows with kh; beyond this the film is a half-space).
 MAX_KH = 1000.0
@@ -105,7 +104,7 @@ def merge_families(fams: list[Family], cs: list[np.ndarray], extra: list[list[np
 
 def layered(substrate, films=(), *, euler=None, surface: str = "(001)", direction="[100]", kh=None,
             frequency=None, electrical: str | Boundary = "free", stress=None, leaky: bool = False,
-            modes: int | None = None, rtol: float | None = None) -> LayeredResult:
+            modes: int | None = None) -> LayeredResult:
     """Every guided mode of films on a crystal substrate, under in-plane prestress.
 
     Parameters
@@ -142,16 +141,6 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
         Only the ``modes`` slowest guided modes of each family (e.g. 2: R and S1, L0 and L1);
         None (default): all. On isotropic stacks the search stops there (faster); otherwise the
         columns beyond are dropped (with ``leaky`` a leaky continuation counts as a mode of its family).
-    rtol : float, optional
-        Relative accuracy asked of the phase speeds and group velocities, in [1e-13, 0.1); None
-        (default): the most accurate answer (speeds to about 1e-13, group velocities to about 1e-8).
-        On isotropic stacks (the fast path) the refinement of a mode may also stop once its speed is
-        predicted within ``rtol / 10`` and the last correction of its group velocity is below
-        ``rtol / 10`` (tested: within ``rtol`` of the default answer); which modes are found does not
-        depend on it, and only the refinement (about a third of the time) can get faster (measured:
-        by a few per cent at most, benchmarks/compare/layered_vs_disba.py: the group velocity needs
-        its last evaluation near the root anyway). Every other stack is solved exactly as without
-        ``rtol`` (speeds to about 1e-14): there it changes nothing.
 
     Returns
     -------
@@ -187,31 +176,12 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     if (kh is None) == (frequency is None):
         raise InputError("give exactly one of kh (wavenumber x total film thickness) or frequency (Hz)")
     n_modes = checked_modes(modes)
-    with tolerance(checked_rtol(rtol)):
-        if frequency is not None:
-            from surfwave.layers.frequency import at_frequency
+    if frequency is not None:
+        from surfwave.layers.frequency import at_frequency
 
-            return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky),
-                                                    modes=n_modes))
-        return cast(LayeredResult, assemble(stack, checked_kh(kh), boundary, bool(leaky), n_modes))
-
-
-#: Accepted range of ``rtol`` in :func:`layered`: [RTOL_RANGE[0], RTOL_RANGE[1]) (below the first, rounding
-#: of the isotropic secular functions moves roots by as much).
-RTOL_RANGE = (RTOL_MIN, 0.1)
-
-
-def checked_rtol(rtol) -> float | None:
-    """``rtol`` of :func:`layered`: None or a real number in :data:`RTOL_RANGE`; else one InputError line."""
-    if rtol is None:
-        return None
-    lo, hi = RTOL_RANGE
-    ok = (not isinstance(rtol, (bool, np.bool_)) and isinstance(rtol, (int, float, np.integer, np.floating))
-          and bool(np.isfinite(rtol)) and lo <= float(rtol) < hi)
-    if not ok:
-        raise InputError(f"rtol must be a number in [{lo:g}, {hi:g}) (relative accuracy of the phase speeds and "
-                         f"group velocities) or None (the default accuracy), got {rtol!r}")
-    return float(rtol)
+        return cast(LayeredResult, at_frequency(stack, frequency, electrical=boundary, leaky=bool(leaky),
+                                                modes=n_modes))
+    return cast(LayeredResult, assemble(stack, checked_kh(kh), boundary, bool(leaky), n_modes))
 
 
 def checked_modes(modes) -> int | None:
