@@ -347,6 +347,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     only); a converged point's answer is written out when it converges.
     """
     c_lim = st.c_lim
+    freq = rows_of.freq
     a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
     z = np.sqrt(1.0 - (lo / c_lim) ** 2)
     fa, fz = fhi.astype(float), flo.astype(float)
@@ -358,18 +359,26 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
     n = lo.size
     out, ratio = 0.5 * (a + z), np.full(n, np.nan)                  # t of the roots, F_kh / F_t there
-    idx, rr = np.arange(n), r                                        # the brackets still iterated
+    idx, b = np.arange(n), rows_of.base[r]                           # the brackets still iterated; their rows
+    k_psv = None                                                     # prefix "RL": P-SV points first, this many
+    if prefix == "RL":
+        sh = r >= rows_of.split
+        k = int(np.count_nonzero(~sh))
+        k_psv = None if sh[:k].any() else k
     sl, width = np.where(a == left, fa > 0, fz > 0), right - left    # F > 0 at left; the bracket's width
     newt, aprev = np.zeros(n, dtype=bool), np.full(n, np.inf)       # last move a Newton step; its size
-    nan = np.full(n, np.nan)
-    xp, dp, rp = nan, nan, nan                                       # previous iterate: t, F', F_kh / F_t
+    xp = dp = rp = np.full(n, np.nan)                                # previous iterate: t, F', F_kh / F_t
     for it in range(MAX_ITER):
         w = 1.0 - x * x
         c = c_lim * np.sqrt(w)
-        kh = rows_of.pairs(rr, c)
-        fx, ft, fk, rk = _at_d(st, prefix, rows_of, rr, x, kh)
+        kh = b / c if freq else b
+        if k_psv is None:
+            fx, ft, fk, rk = _at_d(st, prefix, rows_of, r[idx], x, kh)
+        else:
+            fx, ft, fk, rk = secular_d_pair(st, x, kh, k_psv)
+        xw = x / w
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
-        d = ft + fk * kh * x / w if rows_of.freq else ft
+        d = ft + fk * kh * xw if freq else ft
         step = fx / d
         if it == 0:
             # first step: t(F) by Hermite interpolation through (F, t, dt/dF) here and the bracket's ends
@@ -379,40 +388,46 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         at_left = (fx > 0) == sl                   # x replaces the end where F has its sign
         left, right = np.where(at_left, x, left), np.where(at_left, right, x)
         xn = x - step
+        inside = (xn > left) & (xn < right)
         if it == 0:                                # Newton's step where that one is unusable
-            off = ~((xn > left) & (xn < right))
+            off = ~inside
             step = np.where(off, fx / d, step)
             xn = np.where(off, x - step, xn)
+            inside = (xn > left) & (xn < right)
         # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
         tol = np.maximum(np.minimum(C_TOL * w / x, 1e-8 * x), 8.9e-16 * x)
         ast = np.abs(step)
-        conv = newt & (ast <= 0.1 * aprev)
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
-        carried = rk + (rk - rp) / (x - xp) * (fin - x)
-        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
-        carry = kh * np.abs(carried - rk) * c_lim * c_lim * x / (c * c)
-        # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
-        K = (d - dp) / (2.0 * d * (x - xp))
-        pred = np.abs(K) * ast * ast
-        done = ((ast <= tol) | (conv & (pred <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY))
-                | (right - left <= tol) | (fx == 0))
+        done = (ast <= tol) | (right - left <= tol) | (fx == 0)
+        if it:                                     # (no previous Newton step at the first iterate)
+            conv = newt & (ast <= 0.1 * aprev)
+            dx = x - xp
+            delta = (rk - rp) / dx * (fin - x)     # F_kh / F_t carried to fin
+            carried = rk + delta
+            # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
+            carry = kh * np.abs(delta) * xw
+            # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
+            K = (d - dp) / (2.0 * d * dx)
+            done |= conv & (np.abs(K) * ast * ast <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY)
         if done.any():
             j = idx[done]
             out[j] = fin[done]
-            ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
+            ratio[j] = (np.where(conv & np.isfinite(carried), carried, rk) if it else rk)[done]
             if done.all():
                 break
-        bis = ~((xn > left) & (xn < right))
+        bis = ~inside
         if it % 3 == 2:                            # every third step: bisect where the bracket did not halve
             bis |= (right - left > 0.5 * width) & ~conv
             width = right - left
-        keep = ~done
+        keep = np.flatnonzero(~done)
+        if k_psv is not None:
+            k_psv = int(np.searchsorted(keep, k_psv))
         nxt = np.where(bis, 0.5 * (left + right), xn)[keep]
         newt, aprev, xp, dp, rp = ~bis[keep], ast[keep], x[keep], d[keep], rk[keep]
-        left, right, sl, width, idx, rr, x = left[keep], right[keep], sl[keep], width[keep], idx[keep], rr[keep], nxt
+        left, right, sl, width, idx, b, x = left[keep], right[keep], sl[keep], width[keep], idx[keep], b[keep], nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        rk = _at_d(st, prefix, rows_of, rr, x, rows_of.pairs(rr, c))[3]
+        rk = _at_d(st, prefix, rows_of, r[idx], x, rows_of.pairs(r[idx], c))[3]
         out[idx], ratio[idx] = x, rk
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
