@@ -43,24 +43,27 @@ _SERIES = np.array([k / math.factorial(2 * k + 1) for k in range(8, 0, -1)])
 
 
 def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """g dS/ds of one wave type (scaled C, S, g of :func:`wave_functions`), elementwise (m,)."""
+    """g dS/ds of one wave type (scaled C, S, g of :func:`wave_functions`), elementwise (m,).
+
+    The series (where |s t^2| < 1/2) is evaluated on all points and selected (no indexing).
+    """
     x = r2 * t * t
-    small = np.abs(x) < 0.5
     out = (t * C - S) / (2.0 * r2)
+    small = np.abs(x) < 0.5
     if small.any():
-        xs, ts = x[small], np.broadcast_to(t, small.shape)[small]
-        acc = np.full(xs.shape, _SERIES[0])
-        for a in _SERIES[1:]:
-            acc = acc * xs + a
-        out[small] = g[small] * ts ** 3 * acc
+        acc = _SERIES[0] * x + _SERIES[1]
+        for a in _SERIES[2:]:
+            acc = acc * x + a
+        out = np.where(small, g * t ** 3 * acc, out)
     return out
 
 
 def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tuple[np.ndarray, ...]:
     """Scaled C, S and their tangents of one wave type at points (m,) (or several: r2 (k, m), t (m,)).
 
-    Returns C, S, g, g dC and g dS along t at fixed kh, then along kh at fixed c, and the
-    log-derivatives of g itself along t and along kh. C, S, g are those of :func:`wave_functions`
+    Returns C + i STEP g dC and S + i STEP g dS (complex: the tangent along t at fixed kh as a
+    complex step), g, g dC and g dS along kh at fixed c, and the log-derivatives of g itself along
+    t and along kh. C, S, g are those of :func:`wave_functions`
     (the same formulas, both branches evaluated on all points and selected: no indexing).
     Floating-point warnings are the caller's (:func:`secular_d` turns them off).
     """
@@ -69,15 +72,17 @@ def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tup
     rt = r * t
     e = np.expm1(-rt)
     u = np.tan(0.5 * rt)
-    d = 1.0 / (1.0 + u * u)
+    uu = u * u
+    d = 1.0 / (1.0 + uu)
     g = np.where(ev, 1.0 + e, 1.0)
-    C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - u * u) * d)
+    C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - uu) * d)
     S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
-    S = np.where(r > 0, S, t)
+    if not r.all():
+        S = np.where(r > 0, S, t)
     lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
-    dC = 0.5 * t * S * dr2
-    dS = _dS_ds(r2, t, C, S, g) * dr2
-    return C, S, g, dC, dS, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
+    Cc = C + (1j * STEP) * (0.5 * t * S * dr2)
+    Sc = S + (1j * STEP) * (_dS_ds(r2, t, C, S, g) * dr2)
+    return Cc, Sc, g, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
 
 
 def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -87,62 +92,78 @@ def _unit(m: np.ndarray, *tangents: np.ndarray) -> tuple[np.ndarray, ...]:
     return (u, *(d / n - u * np.einsum("ij,ij->i", u, d)[:, None] / n for d in tangents))
 
 
+def _rsqrt(z: np.ndarray) -> np.ndarray:
+    """1 / sqrt(z) of a complex step z = a + i b (a > 0, |b| tiny): a^(-1/2) (1 - i b / (2 a)) (exact to rounding:
+    the terms dropped are of order (b / a)^2; numpy's complex sqrt and division cost several times more)."""
+    a = z.real
+    r = 1.0 / np.sqrt(a)
+    return r - (0.5j * r) * (z.imag / a)
+
+
 def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
-    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` there)."""
+    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` there).
+
+    The vector m and the top film's row carry their derivative along t as a complex step
+    (m + i STEP dm/dt), the derivative along kh separately; the films below the top one carry both
+    tangents as real arrays (:func:`_unit`).
+    """
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
-    X = Xc.real
     lds = _layers(st, tau, kh) if lds is None else lds
     Msub = st.lam[-1] + 2.0 * st.mu[-1]
     mc = substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
-    m, mt = mc.real, mc.imag / STEP
-    mk = np.zeros_like(m)
+    mc = mc * _rsqrt((mc * mc).sum(axis=1))[:, None]                   # m / |m| with its step (as _unit)
     L = st.frac.size
-    m, mt = _unit(m, mt)
     if L == 0:
-        return m[:, 5], mt[:, 5], mk[:, 5], mk[:, 5] / mt[:, 5]
-    for layer in range(L - 1, -1, -1):
-        lam, mu = st.lam[layer], st.mu[layer]
-        M = lam + 2.0 * mu
-        ld = lds[layer][2]
-        (Ca, Cb), (Sa, Sb), (ga, gb), (dCa, dCb), (dSa, dSb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = ld
-        Dt, Dk = lta + ltb, lka + lkb                                      # d log(g_a g_b)
-        if layer == 0:                                                     # the NT row only, closed form
-            # F = g_a g_b k0 + C_a P + S_a Q, P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4
-            kc = top_row(mu, M, Xc[:, 0], m + 1j * STEP * mt)
-            k0, k2, k3, k4 = (v.real for v in kc)
-            k0t, k2t, k3t, k4t = (v.imag / STEP for v in kc)
-            q, qt = m[:, 5] - k0, mt[:, 5] - k0t
-            P, Q = Cb * q + Sb * k2, Cb * k3 + Sb * k4
-            F = ga * gb * k0 + Ca * P + Sa * Q
-            Pt = dCb * q + Cb * qt + dSb * k2 + Sb * k2t
-            Qt = dCb * k3 + Cb * k3t + dSb * k4 + Sb * k4t
-            Ft = ga * gb * k0t + dCa * P + Ca * Pt + dSa * Q + Sa * Qt
-            Pk, Qk = kCb * q + kSb * k2, kCb * k3 + kSb * k4
-            if L > 1:                                                      # the vector below depends on kh
-                k0k, k2k, k3k, k4k = top_row(mu, M, X[:, 0], mk)
-                Pk = Pk + Cb * (mk[:, 5] - k0k) + Sb * k2k
-                Qk = Qk + Cb * k3k + Sb * k4k
-                Fk = ga * gb * k0k + kCa * P + Ca * Pk + kSa * Q + Sa * Qk
-            else:
-                Fk = kCa * P + Ca * Pk + kSa * Q + Sa * Qk
-            return F, Ft + F * Dt, Fk + F * Dk, Fk / Ft        # the last: g held constant (module docstring)
-        w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
-        wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
-        wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
-        Kc = psv_kernels(lam, mu, Xc[:, layer])                            # (m, 5, 6, 6)
-        K, Kt = Kc.real, Kc.imag / STEP
-        Km = np.einsum("npij,nj->npi", K, m)
-        Ktm = np.einsum("npij,nj->npi", Kt, m)
-        Kmt = np.einsum("npij,nj->npi", K, mt)
-        Kmk = np.einsum("npij,nj->npi", K, mk)
-        W = np.stack(w, axis=1)[:, :, None]                                # (m, 5, 1)
-        m_new = (W * Km).sum(axis=1)
-        mt = (W * (Ktm + Kmt)).sum(axis=1) + sum(wt[p - 1][:, None] * Km[:, p] for p in range(1, 5))
-        mk = (W * Kmk).sum(axis=1) + sum(wk[p - 1][:, None] * Km[:, p] for p in range(1, 5))
-        m, mt, mk = _unit(m_new, mt + m_new * Dt[:, None], mk + m_new * Dk[:, None])
-    raise AssertionError("unreachable")
+        return mc[:, 5].real.copy(), mc[:, 5].imag / STEP, np.zeros(tau.size), np.zeros(tau.size)
+    mk = None
+    if L > 1:                                                          # the films below the top one
+        m, mt = mc.real, mc.imag / STEP
+        mk = np.zeros_like(m)
+        for layer in range(L - 1, 0, -1):
+            lam, mu = st.lam[layer], st.mu[layer]
+            Cc, Sc, (ga, gb), (kCa, kCb), (kSa, kSb), lt, lk = lds[layer][2]
+            (Ca, Cb), (Sa, Sb) = Cc.real, Sc.real
+            (dCa, dCb), (dSa, dSb) = Cc.imag / STEP, Sc.imag / STEP
+            Dt, Dk = lt[0] + lt[1], lk[0] + lk[1]                          # d log(g_a g_b)
+            w = (ga * gb, Ca * Cb, Ca * Sb, Sa * Cb, Sa * Sb)
+            wt = (dCa * Cb + Ca * dCb, dCa * Sb + Ca * dSb, dSa * Cb + Sa * dCb, dSa * Sb + Sa * dSb)
+            wk = (kCa * Cb + Ca * kCb, kCa * Sb + Ca * kSb, kSa * Cb + Sa * kCb, kSa * Sb + Sa * kSb)
+            Kc = psv_kernels(lam, mu, Xc[:, layer])                        # (m, 5, 6, 6)
+            K, Kt = Kc.real, Kc.imag / STEP
+            Km = np.einsum("npij,nj->npi", K, m)
+            Ktm = np.einsum("npij,nj->npi", Kt, m)
+            Kmt = np.einsum("npij,nj->npi", K, mt)
+            Kmk = np.einsum("npij,nj->npi", K, mk)
+            W = np.stack(w, axis=1)[:, :, None]                            # (m, 5, 1)
+            m_new = (W * Km).sum(axis=1)
+            mt = (W * (Ktm + Kmt)).sum(axis=1) + sum(wt[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+            mk = (W * Kmk).sum(axis=1) + sum(wk[p - 1][:, None] * Km[:, p] for p in range(1, 5))
+            m, mt, mk = _unit(m_new, mt + m_new * Dt[:, None], mk + m_new * Dk[:, None])
+        mc = m + 1j * STEP * mt
+    # the top film: the NT row only, closed form; F = g_a g_b k0 + C_a P + S_a Q,
+    # P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4 (complex: with the step along t)
+    lam, mu = st.lam[0], st.mu[0]
+    M = lam + 2.0 * mu
+    (Cca, Ccb), (Sca, Scb), (ga, gb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = lds[0][2]
+    k0, k2, k3, k4 = top_row(mu, M, Xc[:, 0], mc)
+    q = mc[:, 5] - k0
+    P, Q = Ccb * q + Scb * k2, Ccb * k3 + Scb * k4
+    G = ga * gb
+    Fc = G * k0 + Cca * P + Sca * Q
+    F, Ft = Fc.real, Fc.imag / STEP
+    Ca, Sa, Cb, Sb = Cca.real, Sca.real, Ccb.real, Scb.real
+    Pr, Qr = P.real, Q.real
+    Pk, Qk = kCb * q.real + kSb * k2.real, kCb * k3.real + kSb * k4.real
+    if mk is not None:                                                 # the vector below depends on kh
+        k0k, k2k, k3k, k4k = top_row(mu, M, Xc[:, 0].real, mk)
+        Pk = Pk + Cb * (mk[:, 5] - k0k) + Sb * k2k
+        Qk = Qk + Cb * k3k + Sb * k4k
+        Fk = G * k0k + kCa * Pr + Ca * Pk + kSa * Qr + Sa * Qk
+    else:
+        Fk = kCa * Pr + Ca * Pk + kSa * Qr + Sa * Qk
+    return F, Ft + F * (lta + ltb), Fk + F * (lka + lkb), Fk / Ft   # the last: g held constant (module docstring)
 
 
 def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
@@ -150,38 +171,36 @@ def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None =
 
     F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
     after each film) is held constant in the tangents and F's derivatives are exact (no N).
+    (v, tau) carry their derivative along t as a complex step, along kh separately.
     ``lds``: :func:`_layers` there (the S wave's functions are used).
     """
     lds = _layers(st, tau, kh) if lds is None else lds
     mu_s = st.mu[-1]
-    v, s = np.ones_like(tau), -mu_s * tau                              # substrate: (1, -mu r_b), r_b = t
-    vt, st_ = np.zeros_like(tau), np.full(tau.shape, -mu_s)
-    vk, sk = np.zeros_like(tau), np.zeros_like(tau)
+    v = np.ones(tau.shape, complex)
+    s = -mu_s * (tau + 1j * STEP)                                      # substrate: (1, -mu r_b), r_b = t
+    vk = sk = np.zeros(tau.shape)
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
         r2, dr2, ld = lds[layer]
-        rb2, drb2 = r2[-1], dr2[-1]
-        Cb, Sb, _, dC, dS, kC, kS, _, _ = (v[-1] for v in ld)
-        v_new = Cb * v - Sb * s / mu
-        s_new = -mu * rb2 * Sb * v + Cb * s
-        vt, st_ = (dC * v + Cb * vt - (dS * s + Sb * st_) / mu,
-                   -mu * ((drb2 * Sb + rb2 * dS) * v + rb2 * Sb * vt) + dC * s + Cb * st_)
-        vk, sk = (kC * v + Cb * vk - (kS * s + Sb * sk) / mu,
-                  -mu * rb2 * (kS * v + Sb * vk) + kC * s + Cb * sk)
-        v, s = v_new, s_new
+        Cc, Sc, kC, kS = ld[0][-1], ld[1][-1], ld[3][-1], ld[4][-1]
+        rb2 = r2[-1]
+        Cb, Sb, vr, sr = Cc.real, Sc.real, v.real, s.real
+        vk, sk = (kC * vr + Cb * vk - (kS * sr + Sb * sk) / mu,
+                  -mu * rb2 * (kS * vr + Sb * vk) + kC * sr + Cb * sk)
+        v, s = Cc * v - Sc * s / mu, -mu * (rb2 + 1j * STEP * dr2[-1]) * Sc * v + Cc * s
         if layer:                                                      # renormalise (held constant)
-            n = 1.0 / np.hypot(v, s)
-            v, s, vt, st_, vk, sk = v * n, s * n, vt * n, st_ * n, vk * n, sk * n
-    n2 = v * v + s * s
-    n = np.sqrt(n2)
-    vn3 = v / (n2 * n)
-    Ft, Fk = vn3 * (st_ * v - s * vt), vn3 * (sk * v - s * vk)
-    # the ratio of tau's own derivatives (the renormalisations held constant, positive factors that
+            n = 1.0 / np.hypot(v.real, s.real)
+            v, s, vk, sk = v * n, s * n, vk * n, sk * n
+    rs = _rsqrt(v * v + s * s)
+    Fc = s * rs
+    vr, sr, nr = v.real, s.real, rs.real
+    Fk = vr * nr * nr * nr * (sk * vr - sr * vk)
+    # R: the ratio of tau's own derivatives (the renormalisations held constant, positive factors that
     # drop out at tau = 0): at a root equal to F_kh / F_t, and smooth where F is not. At a mode
     # trapped under a barrier v and tau are both tiny at the top and F = tau / |(v, tau)| swings
     # through 0 within rounding of c, so the root found has |F| ~ 0.1 and F's own ratio is that
     # of the background (buried stack at kh = 60: v_g 2550.75 against 2549.83 m/s by differences)
-    return s / n, Ft, Fk, sk / st_
+    return Fc.real, Fc.imag / STEP, Fk, sk / (s.imag / STEP)
 
 
 def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio: bool = False
