@@ -34,6 +34,8 @@ __all__ = ["STEP", "secular_d", "secular_d_pair"]
 
 #: Per film: r^2 (2, m), dr^2/dt (2, m) of the P and S waves and their :func:`_layer_d`.
 Layer = tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]
+#: X = rho c^2 / s of every layer with its complex step along t (m, L + 1), and every film's :data:`Layer`.
+Layers = tuple[np.ndarray, list[Layer]]
 
 #: Complex step in t (no subtraction: any tiny value gives the derivative to rounding).
 STEP = 1e-20
@@ -100,17 +102,15 @@ def _rsqrt(z: np.ndarray) -> np.ndarray:
     return r - (0.5j * r) * (z.imag / a)
 
 
-def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
-    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lds``: :func:`_layers` there).
+def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lay: Layers | None = None) -> tuple[np.ndarray, ...]:
+    """(F, F_t, F_kh, R) of the P-SV secular function at points (m,) (``lay``: :func:`_layers` there).
 
     The vector m and the top film's row carry their derivative along t as a complex step
     (m + i STEP dm/dt), the derivative along kh separately; the films below the top one carry both
     tangents as real arrays (:func:`_unit`).
     """
-    c_lim2 = st.c_lim ** 2
+    Xc, lds = _layers(st, tau, kh) if lay is None else lay
     tc = tau + 1j * STEP
-    Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step
-    lds = _layers(st, tau, kh) if lds is None else lds
     Msub = st.lam[-1] + 2.0 * st.mu[-1]
     mc = substrate_psv(st.mu[-1], Xc[:, -1], np.sqrt(1.0 - Xc[:, -1] / Msub), tc)
     mc = mc * _rsqrt((mc * mc).sum(axis=1))[:, None]                   # m / |m| with its step (as _unit)
@@ -166,31 +166,36 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None 
     return F, Ft + F * (lta + ltb), Fk + F * (lka + lkb), Fk / Ft   # the last: g held constant (module docstring)
 
 
-def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lds: list[Layer] | None = None) -> tuple[np.ndarray, ...]:
+def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lay: Layers | None = None) -> tuple[np.ndarray, ...]:
     """(F, F_t, F_kh, R) of the SH secular function tau / |(v, tau)| at the top, points (m,).
 
     F is invariant under positive factors of (v, tau), so every factor (g, the renormalisation
     after each film) is held constant in the tangents and F's derivatives are exact (no N).
     (v, tau) carry their derivative along t as a complex step, along kh separately.
-    ``lds``: :func:`_layers` there (the S wave's functions are used).
+    ``lay``: :func:`_layers` there (the S wave's functions are used).
     """
-    lds = _layers(st, tau, kh) if lds is None else lds
-    mu_s = st.mu[-1]
-    v = np.ones(tau.shape, complex)
-    s = -mu_s * (tau + 1j * STEP)                                      # substrate: (1, -mu r_b), r_b = t
+    Xc, lds = _layers(st, tau, kh) if lay is None else lay
+    s = -st.mu[-1] * (tau + 1j * STEP)                                 # substrate: (1, -mu r_b), r_b = t
+    v: np.ndarray | float = 1.0
     vk = sk = np.zeros(tau.shape)
     for layer in range(st.frac.size - 1, -1, -1):
         mu = st.mu[layer]
-        r2, dr2, ld = lds[layer]
+        ld = lds[layer][2]
         Cc, Sc, kC, kS = ld[0][-1], ld[1][-1], ld[3][-1], ld[4][-1]
-        rb2 = r2[-1]
-        Cb, Sb, vr, sr = Cc.real, Sc.real, v.real, s.real
-        vk, sk = (kC * vr + Cb * vk - (kS * sr + Sb * sk) / mu,
-                  -mu * rb2 * (kS * vr + Sb * vk) + kC * sr + Cb * sk)
-        v, s = Cc * v - Sc * s / mu, -mu * (rb2 + 1j * STEP * dr2[-1]) * Sc * v + Cc * s
+        mr = Xc[:, layer] - mu                                         # -mu r_b^2, with its step
+        sr = s.real
+        if layer == st.frac.size - 1:                                  # from the substrate: v = 1, no kh part
+            vk, sk = kC - kS * sr / mu, mr.real * kS + kC * sr
+            v, s = Cc - Sc * s / mu, mr * Sc + Cc * s
+        else:
+            Cb, Sb, vr = Cc.real, Sc.real, np.real(v)
+            vk, sk = (kC * vr + Cb * vk - (kS * sr + Sb * sk) / mu,
+                      mr.real * (kS * vr + Sb * vk) + kC * sr + Cb * sk)
+            v, s = Cc * v - Sc * s / mu, mr * Sc * v + Cc * s
         if layer:                                                      # renormalise (held constant)
-            n = 1.0 / np.hypot(v.real, s.real)
+            n = 1.0 / np.hypot(np.real(v), s.real)
             v, s, vk, sk = v * n, s * n, vk * n, sk * n
+    v = np.broadcast_to(v, s.shape)
     rs = _rsqrt(v * v + s * s)
     Fc = s * rs
     vr, sr, nr = v.real, s.real, rs.real
@@ -235,19 +240,25 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio:
     return out if ratio else out[:3]
 
 
-def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> list[Layer]:
-    """Per film (from the top): r^2 and dr^2/dt (2, m) of both wave types (P, S) at points (m,) and their
-    :func:`_layer_d` ((2, m) each). Both families use these, so a point's values do not depend on
-    which other points (or family) are evaluated with it."""
+def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> Layers:
+    """X with its step (m, L + 1) and per film (from the top): r^2 and dr^2/dt (2, m) of both wave types
+    (P, S) at points (m,) and their :func:`_layer_d` ((2, m) each). Both families use these, so a
+    point's values do not depend on which other points (or family) are evaluated with it."""
     c_lim2 = st.c_lim ** 2
-    X = st.rho * (c_lim2 * (1.0 - tau * tau))[:, None] / st.s
-    dX = st.rho * (-2.0 * c_lim2 * tau)[:, None] / st.s
-    out = []
+    tc = tau + 1j * STEP
+    Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step along t
+    X, dX = Xc.real, Xc.imag / STEP
+    out: list[Layer] = []
     for layer in range(st.frac.size):
         inv = np.array([[1.0 / (st.lam[layer] + 2.0 * st.mu[layer])], [1.0 / st.mu[layer]]])
         r2, dr2 = 1.0 - X[:, layer] * inv, -dX[:, layer] * inv
         out.append((r2, dr2, _layer_d(r2, dr2, kh * st.frac[layer], st.frac[layer])))
-    return out
+    return Xc, out
+
+
+def _take(lay: Layers, sl: slice) -> Layers:
+    """:func:`_layers` at the points ``sl``."""
+    return lay[0][sl], [(r2[:, sl], dr2[:, sl], tuple(v[:, sl] for v in ld)) for r2, dr2, ld in lay[1]]
 
 
 def secular_d_pair(st: IsoStack, tau: np.ndarray, kh: np.ndarray, k: int) -> tuple[np.ndarray, ...]:
@@ -264,11 +275,8 @@ def secular_d_pair(st: IsoStack, tau: np.ndarray, kh: np.ndarray, k: int) -> tup
     kh = np.asarray(kh, dtype=float)
     if k == 0 or k == tau.size:
         return secular_d(st, "R" if k else "L", tau, kh, ratio=True)
-    out = np.empty((4, tau.size))
     with np.errstate(all="ignore"):
-        lds = _layers(st, tau, kh)
-        out[:, :k] = _psv(st, tau[:k], kh[:k], [(r2[:, :k], dr2[:, :k], tuple(v[:, :k] for v in ld))
-                                                for r2, dr2, ld in lds])
-        out[:, k:] = _sh(st, tau[k:], kh[k:], [(r2[:, k:], dr2[:, k:], tuple(v[:, k:] for v in ld))
-                                               for r2, dr2, ld in lds])
-    return out[0], out[1], out[2], out[3]
+        lay = _layers(st, tau, kh)
+        p = _psv(st, tau[:k], kh[:k], _take(lay, slice(None, k)))
+        h = _sh(st, tau[k:], kh[k:], _take(lay, slice(k, None)))
+    return tuple(np.concatenate((a, b)) for a, b in zip(p, h))

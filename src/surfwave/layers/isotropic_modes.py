@@ -419,12 +419,15 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         if it % 3 == 2:                            # every third step: bisect where the bracket did not halve
             bis |= (right - left > 0.5 * width) & ~conv
             width = right - left
-        keep = np.flatnonzero(~done)
-        if k_psv is not None:
-            k_psv = int(np.searchsorted(keep, k_psv))
-        nxt = np.where(bis, 0.5 * (left + right), xn)[keep]
-        newt, aprev, xp, dp, rp = ~bis[keep], ast[keep], x[keep], d[keep], rk[keep]
-        left, right, sl, width, idx, b, x = left[keep], right[keep], sl[keep], width[keep], idx[keep], b[keep], nxt
+        nxt = np.where(bis, 0.5 * (left + right), xn)
+        newt, aprev, xp, dp, rp = ~bis, ast, x, d, rk
+        if done.any():                             # carry the state of the others only
+            keep = np.flatnonzero(~done)
+            if k_psv is not None:
+                k_psv = int(np.searchsorted(keep, k_psv))
+            nxt, newt, aprev, xp, dp, rp = nxt[keep], newt[keep], aprev[keep], xp[keep], dp[keep], rp[keep]
+            left, right, sl, width, idx, b = left[keep], right[keep], sl[keep], width[keep], idx[keep], b[keep]
+        x = nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
         rk = _at_d(st, prefix, rows_of, r[idx], x, rows_of.pairs(r[idx], c))[3]
