@@ -78,11 +78,12 @@ def _layer_d(r2: np.ndarray, dr2: np.ndarray, t: np.ndarray, frac: float) -> tup
     d = 1.0 / (1.0 + uu)
     g = np.where(ev, 1.0 + e, 1.0)
     C = np.where(ev, 0.5 * (1.0 + g * g), (1.0 - uu) * d)
-    S = np.where(ev, -e * (2.0 + e), 2.0 * u * d) / (np.where(ev, 2.0, 1.0) * r)
+    S = np.where(ev, e * (-2.0 - e), 4.0 * u * d) / (2.0 * r)          # (the same numbers as 2 u d / r)
     if not r.all():
         S = np.where(r > 0, S, t)
-    lg_t = np.where(ev, -0.5 * t * dr2 / r, 0.0)
-    Cc = C + (1j * STEP) * (0.5 * t * S * dr2)
+    h = 0.5 * t * dr2
+    lg_t = np.where(ev, -h / r, 0.0)
+    Cc = C + (1j * STEP) * (h * S)
     Sc = S + (1j * STEP) * (_dS_ds(r2, t, C, S, g) * dr2)
     return Cc, Sc, g, r2 * S * frac, C * frac, lg_t, np.where(ev, -r * frac, 0.0)
 
