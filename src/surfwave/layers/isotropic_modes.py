@@ -348,17 +348,16 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     """
     c_lim = st.c_lim
     freq = rows_of.freq
-    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
-    z = np.sqrt(1.0 - (lo / c_lim) ** 2)
+    a, z, y = np.sqrt(1.0 - (np.array([hi, lo, c3]) / c_lim) ** 2)    # bracket ends in t (a: the fast end), c3
     fa, fz = fhi.astype(float), flo.astype(float)
-    y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
-    x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
-         + y * fa * fz / ((f3 - fa) * (f3 - fz)))
+    daz, da3, dz3 = fa - fz, fa - f3, fz - f3
+    x = a * fz * f3 / (daz * da3) - z * fa * f3 / (daz * dz3) + y * fa * fz / (da3 * dz3)
     left, right = np.minimum(a, z), np.maximum(a, z)
-    x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
-    x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
+    x = np.where((x > left) & (x < right), x, a + fa * (z - a) / daz)          # NaN compares False
+    mid = 0.5 * (a + z)
+    x = np.where((x > left) & (x < right), x, mid)
     n = lo.size
-    out, ratio = 0.5 * (a + z), np.full(n, np.nan)                  # t of the roots, F_kh / F_t there
+    out, ratio = mid, np.full(n, np.nan)                             # t of the roots, F_kh / F_t there
     idx, b = np.arange(n), rows_of.base[r]                           # the brackets still iterated; their rows
     k_psv = None                                                     # prefix "RL": P-SV points first, this many
     if prefix == "RL":
