@@ -32,8 +32,8 @@ from surfwave.layers.isotropic import IsoStack, psv_kernels, substrate_psv, top_
 
 __all__ = ["STEP", "secular_d", "secular_d_pair"]
 
-#: Per film: r^2 (2, m), dr^2/dt (2, m) of the P and S waves and their :func:`_layer_d`.
-Layer = tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]
+#: Per film: :func:`_layer_d` of the P and S waves ((2, m) each).
+Layer = tuple[np.ndarray, ...]
 #: X = rho c^2 / s of every layer with its complex step along t (m, L + 1), and every film's :data:`Layer`.
 Layers = tuple[np.ndarray, list[Layer]]
 
@@ -124,7 +124,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lay: Layers | None = Non
         mk = np.zeros_like(m)
         for layer in range(L - 1, 0, -1):
             lam, mu = st.lam[layer], st.mu[layer]
-            Cc, Sc, (ga, gb), (kCa, kCb), (kSa, kSb), lt, lk = lds[layer][2]
+            Cc, Sc, (ga, gb), (kCa, kCb), (kSa, kSb), lt, lk = lds[layer]
             (Ca, Cb), (Sa, Sb) = Cc.real, Sc.real
             (dCa, dCb), (dSa, dSb) = Cc.imag / STEP, Sc.imag / STEP
             Dt, Dk = lt[0] + lt[1], lk[0] + lk[1]                          # d log(g_a g_b)
@@ -147,7 +147,7 @@ def _psv(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lay: Layers | None = Non
     # P = C_b (m_NT - k0) + S_b k2, Q = C_b k3 + S_b k4 (complex: with the step along t)
     lam, mu = st.lam[0], st.mu[0]
     M = lam + 2.0 * mu
-    (Cca, Ccb), (Sca, Scb), (ga, gb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = lds[0][2]
+    (Cca, Ccb), (Sca, Scb), (ga, gb), (kCa, kCb), (kSa, kSb), (lta, ltb), (lka, lkb) = lds[0]
     k0, k2, k3, k4 = top_row(mu, M, Xc[:, 0], mc)
     q = mc[:, 5] - k0
     P, Q = Ccb * q + Scb * k2, Ccb * k3 + Scb * k4
@@ -177,26 +177,26 @@ def _sh(st: IsoStack, tau: np.ndarray, kh: np.ndarray, lay: Layers | None = None
     """
     Xc, lds = _layers(st, tau, kh) if lay is None else lay
     s = -st.mu[-1] * (tau + 1j * STEP)                                 # substrate: (1, -mu r_b), r_b = t
-    v: np.ndarray | float = 1.0
-    vk = sk = np.zeros(tau.shape)
-    for layer in range(st.frac.size - 1, -1, -1):
+    L = st.frac.size
+    if L == 0:
+        v, vk, sk = np.ones(tau.shape), np.zeros(tau.shape), np.zeros(tau.shape)
+    for layer in range(L - 1, -1, -1):
         mu = st.mu[layer]
-        ld = lds[layer][2]
+        ld = lds[layer]
         Cc, Sc, kC, kS = ld[0][-1], ld[1][-1], ld[3][-1], ld[4][-1]
         mr = Xc[:, layer] - mu                                         # -mu r_b^2, with its step
         sr = s.real
-        if layer == st.frac.size - 1:                                  # from the substrate: v = 1, no kh part
+        if layer == L - 1:                                             # from the substrate: v = 1, no kh part
             vk, sk = kC - kS * sr / mu, mr.real * kS + kC * sr
             v, s = Cc - Sc * s / mu, mr * Sc + Cc * s
         else:
-            Cb, Sb, vr = Cc.real, Sc.real, np.real(v)
+            Cb, Sb, vr = Cc.real, Sc.real, v.real
             vk, sk = (kC * vr + Cb * vk - (kS * sr + Sb * sk) / mu,
                       mr.real * (kS * vr + Sb * vk) + kC * sr + Cb * sk)
             v, s = Cc * v - Sc * s / mu, mr * Sc * v + Cc * s
         if layer:                                                      # renormalise (held constant)
-            n = 1.0 / np.hypot(np.real(v), s.real)
+            n = 1.0 / np.hypot(v.real, s.real)
             v, s, vk, sk = v * n, s * n, vk * n, sk * n
-    v = np.broadcast_to(v, s.shape)
     rs = _rsqrt(v * v + s * s)
     Fc = s * rs
     vr, sr, nr = v.real, s.real, rs.real
@@ -242,9 +242,9 @@ def secular_d(st: IsoStack, prefix: str, tau: np.ndarray, kh: np.ndarray, ratio:
 
 
 def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> Layers:
-    """X with its step (m, L + 1) and per film (from the top): r^2 and dr^2/dt (2, m) of both wave types
-    (P, S) at points (m,) and their :func:`_layer_d` ((2, m) each). Both families use these, so a
-    point's values do not depend on which other points (or family) are evaluated with it."""
+    """X with its step (m, L + 1) and per film (from the top) :func:`_layer_d` of both wave types (P, S)
+    at points (m,) ((2, m) each). Both families use these, so a point's values do not depend on
+    which other points (or family) are evaluated with it."""
     c_lim2 = st.c_lim ** 2
     tc = tau + 1j * STEP
     Xc = st.rho * (c_lim2 * (1.0 - tc * tc))[:, None] / st.s           # (m, L + 1), complex step along t
@@ -253,13 +253,13 @@ def _layers(st: IsoStack, tau: np.ndarray, kh: np.ndarray) -> Layers:
     for layer in range(st.frac.size):
         inv = np.array([[1.0 / (st.lam[layer] + 2.0 * st.mu[layer])], [1.0 / st.mu[layer]]])
         r2, dr2 = 1.0 - X[:, layer] * inv, -dX[:, layer] * inv
-        out.append((r2, dr2, _layer_d(r2, dr2, kh * st.frac[layer], st.frac[layer])))
+        out.append(_layer_d(r2, dr2, kh * st.frac[layer], st.frac[layer]))
     return Xc, out
 
 
 def _take(lay: Layers, sl: slice) -> Layers:
     """:func:`_layers` at the points ``sl``."""
-    return lay[0][sl], [(r2[:, sl], dr2[:, sl], tuple(v[:, sl] for v in ld)) for r2, dr2, ld in lay[1]]
+    return lay[0][sl], [tuple([v[:, sl] for v in ld]) for ld in lay[1]]
 
 
 def secular_d_pair(st: IsoStack, tau: np.ndarray, kh: np.ndarray, k: int) -> tuple[np.ndarray, ...]:
