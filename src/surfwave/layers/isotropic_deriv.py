@@ -15,7 +15,10 @@ s = r^2, t the layer thickness in units of 1/k): dC/ds = t S / 2, dS/ds = (t C -
 series t^3 sum_k>=1 (s t^2)^(k-1) k / (2k + 1)! where |s t^2| < 1/2: no cancellation at a bulk
 speed), dC/dt = s S, dS/dt = C. The c-dependence of the substrate's minors, the closed-form top row
 and the kernels of buried films (polynomial or rational in X, r_a, r_b, no branch switch) is taken
-by a complex step of :data:`STEP` in t: exact to rounding.
+by a complex step of :data:`STEP` in t: exact to rounding. The tangent along t also travels as that
+complex step through the substrate's unit vector, the top film's row and the SH recursion (each
+film's C + i STEP dC/dt, S + i STEP dS/dt from :func:`_layer_d`: one complex product instead of
+the product rule written out); the tangent along kh, and both tangents of buried films, are real.
 
 :func:`secular_d_pair` evaluates P-SV at some points and SH at others in one pass (the layer
 functions of both wave types once for all of them, :func:`_layers`); both families always take
