@@ -393,25 +393,29 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             step = np.where(off, fx / d, step)
             xn = np.where(off, x - step, xn)
             inside = (xn > left) & (xn < right)
+            # no convergence test at the start (one within the tolerance stops at the next step)
+            newt, aprev, xp, dp, rp = inside, np.abs(step), x, d, rk
+            x = np.where(inside, xn, 0.5 * (left + right))
+            continue
+        ast = np.abs(step)
         # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
         tol = np.maximum(np.minimum(C_TOL * w / x, 1e-8 * x), 8.9e-16 * x)
-        ast = np.abs(step)
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
         done = (ast <= tol) | (right - left <= tol) | (fx == 0)
-        if it:                                     # (no previous Newton step at the first iterate)
-            conv = newt & (ast <= 0.1 * aprev)
-            dx = x - xp
-            delta = (rk - rp) / dx * (fin - x)     # F_kh / F_t carried to fin
-            carried = rk + delta
-            # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
-            carry = kh * np.abs(delta) * xw
-            # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
-            K = (d - dp) / (2.0 * d * dx)
-            done |= conv & (np.abs(K) * ast * ast <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY)
-        if done.any():
+        conv = newt & (ast <= 0.1 * aprev)
+        dx = x - xp
+        delta = (rk - rp) / dx * (fin - x)         # F_kh / F_t carried to fin
+        carried = rk + delta
+        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
+        carry = kh * np.abs(delta) * xw
+        # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
+        K = (d - dp) / (2.0 * d * dx)
+        done |= conv & (np.abs(K) * ast * ast <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY)
+        anyd = bool(done.any())
+        if anyd:
             j = idx[done]
             out[j] = fin[done]
-            ratio[j] = (np.where(conv & np.isfinite(carried), carried, rk) if it else rk)[done]
+            ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
             if done.all():
                 break
         bis = ~inside
@@ -420,7 +424,7 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
             width = right - left
         nxt = np.where(bis, 0.5 * (left + right), xn)
         newt, aprev, xp, dp, rp = ~bis, ast, x, d, rk
-        if done.any():                             # carry the state of the others only
+        if anyd:                                   # carry the state of the others only
             keep = np.flatnonzero(~done)
             if k_psv is not None:
                 k_psv = int(np.searchsorted(keep, k_psv))
