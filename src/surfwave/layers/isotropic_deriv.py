@@ -56,9 +56,11 @@ def _dS_ds(r2: np.ndarray, t: np.ndarray, C: np.ndarray, S: np.ndarray, g: np.nd
     out = (t * C - S) / (2.0 * r2)
     small = np.abs(x) < 0.5
     if small.any():
-        acc = _SERIES[0] * x + _SERIES[1]
-        for a in _SERIES[2:]:
-            acc = acc * x + a
+        acc = _SERIES[0] * x
+        acc += _SERIES[1]
+        for a in _SERIES[2:]:                      # (in place: the same numbers, no temporaries)
+            acc *= x
+            acc += a
         out = np.where(small, g * t ** 3 * acc, out)
     return out
 
