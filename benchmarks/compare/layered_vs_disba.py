@@ -86,7 +86,7 @@ def main() -> int:
     disba = json.loads(res.stdout)
     f = 1e9 / periods
     kh = np.sort(2 * np.pi / (np.array(disba["rayleigh0"]["c"], dtype=float) * periods))   # the R mode's kh
-    runs = {"disba, 4 curves at 200 periods": (disba["round_seconds"], None)}
+    runs: dict[str, tuple] = {"disba, 4 curves at 200 periods": (disba["round_seconds"], None)}
     for name, kw in (("surfwave modes=2 at 200 frequencies", {"frequency": f, "modes": 2}),
                      ("surfwave all modes at 200 frequencies", {"frequency": f}),
                      ("surfwave modes=2 at 200 kh", {"kh": kh, "modes": 2}),

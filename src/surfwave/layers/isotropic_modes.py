@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack
-from surfwave.layers.isotropic_deriv import secular_d
+from surfwave.layers.isotropic_deriv import secular_d, secular_d_pair
 from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, public here as before)
     CHUNK,
     FLOOR,
@@ -36,29 +36,34 @@ from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, p
     speed_grid,
 )
 
-__all__ = ["CHUNK", "C_TOL", "Rows", "both_families", "family_roots", "refine_brackets", "roots_table", "secular_at",
-           "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "C_TOL", "Rows", "VG_CARRY", "both_families", "family_roots", "refine_brackets", "roots_table",
+           "secular_at", "slowest_speed", "speed_grid"]
 
 #: Relative width in c of a converged bracket.
 C_TOL = 5e-14
+#: Largest carried correction of v_g (relative) accepted without another evaluation.
+VG_CARRY = 1e-8
 #: Refinement iterations at most.
 MAX_ITER = 60
 
 
-def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray, act: np.ndarray
+def _at_d(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, t: np.ndarray, kh: np.ndarray
           ) -> tuple[np.ndarray, ...]:
     """:func:`secular_d` (with ``ratio``) of each point's family at (row r, t, kh) (m,).
 
-    Prefix "RL": rows from ``rows_of.split`` on are SH; a family without an active point (``act``)
-    is not evaluated (its values are NaN).
+    Prefix "RL": rows from ``rows_of.split`` on are SH; the points of P-SV rows come first (as
+    :func:`both_families` orders its brackets), and both families are evaluated in one pass
+    (:func:`secular_d_pair`).
     """
     if prefix != "RL":
         return secular_d(st, prefix, t, kh, ratio=True)
     sh = r >= rows_of.split
-    out = np.full((4, t.size), np.nan)
+    k = int(np.count_nonzero(~sh))
+    if not sh[:k].any():
+        return secular_d_pair(st, t, kh, k)
+    out = np.empty((4, t.size))                    # not in that order (not met): each family on its own
     for m, p in ((~sh, "R"), (sh, "L")):
-        if (act & m).any():
-            out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
+        out[:, m] = secular_d(st, p, t[m], kh[m], ratio=True)
     return out[0], out[1], out[2], out[3]
 
 
@@ -67,15 +72,18 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     """Safeguarded Newton iteration in t on all brackets (c in (lo, hi), of rows r): speeds, group velocities (m,), m/s.
 
     Starts at the inverse quadratic interpolation through the bracket ends and the third grid point
-    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); Newton
+    (``c3``, ``f3``; linear interpolation where that is NaN or lands outside the bracket); the
+    first step is the inverse Hermite interpolation through that first evaluation (F and its
+    derivative) and the bracket's ends (Newton's where it would leave the bracket), then Newton
     steps along the row (at fixed kh, or at fixed frequency kh = omega H / c) with the exact
     derivative (:func:`secular_d`); bisection where a step leaves the bracket or, every third
     step, where the bracket has not halved and the steps do not shrink tenfold.
     Converged: a Newton step below the tolerance (C_TOL relative in c; the stepped point is
-    returned) or, after two Newton steps, one whose predicted remaining error (quadratic
-    convergence: step^3 / previous step^2) is below a tenth of it; a bracket narrower than the
-    tolerance, or F = 0 exactly. The group velocity
-    v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c, comes from the derivatives of the last evaluation.
+    returned) or, once the steps shrink tenfold, one whose predicted remaining error |K| step^2
+    (K = F'' / 2F' from the derivatives of the last two iterates) is below a tenth of it, and
+    whose carried group velocity correction is below :data:`VG_CARRY`; a bracket narrower than
+    the tolerance, or F = 0 exactly. The group velocity v_g = c + kh dc/dkh, dc/dkh = -F_kh / F_c,
+    comes from the derivatives of the last evaluation (F_kh / F_t carried linearly to the root).
     """
     with np.errstate(all="ignore"):
         return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
@@ -83,67 +91,100 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
 
 def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
             flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The loop of :func:`_refine` (floating-point warnings off: converged points ride along unused).
+    """The loop of :func:`_refine` (floating-point warnings off).
 
-    Every point is evaluated at every iteration (one vectorised call costs the same for a few
-    hundred points as for a few); a converged point's answer is frozen when it converges.
+    Only the brackets not yet converged are evaluated (the state of the loop is carried for those
+    only); a converged point's answer is written out when it converges.
     """
     c_lim = st.c_lim
-    a = np.sqrt(1.0 - (hi / c_lim) ** 2)            # bracket ends in t (a: the fast end)
-    z = np.sqrt(1.0 - (lo / c_lim) ** 2)
+    freq = rows_of.freq
+    a, z, y = np.sqrt(1.0 - (np.array([hi, lo, c3]) / c_lim) ** 2)    # bracket ends in t (a: the fast end), c3
     fa, fz = fhi.astype(float), flo.astype(float)
-    y = np.sqrt(1.0 - (c3 / c_lim) ** 2)
-    x = (a * fz * f3 / ((fa - fz) * (fa - f3)) + z * fa * f3 / ((fz - fa) * (fz - f3))
-         + y * fa * fz / ((f3 - fa) * (f3 - fz)))
+    daz, da3, dz3 = fa - fz, fa - f3, fz - f3
+    x = a * fz * f3 / (daz * da3) - z * fa * f3 / (daz * dz3) + y * fa * fz / (da3 * dz3)
     left, right = np.minimum(a, z), np.maximum(a, z)
-    x = np.where((x > left) & (x < right), x, a - fa * (z - a) / (fz - fa))     # NaN compares False
-    x = np.where((x > left) & (x < right), x, 0.5 * (a + z))
-    width = right - left
-    out, ratio = 0.5 * (a + z), np.full(lo.size, np.nan)            # t of the roots, F_kh / F_t there
-    act = np.ones(lo.size, dtype=bool)
-    newt, prev = np.zeros(lo.size, dtype=bool), np.full(lo.size, np.inf)   # last move a Newton step; its size
-    xp, rp = np.full(lo.size, np.nan), np.full(lo.size, np.nan)            # the previous iterate and F_kh / F_t
+    x = np.where((x > left) & (x < right), x, a + fa * (z - a) / daz)          # NaN compares False
+    mid = 0.5 * (a + z)
+    x = np.where((x > left) & (x < right), x, mid)
+    n = lo.size
+    out, ratio = mid, np.full(n, np.nan)                             # t of the roots, F_kh / F_t there
+    idx, b = np.arange(n), rows_of.base[r]                           # the brackets still iterated; their rows
+    k_psv = None                                                     # prefix "RL": P-SV points first, this many
+    if prefix == "RL":
+        sh = r >= rows_of.split
+        k = int(np.count_nonzero(~sh))
+        k_psv = None if sh[:k].any() else k
+    sl, width = np.where(a == left, fa > 0, fz > 0), right - left    # F > 0 at left; the bracket's width
+    newt, aprev = np.zeros(n, dtype=bool), np.full(n, np.inf)       # last move a Newton step; its size
+    xp = dp = rp = np.full(n, np.nan)                                # previous iterate: t, F', F_kh / F_t
     for it in range(MAX_ITER):
-        c = c_lim * np.sqrt(1.0 - x * x)
-        kh = rows_of.pairs(r, c)
-        fx, ft, fk, rk = _at_d(st, prefix, rows_of, r, x, kh, act)
+        w = 1.0 - x * x
+        c = c_lim * np.sqrt(w)
+        kh = b / c if freq else b
+        if k_psv is None:
+            fx, ft, fk, rk = _at_d(st, prefix, rows_of, r[idx], x, kh)
+        else:
+            fx, ft, fk, rk = secular_d_pair(st, x, kh, k_psv)
+        xw = x / w
         # along the row: at fixed frequency kh = omega H / c, dkh/dt = kh t / (1 - t^2)
-        step = fx / (ft + fk * kh * x / (1.0 - x * x)) if rows_of.freq else fx / ft
-        side_a = (fx > 0) == (fa > 0)
-        a, fa = np.where(side_a, x, a), np.where(side_a, fx, fa)
-        z, fz = np.where(side_a, z, x), np.where(side_a, fz, fx)
-        left, right = np.minimum(a, z), np.maximum(a, z)
+        d = ft + fk * kh * xw if freq else ft
+        step = fx / d
+        if it == 0:
+            # first step: t(F) by Hermite interpolation through (F, t, dt/dF) here and the bracket's ends
+            q1 = ((a - x) / (fa - fx) - 1.0 / d) / (fa - fx)
+            q2 = (((z - a) / (fz - fa) - (a - x) / (fa - fx)) / (fz - fx) - q1) / (fz - fx)
+            step = fx * (1.0 / d - fx * (q1 - fa * q2))
+        at_left = (fx > 0) == sl                   # x replaces the end where F has its sign
+        left, right = np.where(at_left, x, left), np.where(at_left, right, x)
         xn = x - step
-        # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
-        tol = np.maximum(np.minimum(C_TOL * (1.0 - x * x) / x, 1e-8 * x), 8.9e-16 * x)
-        # quadratic convergence: after a Newton step that follows a Newton step, the error left is
-        # about step^3 / previous_step^2; below a tenth of the tolerance the stepped point is the root.
-        # F_kh / F_t is carried from x to it linearly (slope from the previous iterate, a Newton step
-        # away): v_g to ~ the step times the previous step.
+        inside = (xn > left) & (xn < right)
+        if it == 0:                                # Newton's step where that one is unusable
+            off = ~inside
+            step = np.where(off, fx / d, step)
+            xn = np.where(off, x - step, xn)
+            inside = (xn > left) & (xn < right)
+            # no convergence test at the start (one within the tolerance stops at the next step)
+            newt, aprev, xp, dp, rp = inside, np.abs(step), x, d, rk
+            x = np.where(inside, xn, 0.5 * (left + right))
+            continue
         ast = np.abs(step)
-        conv = newt & (ast <= 0.1 * np.abs(prev))
+        # (C_TOL relative in c; not below 4 ulps of t, which rounding cannot resolve)
+        tol = np.maximum(np.minimum(C_TOL * w / x, 1e-8 * x), 8.9e-16 * x)
         fin = np.where((xn >= left) & (xn <= right) & (fx != 0), xn, x)
-        carried = rk + (rk - rp) / (x - xp) * (fin - x)
-        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself below 1e-7 c: its error,
-        # a small fraction of it (the ratio is smooth: :func:`secular_d`), cannot matter
-        small = kh * np.abs(carried - rk) * c_lim * c_lim * x <= 1e-7 * c * c
-        done = act & (((ast <= tol) | (conv & (ast ** 3 <= 0.1 * tol * prev * prev) & (ast <= 1e-7 * x) & small))
-                      | (right - left <= tol) | (fx == 0))
-        out = np.where(done, fin, out)
-        ratio = np.where(done, np.where(conv & np.isfinite(carried), carried, rk), ratio)
-        act &= ~done
-        if not act.any():
-            break
-        slow = (it % 3 == 2) & (right - left > 0.5 * width) & ~conv
-        bis = ~((xn > left) & (xn < right)) | slow
-        newt, prev, xp, rp = ~bis, step, x, rk
-        x = np.where(bis, 0.5 * (left + right), xn)
-        if it % 3 == 2:
+        done = (ast <= tol) | (right - left <= tol) | (fx == 0)
+        conv = newt & (ast <= 0.1 * aprev)
+        dx = x - xp
+        delta = (rk - rp) / dx * (fin - x)         # F_kh / F_t carried to fin
+        carried = rk + delta
+        # the carried correction of v_g = c + kh (F_kh / F_t) c_lim^2 t / c itself, relative
+        carry = kh * np.abs(delta) * xw
+        # error left after the Newton step: K step^2, K = F'' / (2 F') from the last two derivatives
+        K = (d - dp) / (2.0 * d * dx)
+        done |= conv & (np.abs(K) * ast * ast <= 0.1 * tol) & (ast <= 1e-7 * x) & (carry <= VG_CARRY)
+        anyd = bool(done.any())
+        if anyd:
+            j = idx[done]
+            out[j] = fin[done]
+            ratio[j] = np.where(conv & np.isfinite(carried), carried, rk)[done]
+            if done.all():
+                break
+        bis = ~inside
+        if it % 3 == 2:                            # every third step: bisect where the bracket did not halve
+            bis |= (right - left > 0.5 * width) & ~conv
             width = right - left
+        nxt = np.where(bis, 0.5 * (left + right), xn)
+        newt, aprev, xp, dp, rp = ~bis, ast, x, d, rk
+        if anyd:                                   # carry the state of the others only
+            keep = np.flatnonzero(~done)
+            if k_psv is not None:
+                k_psv = int(np.searchsorted(keep, k_psv))
+            nxt, newt, aprev, xp, dp, rp = nxt[keep], newt[keep], aprev[keep], xp[keep], dp[keep], rp[keep]
+            left, right, sl, width, idx, b = left[keep], right[keep], sl[keep], width[keep], idx[keep], b[keep]
+        x = nxt
     else:                                          # not converged in MAX_ITER (not seen): the last iterate
         c = c_lim * np.sqrt(1.0 - x * x)
-        rk = _at_d(st, prefix, rows_of, r, x, rows_of.pairs(r, c), act)[3]
-        out, ratio = np.where(act, x, out), np.where(act, rk, ratio)
+        rk = _at_d(st, prefix, rows_of, r[idx], x, rows_of.pairs(r[idx], c))[3]
+        out[idx], ratio[idx] = x, rk
     c = c_lim * np.sqrt(1.0 - out * out)
     kh = rows_of.pairs(r, c)
     return c, c + kh * ratio * c_lim * c_lim * out / c     # dc/dkh = -F_kh / (F_t dt/dc), dt/dc = -c / (c_lim^2 t)
