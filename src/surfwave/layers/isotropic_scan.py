@@ -24,9 +24,10 @@ Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where rea
 :data:`PHASE_STEP`. Between consecutive modes of one family the field of some film turns by about
 pi in depth, so a cell holds a fraction of a mode spacing. With one film and ``modes`` = N, rows
 stop at their N-th sign change, and those left are mostly the small kh (or frequencies): once the
-largest of them is at most :data:`COARSEN` x the one the grid was built for, the rest of the grid
-(above the last speed evaluated) is rebuilt for them alone by the same rule and kept if it is
-coarser; every row still scanned then meets the rule with its own kh, as before.
+largest of them would take at least half the phase points off the rest of the grid (above the last
+speed evaluated), that rest is rebuilt for them alone by the same rule and kept if it holds at most
+:data:`COARSEN` x the speeds it replaces; every row still scanned meets the rule with its own kh,
+as before.
 Every sign change on the grid is a mode
 (the function has no poles). Two modes in one cell (modes localised in different films, weakly
 coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
@@ -85,9 +86,8 @@ PHASE_STEP = math.pi / 4
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
-#: With one film, the rest of the grid is rebuilt for the rows still scanned once their largest kh
-#: (or frequency) is at most this fraction of the one the grid was built for, and kept if it then
-#: holds at most this fraction of the speeds left.
+#: With one film, the rest of the grid rebuilt for the rows still scanned (module docstring) is kept
+#: if it holds at most this fraction of the speeds it replaces.
 COARSEN = 0.75
 
 
@@ -520,12 +520,13 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
             top_left = float(base_left.max(initial=0.0))
             if curve is None:
                 curve = phase_curve(st)
-            # phase levels the rest of the grid would lose (its base points aside): worth a try?
+            # phase points the rest of the grid would lose: worth building it?
             aux, nu = curve
             c_s = float(grid[start - 1])
             nu_s = float(np.interp(c_s, aux, nu))
             per = nu[-1] / aux[-1] - nu_s / c_s if rows_of.freq else nu[-1] - nu_s
-            if (top - top_left) * per >= (1.0 - COARSEN) * (n_c - start) * PHASE_STEP:
+            # (half the speeds left at least: fewer phase points bring base points back)
+            if (top - top_left) * per >= 0.5 * (n_c - start) * PHASE_STEP:
                 # the rows left have smaller kh: the rest of the grid for them alone, if it is coarser
                 top = top_left
                 tail = speed_grid(st, Rows(base_left, rows_of.freq), 1, curve)
