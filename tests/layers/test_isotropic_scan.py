@@ -126,26 +126,22 @@ def _film_case(rng: np.random.Generator) -> tuple:
 
 def _phase_steps(st, rows_of: im.Rows, grid: np.ndarray, r: int, upto: int) -> tuple[np.ndarray, np.ndarray]:
     """Row r's vertical phase Phi_r(c) = kh_r(c) sum_l h_l/H (nu_a + nu_b) advance on the cells below
-    ``upto`` (from the definition, not from the grid's auxiliary curve), and whether each cell is
-    clear of the phase's square-root onsets (above c_lo, not within 1e-3 above a film's bulk speed)."""
+    ``upto`` (from the definition, not from the grid's auxiliary curve), and whether each cell lies
+    above c_lo (the rule's range)."""
     g = grid[:upto]
     nu = np.zeros(g.size)
-    onset = np.zeros(g.size - 1 if g.size else 0, dtype=bool)
     for v in (st.shear, st.longitudinal):
         for i in range(st.frac.size):
             nu += st.frac[i] * np.sqrt(np.maximum((g / v[i]) ** 2 - 1.0, 0.0))
-            onset |= (g[1:] > v[i]) & (g[:-1] < v[i] * (1 + 1e-3))
-    clear = ~onset & (g[:-1] >= 0.95 * im.slowest_speed(st))
-    return np.diff(rows_of.pairs(np.full(g.size, r), g) * nu), clear
+    return np.diff(rows_of.pairs(np.full(g.size, r), g) * nu), g[:-1] >= 0.95 * im.slowest_speed(st)
 
 
 def test_grid_left_for_the_rows_still_scanned_keeps_the_phase_step():
     """The rest of the grid rebuilt for the rows still scanned (_evaluate_both, coarsen=True) keeps
     the grid's rule for each of them: on every cell a row is evaluated on, its own vertical phase
-    (_phase_steps, from the definition) advances by at most PHASE_STEP (1 % for the linear
-    interpolation of the grid's auxiliary curve), away from the square-root onsets of the phase at
-    the films' bulk speeds (there the auxiliary curve's first cell is coarse, on the full grid as
-    well: not checked). Cases: kh over two decades (most rows small: the grid is rebuilt, checked) at
+    (_phase_steps, from the definition) advances by at most PHASE_STEP above c_lo (1 % for the
+    linear interpolation of the grid's auxiliary curve; cells at the square-root onsets of the phase
+    at the films' bulk speeds included). Cases: kh over two decades (most rows small: the grid is rebuilt, checked) at
     fixed kh and at fixed frequency, modes = 1, 2, for 4 seeded random slow films."""
     from surfwave.layers.isotropic_scan import _evaluate_both, _family_grid
     rng = np.random.default_rng(5)

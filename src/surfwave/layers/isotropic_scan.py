@@ -92,6 +92,10 @@ COARSEN = 0.75
 
 
 
+#: Relative offsets above a film's bulk speed added to the phase curve's points (:func:`phase_curve`),
+#: 10 per decade: a chord of sqrt over one of these cells is within 1 % of it.
+_ONSET = np.geomspace(1e-12, 1e-2, 101)
+_ONSET.setflags(write=False)
 #: The points of (i) in t (module docstring).
 _TOP_T = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
 _TOP_T.setflags(write=False)
@@ -200,12 +204,21 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1,
 
 
 def phase_curve(st: IsoStack) -> tuple[np.ndarray, np.ndarray]:
-    """Speeds aux (4000,) from c_lo to c_lim (m/s) and sum_l h_l/H (nu_a + nu_b) of the films there (4000,).
+    """Speeds aux (k,) from c_lo to c_lim (m/s) and sum_l h_l/H (nu_a + nu_b) of the films there (k,).
 
     c_lo = 0.95 x :func:`slowest_speed`; the phase of the grid's part (iii) is kh_max(c) times the
-    second array (it does not depend on the rows).
+    second array (it does not depend on the rows), placed by linear interpolation between these
+    points: 4000 uniform ones and, above each film's bulk speed v in that range, v (1 + d) for
+    d = 1e-12 ... 1e-2 geometric (:data:`_ONSET`), where the phase rises as sqrt(c - v) (a chord
+    across the first uniform cell above v put a heavy film's first Love modes at kh = 100, all
+    within 0.2 m/s of its shear speed, in one cell: found by the count, not by the grid).
     """
-    aux = _linspace(0.95 * slowest_speed(st), st.c_lim, 4000)
+    c_lo, c_lim = 0.95 * slowest_speed(st), st.c_lim
+    aux = _linspace(c_lo, c_lim, 4000)
+    onsets = [float(v[i]) for v in (st.shear, st.longitudinal) for i in range(st.frac.size) if c_lo < v[i] < c_lim]
+    if onsets:                                 # nu ~ sqrt(2 (c - v) / v) just above v: linear there only on these
+        more = (np.array(onsets)[:, None] * (1.0 + _ONSET)).ravel()
+        aux = np.sort(np.concatenate([aux, more[more < c_lim]]))
     nu = np.zeros(aux.size)
     for v in (st.shear, st.longitudinal):
         for i in range(st.frac.size):
