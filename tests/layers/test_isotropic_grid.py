@@ -69,6 +69,11 @@ def _reference_grid(st, rows_of, fine=1):
     low = np.geomspace(c_floor, c_lo, im.N_LOW, endpoint=False) if c_floor < c_lo else np.zeros(0)
     parts = [c_lim * np.sqrt(1.0 - top * top), np.array([c_lo]), low]
     aux = np.linspace(c_lo, c_lim, 4000)
+    # and above each film's bulk speed v in (c_lo, c_lim): v (1 + d), d = 1e-12 ... 1e-2, 10 per decade
+    onset = [v[i] * (1.0 + np.geomspace(1e-12, 1e-2, 101)) for v in (st.shear, st.longitudinal)
+             for i in range(st.frac.size) if c_lo < v[i] < c_lim]
+    aux = np.unique(np.concatenate([aux, *onset]))
+    aux = aux[aux <= c_lim]
     nu = sum(st.frac[i] * np.sqrt(np.maximum((aux / v[i]) ** 2 - 1.0, 0.0))
              for v in (st.shear, st.longitudinal) for i in range(st.frac.size))
     phase = rows_of.kh_max(aux) * nu
@@ -103,3 +108,27 @@ def test_speed_grid_equals_its_definition():
         for rows_of in (Rows(np.linspace(0.0, top, 7), freq=False), Rows(np.linspace(0.0, top * st.c_lim, 7), freq=True)):
             for fine in (1, 4):
                 np.testing.assert_array_equal(speed_grid(st, rows_of, fine), _reference_grid(st, rows_of, fine))
+
+
+def test_love_modes_packed_above_a_heavy_films_shear_speed(monkeypatch):
+    """A heavy soft film (E 24 GPa, rho 19950, shear speed 687.1 m/s) on a stiff half-space at fixed
+    frequencies up to kh = 100: the first Love modes lie within 0.2 m/s above the film's shear
+    speed, where the vertical phase rises as sqrt(c - v) (about 9 rad there at the top row). One
+    film is not checked against the count by default; reference: the same call with every row
+    checked against the Wittrick-Williams count of the general path and repaired from it
+    (isotropic_guard.ALWAYS = True). Every mode (labels, counts, speeds to 1e-12) must agree.
+    The grid placed by a chord across the phase curve's first uniform cell above the onset missed
+    two Love modes in the top row."""
+    import surfwave.layers.isotropic_guard as guard
+    half = {"E": 455.396, "nu": 0.17402, "rho": 4037.84}
+    film = {"E": 24.2128, "nu": 0.28544, "rho": 19946.99, "thickness": 1e-6}
+    kh = np.geomspace(10.0, 100.0, 12)
+    freq = kh * 3000.0 / (2 * np.pi * 1e-6)
+    for modes in (2, None):
+        monkeypatch.setattr(guard, "ALWAYS", False)
+        got = surfwave.layered(half, [film], frequency=freq, modes=modes)
+        monkeypatch.setattr(guard, "ALWAYS", True)
+        ref = surfwave.layered(half, [film], frequency=freq, modes=modes)
+        assert np.array_equal(np.asarray(got["mode"], dtype=str), np.asarray(ref["mode"], dtype=str))
+        assert got["c"].shape == ref["c"].shape
+        np.testing.assert_allclose(got["c"], ref["c"], rtol=1e-12, atol=0.0)

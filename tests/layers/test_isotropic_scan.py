@@ -93,7 +93,7 @@ def test_scan_finds_a_hidden_pair_below_the_needed_sign_changes(fake):
 def test_one_pass_scan_of_both_families_equals_the_separate_scans():
     """With one film, P-SV and SH are scanned in one pass sharing the film's shear-wave functions
     (_brackets_both): their brackets equal, bit for bit, those of the two separate scans
-    (_brackets, the reference), for 6 seeded random one-film stacks and a film faster than the
+    (_brackets, the reference), with the grid kept to the top (coarsen=False), for 6 seeded random one-film stacks and a film faster than the
     substrate (the SH grid is then one point), 40 and 200 rows (one chunk; several, cut at the SH
     grid or across it) at kh and at frequency, all modes and modes = 1, 2."""
     rng = np.random.default_rng(11)
@@ -110,7 +110,76 @@ def test_one_pass_scan_of_both_families_equals_the_separate_scans():
                         im.Rows(kh200, freq=False), im.Rows(kh200 * st.c_lim * 0.9, freq=True)):
             grid = im.speed_grid(st, rows_of)
             for modes in (None, 1, 2):
-                joint = im._brackets_both(st, rows_of, modes, grid)
+                joint = im._brackets_both(st, rows_of, modes, grid, coarsen=False)
                 for prefix, got in zip("RL", joint):
                     for a, b in zip(got, im._brackets(st, prefix, rows_of, modes, grid)):
                         np.testing.assert_array_equal(a, b)
+
+
+def _film_case(rng: np.random.Generator) -> tuple:
+    """A seeded random one-film stack (a slow film: many modes at large kh) and its IsoStack."""
+    sub = {"E": float(rng.uniform(250.0, 500.0)), "nu": float(rng.uniform(0.1, 0.35)), "rho": float(rng.uniform(2500, 4000))}
+    film = {"E": float(rng.uniform(40.0, 120.0)), "nu": float(rng.uniform(0.1, 0.4)), "rho": float(rng.uniform(2000, 9000)),
+            "thickness": 1e-6}
+    return iso_stack(resolve_stack(sub, [film]))
+
+
+def _phase_steps(st, rows_of: im.Rows, grid: np.ndarray, r: int, upto: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row r's vertical phase Phi_r(c) = kh_r(c) sum_l h_l/H (nu_a + nu_b) advance on the cells below
+    ``upto`` (from the definition, not from the grid's auxiliary curve), and whether each cell lies
+    above c_lo (the rule's range)."""
+    g = grid[:upto]
+    nu = np.zeros(g.size)
+    for v in (st.shear, st.longitudinal):
+        for i in range(st.frac.size):
+            nu += st.frac[i] * np.sqrt(np.maximum((g / v[i]) ** 2 - 1.0, 0.0))
+    return np.diff(rows_of.pairs(np.full(g.size, r), g) * nu), g[:-1] >= 0.95 * im.slowest_speed(st)
+
+
+def test_grid_left_for_the_rows_still_scanned_keeps_the_phase_step():
+    """The rest of the grid rebuilt for the rows still scanned (_evaluate_both, coarsen=True) keeps
+    the grid's rule for each of them: on every cell a row is evaluated on, its own vertical phase
+    (_phase_steps, from the definition) advances by at most PHASE_STEP above c_lo (1 % for the
+    linear interpolation of the grid's auxiliary curve; cells at the square-root onsets of the phase
+    at the films' bulk speeds included). Cases: kh over two decades (most rows small: the grid is rebuilt, checked) at
+    fixed kh and at fixed frequency, modes = 1, 2, for 4 seeded random slow films."""
+    from surfwave.layers.isotropic_scan import _evaluate_both, _family_grid
+    rng = np.random.default_rng(5)
+    rebuilt = 0
+    for _ in range(4):
+        st = _film_case(rng)
+        kh = np.sort(np.geomspace(0.3, 40.0, 150))
+        for rows_of in (im.Rows(kh, freq=False), im.Rows(kh * st.c_lim * 0.6, freq=True)):
+            full = im.speed_grid(st, rows_of)
+            rows = np.arange(kh.size)
+            for modes in (1, 2):
+                _, up_r, _, _, grid, _ = _evaluate_both(st, full, _family_grid(st, "L", full), rows_of, rows, modes)
+                rebuilt += grid.size < full.size
+                assert np.all(np.diff(grid) > 0)
+                for r in rows:
+                    d, clear = _phase_steps(st, rows_of, grid, r, up_r[r])
+                    assert d[clear].max(initial=0.0) <= 1.01 * im.PHASE_STEP
+    assert rebuilt >= 4                       # the rule was exercised on rebuilt grids
+
+
+def test_grid_left_for_the_rows_still_scanned_finds_the_same_modes():
+    """Brackets with the rest of the grid rebuilt for the rows still scanned (the default) against
+    those on the full grid (coarsen=False, the reference): the same number of brackets in every row
+    of both families, and the roots they refine to (refine_brackets) equal to 1e-13 relative, for
+    4 seeded random slow films at fixed kh and at fixed frequency, modes = 1, 2, 3."""
+    import surfwave.layers.isotropic_modes as imod
+    rng = np.random.default_rng(6)
+    for _ in range(4):
+        st = _film_case(rng)
+        kh = np.sort(np.geomspace(0.3, 40.0, 120))
+        for rows_of in (im.Rows(kh, freq=False), im.Rows(kh * st.c_lim * 0.6, freq=True)):
+            grid = im.speed_grid(st, rows_of)
+            for modes in (1, 2, 3):
+                new = im._brackets_both(st, rows_of, modes, grid)
+                ref = im._brackets_both(st, rows_of, modes, grid, coarsen=False)
+                for prefix, a, b in zip("RL", new, ref):
+                    n = kh.size
+                    assert np.array_equal(np.bincount(a[0], minlength=n), np.bincount(b[0], minlength=n))
+                    ca, _ = imod.refine_brackets(st, prefix, *a[1:3], rows_of, a[0], *a[3:])
+                    cb, _ = imod.refine_brackets(st, prefix, *b[1:3], rows_of, b[0], *b[3:])
+                    np.testing.assert_allclose(ca, cb, rtol=1e-13, atol=0.0)

@@ -32,6 +32,7 @@ from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, p
     _at,
     _brackets,
     _brackets_both,
+    phase_curve,
     slowest_speed,
     speed_grid,
 )
@@ -218,8 +219,11 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
                   ) -> list[tuple[np.ndarray, np.ndarray]]:
     """:func:`family_roots` of P-SV and SH (in that order), the brackets of both refined in one Newton loop."""
     n = rows_of.base.size
-    grid = speed_grid(st, rows_of) if grid is None else grid
-    bR, bL = _brackets_both(st, rows_of, modes, grid)
+    curve = None
+    if grid is None:
+        curve = phase_curve(st) if st.frac.size == 1 else None
+        grid = speed_grid(st, rows_of, 1, curve)
+    bR, bL = _brackets_both(st, rows_of, modes, grid, curve)
     r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v]) for k, (u, v) in enumerate(zip(bR, bL)))
     roots, vg = _refine(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3)
     sh = r >= n

@@ -22,7 +22,13 @@ in a random sample of stacks) and ``c_lo`` itself. It is the union of that, of
 spacing of a point of (iii)), and (iii) points where the total vertical phase
 Phi(c) = kh_max(c) sum_l h_l/H (nu_a + nu_b) (nu = sqrt(c^2 / v^2 - 1) where real) advances by
 :data:`PHASE_STEP`. Between consecutive modes of one family the field of some film turns by about
-pi in depth, so a cell holds a fraction of a mode spacing. Every sign change on the grid is a mode
+pi in depth, so a cell holds a fraction of a mode spacing. With one film and ``modes`` = N, rows
+stop at their N-th sign change, and those left are mostly the small kh (or frequencies): once the
+largest of them would take at least half the phase points off the rest of the grid (above the last
+speed evaluated), that rest is rebuilt for them alone by the same rule and kept if it holds at most
+:data:`COARSEN` x the speeds it replaces; every row still scanned meets the rule with its own kh,
+as before.
+Every sign change on the grid is a mode
 (the function has no poles). Two modes in one cell (modes localised in different films, weakly
 coupled, can be arbitrarily close) leave no sign change: every local minimum of |F| on the grid is
 hunted by parabolic steps (:func:`_hidden_pairs`), and a point of the opposite sign splits the
@@ -54,7 +60,7 @@ from surfwave.layers.isotropic import (
 )
 
 __all__ = ["CHUNK", "CHUNK_ELEMENTS", "CHUNK_MIN", "FLOOR", "N_BASE", "N_LOW", "N_TOP", "PAIR_STEPS", "PHASE_STEP",
-           "RESCAN", "Rows", "slowest_speed", "speed_grid"]
+           "RESCAN", "Rows", "phase_curve", "slowest_speed", "speed_grid"]
 
 #: Speeds per chunk of the former upward scan (a public name, kept; the scan chunks by points: CHUNK_ELEMENTS).
 CHUNK = 32
@@ -80,9 +86,16 @@ PHASE_STEP = math.pi / 4
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
+#: With one film, the rest of the grid rebuilt for the rows still scanned (module docstring) is kept
+#: if it holds at most this fraction of the speeds it replaces.
+COARSEN = 0.75
 
 
 
+#: Relative offsets above a film's bulk speed added to the phase curve's points (:func:`phase_curve`),
+#: 10 per decade: a chord of sqrt over one of these cells is within 1 % of it.
+_ONSET = np.geomspace(1e-12, 1e-2, 101)
+_ONSET.setflags(write=False)
 #: The points of (i) in t (module docstring).
 _TOP_T = np.geomspace(1e-7, 0.02, N_TOP, endpoint=False)
 _TOP_T.setflags(write=False)
@@ -152,8 +165,12 @@ def slowest_speed(st: IsoStack) -> float:
     return float(min(b * math.sqrt(_rayleigh_ratio(float(k))) for b, k in zip(beta, kap)))
 
 
-def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
-    """Ascending speeds (n,) in [c_floor, c_lim) (module docstring), for the rows' largest kh at each speed."""
+def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1,
+               curve: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """Ascending speeds (n,) in [c_floor, c_lim) (module docstring), for the rows' largest kh at each speed.
+
+    ``curve``: :func:`phase_curve` of ``st`` when already computed (it does not depend on the rows).
+    """
     c_lim = st.c_lim
     c_lo = 0.95 * slowest_speed(st)
     t_hi = math.sqrt(1.0 - (c_lo / c_lim) ** 2)
@@ -163,14 +180,7 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     low = _geometric(c_floor, c_lo, N_LOW) if c_floor < c_lo else np.zeros(0)
     parts = [c_lim * _TOP_ROOT, np.array([c_lo]), low]                      # c_lo itself, always
     if st.frac.size:
-        aux = _linspace(c_lo, c_lim, 4000)
-        nu = np.zeros(aux.size)
-        for v in (st.shear, st.longitudinal):
-            for i in range(st.frac.size):
-                j = int(np.searchsorted(aux, v[i], side="right"))        # the term is 0 below v (exactly)
-                if j < aux.size:
-                    a = aux[j:]
-                    nu[j:] += st.frac[i] * (np.sqrt(np.maximum((a / v[i]) ** 2 - 1.0, 0.0)))
+        aux, nu = phase_curve(st) if curve is None else curve
         phase = rows_of.kh_max(aux) * nu
         levels = np.arange(PHASE_STEP / fine, float(phase[-1]), PHASE_STEP / fine)
         if levels.size:
@@ -191,6 +201,32 @@ def speed_grid(st: IsoStack, rows_of: Rows, fine: int = 1) -> np.ndarray:
     keep &= (g == c_lo) | (np.abs(g - c_lo) > 1e-12 * c_lo)              # c_lo once (not also rounded from t_hi)
     keep &= (g >= min(c_floor, c_lo)) & (g < c_lim)
     return g[keep]
+
+
+def phase_curve(st: IsoStack) -> tuple[np.ndarray, np.ndarray]:
+    """Speeds aux (k,) from c_lo to c_lim (m/s) and sum_l h_l/H (nu_a + nu_b) of the films there (k,).
+
+    c_lo = 0.95 x :func:`slowest_speed`; the phase of the grid's part (iii) is kh_max(c) times the
+    second array (it does not depend on the rows), placed by linear interpolation between these
+    points: 4000 uniform ones and, above each film's bulk speed v in that range, v (1 + d) for
+    d = 1e-12 ... 1e-2 geometric (:data:`_ONSET`), where the phase rises as sqrt(c - v) (a chord
+    across the first uniform cell above v put a heavy film's first Love modes at kh = 100, all
+    within 0.2 m/s of its shear speed, in one cell: found by the count, not by the grid).
+    """
+    c_lo, c_lim = 0.95 * slowest_speed(st), st.c_lim
+    aux = _linspace(c_lo, c_lim, 4000)
+    onsets = [float(v[i]) for v in (st.shear, st.longitudinal) for i in range(st.frac.size) if c_lo < v[i] < c_lim]
+    if onsets:                                 # nu ~ sqrt(2 (c - v) / v) just above v: linear there only on these
+        more = (np.array(onsets)[:, None] * (1.0 + _ONSET)).ravel()
+        aux = np.sort(np.concatenate([aux, more[more < c_lim]]))
+    nu = np.zeros(aux.size)
+    for v in (st.shear, st.longitudinal):
+        for i in range(st.frac.size):
+            j = int(np.searchsorted(aux, v[i], side="right"))        # the term is 0 below v (exactly)
+            if j < aux.size:
+                a = aux[j:]
+                nu[j:] += st.frac[i] * (np.sqrt(np.maximum((a / v[i]) ** 2 - 1.0, 0.0)))
+    return aux, nu
 
 
 def _geometric(a: float, b: float, n: int) -> np.ndarray:
@@ -409,21 +445,29 @@ def _rescan_dips(st: IsoStack, prefix: str, rows_of: Rows, need: float, first: t
     return r, lo, hi, flo, fhi, c3, f3
 
 
-def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray
+def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray,
+                   curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True
                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
-    """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`)."""
+    """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`).
+
+    ``grid``: :func:`speed_grid` of all rows; ``curve``: its :func:`phase_curve` if at hand;
+    ``coarsen``: False keeps ``grid`` to the top (the rest of it is otherwise rebuilt for the rows
+    still scanned, :func:`_evaluate_both`; then the brackets are those of the separate scans,
+    :func:`_brackets`, bit for bit).
+    """
     if st.frac.size != 1:
         return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
     need = np.inf if modes is None else modes
     rows = np.arange(rows_of.base.size)
     grid_l = _family_grid(st, "L", grid)
-    FR, upR, FL, upL = _evaluate_both(st, grid, grid_l, rows_of, rows, need)
+    FR, upR, FL, upL, grid, grid_l = _evaluate_both(st, grid, grid_l, rows_of, rows, need, curve, coarsen)
     return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
             _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
 
 
 def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: Rows, rows: np.ndarray,
-                   need: float) -> tuple[np.ndarray, ...]:
+                   need: float, curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True
+                   ) -> tuple[np.ndarray, ...]:
     """:func:`_evaluate` of P-SV on ``grid`` and of SH on ``grid_l`` (:func:`_family_grid`) for one film, in one pass.
 
     Both families need the film's shear-wave functions (C_b, S_b at t = kh): they are computed once
@@ -444,6 +488,7 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
         up_l[:] = 1
     act_r, act_l = np.arange(n_r), np.arange(n_r)
+    top = float(rows_of.base[rows].max(initial=0.0))                  # the grid is for rows up to this base
     start = 0
     while start < n_c and (act_r.size or act_l.size):
         if not act_r.size and start < j0:                              # SH rows alone: from their grid on
@@ -480,7 +525,41 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
                            (Cb[first:, cols], Sb[first:, cols], gb[first:, cols]))
             act_r = _record(FR, up_r, found_r, act_r, start, stop, Fn, need)
         start = stop
-    return FR, up_r, FL, up_l
+        if coarsen and start < n_c and (act_r.size < n_r or act_l.size < n_r):
+            live = np.zeros(n_r, dtype=bool)
+            live[act_r] = True
+            live[act_l] = True
+            base_left = rows_of.base[rows[live]]
+            top_left = float(base_left.max(initial=0.0))
+            if curve is None:
+                curve = phase_curve(st)
+            # phase points the rest of the grid would lose: worth building it?
+            aux, nu = curve
+            c_s = float(grid[start - 1])
+            nu_s = float(np.interp(c_s, aux, nu))
+            per = nu[-1] / aux[-1] - nu_s / c_s if rows_of.freq else nu[-1] - nu_s
+            # (half the speeds left at least: fewer phase points bring base points back)
+            if (top - top_left) * per >= 0.5 * (n_c - start) * PHASE_STEP:
+                # the rows left have smaller kh: the rest of the grid for them alone, if it is coarser
+                top = top_left
+                tail = speed_grid(st, Rows(base_left, rows_of.freq), 1, curve)
+                tail = tail[tail > c_s]
+                if tail.size <= COARSEN * (n_c - start):
+                    grid = np.concatenate([grid[:start], tail])
+                    grid_l = _family_grid(st, "L", grid)
+                    n_c = grid.size
+                    j0 = n_c - (grid_l.size - 1)
+                    sp_r, sp_l = psv_speeds(st, grid), sh_speeds(st, grid_l)
+                    FR, FL = _regrid(FR, n_c, up_r), _regrid(FL, grid_l.size, up_l)
+    return FR, up_r, FL, up_l, grid, grid_l
+
+
+def _regrid(F: np.ndarray, n: int, upto: np.ndarray) -> np.ndarray:
+    """F (m, r) on a grid whose speeds from ``upto.max()`` on are replaced: (n, r), the values below kept."""
+    k = int(upto.max(initial=0))
+    out = np.empty((n, F.shape[1]))
+    out[:k] = F[:k]
+    return out
 
 
 def _record(F: np.ndarray, upto: np.ndarray, found: np.ndarray, act: np.ndarray, start: int, stop: int,
