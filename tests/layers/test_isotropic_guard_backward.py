@@ -18,9 +18,11 @@ from general_path import layered_general
 
 import surfwave
 import surfwave.layers.isotropic_guard as guard
+from surfwave.layers.counting import mode_count, sublayers
 from surfwave.layers.isotropic import iso_stack
-from surfwave.layers.isotropic_modes import family_roots
+from surfwave.layers.isotropic_modes import FLOOR, family_roots
 from surfwave.layers.isotropic_scan import Rows
+from surfwave.layers.partial import families, scaled_blocks
 from surfwave.layers.stack import resolve_stack
 
 SUB = {"E": 681.6019454227651, "nu": 0.1233962647007325, "rho": 1449.2962671448738}
@@ -156,3 +158,40 @@ def test_repair_never_drops_a_grid_mode(monkeypatch):
     monkeypatch.setattr(guard, "_modes_by_count", lambda *a, **k: none)
     got_c, got_vg = guard.check_families(stack, st, rows_of, ("R",), [(c[:, :5], vg[:, :5])], None)[0]
     assert (got_c == c[:, :5]).all() and (got_vg == vg[:, :5]).all() and (got_vg < 0).sum() == 1
+
+
+def test_three_film_stack_with_a_backward_mode(monkeypatch):
+    """A random three-film stack (stiff light / soft / stiff films on a soft substrate; seed 27 of a
+    study of 600 random 2-3 film stacks, 3 of which had a backward mode) at 2.598 GHz: 7 modes, S2
+    backward (v_g -73.1 m/s). Each (c, kh) is a mode of the checked fixed-kh answer at its kh (1e-10);
+    per family (forward) - (backward) below c_lim (1 - 1e-9) equals the Wittrick-Williams count
+    along the row (0 at the floor); S2's group velocity equals central differences of c(kh) at fixed
+    kh (1e-5 of c); the row passes the check (no repair)."""
+    sub = {"E": 105.5443592758609, "nu": -0.12070529772203586, "rho": 972.4236289539878}
+    films = [{"E": 501.78122751320933, "nu": 0.3028039088065537, "rho": 653.9275613566301, "thickness": 3.591465737491801e-07},
+             {"E": 7.0799421804575635, "nu": 0.43963998335074583, "rho": 2662.731865679023, "thickness": 3.4545287725445544e-07},
+             {"E": 312.69788643368094, "nu": 0.4072924307190725, "rho": 1852.291619987027, "thickness": 4.841584833911856e-07}]
+    f = 2597645134.1642213
+    calls = []
+    _modes_by_count = guard._modes_by_count
+    monkeypatch.setattr(guard, "_modes_by_count", lambda *a, **k: calls.append(1) or _modes_by_count(*a, **k))
+    r = surfwave.layered(sub, films, frequency=[f])
+    assert calls == []
+    ok = np.isfinite(r["c"][0])
+    c, kh, vg, lab = r["c"][0][ok], r["kh"][0][ok], r["group_velocity"][0][ok], r["mode"][0][ok]
+    assert c.size == 7 and list(lab[vg < 0]) == ["S2"]
+    at = surfwave.layered(sub, films, kh=kh)
+    for i in range(c.size):
+        assert np.nanmin(np.abs(at["c"][i] / c[i] - 1.0)) <= 1e-10
+    stack = resolve_stack(sub, films)
+    st, b = iso_stack(stack), scaled_blocks(stack)
+    wH = 2 * np.pi * f * stack.total_thickness
+    ends = np.array([FLOOR * float(st.shear.min()), st.c_lim * (1.0 - guard.TOP)])
+    for fam in families(b):
+        n = mode_count(b, fam, ends, (wH / ends)[:, None], "free", sublayers(b, wH / ends[0], float(ends[1])))[:, 0]
+        mine = np.array([m[0] in (("R", "S") if fam.prefix == "R" else ("L",)) for m in lab]) & (c < ends[1])
+        assert n[0] == 0 and n[1] == (mine & (vg > 0)).sum() - (mine & (vg < 0)).sum()
+    j, h = int(np.flatnonzero(vg < 0)[0]), 1e-5
+    fd = surfwave.layered(sub, films, kh=[kh[j] - h, kh[j] + h])
+    c2 = [fd["c"][q, int(np.nanargmin(np.abs(fd["c"][q] - c[j])))] for q in range(2)]
+    assert c[j] + kh[j] * (c2[1] - c2[0]) / (2 * h) == pytest.approx(vg[j], abs=1e-5 * c[j])
