@@ -174,7 +174,12 @@ def test_three_film_stack_with_a_backward_mode(monkeypatch):
     f = 2597645134.1642213
     calls = []
     _modes_by_count = guard._modes_by_count
-    monkeypatch.setattr(guard, "_modes_by_count", lambda *a, **k: calls.append(1) or _modes_by_count(*a, **k))
+
+    def spy(*a, **k):
+        calls.append(a[5])
+        return _modes_by_count(*a, **k)
+
+    monkeypatch.setattr(guard, "_modes_by_count", spy)
     r = surfwave.layered(sub, films, frequency=[f])
     assert calls == []
     ok = np.isfinite(r["c"][0])
@@ -187,8 +192,10 @@ def test_three_film_stack_with_a_backward_mode(monkeypatch):
     st, b = iso_stack(stack), scaled_blocks(stack)
     wH = 2 * np.pi * f * stack.total_thickness
     ends = np.array([FLOOR * float(st.shear.min()), st.c_lim * (1.0 - guard.TOP)])
+    nsub = sublayers(b, wH / ends[0], float(ends[1]))
+    assert nsub is not None
     for fam in families(b):
-        n = mode_count(b, fam, ends, (wH / ends)[:, None], "free", sublayers(b, wH / ends[0], float(ends[1])))[:, 0]
+        n = mode_count(b, fam, ends, (wH / ends)[:, None], "free", nsub)[:, 0]
         mine = np.array([m[0] in (("R", "S") if fam.prefix == "R" else ("L",)) for m in lab]) & (c < ends[1])
         assert n[0] == 0 and n[1] == (mine & (vg > 0)).sum() - (mine & (vg < 0)).sum()
     j, h = int(np.flatnonzero(vg < 0)[0]), 1e-5
