@@ -10,20 +10,35 @@ Check. Per family and per row, the number of modes found below c_top = c_lim (1 
 must equal the count's rise from the grid's floor to c_top (:func:`surfwave.layers.counting.mode_count`
 on the general Stroh blocks of the same stack: exact, pole-free), and the count at the floor must
 be 0 (no mode below it). With ``modes`` = N, a row holding N modes is checked at just above its
-N-th mode instead (the count there must be N: no slower mode missed). Rows at fixed frequency
-(kh = omega H / c) are counted at each speed's own kh: the count at (c, omega H / c) is the number
-of branches with omega_n(k) < omega at k = omega / c, which is the number of modes slower than c at
-that frequency for branches whose frequency rises with k (positive group velocity, as every
-guided mode below c_lim here). Modes above c_top (within t = sqrt(2 TOP) of the cut-off, where a
-mode enters alone) are not checked, nor rows at kh = 0 (the bare substrate) or rows whose films
-would need more than :data:`surfwave.layers.counting.MAX_SUB` sublayers for the count (buried gold:
-kh ~ 1000); their answer is the grid's.
+N-th mode instead (no slower mode missed). Modes above c_top (within t = sqrt(2 TOP) of the
+cut-off, where a mode enters alone) are not checked, nor rows at kh = 0 (the bare substrate) or
+rows whose films would need more than :data:`surfwave.layers.counting.MAX_SUB` sublayers for the
+count (buried gold: kh ~ 1000); their answer is the grid's.
+
+Fixed frequency. Rows at fixed frequency (kh = omega H / c) are counted at each speed's own kh:
+the count at (c, omega H / c) is the number of branches with omega_n(k) < omega at k = omega / c.
+Walking up in c along that line (k falling), a branch whose frequency rises with k is crossed once,
+forward (group velocity v_g > 0), and adds one; but a branch's omega(k) need not be monotone (a
+soft heavy film on a very stiff substrate: the S3 branch falls between kh 0.47 and 0.99, so one
+frequency meets it three times, the middle crossing backward with v_g ~ -92 m/s), and a backward
+crossing takes one away. So the count below c is (forward) - (backward) of the modes slower than c,
+not their number, and that difference (from the fast path's exact group velocities; a NaN one
+counts as forward) is what the check compares, with or without ``modes``. What this guarantees at
+fixed frequency: no forward mode and no backward mode missed ALONE (or any set of misses with
+unequal forward and backward numbers). A missed forward / backward PAIR leaves the count unchanged:
+it is not detectable by the count. At fixed kh every branch is crossed once (the count never falls
+with c) and the check is exact.
 
 Repair. In a row that fails, the modes are located by bisection on the count until every interval
-holds exactly one mode with a sign change of the secular function at its ends, and those brackets
-go to the fast path's own Newton refinement (:func:`surfwave.layers.isotropic_modes.refine_brackets`:
-the same speeds to ~1e-14 and the same exact group velocities). Bisection stops at intervals of
-relative width 1e-14 (a degenerate pair: the midpoint, twice).
+holds a rise (or, at fixed frequency, a fall) of exactly one with a sign change of the secular
+function at its ends, and those brackets go to the fast path's own Newton refinement
+(:func:`surfwave.layers.isotropic_modes.refine_brackets`: the same speeds to ~1e-14 and the same
+exact group velocities). Bisection stops at intervals of relative width 1e-14 (a degenerate pair:
+the midpoint, twice). At fixed kh the count has every mode below the check speed, and its modes
+replace the row's there. At fixed frequency it cannot isolate a forward / backward pair that shares
+an interval, so the repair never drops a mode the grid found (each is a sign change of the secular
+function in its own bracket: a true root): the row keeps all of them and gains those of the count
+that are not among them (within :data:`SAME`, relative). The repaired row is not checked again.
 
 Which stacks are checked (:func:`guarded`): every stack with two films or more. Close pairs need
 two places a mode can live in: a film buried under a faster one (SiO2 / AlN / gold on Si) but
@@ -49,7 +64,7 @@ from surfwave.layers.isotropic_modes import FLOOR, Rows, refine_brackets, roots_
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack
 
-__all__ = ["ALWAYS", "TOP", "check_families", "guarded", "row_counts"]
+__all__ = ["ALWAYS", "SAME", "TOP", "check_families", "guarded", "row_counts"]
 
 #: The count's top speed is c_lim (1 - TOP).
 TOP = 1e-9
@@ -59,6 +74,8 @@ ALWAYS = False
 MAX_SPLIT = 80
 #: Relative width at which two modes are taken as one degenerate pair.
 DEGENERATE = 1e-14
+#: Relative distance within which a mode of the count's repair is taken as one the grid found (fixed frequency).
+SAME = 1e-10
 #: Marks a count that could not be taken (too many sublayers, or a failed evaluation).
 UNCOUNTED = -10**6
 
@@ -126,8 +143,9 @@ def check_families(stack: Stack, st: IsoStack, rows_of: Rows, prefixes: tuple[st
     Returns
     -------
     list of (ndarray, ndarray)
-        ``sols`` where every row agrees with the count; the count's modes (refined by the fast
-        path's Newton iteration) in rows that did not. Unchanged for a stack :func:`guarded` leaves alone.
+        ``sols`` where every row agrees with the count; in rows that did not, the count's modes
+        (refined by the fast path's Newton iteration): below the check speed instead of the row's at
+        fixed kh, added to the row's at fixed frequency. Unchanged for a stack :func:`guarded` leaves alone.
     """
     if not guarded(stack):
         return sols
@@ -152,7 +170,10 @@ def _check(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, c: 
         full = np.isfinite(c[:, modes - 1])
         chk[full] = np.minimum(c[full, modes - 1] * (1.0 + 1e-10), c_top)
     with np.errstate(invalid="ignore"):
-        expected = (c < chk[:, None]).sum(axis=1)
+        below = c < chk[:, None]
+        if rows_of.freq:                            # the count is (forward) - (backward) there
+            below = np.where(vg < 0, -1, 1) * below
+    expected = below.sum(axis=1)
     n0 = row_counts(b, fam, rows_of, rows, np.full(rows.size, c_floor))
     n1 = row_counts(b, fam, rows_of, rows, chk[rows])
     counted = (n0 != UNCOUNTED) & (n1 != UNCOUNTED)
@@ -163,15 +184,19 @@ def _check(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, c: 
     # a mode below the floor (not seen in unstressed stacks): search from far below it, where the count is 0
     lo = np.where(n0[bad] == 0, c_floor, 1e-3 * c_floor)
     r, cr, vr = _modes_by_count(b, fam, st, prefix, rows_of, fix, lo, chk[fix], np.zeros(fix.size, dtype=int), n1[bad])
-    keep = ~np.isin(np.arange(n_rows), fix)
-    ik, jm = np.nonzero(np.isfinite(c) & keep[:, None])
-    R = np.concatenate([ik, r])
-    C = np.concatenate([c[ik, jm], cr])
-    V = np.concatenate([vg[ik, jm], vr])
-    # modes above the check speed of a fixed row (found by the fast path, not counted) stay
-    for row in fix:
-        above = np.isfinite(c[row]) & (c[row] >= chk[row])
-        R, C, V = np.r_[R, np.full(int(above.sum()), row)], np.r_[C, c[row, above]], np.r_[V, vg[row, above]]
+    if rows_of.freq:
+        # the count cannot see a forward / backward pair: every mode of the grid stays, the count's are added
+        R, C, V = _merge(c, vg, r, cr, vr)
+    else:
+        keep = ~np.isin(np.arange(n_rows), fix)
+        ik, jm = np.nonzero(np.isfinite(c) & keep[:, None])
+        R = np.concatenate([ik, r])
+        C = np.concatenate([c[ik, jm], cr])
+        V = np.concatenate([vg[ik, jm], vr])
+        # modes above the check speed of a fixed row (found by the fast path, not counted) stay
+        for row in fix:
+            above = np.isfinite(c[row]) & (c[row] >= chk[row])
+            R, C, V = np.r_[R, np.full(int(above.sum()), row)], np.r_[C, c[row, above]], np.r_[V, vg[row, above]]
     if modes is not None:
         srt = np.lexsort((C, R))
         R, C, V = R[srt], C[srt], V[srt]
@@ -180,24 +205,52 @@ def _check(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, c: 
     return roots_table(n_rows, R, C, V)
 
 
+def _merge(c: np.ndarray, vg: np.ndarray, r: np.ndarray, cr: np.ndarray, vr: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every mode of the grid's table (n_rows, width) and those of the count (m,) it lacks.
+
+    Returns rows, speeds (m/s) and group velocities (m/s), each (p,), unsorted.
+
+    A mode of the count is the grid's when an unmatched mode of the grid in its row lies within
+    :data:`SAME` (relative) of it (both come from the same Newton refinement, to ~1e-14).
+    """
+    ik, jm = np.nonzero(np.isfinite(c))
+    R, C, V = [ik], [c[ik, jm]], [vg[ik, jm]]
+    for row in np.unique(r):
+        grid = c[row][np.isfinite(c[row])]
+        free = np.ones(grid.size, dtype=bool)
+        new = np.zeros(0, dtype=int)
+        for q in np.flatnonzero(r == row):
+            d = np.where(free, np.abs(grid - cr[q]), np.inf)
+            j = int(np.argmin(d)) if d.size else -1
+            if j >= 0 and d[j] <= SAME * abs(cr[q]):
+                free[j] = False
+            else:
+                new = np.r_[new, q]
+        R, C, V = R + [r[new]], C + [cr[new]], V + [vr[new]]
+    return np.concatenate(R), np.concatenate(C), np.concatenate(V)
+
+
 def _modes_by_count(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: Rows, rows: np.ndarray,
                     lo: np.ndarray, hi: np.ndarray, n_lo: np.ndarray, n_hi: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every mode in (lo, hi) of each row (r,) (counts ``n_lo``, ``n_hi`` there): rows, speeds, group velocities (m,).
+    """The modes in (lo, hi) of each row (r,) (counts ``n_lo``, ``n_hi`` there): rows, speeds, group velocities (m,).
 
-    Bisection on the count until each interval holds one mode and the secular function changes sign
-    across it; then the fast path's Newton refinement of those brackets.
+    Bisection on the count until each interval's count rises or falls by one and the secular
+    function changes sign across it; then the fast path's Newton refinement of those brackets. At
+    fixed kh that is every mode; at fixed frequency an interval whose count does not change (a
+    forward / backward pair) is left.
     """
     br: list[tuple[np.ndarray, ...]] = []
     deg: list[tuple[np.ndarray, np.ndarray]] = []
     r = rows.copy()
     lo, hi, nl, nh = lo.astype(float), hi.astype(float), n_lo.copy(), n_hi.copy()
     for _ in range(MAX_SPLIT):
-        live = (nh > nl) & (nl != UNCOUNTED) & (nh != UNCOUNTED)
+        live = (nh != nl) & (nl != UNCOUNTED) & (nh != UNCOUNTED)
         r, lo, hi, nl, nh = r[live], lo[live], hi[live], nl[live], nh[live]
         if r.size == 0:
             break
-        one = np.flatnonzero(nh - nl == 1)
+        one = np.flatnonzero(np.abs(nh - nl) == 1)   # a fall: a backward mode (fixed frequency)
         if one.size:
             f_lo = secular_at(st, prefix, rows_of, r[one], lo[one])
             f_hi = secular_at(st, prefix, rows_of, r[one], hi[one])
@@ -209,7 +262,8 @@ def _modes_by_count(b: Blocks, fam: Family, st: IsoStack, prefix: str, rows_of: 
             out = np.zeros(r.size, dtype=bool)
         tiny = ~out & (hi - lo <= DEGENERATE * hi)
         if tiny.any():
-            deg.append((np.repeat(r[tiny], nh[tiny] - nl[tiny]), np.repeat(0.5 * (lo + hi)[tiny], nh[tiny] - nl[tiny])))
+            k = np.abs(nh - nl)[tiny]
+            deg.append((np.repeat(r[tiny], k), np.repeat(0.5 * (lo + hi)[tiny], k)))
         go = ~out & ~tiny
         r, lo, hi, nl, nh = r[go], lo[go], hi[go], nl[go], nh[go]
         if r.size == 0:

@@ -36,7 +36,9 @@ cell into two brackets; the pair is missed only if the dip between the two roots
 (With ``modes`` = N a minimum above a row's N-th sign change is not hunted: both its roots would
 rank above N, so nothing kept changes.)
 As a last guard a row holding fewer modes than rows on both sides of it (modes enter only at c_lim,
-so counts are monotone in kh and in frequency) is searched again on a grid :data:`RESCAN` times finer.
+so counts are monotone in kh; in frequency too, except that a branch whose omega(k) is not monotone
+holds a forward / backward pair over a window of frequencies only: a row between two such windows
+is searched again for nothing) is searched again on a grid :data:`RESCAN` times finer.
 This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
 films or more against the exact mode count and re-solves those that fail.
 """
