@@ -102,9 +102,9 @@ def test_rank_jumps_sees_runs() -> None:
     order = rows.copy()
     lo = 100.0 - 2.0 * rows
     lo[3:6] += 50.0                                               # rows 3, 4, 5 skipped a pair
-    assert _rank_jumps(rows, lo, lo + 1.0, order, 1, 10).tolist() == [3, 4, 5]
+    assert _rank_jumps(rows, lo, lo + 1.0, np.ones(10, int), order, 1).tolist() == [3, 4, 5]
     lo = 100.0 - 5.0 * rows                                       # falls by 5 cells a row: no jump
-    assert _rank_jumps(rows, lo, lo + 1.0, order, 1, 10).size == 0
+    assert _rank_jumps(rows, lo, lo + 1.0, np.ones(10, int), order, 1).size == 0
     lo = np.full(10, 100.0)
     lo[4] = 101.0                                                 # the next cell: touching, not above
-    assert _rank_jumps(rows, lo, lo + 1.0, order, 1, 10).size == 0
+    assert _rank_jumps(rows, lo, lo + 1.0, np.ones(10, int), order, 1).size == 0

@@ -43,14 +43,15 @@ lost a pair below it holds N brackets like its neighbours, the N-th being a mode
 row is also searched again when its k-th bracket (k <= N) lies wholly above the k-th brackets of
 rows on both sides within :data:`JUMP_ROWS` rows (:func:`_rank_jumps`: a mode's speed is continuous
 along the rows), and the finer grid's brackets replace the row's if one of them lies wholly below
-the first scan's bracket of the same rank; rows so fixed can reveal their neighbours in a run, so
-this repeats until no row is added.
+the first scan's bracket of the same rank; this repeats until no row is added (a row's new
+brackets change what the ranks of its neighbours show).
 Invariant: with ``modes`` = N the first N modes of each family are those of ``modes`` = None, to
-the refinement's tolerance, with the same guarantees (the same grid and hunt below the N-th sign
-change; a rescan of ``modes`` = None that changes one of the first N modes is one of a row that
-skipped a pair among them, which the ranks show instead of the count). Checked on the stack above
-and a seeded random sample of one-film stacks (tests/layers/test_isotropic_needpair.py); the rank
-rule is a heuristic like the count rule (a run of more than :data:`JUMP_ROWS` rows all skipping
+the refinement's tolerance, with the same guarantees (the grid by the same rule: that of
+``modes`` = None, or above the speeds already scanned rebuilt by it for the rows left; the same hunt
+below the N-th sign change; a rescan of ``modes`` = None that changes one of the first N modes is
+one of a row that skipped a pair among them, which the ranks show instead of the count). Checked on
+the stack above and a seeded random sample of one-film stacks (tests/layers/test_isotropic_needpair.py);
+the rank rule is a heuristic like the count rule (a run of more than :data:`JUMP_ROWS` rows all skipping
 the pair would escape it, as a run spanning the ends escapes the count rule).
 This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
 films or more against the exact mode count and re-solves those that fail.
@@ -464,8 +465,15 @@ def _rescan_dips(st: IsoStack, prefix: str, rows_of: Rows, need: float, first: t
     fine_grid = None
     while True:
         if need < np.inf:
-            dip = np.union1d(dip, _rank_jumps(r, lo, hi, order, int(need), n_rows))
-        dip = dip[~done[dip]]
+            jump = _rank_jumps(r, lo, hi, counts, order, int(need))
+            if jump.size:
+                add = np.zeros(n_rows, dtype=bool)
+                add[dip] = True
+                add[jump] = True
+                add &= ~done
+                dip = np.flatnonzero(add)
+            elif done.any():
+                dip = dip[~done[dip]]
         if not dip.size:
             break
         done[dip] = True
@@ -497,7 +505,7 @@ def _rank_table(r: np.ndarray, v: np.ndarray, n_rows: int, width: int) -> np.nda
     return out
 
 
-def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, order: np.ndarray, need: int, n_rows: int
+def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, order: np.ndarray, need: int
                 ) -> np.ndarray:
     """Rows whose k-th bracket (k < ``need``) lies wholly above the k-th brackets of a row on each side
     within :data:`JUMP_ROWS` rows.
@@ -505,19 +513,29 @@ def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, order: np.ndarray
     With ``need`` = N a row stops at its N-th sign change, so a row that lost two modes in one cell
     holds as many brackets as its neighbours (the count rule cannot see it); its k-th bracket is then
     a mode two ranks higher, above those of the rows around it (a mode's speed is continuous along
-    the rows); so is every row of a run of up to :data:`JUMP_ROWS` such rows. ``order``: the rows in
-    ascending kh or frequency.
+    the rows); so is every row of a run of up to :data:`JUMP_ROWS` such rows. Brackets (m,) sorted by
+    (row r, lower speed lo); ``counts`` (n_rows,): brackets per row; ``order``: the rows in ascending
+    kh or frequency.
     """
     n = order.size
     if n < 3:
         return np.zeros(0, dtype=np.intp)
-    LO, HI = _rank_table(r, lo, n_rows, need)[order], _rank_table(r, hi, n_rows, need)[order]
-    left, right = np.zeros(LO.shape, dtype=bool), np.zeros(LO.shape, dtype=bool)
-    with np.errstate(invalid="ignore"):                                # NaN compares False
-        for d in range(1, min(JUMP_ROWS, n - 1) + 1):
-            left[d:] |= LO[d:] > HI[:-d]
-            right[:-d] |= LO[:-d] > HI[d:]
-    return order[(left & right).any(axis=1)]
+    d = min(JUMP_ROWS, n - 1)
+    k = np.arange(r.size) - (np.cumsum(counts) - counts)[r]            # rank within the row (< need)
+    pos = np.empty(counts.size, dtype=np.intp)                         # position along the rows
+    pos[order] = np.arange(n)
+    p = pos[r]
+    LO = np.full((n, need), np.nan)                                    # (NaN compares False)
+    LO[p, k] = lo
+    HI = np.full((n + 2 * d, need), np.inf)                            # padded by d rows each side
+    HI[p + d, k] = hi
+    below, above = HI[d - 1:d - 1 + n].copy(), HI[d + 1:d + 1 + n].copy()   # least of the d rows below / above
+    for j in range(2, d + 1):
+        np.minimum(below, HI[d - j:d - j + n], out=below)
+        np.minimum(above, HI[d + j:d + j + n], out=above)
+    jump = LO > below
+    jump &= LO > above
+    return order[jump.any(axis=1)]
 
 
 def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_rows: int, need: int) -> np.ndarray:
