@@ -108,3 +108,13 @@ def test_rank_jumps_sees_runs() -> None:
     lo = np.full(10, 100.0)
     lo[4] = 101.0                                                 # the next cell: touching, not above
     assert _rank_jumps(rows, lo, lo + 1.0, np.ones(10, int), order, 1).size == 0
+
+
+def test_huge_mode_limit_is_all_modes(unchecked: object) -> None:
+    """modes far above the number of modes (10**9) gives every mode: the same record as modes=None
+    (and no table as wide as ``modes``). Reference: modes=None."""
+    rng = np.random.default_rng(376)
+    sub, film, vs = _film_stack(rng)
+    kh = np.linspace(0.1, 30.0, 40)
+    full = surfwave.layered(sub, [film], kh=kh)
+    _assert_first(surfwave.layered(sub, [film], kh=kh, modes=10**9), full, 10**9, range(40))

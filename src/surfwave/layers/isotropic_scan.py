@@ -518,7 +518,8 @@ def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, counts: np.ndarra
     kh or frequency.
     """
     n = order.size
-    if n < 3:
+    need = min(need, int(counts.max(initial=0)))                       # (the tables' width: no wider than used)
+    if n < 3 or need == 0:
         return np.zeros(0, dtype=np.intp)
     d = min(JUMP_ROWS, n - 1)
     k = np.arange(r.size) - (np.cumsum(counts) - counts)[r]            # rank within the row (< need)
@@ -541,6 +542,7 @@ def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, counts: np.ndarra
 def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_rows: int, need: int) -> np.ndarray:
     """Per row (n_rows,): a bracket of the rescan (rows r2, upper speeds hi2) lies wholly below the first
     scan's bracket of the same rank (rows r, lower speeds lo): the first scan skipped a mode there."""
+    need = min(need, max(r.size, r2.size))                             # (the tables' width: no wider than used)
     LO, HI2 = _rank_table(r, lo, n_rows, need), _rank_table(r2, hi2, n_rows, need)
     with np.errstate(invalid="ignore"):
         out = np.any(HI2 <= LO, axis=1)
