@@ -39,6 +39,22 @@ As a last guard a row holding fewer modes than rows on both sides of it (modes e
 so counts are monotone in kh; in frequency too, except that a branch whose omega(k) is not monotone
 holds a forward / backward pair over a window of frequencies only: a row between two such windows
 is searched again for nothing) is searched again on a grid :data:`RESCAN` times finer.
+With ``modes`` = N that count is capped at N (a row stops at its N-th sign change), so a row that
+lost a pair below it holds N brackets like its neighbours, the N-th being a mode two ranks higher
+(a one-film stack at 120 frequencies returned the mode above a pair 2 m/s apart as "S2"): there a
+row is also searched again when its k-th bracket (k <= N) lies wholly above the k-th brackets of
+rows on both sides within :data:`JUMP_ROWS` rows (:func:`_rank_jumps`: a mode's speed is continuous
+along the rows), and the finer grid's brackets replace the row's if one of them lies wholly below
+the first scan's bracket of the same rank; this repeats until no row is added (a row's new
+brackets change what the ranks of its neighbours show).
+Invariant: with ``modes`` = N the first N modes of each family are those of ``modes`` = None, to
+the refinement's tolerance, with the same guarantees (the grid by the same rule: that of
+``modes`` = None, or above the speeds already scanned rebuilt by it for the rows left; the same hunt
+below the N-th sign change; a rescan of ``modes`` = None that changes one of the first N modes is
+one of a row that skipped a pair among them, which the ranks show instead of the count). Checked on
+the stack above and a seeded random sample of one-film stacks (tests/layers/test_isotropic_needpair.py);
+the rank rule is a heuristic like the count rule (a run of more than :data:`JUMP_ROWS` rows all skipping
+the pair would escape it, as a run spanning the ends escapes the count rule).
 This is not a proof: :mod:`surfwave.layers.isotropic_guard` checks the rows of stacks with two
 films or more against the exact mode count and re-solves those that fail.
 """
@@ -61,8 +77,8 @@ from surfwave.layers.isotropic import (
     wave_block,
 )
 
-__all__ = ["CHUNK", "CHUNK_ELEMENTS", "CHUNK_MIN", "FLOOR", "N_BASE", "N_LOW", "N_TOP", "PAIR_STEPS", "PHASE_STEP",
-           "RESCAN", "Rows", "phase_curve", "slowest_speed", "speed_grid"]
+__all__ = ["CHUNK", "CHUNK_ELEMENTS", "CHUNK_MIN", "FLOOR", "JUMP_ROWS", "N_BASE", "N_LOW", "N_TOP", "PAIR_STEPS",
+           "PHASE_STEP", "RESCAN", "Rows", "phase_curve", "slowest_speed", "speed_grid"]
 
 #: Speeds per chunk of the former upward scan (a public name, kept; the scan chunks by points: CHUNK_ELEMENTS).
 CHUNK = 32
@@ -88,6 +104,9 @@ PHASE_STEP = math.pi / 4
 PAIR_STEPS = 10
 #: Refinement factor of the rescan of rows with too few modes.
 RESCAN = 4
+#: With ``modes`` = N, a row whose k-th bracket lies above those of rows on both sides within this many
+#: rows is rescanned (:func:`_rank_jumps`).
+JUMP_ROWS = 4
 #: With one film, the rest of the grid rebuilt for the rows still scanned (module docstring) is kept
 #: if it holds at most this fraction of the speeds it replaces.
 COARSEN = 0.75
@@ -430,21 +449,106 @@ def _brackets(st: IsoStack, prefix: str, rows_of: Rows, modes: int | None, grid:
 
 def _rescan_dips(st: IsoStack, prefix: str, rows_of: Rows, need: float, first: tuple[np.ndarray, ...]
                  ) -> tuple[np.ndarray, ...]:
-    """Brackets ``first`` of :func:`_scan`, with the rows holding fewer modes than rows on both sides of
-    them (in ascending kh or frequency) scanned again on the :data:`RESCAN` times finer grid."""
+    """Brackets ``first`` of :func:`_scan`, with the rows that look short of a mode scanned again on the
+    :data:`RESCAN` times finer grid: those holding fewer modes than rows on both sides of them (in
+    ascending kh or frequency) and, with ``need`` finite, those whose k-th bracket lies above the
+    k-th brackets of rows on both sides (:func:`_rank_jumps`), repeated until no row is added.
+
+    A row's rescan replaces its brackets if it holds more of them or, holding as many, one of them
+    lies wholly below the bracket of the same rank (a mode the first scan skipped).
+    """
     n_rows = rows_of.base.size
     r, lo, hi, flo, fhi, c3, f3 = first
     counts = np.bincount(r, minlength=n_rows)
     order = np.argsort(rows_of.base, kind="stable")
     cs = counts[order]
     dip = order[cs < np.minimum(np.maximum.accumulate(cs), np.maximum.accumulate(cs[::-1])[::-1])]
-    if dip.size:
-        more = _scan(st, prefix, _family_grid(st, prefix, speed_grid(st, rows_of, RESCAN)), rows_of, dip, need)
+    done = np.zeros(n_rows, dtype=bool)
+    fine_grid = None
+    while True:
+        if need < np.inf:
+            jump = _rank_jumps(r, lo, hi, counts, order, int(need))
+            if jump.size:
+                add = np.zeros(n_rows, dtype=bool)
+                add[dip] = True
+                add[jump] = True
+                add &= ~done
+                dip = np.flatnonzero(add)
+            elif done.any():
+                dip = dip[~done[dip]]
+        if not dip.size:
+            break
+        done[dip] = True
+        if fine_grid is None:
+            fine_grid = _family_grid(st, prefix, speed_grid(st, rows_of, RESCAN))
+        more = _scan(st, prefix, fine_grid, rows_of, dip, need)
         better = np.bincount(more[0], minlength=n_rows) > counts
+        if need < np.inf:
+            better |= _skipped(r, lo, more[0], more[2], n_rows, int(need))
         keep, keep2 = ~better[r], better[more[0]]
         r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u[keep], v[keep2]])
                                        for u, v in zip((r, lo, hi, flo, fhi, c3, f3), more))
+        if need == np.inf:                                             # (the count rule alone: one pass)
+            break
+        if better.any():                                               # by (row, lower speed) again
+            srt = np.lexsort((lo, r))
+            r, lo, hi, flo, fhi, c3, f3 = (v[srt] for v in (r, lo, hi, flo, fhi, c3, f3))
+            counts = np.bincount(r, minlength=n_rows)
+        dip = np.zeros(0, dtype=np.intp)
     return r, lo, hi, flo, fhi, c3, f3
+
+
+def _rank_table(r: np.ndarray, v: np.ndarray, n_rows: int, width: int) -> np.ndarray:
+    """Values v (m,) of brackets sorted by (row r, lower speed) as a (n_rows, width) table by rank, NaN-padded."""
+    out = np.full((n_rows, width), np.nan)
+    k = np.arange(r.size) - np.searchsorted(r, r)
+    m = k < width
+    out[r[m], k[m]] = v[m]
+    return out
+
+
+def _rank_jumps(r: np.ndarray, lo: np.ndarray, hi: np.ndarray, counts: np.ndarray, order: np.ndarray, need: int
+                ) -> np.ndarray:
+    """Rows whose k-th bracket (k < ``need``) lies wholly above the k-th brackets of a row on each side
+    within :data:`JUMP_ROWS` rows.
+
+    With ``need`` = N a row stops at its N-th sign change, so a row that lost two modes in one cell
+    holds as many brackets as its neighbours (the count rule cannot see it); its k-th bracket is then
+    a mode two ranks higher, above those of the rows around it (a mode's speed is continuous along
+    the rows); so is every row of a run of up to :data:`JUMP_ROWS` such rows. Brackets (m,) sorted by
+    (row r, lower speed lo); ``counts`` (n_rows,): brackets per row; ``order``: the rows in ascending
+    kh or frequency.
+    """
+    n = order.size
+    need = min(need, int(counts.max(initial=0)))                       # (the tables' width: no wider than used)
+    if n < 3 or need == 0:
+        return np.zeros(0, dtype=np.intp)
+    d = min(JUMP_ROWS, n - 1)
+    k = np.arange(r.size) - (np.cumsum(counts) - counts)[r]            # rank within the row (< need)
+    pos = np.empty(counts.size, dtype=np.intp)                         # position along the rows
+    pos[order] = np.arange(n)
+    p = pos[r]
+    LO = np.full((n, need), np.nan)                                    # (NaN compares False)
+    LO[p, k] = lo
+    HI = np.full((n + 2 * d, need), np.inf)                            # padded by d rows each side
+    HI[p + d, k] = hi
+    below, above = HI[d - 1:d - 1 + n].copy(), HI[d + 1:d + 1 + n].copy()   # least of the d rows below / above
+    for j in range(2, d + 1):
+        np.minimum(below, HI[d - j:d - j + n], out=below)
+        np.minimum(above, HI[d + j:d + j + n], out=above)
+    jump = LO > below
+    jump &= LO > above
+    return order[jump.any(axis=1)]
+
+
+def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_rows: int, need: int) -> np.ndarray:
+    """Per row (n_rows,): a bracket of the rescan (rows r2, upper speeds hi2) lies wholly below the first
+    scan's bracket of the same rank (rows r, lower speeds lo): the first scan skipped a mode there."""
+    need = min(need, max(r.size, r2.size))                             # (the tables' width: no wider than used)
+    LO, HI2 = _rank_table(r, lo, n_rows, need), _rank_table(r2, hi2, n_rows, need)
+    with np.errstate(invalid="ignore"):
+        out = np.any(HI2 <= LO, axis=1)
+    return out
 
 
 def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray,
