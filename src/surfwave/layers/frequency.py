@@ -1,13 +1,37 @@
 """Modes of a stack at given frequencies: each mode at its own kh = 2 pi f H / c.
 
 At a fixed frequency f the modes of a stack of total film thickness H have different
-wavenumbers. For each family and mode index j the dispersion curve is first computed on a kh grid
-(:func:`surfwave.layers.modes.family_modes`) with its group velocity; omega(kh) H = c_j(kh) kh
-(monotone, slope v_g) is inverted by cubic Hermite interpolation to give a start (kh = omega H /
-c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on
-g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g (the group velocity,
-:func:`surfwave.layers.fields.mode_fields`) polishes it;
-every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh measures the error.
+wavenumbers. For each family and branch j (the j-th slowest mode at fixed kh) the dispersion curve
+is first computed on a kh grid (:func:`surfwave.layers.modes.family_modes`) with its group velocity,
+the slope of omega(kh) H = c_j(kh) kh. That curve need not rise with kh: where v_g < 0 (a backward
+wave, e.g. a soft heavy film on a much stiffer substrate) it falls, and one frequency meets the branch
+two or three times. Every crossing is bracketed (:mod:`surfwave.layers.crossings`): each grid cell
+across which omega H - 2 pi f H changes sign (or vanishes at a grid point), the branch being sampled
+also at the turning points of each cell's cubic Hermite model where they could hide crossings, and
+the cut-off cell below the curve's first grid point (start kh = omega H / c_lim there). In each
+bracket the start is the inverse cubic Hermite interpolation of the cell (a monotone cell; linear
+otherwise), and Newton's method on g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g
+(:func:`surfwave.layers.fields.mode_fields`) polishes it, kept inside the bracket (bisection where
+a step would leave it, near a turning point). Every iterate is an exact mode of the stack, so
+the residual 2 pi f H - c kh measures the error.
+
+Guaranteed: one mode per sign change of omega H - 2 pi f H between consecutive samples of a branch
+(the samples are exact modes), distinct brackets giving distinct modes. Not guaranteed: two
+crossings between the same two samples, i.e. a frequency so close to a branch's local extremum of
+omega that both crossings lie within one cell and the cell's Hermite model does not show the
+extremum reaching it (within the model's error, O(h^4) of omega for a grid step h); such crossings are
+then both missed (never one of them: the parity of a branch's crossings is kept), and appear as the
+frequency moves away from the extremum. A branch that turns within its cut-off cell, or beyond the
+grid's last kh, is not followed there.
+
+Labels at fixed frequency: the modes of each family at one frequency are ordered by speed and
+labelled by rank (R, S1, S2, ...; L0, L1, ...; M0, M1, ...), as on the isotropic path. Where every
+branch's omega rises with kh this is the branch index, the label of the same mode at fixed kh;
+where a branch is not monotone, its two or three crossings take consecutive ranks, so a label at
+fixed frequency may name another branch than the same label at fixed kh = 2 pi f H / c. A mode of
+branch j has rank >= j: at the mode's kh the line c = omega H / kh lies above every slower branch
+i < j, and at large kh below it, so branch i crosses the frequency at a larger kh, i.e. at a lower
+speed; ranks 0 ... r therefore need branches 0 ... r only (:func:`mode_speeds_at_frequency`).
 """
 from __future__ import annotations
 
@@ -17,6 +41,7 @@ import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
+from surfwave.layers.crossings import brackets, turning_points
 from surfwave.layers.fields import mode_fields
 from surfwave.layers.group_check import checked_group_velocity
 from surfwave.layers.modes import family_modes, label_family, lowest_speed
@@ -28,8 +53,10 @@ __all__ = ["at_frequency", "mode_speeds_at_frequency"]
 
 #: Points of the kh grid of the starting curves.
 GRID = 160
-#: Newton steps at most.
+#: Newton steps at most (per crossing).
 NEWTON = 8
+#: Bisection steps at most (per crossing), where a Newton step would leave the bracket.
+BISECT = 40
 
 
 def _frequencies(frequency) -> np.ndarray:
@@ -41,28 +68,14 @@ def _frequencies(frequency) -> np.ndarray:
     return f
 
 
-def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """kh at omega H = target on the curve (w ascending, kh) with dw/dkh = slope: cubic Hermite in w; NaN outside."""
-    out = np.full(target.size, np.nan)
-    i = np.searchsorted(w, target, side="right") - 1
-    inside = (i >= 0) & (i < w.size - 1)
-    exact = target == w[-1]
-    i = i[inside]
-    h = w[i + 1] - w[i]
-    s = (target[inside] - w[i]) / h
-    d0, d1 = h / slope[i], h / slope[i + 1]
-    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
-    out[inside] = h00 * kh[i] + h10 * d0 + h01 * kh[i + 1] + h11 * d1
-    out[exact] = kh[-1]
-    return out
-
-
 def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False,
                  modes: int | None = None) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies).
 
-    K^2 of a piezoelectric stack compares the free and metallized speeds of the same mode label at
-    the same frequency. ``modes``: at most that many modes per family (None: all).
+    Every crossing of each branch with the frequency is a mode (backward waves, v_g < 0, included);
+    labels are ranks within the family at that frequency (see the module's docstring). K^2 of a
+    piezoelectric stack compares the free and metallized speeds of the same mode label at the same
+    frequency. ``modes``: at most that many modes per family, the slowest at each frequency (None: all).
     """
     from surfwave.layers.solve import k2_pair
 
@@ -159,80 +172,181 @@ def _start_grid(b: Blocks, f: np.ndarray, H: float) -> tuple[np.ndarray, np.ndar
 
 def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarray, electrical: str | Boundary,
                          columns: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Speeds and group velocities (n, n_f) of one family's modes at omega H = ``wH`` (m/s).
+    """Speeds and group velocities (n, m) of one family's modes at omega H = ``wH`` (m/s), ascending per row.
 
-    ``columns``: only these mode indices of the family (the others stay NaN); each mode is solved
-    on its own (the start from the curve on ``grid``, then Newton), so the numbers do not depend
-    on which others are solved.
+    Column r is the family's r-th slowest mode at that frequency (its label: :func:`label` (prefix, r)),
+    whichever branch it lies on (see the module's docstring). ``columns``: only these ranks are wanted
+    (the others stay NaN); they need the branches 0 ... max(columns) alone, each solved on its own
+    (the start from the curve on ``grid``, then Newton), so the numbers do not depend on which others
+    are solved.
     """
     slowest = columns is not None and list(columns) == [0]             # the scans may stop above it
     cg = family_modes(b, fam, grid, electrical=electrical, lowest=slowest)  # (GRID, n_f)
-    C = np.full((wH.size, cg.shape[1]), np.nan)
-    V = np.full(C.shape, np.nan)
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-    wanted = list(range(cg.shape[1])) if columns is None else [j for j in columns if j < cg.shape[1]]
+    top = cg.shape[1] if columns is None else min(max(columns, default=-1) + 1, cg.shape[1])
+    found: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []       # (rows, c, v) of each branch
     zero = np.flatnonzero(wH == 0)                                   # f = 0: the bare substrate's modes
-    live0 = np.array([j for j in wanted if np.isfinite(cg[0, j])], dtype=int)
+    live0 = np.array([j for j in range(top) if np.isfinite(cg[0, j])], dtype=int)
     if zero.size and live0.size:
-        C[np.ix_(zero, live0)] = cg[0, live0]
-        V[np.ix_(zero, live0)] = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
-    for j in wanted:
+        v0 = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
+        found.append((np.repeat(zero, live0.size), np.tile(cg[0, live0], zero.size), np.tile(v0, zero.size)))
+    for j in range(top):
         ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
         if ok.size < 2:
             continue
-        vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical, check=False)["group_velocity"]
-        w = cg[ok, j] * grid[ok]                                     # omega H along the curve
-        kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
-        # between the last grid point without the mode and the first with it: the cut-off is
-        # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
-        below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
-        kh[below] = wH[below] / c_lim
-        rows = np.flatnonzero(np.isfinite(kh))
-        _newton(b, fam, j, kh, rows, wH, C, V, electrical, slowest, check=False)
-        # the energy velocity checked once at the converged modes (surfwave.layers.group_check);
-        # where the check replaced it (a mode trapped under a barrier), Newton again with checked slopes
-        rows = np.flatnonzero(np.isfinite(C[:, j]) & np.isfinite(kh) & (kh > 0))
-        if rows.size:
-            vc = checked_group_velocity(b, fam, C[rows, j], wH[rows] / C[rows, j], V[rows, j], electrical)
-            redo = rows[~(vc == V[rows, j])]
-            V[rows, j] = vc
-            if redo.size:
-                _newton(b, fam, j, kh, redo, wH, C, V, electrical, slowest, check=True)
-    return C, V
+        sol = _branch_crossings(b, fam, j, grid, ok, cg[ok, j], wH, c_lim, electrical, slowest)
+        found.append(_polish(b, fam, j, sol, wH, electrical, slowest))
+    return _ranked(found, wH.size, columns)
 
 
-def _newton(b: Blocks, fam: Family, j: int, kh: np.ndarray, rows: np.ndarray, wH: np.ndarray, C: np.ndarray,
-            V: np.ndarray, electrical: str | Boundary, slowest: bool, check: bool) -> None:
-    """Newton steps on c_j(kh) kh = omega H for mode j at ``rows``, updating kh (n,), C and V (n, n_f) in place."""
+def _branch_crossings(b: Blocks, fam: Family, j: int, grid: np.ndarray, ok: np.ndarray, c: np.ndarray,
+                      wH: np.ndarray, c_lim: float, electrical: str | Boundary, slowest: bool) -> dict:
+    """Every crossing of branch j (sampled at grid[ok], speeds c) with each omega H (n,): brackets and starts.
+
+    The branch is sampled at the grid and, in each cell, where the cubic Hermite model of omega H(kh)
+    has zero slope (:func:`surfwave.layers.crossings.turning_points`; only non-monotone cells have
+    such points); a target below the first sample but above c_lim x the grid point before it is the
+    cut-off cell's: its bracket [omega H / c_lim, first sample] (the root's kh is above omega H / c_lim,
+    the mode being slower than c_lim), its start omega H / c_lim (where the mode is absent, the cut-off's
+    omega H is above the target, omega H rising from the cut-off: no crossing, and the start is
+    dropped). Returns arrays (r,): ``row``, ``lo``, ``hi``, ``sign_lo`` and ``kh`` (the start).
+    """
+    kh = grid[ok]
+    vg = mode_fields(b, fam, c, kh, electrical, check=False)["group_velocity"]
+    extra = turning_points(kh, c * kh, vg, wH)
+    if extra.size:
+        ce = family_modes(b, fam, extra, electrical=electrical, lowest=slowest)
+        ce = ce[:, j] if ce.shape[1] > j else np.full(extra.size, np.nan)
+        keep = np.isfinite(ce)
+        if keep.any():
+            ve = mode_fields(b, fam, ce[keep], extra[keep], electrical, check=False)["group_velocity"]
+            order = np.argsort(np.concatenate([kh, extra[keep]]), kind="stable")
+            kh = np.concatenate([kh, extra[keep]])[order]
+            c = np.concatenate([c, ce[keep]])[order]
+            vg = np.concatenate([vg, ve])[order]
+    w = c * kh                                                       # omega H along the curve
+    row, lo, hi, sign_lo, start = brackets(kh, w, vg, wH)
+    below = np.flatnonzero((wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)]))
+    kc = wH[below] / c_lim
+    return {"row": np.concatenate([row, below]), "lo": np.concatenate([lo, kc]),
+            "hi": np.concatenate([hi, np.full(below.size, kh[0])]),
+            "sign_lo": np.concatenate([sign_lo, -np.ones(below.size)]), "kh": np.concatenate([start, kc])}
+
+
+def _polish(b: Blocks, fam: Family, j: int, sol: dict, wH: np.ndarray, electrical: str | Boundary,
+            slowest: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Newton on every crossing of branch j (``sol`` of :func:`_branch_crossings`); (rows, c, v) of the modes.
+
+    The energy velocity is checked once at the converged modes (surfwave.layers.group_check); where
+    the check replaced it (a mode trapped under a barrier), Newton runs again with checked slopes.
+    """
+    rows = sol["row"]
+    C, V = np.full(rows.size, np.nan), np.full(rows.size, np.nan)
+    kh = sol["kh"].copy()
+    lo, hi = sol["lo"].copy(), sol["hi"].copy()
+    target = wH[rows]
+    all_ = np.arange(rows.size)
+    _newton(b, fam, j, all_, kh, lo, hi, sol["sign_lo"], target, C, V, electrical, slowest, False)
+    live = np.flatnonzero(np.isfinite(C) & np.isfinite(kh) & (kh > 0))
+    if live.size:
+        vc = checked_group_velocity(b, fam, C[live], target[live] / C[live], V[live], electrical)
+        redo = live[~(vc == V[live])]
+        V[live] = vc
+        if redo.size:
+            _newton(b, fam, j, redo, kh, lo, hi, sol["sign_lo"], target, C, V, electrical, slowest,
+                    True)
+    return rows, C, V
+
+
+def _newton(b: Blocks, fam: Family, j: int, idx: np.ndarray, kh: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+            sign_lo: np.ndarray, target: np.ndarray, C: np.ndarray, V: np.ndarray,
+            electrical: str | Boundary, slowest: bool, check: bool) -> None:
+    """Newton steps on c_j(kh) kh = omega H for the crossings ``idx``, kept in their brackets; kh, lo, hi, C, V
+    (all (r,), one per crossing) are updated in place.
+
+    Each iterate is an exact mode, so the sign of c kh - omega H there narrows the bracket [lo, hi];
+    a Newton step that would leave it (near a turning point, where v_g -> 0) is replaced by bisection.
+    A kh without the mode drops the crossing (NaN). Each crossing stops when converged or after
+    :data:`NEWTON` Newton steps (bisections do not count; at most :data:`BISECT` of them). Converged:
+    a Newton step below 1e-11 kh (C is then the last iterate's speed carried along the step with
+    dc/dkh = (v_g - c) / kh, its error second order in the step; V the iterate's) or a bracket shrunk
+    to rounding (C, V of the last iterate).
+    """
     from surfwave.layers.solve import MAX_KH
 
-    for _ in range(NEWTON):
-        live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
-        kh[rows[~live]] = np.nan
-        C[rows[~live], j] = np.nan
-        rows = rows[live]
-        if rows.size == 0:
+    steps = np.zeros(kh.size, dtype=int)
+    for _ in range(NEWTON + BISECT):
+        live = np.isfinite(kh[idx]) & (kh[idx] >= 0) & (kh[idx] <= MAX_KH)
+        kh[idx[~live]] = np.nan
+        C[idx[~live]] = np.nan
+        idx = idx[live & (steps[idx] < NEWTON)]
+        if idx.size == 0:
             break
-        allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
-        c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
+        k = kh[idx]
+        allc = family_modes(b, fam, k, electrical=electrical, lowest=slowest)
+        c = allc[:, j] if allc.shape[1] > j else np.full(idx.size, np.nan)
         good = np.isfinite(c)
-        v = np.full(rows.size, np.nan)
+        v = np.full(idx.size, np.nan)
         if good.any():
-            v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical,
-                                 check=check)["group_velocity"]
-        C[rows, j], V[rows, j] = c, v
-        step = (c * kh[rows] - wH[rows]) / v
-        kh[rows] = np.where(good, kh[rows] - step, np.nan)
-        if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
-            break
+            v[good] = mode_fields(b, fam, c[good], k[good], electrical, check=check)["group_velocity"]
+        C[idx], V[idx] = c, v
+        with np.errstate(all="ignore"):
+            g = c * k - target[idx]
+            at_lo = good & (np.sign(g) == sign_lo[idx])               # the iterate replaces its sign's end
+            lo[idx] = np.where(at_lo, k, lo[idx])
+            hi[idx] = np.where(at_lo, hi[idx], k)
+            step = g / v
+            new = k - step
+            small = good & (np.abs(step) <= 1e-11 * np.maximum(new, 1e-300))
+            newton = good & np.isfinite(new) & (small | ((new >= lo[idx]) & (new <= hi[idx])))
+        kh[idx] = np.where(newton, new, np.where(good, 0.5 * (lo[idx] + hi[idx]), np.nan))
+        steps[idx] += newton
+        # converged: c moved with the last step along the branch (dc/dkh = (v_g - c) / kh), so that
+        # c kh = omega H to second order in the step
+        with np.errstate(all="ignore"):
+            C[idx[small]] = c[small] - (v[small] - c[small]) * step[small] / k[small]
+        shut = ~small & (hi[idx] - lo[idx] <= 1e-13 * hi[idx])      # a bracket shrunk to rounding
+        idx = idx[~(small | shut)]                                   # done: C, V of this iterate
+
+
+def _ranked(found: list[tuple[np.ndarray, np.ndarray, np.ndarray]], n: int,
+            columns: Sequence[int] | None) -> tuple[np.ndarray, np.ndarray]:
+    """The modes (rows, c, v) of all branches as (n, m) arrays, each row ascending in c (NaN-padded).
+
+    A mode found twice (two brackets converging on one root: |dc| <= 1e-10 c) is kept once; with
+    ``columns``, ranks beyond max(columns) are dropped (the branches above were not solved).
+    """
+    if found:
+        rows = np.concatenate([f[0] for f in found])
+        c = np.concatenate([f[1] for f in found])
+        v = np.concatenate([f[2] for f in found])
+    else:
+        rows, c, v = np.zeros(0, dtype=int), np.zeros(0), np.zeros(0)
+    ok = np.isfinite(c)
+    rows, c, v = rows[ok], c[ok], v[ok]
+    order = np.lexsort((c, rows))
+    rows, c, v = rows[order], c[order], v[order]
+    dup = np.zeros(rows.size, dtype=bool)
+    dup[1:] = (rows[1:] == rows[:-1]) & (np.abs(c[1:] - c[:-1]) <= 1e-10 * c[1:])
+    rows, c, v = rows[~dup], c[~dup], v[~dup]
+    counts = np.bincount(rows, minlength=n)
+    m = int(counts.max(initial=0))
+    if columns is not None:
+        m = min(m, max(columns, default=-1) + 1)
+    C, V = np.full((n, m), np.nan), np.full((n, m), np.nan)
+    rank = np.arange(rows.size) - np.concatenate([[0], np.cumsum(counts)[:-1]])[rows]
+    keep = rank < m
+    C[rows[keep], rank[keep]], V[rows[keep], rank[keep]] = c[keep], v[keep]
+    return C, V
 
 
 def mode_speeds_at_frequency(stack: Stack, frequency, labels, electrical: str | Boundary = "free") -> np.ndarray:
     """Speeds of named guided modes at frequencies (Hz): their families and modes alone.
 
     The numbers are those of :func:`at_frequency` (and :func:`surfwave.layered` with
-    ``frequency``) for the same labels: each mode is solved on its own there too, so the modes
-    a fit does not measure (other families, other mode indices) are simply not solved.
+    ``frequency``) for the same labels: each branch is solved on its own there too, and the mode of
+    rank r lies on one of the branches 0 ... r (module docstring), so the branches above the highest
+    rank asked and the other families are simply not solved.
 
     Parameters
     ----------
