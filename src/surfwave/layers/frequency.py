@@ -54,7 +54,7 @@ __all__ = ["at_frequency", "mode_speeds_at_frequency"]
 #: Points of the kh grid of the starting curves.
 GRID = 160
 #: Newton steps at most (per crossing).
-NEWTON = 8
+NEWTON = 12
 #: Bisection steps at most (per crossing), where a Newton step would leave the bracket.
 BISECT = 40
 
@@ -191,7 +191,7 @@ def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarra
         v0 = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
         found.append((np.repeat(zero, live0.size), np.tile(cg[0, live0], zero.size), np.tile(v0, zero.size)))
     for j in range(top):
-        ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
+        ok = np.flatnonzero(np.isfinite(cg[:, j]))                    # kh = 0 too: omega H = 0, slope c
         if ok.size < 2:
             continue
         sol = _branch_crossings(b, fam, j, grid, ok, cg[ok, j], wH, c_lim, electrical, slowest)
@@ -209,14 +209,14 @@ def _branch_crossings(b: Blocks, fam: Family, j: int, grid: np.ndarray, ok: np.n
     cut-off cell's: its bracket [omega H / c_lim, first sample] (the root's kh is above omega H / c_lim,
     the mode being slower than c_lim), its start omega H / c_lim (where the mode is absent, the cut-off's
     omega H is above the target, omega H rising from the cut-off: no crossing, and the start is
-    dropped). Returns arrays (r,): ``row``, ``lo``, ``hi``, ``sign_lo`` and ``kh`` (the start).
+    dropped). Returns arrays (r,): ``row``, ``lo``, ``hi``, ``sign_lo`` and ``kh`` (the start), and
+    ``grid``.
     """
     kh = grid[ok]
     vg = mode_fields(b, fam, c, kh, electrical, check=False)["group_velocity"]
     extra = turning_points(kh, c * kh, vg, wH)
     if extra.size:
-        ce = family_modes(b, fam, extra, electrical=electrical, lowest=slowest)
-        ce = ce[:, j] if ce.shape[1] > j else np.full(extra.size, np.nan)
+        ce = _on_grid(b, fam, extra, grid, j, electrical, slowest)
         keep = np.isfinite(ce)
         if keep.any():
             ve = mode_fields(b, fam, ce[keep], extra[keep], electrical, check=False)["group_velocity"]
@@ -230,7 +230,8 @@ def _branch_crossings(b: Blocks, fam: Family, j: int, grid: np.ndarray, ok: np.n
     kc = wH[below] / c_lim
     return {"row": np.concatenate([row, below]), "lo": np.concatenate([lo, kc]),
             "hi": np.concatenate([hi, np.full(below.size, kh[0])]),
-            "sign_lo": np.concatenate([sign_lo, -np.ones(below.size)]), "kh": np.concatenate([start, kc])}
+            "sign_lo": np.concatenate([sign_lo, -np.ones(below.size)]), "kh": np.concatenate([start, kc]),
+            "grid": grid}
 
 
 def _polish(b: Blocks, fam: Family, j: int, sol: dict, wH: np.ndarray, electrical: str | Boundary,
@@ -241,72 +242,89 @@ def _polish(b: Blocks, fam: Family, j: int, sol: dict, wH: np.ndarray, electrica
     the check replaced it (a mode trapped under a barrier), Newton runs again with checked slopes.
     """
     rows = sol["row"]
-    C, V = np.full(rows.size, np.nan), np.full(rows.size, np.nan)
-    kh = sol["kh"].copy()
-    lo, hi = sol["lo"].copy(), sol["hi"].copy()
-    target = wH[rows]
-    all_ = np.arange(rows.size)
-    _newton(b, fam, j, all_, kh, lo, hi, sol["sign_lo"], target, C, V, electrical, slowest, False)
+    it = {"kh": sol["kh"].copy(), "lo": sol["lo"].copy(), "hi": sol["hi"].copy(), "sign_lo": sol["sign_lo"],
+          "target": wH[rows], "C": np.full(rows.size, np.nan), "V": np.full(rows.size, np.nan)}
+    _newton(b, fam, j, sol["grid"], np.arange(rows.size), it, electrical, slowest, False)
+    C, V, kh, target = it["C"], it["V"], it["kh"], it["target"]
     live = np.flatnonzero(np.isfinite(C) & np.isfinite(kh) & (kh > 0))
     if live.size:
         vc = checked_group_velocity(b, fam, C[live], target[live] / C[live], V[live], electrical)
         redo = live[~(vc == V[live])]
         V[live] = vc
         if redo.size:
-            _newton(b, fam, j, redo, kh, lo, hi, sol["sign_lo"], target, C, V, electrical, slowest,
-                    True)
-    return rows, C, V
+            _newton(b, fam, j, sol["grid"], redo, it, electrical, slowest, True)
+    return rows, it["C"], it["V"]
 
 
-def _newton(b: Blocks, fam: Family, j: int, idx: np.ndarray, kh: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-            sign_lo: np.ndarray, target: np.ndarray, C: np.ndarray, V: np.ndarray,
+def _newton(b: Blocks, fam: Family, j: int, grid: np.ndarray, idx: np.ndarray, it: dict,
             electrical: str | Boundary, slowest: bool, check: bool) -> None:
-    """Newton steps on c_j(kh) kh = omega H for the crossings ``idx``, kept in their brackets; kh, lo, hi, C, V
-    (all (r,), one per crossing) are updated in place.
+    """Newton steps on c_j(kh) kh = omega H for the crossings ``idx``, kept in their brackets.
 
-    Each iterate is an exact mode, so the sign of c kh - omega H there narrows the bracket [lo, hi];
-    a Newton step that would leave it (near a turning point, where v_g -> 0) is replaced by bisection.
-    A kh without the mode drops the crossing (NaN). Each crossing stops when converged or after
-    :data:`NEWTON` Newton steps (bisections do not count; at most :data:`BISECT` of them). Converged:
-    a Newton step below 1e-11 kh (C is then the last iterate's speed carried along the step with
-    dc/dkh = (v_g - c) / kh, its error second order in the step; V the iterate's) or a bracket shrunk
-    to rounding (C, V of the last iterate).
+    ``it`` holds arrays (r,), one entry per crossing, updated in place: ``kh`` (the next iterate),
+    ``lo``, ``hi`` (the bracket), ``sign_lo`` (of c kh - omega H at lo), ``target`` (omega H, m/s),
+    ``C``, ``V`` (speed and group velocity, m/s). Each iterate is an exact mode (branch j on the
+    start curve's speed grid, :func:`_on_grid`), so the sign of c kh - omega H there narrows the
+    bracket; a Newton step that would leave it (near a turning point, where v_g -> 0) is replaced
+    by bisection. A kh without the mode drops the crossing (NaN). Each crossing stops when converged
+    or after :data:`NEWTON` Newton steps (bisections do not count; at most :data:`BISECT` of them).
+    Converged: a Newton step below 1e-11 kh (C is then the last iterate's speed carried along the
+    step with dc/dkh = (v_g - c) / kh, its error second order in the step; V the iterate's) or a
+    bracket shrunk to rounding (C, V of the last iterate). A crossing left with a residual
+    |c kh - omega H| above 1e-9 omega H is dropped (NaN): no mode rather than a wrong one.
     """
     from surfwave.layers.solve import MAX_KH
 
+    kh, lo, hi, sign_lo, target, C, V = (it[q] for q in ("kh", "lo", "hi", "sign_lo", "target", "C", "V"))
+    at = np.full(kh.size, np.nan)                                    # kh of C
     steps = np.zeros(kh.size, dtype=int)
+    todo = idx
     for _ in range(NEWTON + BISECT):
-        live = np.isfinite(kh[idx]) & (kh[idx] >= 0) & (kh[idx] <= MAX_KH)
-        kh[idx[~live]] = np.nan
-        C[idx[~live]] = np.nan
-        idx = idx[live & (steps[idx] < NEWTON)]
-        if idx.size == 0:
+        live = np.isfinite(kh[todo]) & (kh[todo] >= 0) & (kh[todo] <= MAX_KH)
+        kh[todo[~live]] = np.nan
+        C[todo[~live]] = np.nan
+        todo = todo[live & (steps[todo] < NEWTON)]
+        if todo.size == 0:
             break
-        k = kh[idx]
-        allc = family_modes(b, fam, k, electrical=electrical, lowest=slowest)
-        c = allc[:, j] if allc.shape[1] > j else np.full(idx.size, np.nan)
+        k = kh[todo]
+        c = _on_grid(b, fam, k, grid, j, electrical, slowest)
         good = np.isfinite(c)
-        v = np.full(idx.size, np.nan)
+        v = np.full(todo.size, np.nan)
         if good.any():
             v[good] = mode_fields(b, fam, c[good], k[good], electrical, check=check)["group_velocity"]
-        C[idx], V[idx] = c, v
+        C[todo], V[todo], at[todo] = c, v, k
         with np.errstate(all="ignore"):
-            g = c * k - target[idx]
-            at_lo = good & (np.sign(g) == sign_lo[idx])               # the iterate replaces its sign's end
-            lo[idx] = np.where(at_lo, k, lo[idx])
-            hi[idx] = np.where(at_lo, hi[idx], k)
+            g = c * k - target[todo]
+            at_lo = good & (np.sign(g) == sign_lo[todo])              # the iterate replaces its sign's end
+            lo[todo] = np.where(at_lo, k, lo[todo])
+            hi[todo] = np.where(at_lo, hi[todo], k)
             step = g / v
             new = k - step
             small = good & (np.abs(step) <= 1e-11 * np.maximum(new, 1e-300))
-            newton = good & np.isfinite(new) & (small | ((new >= lo[idx]) & (new <= hi[idx])))
-        kh[idx] = np.where(newton, new, np.where(good, 0.5 * (lo[idx] + hi[idx]), np.nan))
-        steps[idx] += newton
-        # converged: c moved with the last step along the branch (dc/dkh = (v_g - c) / kh), so that
-        # c kh = omega H to second order in the step
-        with np.errstate(all="ignore"):
-            C[idx[small]] = c[small] - (v[small] - c[small]) * step[small] / k[small]
-        shut = ~small & (hi[idx] - lo[idx] <= 1e-13 * hi[idx])      # a bracket shrunk to rounding
-        idx = idx[~(small | shut)]                                   # done: C, V of this iterate
+            newton = good & np.isfinite(new) & (small | ((new >= lo[todo]) & (new <= hi[todo])))
+            # converged: c moved with the last step along the branch (dc/dkh = (v_g - c) / kh), so
+            # that c kh = omega H to second order in the step
+            C[todo[small]] = c[small] - (v[small] - c[small]) * step[small] / k[small]
+        at[todo[small]] = new[small]
+        kh[todo] = np.where(newton, new, np.where(good, 0.5 * (lo[todo] + hi[todo]), np.nan))
+        steps[todo] += newton
+        shut = ~small & (hi[todo] - lo[todo] <= 1e-13 * hi[todo])    # a bracket shrunk to rounding
+        todo = todo[~(small | shut)]                                 # done: C, V of this iterate
+    with np.errstate(invalid="ignore"):
+        off = idx[~(np.abs(C[idx] * at[idx] - target[idx]) <= 1e-9 * target[idx])]
+    C[off], V[off] = np.nan, np.nan
+
+
+def _on_grid(b: Blocks, fam: Family, kh: np.ndarray, grid: np.ndarray, j: int, electrical: str | Boundary,
+             slowest: bool) -> np.ndarray:
+    """Branch j's speed (m,) at kh (m,), searched on the speed grid of the start curve's scan.
+
+    The speed grid of :func:`surfwave.layers.modes.family_modes` is set by the largest kh of a call;
+    the start grid's last kh joins every call, so a mode the start curve holds is not lost at an
+    iterate for want of grid points (a heavy film 90 times slower than its substrate lost modes on
+    the grid of kh ~1.5 alone, and column j was then another branch).
+    """
+    allc = family_modes(b, fam, np.append(kh, grid[-1]), electrical=electrical, lowest=slowest)[:-1]
+    return allc[:, j] if allc.shape[1] > j else np.full(kh.size, np.nan)
 
 
 def _ranked(found: list[tuple[np.ndarray, np.ndarray, np.ndarray]], n: int,
