@@ -319,11 +319,11 @@ def _on_grid(b: Blocks, fam: Family, kh: np.ndarray, grid: np.ndarray, j: int, e
     """Branch j's speed (m,) at kh (m,), searched on the speed grid of the start curve's scan.
 
     The speed grid of :func:`surfwave.layers.modes.family_modes` is set by the largest kh of a call;
-    the start grid's last kh joins every call, so a mode the start curve holds is not lost at an
-    iterate for want of grid points (a heavy film 90 times slower than its substrate lost modes on
-    the grid of kh ~1.5 alone, and column j was then another branch).
+    the iterates are solved on the start grid's (``grid_kh``), so a mode the start curve holds is
+    not lost at an iterate for want of grid points (a heavy film 70 times slower than its substrate
+    lost modes on the speed grid of kh ~1.5 alone, and column j was then another branch).
     """
-    allc = family_modes(b, fam, np.append(kh, grid[-1]), electrical=electrical, lowest=slowest)[:-1]
+    allc = family_modes(b, fam, kh, electrical=electrical, lowest=slowest, grid_kh=float(grid[-1]))
     return allc[:, j] if allc.shape[1] > j else np.full(kh.size, np.nan)
 
 
