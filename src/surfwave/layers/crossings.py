@@ -22,7 +22,49 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["brackets", "turning_points"]
+__all__ = ["brackets", "stray_samples", "turning_points"]
+
+#: Relative misfit of a cell's rise to the trapezoid rule on its end slopes above which the cell is
+#: taken as inconsistent (:func:`stray_samples`).
+MISFIT = 0.5
+
+
+def _misfit(kh0: np.ndarray, kh1: np.ndarray, w0: np.ndarray, w1: np.ndarray, v0: np.ndarray,
+            v1: np.ndarray) -> np.ndarray:
+    """|rise - trapezoid of the slopes| / (|rise| + |trapezoid|) of cells (all arrays (m,))."""
+    rise, trap = w1 - w0, 0.5 * (kh1 - kh0) * (v0 + v1)
+    with np.errstate(all="ignore"):
+        return np.abs(rise - trap) / (np.abs(rise) + 0.5 * (kh1 - kh0) * (np.abs(v0) + np.abs(v1)))
+
+
+def stray_samples(kh: np.ndarray, w: np.ndarray, slope: np.ndarray) -> np.ndarray:
+    """True at samples that belong to another branch: both cells beside them disagree with their slopes.
+
+    A branch sampled as "the j-th slowest mode" at each kh takes a neighbour's value where the search
+    at that kh missed (or added) a slower mode. Such a sample makes both of its cells inconsistent,
+    the rise of omega H across each far from the trapezoid rule on the end slopes (relative misfit
+    above :data:`MISFIT`), while the cell across it, from its left to its right neighbour, agrees
+    (misfit below MISFIT / 4); on a smooth branch a cell twice as wide fits no better than its halves.
+
+    Parameters
+    ----------
+    kh, w, slope : ndarray, shape (m,)
+        The samples (ascending kh), omega H (m/s) and its slope dw/dkh (m/s).
+
+    Returns
+    -------
+    ndarray of bool, shape (m,)
+        True at an interior sample to be dropped (no two neighbours both).
+    """
+    out = np.zeros(kh.size, dtype=bool)
+    if kh.size < 3:
+        return out
+    cell = _misfit(kh[:-1], kh[1:], w[:-1], w[1:], slope[:-1], slope[1:])
+    across = _misfit(kh[:-2], kh[2:], w[:-2], w[2:], slope[:-2], slope[2:])
+    stray = (cell[:-1] > MISFIT) & (cell[1:] > MISFIT) & (across < 0.25 * MISFIT)
+    stray[1:] &= ~stray[:-1]                                         # isolated samples only
+    out[1:-1] = stray
+    return out
 
 
 def turning_points(kh: np.ndarray, w: np.ndarray, slope: np.ndarray, target: np.ndarray | None = None

@@ -41,7 +41,7 @@ import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
-from surfwave.layers.crossings import brackets, turning_points
+from surfwave.layers.crossings import brackets, stray_samples, turning_points
 from surfwave.layers.fields import mode_fields
 from surfwave.layers.group_check import checked_group_velocity
 from surfwave.layers.modes import family_modes, label_family, lowest_speed
@@ -214,6 +214,8 @@ def _branch_crossings(b: Blocks, fam: Family, j: int, grid: np.ndarray, ok: np.n
     """
     kh = grid[ok]
     vg = mode_fields(b, fam, c, kh, electrical, check=False)["group_velocity"]
+    keep = ~stray_samples(kh, c * kh, vg)                            # another branch's mode at that kh
+    kh, c, vg = kh[keep], c[keep], vg[keep]
     extra = turning_points(kh, c * kh, vg, wH)
     if extra.size:
         ce = _on_grid(b, fam, extra, grid, j, electrical, slowest)
