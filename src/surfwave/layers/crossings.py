@@ -4,6 +4,8 @@ A branch j of a family is sampled as omega H = c_j(kh) kh at points kh_0 < kh_1 
 d(omega H)/d(kh) = v_g (the group velocity). omega(kh) need not rise with kh: where v_g < 0 (a backward wave)
 it falls, and one frequency may meet the branch two or three times. Here every crossing is bracketed:
 
+* :func:`stray_samples` finds samples that belong to another branch (the search at that kh missed or added
+  a slower mode, so "the j-th slowest" is a neighbour there): the caller drops them;
 * :func:`turning_points` gives, in each cell between two samples, the points where the cubic Hermite model
   of the cell (the samples' values and slopes) has zero slope; the caller samples the true curve there too,
   so the samples then hold (nearly) every extremum of the curve;

@@ -5,7 +5,8 @@ wavenumbers. For each family and branch j (the j-th slowest mode at fixed kh) th
 is first computed on a kh grid (:func:`surfwave.layers.modes.family_modes`) with its group velocity,
 the slope of omega(kh) H = c_j(kh) kh. That curve need not rise with kh: where v_g < 0 (a backward
 wave, e.g. a soft heavy film on a much stiffer substrate) it falls, and one frequency meets the branch
-two or three times. Every crossing is bracketed (:mod:`surfwave.layers.crossings`): each grid cell
+two or three times. Every crossing is bracketed (:mod:`surfwave.layers.crossings`; a grid sample of
+another branch, where the search at that kh missed a slower mode, is dropped first): each grid cell
 across which omega H - 2 pi f H changes sign (or vanishes at a grid point), the branch being sampled
 also at the turning points of each cell's cubic Hermite model where they could hide crossings, and
 the cut-off cell below the curve's first grid point (start kh = omega H / c_lim there). In each
