@@ -34,9 +34,10 @@ DIAMOND_WH = np.array([4040.0, 4070.0, 4088.78])
 def _branch_crossings(r, kh, wH):
     """Crossings of each fixed-kh branch with each omega H (n,), counted per family on a dense kh scan ``r``.
 
-    Sign changes of c kh - omega H between consecutive kh holding the branch, and at its cut-off (where it
-    enters at c = its family's limit): a crossing when omega H lies below the first point's c kh but above
-    limit x the kh before it; an omega H within that band of a cut-off would be ambiguous and is refused.
+    Sign changes of c kh - omega H between consecutive kh holding the branch; a branch entering (at c = its
+    family's limit) between two kh of the scan, kh_a without it and kh_b with it, enters with omega H between
+    limit x kh_a and c kh_b: a target there is ambiguous for the scan and is refused, one below that band
+    is not met by the branch's start, one above it is met there only if the branch rises from below it.
     Returns {family prefix: (n,) counts}.
     """
     counts: dict[str, np.ndarray] = {}
@@ -50,8 +51,7 @@ def _branch_crossings(r, kh, wH):
         n = (d[:, 1:] * d[:, :-1] < 0).sum(axis=1)
         if i[0] > 0:
             lo, hi = lim * kh[i[0] - 1], c[0] * kh[i[0]]
-            assert not np.any((wH > lo - 1.0) & (wH < lo + 1.0)), f"a target at the cut-off of {lab}"
-            n += (wH > lo) & (wH < hi)
+            assert not np.any((wH >= lo) & (wH <= hi)), f"a target within the scan's step of {lab}'s cut-off"
         counts[fam] = counts.get(fam, 0) + n
     return counts
 
