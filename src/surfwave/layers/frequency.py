@@ -1,13 +1,38 @@
 """Modes of a stack at given frequencies: each mode at its own kh = 2 pi f H / c.
 
 At a fixed frequency f the modes of a stack of total film thickness H have different
-wavenumbers. For each family and mode index j the dispersion curve is first computed on a kh grid
-(:func:`surfwave.layers.modes.family_modes`) with its group velocity; omega(kh) H = c_j(kh) kh
-(monotone, slope v_g) is inverted by cubic Hermite interpolation to give a start (kh = omega H /
-c_lim below the curve's first grid point, near the mode's cut-off), and Newton's method on
-g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g (the group velocity,
-:func:`surfwave.layers.fields.mode_fields`) polishes it;
-every iterate is an exact mode of the stack, so the residual 2 pi f H - c kh measures the error.
+wavenumbers. For each family and branch j (the j-th slowest mode at fixed kh) the dispersion curve
+is first computed on a kh grid (:func:`surfwave.layers.modes.family_modes`) with its group velocity,
+the slope of omega(kh) H = c_j(kh) kh. That curve need not rise with kh: where v_g < 0 (a backward
+wave, e.g. a soft heavy film on a much stiffer substrate) it falls, and one frequency meets the branch
+two or three times. Every crossing is bracketed (:mod:`surfwave.layers.crossings`; a grid sample of
+another branch, where the search at that kh missed a slower mode, is dropped first): each grid cell
+across which omega H - 2 pi f H changes sign (or vanishes at a grid point), the branch being sampled
+also at the turning points of each cell's cubic Hermite model where they could hide crossings, and
+the cut-off cell below the curve's first grid point (start kh = omega H / c_lim there). In each
+bracket the start is the inverse cubic Hermite interpolation of the cell (a monotone cell; linear
+otherwise), and Newton's method on g(kh) = c_j(kh) kh - 2 pi f H with the exact slope dg/dkh = v_g
+(:func:`surfwave.layers.fields.mode_fields`) polishes it, kept inside the bracket (bisection where
+a step would leave it, near a turning point). Every iterate is an exact mode of the stack, so
+the residual 2 pi f H - c kh measures the error.
+
+Guaranteed: one mode per sign change of omega H - 2 pi f H between consecutive samples of a branch
+(the samples are exact modes), distinct brackets giving distinct modes. Not guaranteed: two
+crossings between the same two samples, i.e. a frequency so close to a branch's local extremum of
+omega that both crossings lie within one cell and the cell's Hermite model does not show the
+extremum reaching it (within the model's error, O(h^4) of omega for a grid step h); such crossings are
+then both missed (never one of them: the parity of a branch's crossings is kept), and appear as the
+frequency moves away from the extremum. A branch that turns within its cut-off cell, or beyond the
+grid's last kh, is not followed there.
+
+Labels at fixed frequency: the modes of each family at one frequency are ordered by speed and
+labelled by rank (R, S1, S2, ...; L0, L1, ...; M0, M1, ...), as on the isotropic path. Where every
+branch's omega rises with kh this is the branch index, the label of the same mode at fixed kh;
+where a branch is not monotone, its two or three crossings take consecutive ranks, so a label at
+fixed frequency may name another branch than the same label at fixed kh = 2 pi f H / c. A mode of
+branch j has rank >= j: at the mode's kh the line c = omega H / kh lies above every slower branch
+i < j, and at large kh below it, so branch i crosses the frequency at a larger kh, i.e. at a lower
+speed; ranks 0 ... r therefore need branches 0 ... r only (:func:`mode_speeds_at_frequency`).
 """
 from __future__ import annotations
 
@@ -17,6 +42,7 @@ import numpy as np
 
 from surfwave import validate
 from surfwave.errors import InputError
+from surfwave.layers.crossings import brackets, stray_samples, turning_points
 from surfwave.layers.fields import mode_fields
 from surfwave.layers.group_check import checked_group_velocity
 from surfwave.layers.modes import family_modes, label_family, lowest_speed
@@ -28,8 +54,10 @@ __all__ = ["at_frequency", "mode_speeds_at_frequency"]
 
 #: Points of the kh grid of the starting curves.
 GRID = 160
-#: Newton steps at most.
-NEWTON = 8
+#: Newton steps at most (per crossing).
+NEWTON = 12
+#: Bisection steps at most (per crossing), where a Newton step would leave the bracket.
+BISECT = 40
 
 
 def _frequencies(frequency) -> np.ndarray:
@@ -41,28 +69,14 @@ def _frequencies(frequency) -> np.ndarray:
     return f
 
 
-def _hermite_inverse(w: np.ndarray, kh: np.ndarray, slope: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """kh at omega H = target on the curve (w ascending, kh) with dw/dkh = slope: cubic Hermite in w; NaN outside."""
-    out = np.full(target.size, np.nan)
-    i = np.searchsorted(w, target, side="right") - 1
-    inside = (i >= 0) & (i < w.size - 1)
-    exact = target == w[-1]
-    i = i[inside]
-    h = w[i + 1] - w[i]
-    s = (target[inside] - w[i]) / h
-    d0, d1 = h / slope[i], h / slope[i + 1]
-    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
-    out[inside] = h00 * kh[i] + h10 * d0 + h01 * kh[i + 1] + h11 * d1
-    out[exact] = kh[-1]
-    return out
-
-
 def at_frequency(stack: Stack, frequency, *, electrical: str | Boundary = "free", leaky: bool = False,
                  modes: int | None = None) -> dict:
     """The :func:`surfwave.layered` record at frequencies (Hz) instead of kh (same keys, rows = frequencies).
 
-    K^2 of a piezoelectric stack compares the free and metallized speeds of the same mode label at
-    the same frequency. ``modes``: at most that many modes per family (None: all).
+    Every crossing of each branch with the frequency is a mode (backward waves, v_g < 0, included);
+    labels are ranks within the family at that frequency (see the module's docstring). K^2 of a
+    piezoelectric stack compares the free and metallized speeds of the same mode label at the same
+    frequency. ``modes``: at most that many modes per family, the slowest at each frequency (None: all).
     """
     from surfwave.layers.solve import k2_pair
 
@@ -159,80 +173,201 @@ def _start_grid(b: Blocks, f: np.ndarray, H: float) -> tuple[np.ndarray, np.ndar
 
 def _family_at_frequency(b: Blocks, fam: Family, wH: np.ndarray, grid: np.ndarray, electrical: str | Boundary,
                          columns: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Speeds and group velocities (n, n_f) of one family's modes at omega H = ``wH`` (m/s).
+    """Speeds and group velocities (n, m) of one family's modes at omega H = ``wH`` (m/s), ascending per row.
 
-    ``columns``: only these mode indices of the family (the others stay NaN); each mode is solved
-    on its own (the start from the curve on ``grid``, then Newton), so the numbers do not depend
-    on which others are solved.
+    Column r is the family's r-th slowest mode at that frequency (its label: :func:`label` (prefix, r)),
+    whichever branch it lies on (see the module's docstring). ``columns``: only these ranks are wanted
+    (the others stay NaN); they need the branches 0 ... max(columns) alone, each solved on its own
+    (the start from the curve on ``grid``, then Newton), so the numbers do not depend on which others
+    are solved.
     """
     slowest = columns is not None and list(columns) == [0]             # the scans may stop above it
     cg = family_modes(b, fam, grid, electrical=electrical, lowest=slowest)  # (GRID, n_f)
-    C = np.full((wH.size, cg.shape[1]), np.nan)
-    V = np.full(C.shape, np.nan)
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-    wanted = list(range(cg.shape[1])) if columns is None else [j for j in columns if j < cg.shape[1]]
+    top = cg.shape[1] if columns is None else min(max(columns, default=-1) + 1, cg.shape[1])
+    found: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []       # (rows, c, v) of each branch
     zero = np.flatnonzero(wH == 0)                                   # f = 0: the bare substrate's modes
-    live0 = np.array([j for j in wanted if np.isfinite(cg[0, j])], dtype=int)
+    live0 = np.array([j for j in range(top) if np.isfinite(cg[0, j])], dtype=int)
     if zero.size and live0.size:
-        C[np.ix_(zero, live0)] = cg[0, live0]
-        V[np.ix_(zero, live0)] = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
-    for j in wanted:
-        ok = np.flatnonzero(np.isfinite(cg[:, j]) & (grid > 0))
+        v0 = mode_fields(b, fam, cg[0, live0], np.zeros(live0.size), electrical)["group_velocity"]
+        found.append((np.repeat(zero, live0.size), np.tile(cg[0, live0], zero.size), np.tile(v0, zero.size)))
+    for j in range(top):
+        ok = np.flatnonzero(np.isfinite(cg[:, j]))                    # kh = 0 too: omega H = 0, slope c
         if ok.size < 2:
             continue
-        vg_grid = mode_fields(b, fam, cg[ok, j], grid[ok], electrical, check=False)["group_velocity"]
-        w = cg[ok, j] * grid[ok]                                     # omega H along the curve
-        kh = _hermite_inverse(w, grid[ok], vg_grid, wH)
-        # between the last grid point without the mode and the first with it: the cut-off is
-        # there (c = c_lim at cut-off), so start at kh = omega H / c_lim
-        below = (wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)])
-        kh[below] = wH[below] / c_lim
-        rows = np.flatnonzero(np.isfinite(kh))
-        _newton(b, fam, j, kh, rows, wH, C, V, electrical, slowest, check=False)
-        # the energy velocity checked once at the converged modes (surfwave.layers.group_check);
-        # where the check replaced it (a mode trapped under a barrier), Newton again with checked slopes
-        rows = np.flatnonzero(np.isfinite(C[:, j]) & np.isfinite(kh) & (kh > 0))
-        if rows.size:
-            vc = checked_group_velocity(b, fam, C[rows, j], wH[rows] / C[rows, j], V[rows, j], electrical)
-            redo = rows[~(vc == V[rows, j])]
-            V[rows, j] = vc
-            if redo.size:
-                _newton(b, fam, j, kh, redo, wH, C, V, electrical, slowest, check=True)
-    return C, V
+        sol = _branch_crossings(b, fam, j, grid, ok, cg[ok, j], wH, c_lim, electrical, slowest)
+        found.append(_polish(b, fam, j, sol, wH, electrical, slowest))
+    return _ranked(found, wH.size, columns)
 
 
-def _newton(b: Blocks, fam: Family, j: int, kh: np.ndarray, rows: np.ndarray, wH: np.ndarray, C: np.ndarray,
-            V: np.ndarray, electrical: str | Boundary, slowest: bool, check: bool) -> None:
-    """Newton steps on c_j(kh) kh = omega H for mode j at ``rows``, updating kh (n,), C and V (n, n_f) in place."""
+def _branch_crossings(b: Blocks, fam: Family, j: int, grid: np.ndarray, ok: np.ndarray, c: np.ndarray,
+                      wH: np.ndarray, c_lim: float, electrical: str | Boundary, slowest: bool) -> dict:
+    """Every crossing of branch j (sampled at grid[ok], speeds c) with each omega H (n,): brackets and starts.
+
+    The branch is sampled at the grid and, in each cell, where the cubic Hermite model of omega H(kh)
+    has zero slope (:func:`surfwave.layers.crossings.turning_points`; only non-monotone cells have
+    such points); a target below the first sample but above c_lim x the grid point before it is the
+    cut-off cell's: its bracket [omega H / c_lim, first sample] (the root's kh is above omega H / c_lim,
+    the mode being slower than c_lim), its start omega H / c_lim (where the mode is absent, the cut-off's
+    omega H is above the target, omega H rising from the cut-off: no crossing, and the start is
+    dropped). Returns arrays (r,): ``row``, ``lo``, ``hi``, ``sign_lo`` and ``kh`` (the start), and
+    ``grid``.
+    """
+    kh = grid[ok]
+    vg = mode_fields(b, fam, c, kh, electrical, check=False)["group_velocity"]
+    keep = ~stray_samples(kh, c * kh, vg)                            # another branch's mode at that kh
+    kh, c, vg = kh[keep], c[keep], vg[keep]
+    extra = turning_points(kh, c * kh, vg, wH)
+    if extra.size:
+        ce = _on_grid(b, fam, extra, grid, j, electrical, slowest)
+        keep = np.isfinite(ce)
+        if keep.any():
+            ve = mode_fields(b, fam, ce[keep], extra[keep], electrical, check=False)["group_velocity"]
+            order = np.argsort(np.concatenate([kh, extra[keep]]), kind="stable")
+            kh = np.concatenate([kh, extra[keep]])[order]
+            c = np.concatenate([c, ce[keep]])[order]
+            vg = np.concatenate([vg, ve])[order]
+    w = c * kh                                                       # omega H along the curve
+    row, lo, hi, sign_lo, start = brackets(kh, w, vg, wH)
+    below = np.flatnonzero((wH < w[0]) & (wH > c_lim * grid[max(ok[0] - 1, 0)]))
+    kc = wH[below] / c_lim
+    return {"row": np.concatenate([row, below]), "lo": np.concatenate([lo, kc]),
+            "hi": np.concatenate([hi, np.full(below.size, kh[0])]),
+            "sign_lo": np.concatenate([sign_lo, -np.ones(below.size)]), "kh": np.concatenate([start, kc]),
+            "grid": grid}
+
+
+def _polish(b: Blocks, fam: Family, j: int, sol: dict, wH: np.ndarray, electrical: str | Boundary,
+            slowest: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Newton on every crossing of branch j (``sol`` of :func:`_branch_crossings`); (rows, c, v) of the modes.
+
+    The energy velocity is checked once at the converged modes (surfwave.layers.group_check); where
+    the check replaced it (a mode trapped under a barrier), Newton runs again with checked slopes.
+    """
+    rows = sol["row"]
+    it = {"kh": sol["kh"].copy(), "lo": sol["lo"].copy(), "hi": sol["hi"].copy(), "sign_lo": sol["sign_lo"],
+          "target": wH[rows], "C": np.full(rows.size, np.nan), "V": np.full(rows.size, np.nan)}
+    _newton(b, fam, j, sol["grid"], np.arange(rows.size), it, electrical, slowest, False)
+    C, V, kh, target = it["C"], it["V"], it["kh"], it["target"]
+    live = np.flatnonzero(np.isfinite(C) & np.isfinite(kh) & (kh > 0))
+    if live.size:
+        vc = checked_group_velocity(b, fam, C[live], target[live] / C[live], V[live], electrical)
+        redo = live[~(vc == V[live])]
+        V[live] = vc
+        if redo.size:
+            _newton(b, fam, j, sol["grid"], redo, it, electrical, slowest, True)
+    return rows, it["C"], it["V"]
+
+
+def _newton(b: Blocks, fam: Family, j: int, grid: np.ndarray, idx: np.ndarray, it: dict,
+            electrical: str | Boundary, slowest: bool, check: bool) -> None:
+    """Newton steps on c_j(kh) kh = omega H for the crossings ``idx``, kept in their brackets.
+
+    ``it`` holds arrays (r,), one entry per crossing, updated in place: ``kh`` (the next iterate),
+    ``lo``, ``hi`` (the bracket), ``sign_lo`` (of c kh - omega H at lo), ``target`` (omega H, m/s),
+    ``C``, ``V`` (speed and group velocity, m/s). Each iterate is an exact mode (branch j on the
+    start curve's speed grid, :func:`_on_grid`), so the sign of c kh - omega H there narrows the
+    bracket; a Newton step that would leave it (near a turning point, where v_g -> 0) is replaced
+    by bisection. A kh without the mode drops the crossing (NaN). Each crossing stops when converged
+    or after :data:`NEWTON` Newton steps (bisections do not count; at most :data:`BISECT` of them).
+    Converged: a Newton step below 1e-11 kh (C is then the last iterate's speed carried along the
+    step with dc/dkh = (v_g - c) / kh, its error second order in the step; V the iterate's) or a
+    bracket shrunk to rounding (C, V of the last iterate). A crossing left with a residual
+    |c kh - omega H| above 1e-9 omega H is dropped (NaN): no mode rather than a wrong one.
+    """
     from surfwave.layers.solve import MAX_KH
 
-    for _ in range(NEWTON):
-        live = np.isfinite(kh[rows]) & (kh[rows] >= 0) & (kh[rows] <= MAX_KH)
-        kh[rows[~live]] = np.nan
-        C[rows[~live], j] = np.nan
-        rows = rows[live]
-        if rows.size == 0:
+    kh, lo, hi, sign_lo, target, C, V = (it[q] for q in ("kh", "lo", "hi", "sign_lo", "target", "C", "V"))
+    at = np.full(kh.size, np.nan)                                    # kh of C
+    steps = np.zeros(kh.size, dtype=int)
+    todo = idx
+    for _ in range(NEWTON + BISECT):
+        live = np.isfinite(kh[todo]) & (kh[todo] >= 0) & (kh[todo] <= MAX_KH)
+        kh[todo[~live]] = np.nan
+        C[todo[~live]] = np.nan
+        todo = todo[live & (steps[todo] < NEWTON)]
+        if todo.size == 0:
             break
-        allc = family_modes(b, fam, kh[rows], electrical=electrical, lowest=slowest)
-        c = allc[:, j] if allc.shape[1] > j else np.full(rows.size, np.nan)
+        k = kh[todo]
+        c = _on_grid(b, fam, k, grid, j, electrical, slowest)
         good = np.isfinite(c)
-        v = np.full(rows.size, np.nan)
+        v = np.full(todo.size, np.nan)
         if good.any():
-            v[good] = mode_fields(b, fam, c[good], kh[rows][good], electrical,
-                                 check=check)["group_velocity"]
-        C[rows, j], V[rows, j] = c, v
-        step = (c * kh[rows] - wH[rows]) / v
-        kh[rows] = np.where(good, kh[rows] - step, np.nan)
-        if np.all(np.abs(step[good]) <= 1e-11 * np.maximum(kh[rows][good], 1e-300)):
-            break
+            v[good] = mode_fields(b, fam, c[good], k[good], electrical, check=check)["group_velocity"]
+        C[todo], V[todo], at[todo] = c, v, k
+        with np.errstate(all="ignore"):
+            g = c * k - target[todo]
+            at_lo = good & (np.sign(g) == sign_lo[todo])              # the iterate replaces its sign's end
+            lo[todo] = np.where(at_lo, k, lo[todo])
+            hi[todo] = np.where(at_lo, hi[todo], k)
+            step = g / v
+            new = k - step
+            small = good & (np.abs(step) <= 1e-11 * np.maximum(new, 1e-300))
+            newton = good & np.isfinite(new) & (small | ((new >= lo[todo]) & (new <= hi[todo])))
+            # converged: c moved with the last step along the branch (dc/dkh = (v_g - c) / kh), so
+            # that c kh = omega H to second order in the step
+            C[todo[small]] = c[small] - (v[small] - c[small]) * step[small] / k[small]
+        at[todo[small]] = new[small]
+        kh[todo] = np.where(newton, new, np.where(good, 0.5 * (lo[todo] + hi[todo]), np.nan))
+        steps[todo] += newton
+        shut = ~small & (hi[todo] - lo[todo] <= 1e-13 * hi[todo])    # a bracket shrunk to rounding
+        todo = todo[~(small | shut)]                                 # done: C, V of this iterate
+    with np.errstate(invalid="ignore"):
+        off = idx[~(np.abs(C[idx] * at[idx] - target[idx]) <= 1e-9 * target[idx])]
+    C[off], V[off] = np.nan, np.nan
+
+
+def _on_grid(b: Blocks, fam: Family, kh: np.ndarray, grid: np.ndarray, j: int, electrical: str | Boundary,
+             slowest: bool) -> np.ndarray:
+    """Branch j's speed (m,) at kh (m,), searched on the speed grid of the start curve's scan.
+
+    The speed grid of :func:`surfwave.layers.modes.family_modes` is set by the largest kh of a call;
+    the iterates are solved on the start grid's (``grid_kh``), so a mode the start curve holds is
+    not lost at an iterate for want of grid points (a heavy film 70 times slower than its substrate
+    lost modes on the speed grid of kh ~1.5 alone, and column j was then another branch).
+    """
+    allc = family_modes(b, fam, kh, electrical=electrical, lowest=slowest, grid_kh=float(grid[-1]))
+    return allc[:, j] if allc.shape[1] > j else np.full(kh.size, np.nan)
+
+
+def _ranked(found: list[tuple[np.ndarray, np.ndarray, np.ndarray]], n: int,
+            columns: Sequence[int] | None) -> tuple[np.ndarray, np.ndarray]:
+    """The modes (rows, c, v) of all branches as (n, m) arrays, each row ascending in c (NaN-padded).
+
+    A mode found twice (two brackets converging on one root: |dc| <= 1e-10 c) is kept once; with
+    ``columns``, ranks beyond max(columns) are dropped (the branches above were not solved).
+    """
+    if found:
+        rows = np.concatenate([f[0] for f in found])
+        c = np.concatenate([f[1] for f in found])
+        v = np.concatenate([f[2] for f in found])
+    else:
+        rows, c, v = np.zeros(0, dtype=int), np.zeros(0), np.zeros(0)
+    ok = np.isfinite(c)
+    rows, c, v = rows[ok], c[ok], v[ok]
+    order = np.lexsort((c, rows))
+    rows, c, v = rows[order], c[order], v[order]
+    dup = np.zeros(rows.size, dtype=bool)
+    dup[1:] = (rows[1:] == rows[:-1]) & (np.abs(c[1:] - c[:-1]) <= 1e-10 * c[1:])
+    rows, c, v = rows[~dup], c[~dup], v[~dup]
+    counts = np.bincount(rows, minlength=n)
+    m = int(counts.max(initial=0))
+    if columns is not None:
+        m = min(m, max(columns, default=-1) + 1)
+    C, V = np.full((n, m), np.nan), np.full((n, m), np.nan)
+    rank = np.arange(rows.size) - np.concatenate([[0], np.cumsum(counts)[:-1]])[rows]
+    keep = rank < m
+    C[rows[keep], rank[keep]], V[rows[keep], rank[keep]] = c[keep], v[keep]
+    return C, V
 
 
 def mode_speeds_at_frequency(stack: Stack, frequency, labels, electrical: str | Boundary = "free") -> np.ndarray:
     """Speeds of named guided modes at frequencies (Hz): their families and modes alone.
 
     The numbers are those of :func:`at_frequency` (and :func:`surfwave.layered` with
-    ``frequency``) for the same labels: each mode is solved on its own there too, so the modes
-    a fit does not measure (other families, other mode indices) are simply not solved.
+    ``frequency``) for the same labels: each branch is solved on its own there too, and the mode of
+    rank r lies on one of the branches 0 ... r (module docstring), so the branches above the highest
+    rank asked and the other families are simply not solved.
 
     Parameters
     ----------

@@ -48,7 +48,9 @@ def _eig(b: Blocks, fam: Family, c: np.ndarray, kh: np.ndarray, electrical: str 
 
 
 def _nearest(c0: np.ndarray, allc: np.ndarray) -> np.ndarray:
-    """The speed in each row of allc (m, n) nearest to c0 (m,); NaN where it is not clearly the nearest."""
+    """The speed in each row of allc (m, n) nearest to c0 (m,); NaN where it is not clearly the nearest (or n = 0)."""
+    if allc.shape[1] == 0:
+        return np.full(c0.size, np.nan)
     d = np.abs(np.where(np.isfinite(allc), allc, np.inf) - c0[:, None])
     order = np.argsort(d, axis=1)
     m = np.arange(c0.size)

@@ -302,7 +302,7 @@ def _electric(fam: Family, electrical: str | Boundary) -> int:
 
 
 def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "free",
-                 n_grid: int | None = None, lowest: bool = False) -> np.ndarray:
+                 n_grid: int | None = None, lowest: bool = False, grid_kh: float | None = None) -> np.ndarray:
     """Speeds of every guided mode of one family below its limiting speed, for each kh.
 
     Parameters
@@ -324,6 +324,9 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
         next to a pole there. (Where the full scan finds a kh short of a higher mode and rescans
         it on a finer grid, its slowest mode there comes from another bracket: the same root to
         round-off.)
+    grid_kh : float, optional
+        Scan the speed grid of a call whose largest kh is ``grid_kh`` (default: the largest kh
+        given), e.g. to solve a few kh on the grid of an earlier call over a wider range.
 
     Returns
     -------
@@ -334,7 +337,8 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
     kh = np.atleast_1d(np.asarray(kh, dtype=float))
     if not np.all(np.isfinite(kh)):
         raise ValueError("family_modes needs finite kh")
-    out = _family_scan(b, fam, kh, electrical, n_grid, lowest)
+    top = float(np.max(kh, initial=0.0)) if grid_kh is None else float(grid_kh)
+    out = _family_scan(b, fam, kh, electrical, n_grid, lowest, top)
     if lowest:
         out = out[:, :1]
     # a mode and a pole of Z in one grid cell cancel in the count: where a kh holds fewer modes
@@ -347,8 +351,8 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
     right = np.maximum.accumulate(ns[::-1])[::-1]
     dip = order[(ns < np.minimum(left, right))]
     if dip.size:
-        n0 = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
-        fine = _family_scan(b, fam, kh[dip], electrical, 4 * n0)
+        n0 = n_grid or int(BASE_GRID + GRID_PER_KH * min(top, 100.0))
+        fine = _family_scan(b, fam, kh[dip], electrical, 4 * n0, grid_kh=None if grid_kh is None else top)
         if lowest:
             fine = fine[:, :1]
         if fine.shape[1] > out.shape[1]:
@@ -360,12 +364,13 @@ def family_modes(b: Blocks, fam: Family, kh, *, electrical: str | Boundary = "fr
 
 
 def _family_scan(b: Blocks, fam: Family, kh: np.ndarray, electrical: str | Boundary, n_grid: int | None,
-                 lowest: bool = False) -> np.ndarray:
-    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh); with
-    ``lowest`` the scan may stop early (:func:`_scan_from_bottom`) and higher columns may be missing."""
+                 lowest: bool = False, grid_kh: float | None = None) -> np.ndarray:
+    """:func:`family_modes` by one scan of the speed grid (n_grid points, default from kh, or from
+    ``grid_kh`` if given); with ``lowest`` the scan may stop early (:func:`_scan_from_bottom`) and
+    higher columns may be missing."""
     c_lim = float(np.sqrt(fam.X_limit * b.sA / b.rho[-1]))
-    n = n_grid or int(BASE_GRID + GRID_PER_KH * min(float(np.max(kh, initial=0.0)), 100.0))
-    kh_max = float(np.max(kh, initial=0.0))
+    kh_max = float(np.max(kh, initial=0.0)) if grid_kh is None else float(grid_kh)
+    n = n_grid or int(BASE_GRID + GRID_PER_KH * min(kh_max, 100.0))
     bulk = film_bulk_speeds(b)
     grid = speed_grid(c_lim, min(lowest_speed(b), 0.5 * c_lim), n, bulk, kh_max)
     # at a film's bulk speed along x1 its Stroh roots p = 0 coalesce (a Jordan block): det Z is

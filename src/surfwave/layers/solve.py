@@ -121,7 +121,10 @@ def layered(substrate, films=(), *, euler=None, surface: str = "(001)", directio
     kh : array_like, shape (n,)
         Wavenumber times the total film thickness, in [0, :data:`MAX_KH`].
     frequency : array_like, shape (n,), optional
-        Frequencies (Hz) instead of ``kh``: each mode then has its own kh = 2 pi f H / c.
+        Frequencies (Hz) instead of ``kh``: each mode then has its own kh = 2 pi f H / c. Labels
+        are then ranks within each family at that frequency (R, S1, ... by speed); a branch whose
+        frequency falls with k (a backward wave, ``group_velocity`` < 0) meets one frequency two
+        or three times, each a mode (:mod:`surfwave.layers.frequency`).
     electrical : {"free", "metallized"} or Boundary
         Top surface of a piezoelectric stack (``c`` is reported for this condition): a
         :class:`surfwave.solvers.boundary.Boundary` or its name.
