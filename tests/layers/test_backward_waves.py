@@ -86,7 +86,7 @@ def test_isotropic_stack_general_path_equals_isotropic_path(monkeypatch):
 
 
 #: A film 70 times slower than its substrate and 12 times denser (shear 156 against ~15000 m/s): its modes crowd
-#: near the floor, where the speed grid of one small kh alone is too coarse to hold them all.
+#: near the floor (a call at one small kh gets a speed grid that holds them: test_single_kh_grid.py).
 SLOW_SUB = {"E": 645.8731811250179, "nu": 0.0944253498173546, "rho": 1319.73508333182}
 SLOW_FILM = {"E": 1.0507174046061092, "nu": 0.328625655480177, "rho": 16321.33118120104, "thickness": H}
 

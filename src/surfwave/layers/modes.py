@@ -113,19 +113,22 @@ def speed_grid(c_lim: float, c_lo: float, n: int, bulk=(), kh_max: float = 0.0) 
     """Ascending speeds in (c_lo, c_lim).
 
     Uniform in t = sqrt(1 - c^2/c_lim^2) (dense near c_lim), uniform in c (n / 2 points: slow
-    films), a geometric tail toward c_lim, and above each film bulk speed v in ``bulk`` the points
-    v sqrt(1 + q^2) with q spaced by pi / (16 kh_max) when kh_max > 2 (modes and poles crowd there at
-    large kh; below, the other two parts resolve them).
+    films), a geometric tail toward c_lim, the floor c_lo (1 + 1e-9) itself (the scan counts the
+    negative eigenvalues there: the floor's count), and above each film bulk speed v in ``bulk`` the
+    points v sqrt(1 + q^2), q in (0, q_max = sqrt(c_lim^2 / v^2 - 1)), with q spaced by
+    pi / (16 kh_max) (16 points per mode: the sheet's modes lie ~pi / kh apart in q, with poles
+    between them), at every kh_max > 0: the sheet holds ~kh_max q_max / pi modes, so the phase, not
+    kh alone, sets how many (a film much slower than its substrate holds many already at small kh,
+    far below the uniform parts' resolution); at most 4000 points per sheet.
     """
     t_hi = np.sqrt(1.0 - (c_lo / c_lim) ** 2)
     t = np.concatenate([np.geomspace(T_MIN, 0.02, 24, endpoint=False), np.linspace(0.02, t_hi, n)])
-    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1]]
-    if kh_max > 2.0:
-        for v in bulk:
-            if c_lo < v < c_lim:
-                q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
-                q = np.arange(1e-4, q_max, np.pi / (16.0 * kh_max))[:4000]
-                parts.append(v * np.sqrt(1.0 + q * q))
+    parts = [c_lim * np.sqrt(1.0 - t * t), np.linspace(c_lo, c_lim, n // 2 + 2)[1:-1], np.array([c_lo * (1 + 1e-9)])]
+    for v in bulk if kh_max > 0.0 else ():
+        if c_lo < v < c_lim:
+            q_max = np.sqrt((c_lim / v) ** 2 - 1.0)
+            q = np.arange(1e-4, q_max, np.pi / (16.0 * kh_max))[:4000]
+            parts.append(v * np.sqrt(1.0 + q * q))
     g = np.unique(np.concatenate(parts))
     return g[(g > c_lo) & (g < c_lim)]
 
