@@ -32,7 +32,7 @@ _general = layered_general
 def _unguarded(sub, films, **kw):
     keep = guard.guarded
     try:
-        guard.guarded = lambda stack: False
+        guard.guarded = lambda stack, st=None: False
         return surfwave.layered(sub, films, **kw)
     finally:
         guard.guarded = keep
@@ -178,3 +178,38 @@ def test_group_velocity_of_a_deeply_trapped_love_mode():
         j = [list(r["mode"][q]).index("L0") for q in range(3)]
         fd = r["c"][1, j[1]] + kh * (r["c"][2, j[2]] - r["c"][0, j[0]]) / (2 * h)
         assert r["group_velocity"][1, j[1]] == pytest.approx(fd, rel=1e-7)
+
+
+def _shear_layer(vs: float, rho: float, nu: float) -> dict:
+    """An isotropic layer of shear speed vs (m/s), density rho (kg/m^3) and Poisson ratio nu (E in GPa)."""
+    return {"E": 2.0 * (1.0 + nu) * rho * vs ** 2 / 1e9, "nu": nu, "rho": rho}
+
+
+FAST_SUB = _shear_layer(11871.0, 19059.0, 0.427)
+FAST_FILM = dict(_shear_layer(200.0, 10725.0, 0.065), thickness=1e-6)
+
+
+def test_one_high_contrast_film_is_counted():
+    """A film of shear speed 200 m/s on a substrate of 11871 m/s at kh = 0.7 called alone: the grid by itself
+    lost the pair S21 / S22 (11217.48, 11305.99 m/s) in the cell next to S20's sign change, where no hunt
+    starts. One film of contrast above CONTRAST is counted, so the default call has every mode. Reference: the
+    general (Stroh) path on the same stack (solve.FAST_ISOTROPIC = False): the same labels, speeds to 1e-8."""
+    from surfwave.layers import solve
+    from surfwave.layers.isotropic import iso_stack
+    from surfwave.layers.stack import resolve_stack
+
+    fast = surfwave.layered(FAST_SUB, [FAST_FILM], kh=[0.7])
+    keep = solve.FAST_ISOTROPIC
+    solve.FAST_ISOTROPIC = False
+    try:
+        general = surfwave.layered(FAST_SUB, [FAST_FILM], kh=[0.7])
+    finally:
+        solve.FAST_ISOTROPIC = keep
+    assert list(fast["mode"][0]) == list(general["mode"][0])
+    np.testing.assert_allclose(fast["c"], general["c"], rtol=1e-8)
+    assert {"S21", "S22"} <= set(fast["mode"][0])
+    # the rule itself: this stack is counted, the low-contrast stack of the disba comparison is not
+    stack = resolve_stack(FAST_SUB, [FAST_FILM])
+    assert guard.guarded(stack, iso_stack(stack))
+    low = resolve_stack({"E": 400.0, "nu": 0.25, "rho": 3500.0}, [{"E": 73.0, "nu": 0.17, "rho": 2200.0, "thickness": 1e-6}])
+    assert not guard.guarded(low, iso_stack(low))

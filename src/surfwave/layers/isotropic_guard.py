@@ -45,11 +45,17 @@ two places a mode can live in: a film buried under a faster one (SiO2 / AlN / go
 also, less often, films whose speeds rise downward (a slow top film over a film barely slower
 than the substrate: 2 of 186 random such stacks lost two sagittal modes at kh ~ 79 on the grid
 alone), so no cheaper criterion (such as :func:`surfwave.layers.counting.needed`) is safe. One
-film on a half-space is not counted: the count would double the cost there (200 kh rows: 7 ms on
-top of 8 ms), and its modes are those of one guide, spaced by about pi of vertical phase in the
-film, wider than the grid's phase step (pi / 4); on 600 random one-film stacks (kh 0.1 ... 100)
-the grid found every mode the count has (a seeded sample of them, with the multi-film ones, is in
-tests/layers/test_isotropic_guard.py). That is evidence, not a proof. :data:`ALWAYS` checks every
+film on a half-space is counted when the substrate's shear speed exceeds :data:`CONTRAST` x the
+film's: there a film holds many modes close together below c_lim (about kh q_max / pi per wave
+type, q_max = sqrt(c_lim^2 / v^2 - 1)), and the grid alone lost modes on three such stacks
+(film shear 200 m/s on 11871 m/s at kh 0.7 called alone: a pair S21 / S22 in the cell next to
+S20's sign change, where no hunt starts; 452 on 3326 m/s with ``modes`` = 3: a pair the hunt
+took for a near miss; a heavy film's Love modes packed within 0.2 m/s above its shear speed,
+before the grid resolved that onset). A film of lower contrast is not counted: the count would
+double the cost there (200 kh rows: 7 ms on top of 8 ms, before the fast path took 2 ms), and on
+600 random one-film stacks (kh 0.1 ... 100) and 2300 calls of 575 more (kh and frequency rows,
+``modes`` None and 2), all contrasts, the grid found every mode the count has. That is evidence,
+not a proof. :data:`ALWAYS` checks every
 stack. The cost on a guarded stack: about 15 % (buried gold, 200 kh rows 0.5 ... 20: 0.30 s
 against 0.26 s unchecked).
 """
@@ -64,10 +70,12 @@ from surfwave.layers.isotropic_modes import FLOOR, Rows, refine_brackets, roots_
 from surfwave.layers.partial import Blocks, Family, families, scaled_blocks
 from surfwave.layers.stack import Stack
 
-__all__ = ["ALWAYS", "SAME", "TOP", "check_families", "guarded", "row_counts"]
+__all__ = ["ALWAYS", "CONTRAST", "SAME", "TOP", "check_families", "guarded", "row_counts"]
 
 #: The count's top speed is c_lim (1 - TOP).
 TOP = 1e-9
+#: One film is counted when the substrate's shear speed exceeds this many times the film's (:func:`guarded`).
+CONTRAST = 3.0
 #: Check every stack (tests; default: only those of :func:`guarded`).
 ALWAYS = False
 #: Bisection steps on the count at most.
@@ -80,9 +88,16 @@ SAME = 1e-10
 UNCOUNTED = -10**6
 
 
-def guarded(stack: Stack) -> bool:
-    """True when :func:`check_families` counts this stack's modes: two films or more (or :data:`ALWAYS`)."""
-    return ALWAYS or sum(f.thickness > 0 for f in stack.films) >= 2
+def guarded(stack: Stack, st: IsoStack | None = None) -> bool:
+    """True when :func:`check_families` counts this stack's modes (module docstring).
+
+    Two films or more; one film whose shear speed is below 1 / :data:`CONTRAST` of the substrate's
+    (given ``st``, the stack's :class:`surfwave.layers.isotropic.IsoStack`); or :data:`ALWAYS`.
+    """
+    films = sum(f.thickness > 0 for f in stack.films)
+    if ALWAYS or films >= 2:
+        return True
+    return films == 1 and st is not None and st.c_lim > CONTRAST * float(st.shear[:-1].min())
 
 
 def row_counts(b: Blocks, fam: Family, rows_of: Rows, rows: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -147,7 +162,7 @@ def check_families(stack: Stack, st: IsoStack, rows_of: Rows, prefixes: tuple[st
         (refined by the fast path's Newton iteration): below the check speed instead of the row's at
         fixed kh, added to the row's at fixed frequency. Unchanged for a stack :func:`guarded` leaves alone.
     """
-    if not guarded(stack):
+    if not guarded(stack, st):
         return sols
     b = scaled_blocks(stack)
     if not applicable(b):
