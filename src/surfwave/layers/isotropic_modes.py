@@ -15,6 +15,8 @@ F drop out at a zero of F). Power flow is along x1 (angle 0).
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from surfwave.layers.isotropic import IsoStack
@@ -32,6 +34,8 @@ from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, p
     _at,
     _brackets,
     _brackets_both,
+    hunt_settles,
+    hunt_start,
     phase_curve,
     slowest_speed,
     speed_grid,
@@ -87,15 +91,26 @@ def _refine(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
     comes from the derivatives of the last evaluation (F_kh / F_t carried linearly to the root).
     """
     with np.errstate(all="ignore"):
-        return _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+        out = _newton(st, prefix, lo, hi, rows_of, r, flo, fhi, c3, f3)
+    assert out is not None
+    return out
+
+
+#: Points evaluated with Newton's first round (:func:`_newton`): t and kh of P-SV points (m1,), of SH
+#: points (m2,), and a test of F there (m1,), (m2,): False stops the refinement (it returns None).
+Extra = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, Callable[[np.ndarray, np.ndarray], bool]]
 
 
 def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: Rows, r: np.ndarray,
-            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            flo: np.ndarray, fhi: np.ndarray, c3: np.ndarray, f3: np.ndarray, extra: Extra | None = None
+            ) -> tuple[np.ndarray, np.ndarray] | None:
     """The loop of :func:`_refine` (floating-point warnings off).
 
     Only the brackets not yet converged are evaluated (the state of the loop is carried for those
-    only); a converged point's answer is written out when it converges.
+    only); a converged point's answer is written out when it converges. ``extra`` (prefix "RL" only):
+    points evaluated in the same call as the first round (:data:`Extra`); None if their test fails
+    (or the brackets are not P-SV first). Each point's values do not depend on the others evaluated
+    with it (:func:`secular_d_pair`), so the answer is the one without ``extra``.
     """
     c_lim = st.c_lim
     freq = rows_of.freq
@@ -122,7 +137,19 @@ def _newton(st: IsoStack, prefix: str, lo: np.ndarray, hi: np.ndarray, rows_of: 
         w = 1.0 - x * x
         c = c_lim * np.sqrt(w)
         kh = b / c if freq else b
-        if k_psv is None:
+        if it == 0 and extra is not None:
+            if k_psv is None:
+                return None
+            tR, kR, tL, kL, test = extra
+            nR, m = tR.size, x.size
+            kh_ = np.broadcast_to(kh, x.shape)
+            res = secular_d_pair(st, np.concatenate([x[:k_psv], tR, x[k_psv:], tL]),
+                                 np.concatenate([kh_[:k_psv], kR, kh_[k_psv:], kL]), k_psv + nR)
+            if not test(res[0][k_psv:k_psv + nR], res[0][m + nR:]):
+                return None
+            sel = np.r_[0:k_psv, k_psv + nR:m + nR]
+            fx, ft, fk, rk = (v[sel] for v in res)
+        elif k_psv is None:
             fx, ft, fk, rk = _at_d(st, prefix, rows_of, r[idx], x, kh)
         else:
             fx, ft, fk, rk = secular_d_pair(st, x, kh, k_psv)
@@ -223,11 +250,46 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
     if grid is None:
         curve = phase_curve(st) if st.frac.size == 1 else None
         grid = speed_grid(st, rows_of, 1, curve)
-    bR, bL = _brackets_both(st, rows_of, modes, grid, curve)
-    r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v]) for k, (u, v) in enumerate(zip(bR, bL)))
-    roots, vg = _refine(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3)
+    # with one film the first scan's hunt for hidden pairs (isotropic_scan._hidden_pairs) is evaluated
+    # with Newton's first round: if it finds nothing (no point of F's other sign, every minimum dropped
+    # as a near miss after that step) the brackets are those of the scan as it is; else all again
+    pend: tuple[list, list] | None = ([], []) if st.frac.size == 1 else None
+    bR, bL = _brackets_both(st, rows_of, modes, grid, curve, pending=pend)
+    extra = _hunt_points(st, rows_of, pend) if pend is not None and (pend[0] or pend[1]) else None
+    res = None
+    for _ in range(2):
+        r, lo, hi, flo, fhi, c3, f3 = (np.concatenate([u, v + n if k == 0 else v])
+                                       for k, (u, v) in enumerate(zip(bR, bL)))
+        with np.errstate(all="ignore"):
+            res = _newton(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3, extra)
+        if res is not None:
+            break
+        bR, bL = _brackets_both(st, rows_of, modes, grid, curve)
+        extra = None
+    assert res is not None
+    roots, vg = res
     sh = r >= n
     return [_table(n, r[~sh], roots[~sh], vg[~sh]), _table(n, r[sh] - n, roots[sh], vg[sh])]
+
+
+def _hunt_points(st: IsoStack, rows_of: Rows, pend: tuple[list, list]) -> Extra:
+    """The first points of the hunts ``pend`` (P-SV, SH: lists of (rows, speeds, F) of
+    :func:`surfwave.layers.isotropic_scan._assemble`) as :data:`Extra`, with the test that they stop there."""
+    pts = []
+    for p in pend:
+        if p:
+            rr, cs, Fs = p[0]
+            x = hunt_start(cs, Fs)
+            pts.append((np.sqrt(1.0 - (x / st.c_lim) ** 2), rows_of.pairs(rr, x), cs, Fs, x))
+        else:
+            e = np.zeros(0)
+            pts.append((e, e, np.zeros((0, 3)), np.zeros((0, 3)), e))
+    (tR, kR, cR, FR, xR), (tL, kL, cL, FL, xL) = pts
+
+    def test(fR: np.ndarray, fL: np.ndarray) -> bool:
+        return hunt_settles(cR, FR, xR, fR) and hunt_settles(cL, FL, xL, fL)
+
+    return tR, kR, tL, kL, test
 
 
 def _table(n_rows: int, r: np.ndarray, roots: np.ndarray, vg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

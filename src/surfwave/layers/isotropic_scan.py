@@ -168,6 +168,53 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
     return found, x_out, f_out
 
 
+def hunt_start(cs: np.ndarray, Fs: np.ndarray) -> np.ndarray:
+    """The speeds (m,) at which :func:`_hidden_pairs` on ``cs``, ``Fs`` (m, 3) first evaluates F (its first step)."""
+    s = np.sign(Fs[:, 1])
+    (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
+    with np.errstate(all="ignore"):
+        a, b = cm - cl, cm - ch
+        dh, dl = gm - gh, gm - gl
+        x = cm - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
+    gold = np.where(a > -b, cm - 0.382 * a, cm - 0.382 * b)
+    bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
+    return np.where(bad, gold, x)
+
+
+def hunt_settles(cs: np.ndarray, Fs: np.ndarray, x: np.ndarray, fx: np.ndarray) -> bool:
+    """Whether :func:`_hidden_pairs` on ``cs``, ``Fs`` (m, 3) finds nothing and stops after its first step,
+    given F ``fx`` (m,) at that step's speeds ``x`` (:func:`hunt_start`) to rounding.
+
+    True only if this holds for every F within 1e-9 of the largest |F| of the three grid points of each
+    minimum around ``fx`` (and at ``fx``): then F evaluated otherwise (another route to the same
+    function, equal to rounding) takes :func:`_hidden_pairs` the same way.
+    """
+    s = np.sign(Fs[:, 1])
+    (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
+    gx0 = fx * s
+    tol = 1e-9 * np.maximum(np.maximum(gl, gh), np.abs(gm))
+    with np.errstate(all="ignore"):
+        if not bool(np.all(gx0 > tol) & np.all(np.abs(gx0 - gm) > tol)):   # no hit; the same side of gm
+            return False
+        for gx in (gx0 - tol, gx0, gx0 + tol):
+            better, left = gx < gm, x < cm
+            nl = np.where(better, np.where(left, cl, cm), np.where(left, x, cl))
+            nh = np.where(better, np.where(left, cm, ch), np.where(left, ch, x))
+            gl1 = np.where(better, np.where(left, gl, gm), np.where(left, gx, gl))
+            gh1 = np.where(better, np.where(left, gm, gh), np.where(left, gh, gx))
+            cm1, gm1 = np.where(better, x, cm), np.where(better, gx, gm)
+            live = nh - nl > 1e-9 * cm1
+            a, b = cm1 - nl, cm1 - nh
+            dh, dl = gm1 - gh1, gm1 - gl1
+            x1 = cm1 - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
+            curv = ((gl1 - gm1) / a - (gh1 - gm1) / b) / (a - b)
+            g_min = gm1 - curv * (cm1 - x1) ** 2
+            drop = np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm1)
+            if not bool(np.all(drop | ~live)):
+                return False
+    return True
+
+
 def _scan(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float
           ) -> tuple[np.ndarray, ...]:
     """Brackets (row, lower speed, upper speed, F at both, a third grid speed next to them or NaN, F there).
@@ -210,8 +257,12 @@ def _evaluate(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: 
 
 
 def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float,
-              F: np.ndarray, upto: np.ndarray) -> tuple[np.ndarray, ...]:
-    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,))."""
+              F: np.ndarray, upto: np.ndarray, pending: list | None = None) -> tuple[np.ndarray, ...]:
+    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,)).
+
+    ``pending``: a list receiving the hunt's input (rows (m,), grid speeds and F (m, 3)) instead of
+    running :func:`_hidden_pairs`: the brackets are then those of a hunt that finds nothing.
+    """
     n_r, n_c = rows.size, grid.size
     pos = F > 0
     seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
@@ -240,7 +291,10 @@ def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: 
             lim[r1[nth]] = j1[nth]
             near = k2 <= lim[r2]
             k2, r2 = k2[near], r2[near]
-        if r2.size:
+        if r2.size and pending is not None:
+            cols = k2[:, None] + np.arange(3)
+            pending.append((rows[r2], grid[cols], F[cols, r2[:, None]]))
+        elif r2.size:
             cols = k2[:, None] + np.arange(3)
             c3_, F3 = grid[cols], F[cols, r2[:, None]]
             ok, x, fx = _hidden_pairs(st, prefix, rows_of, rows[r2], c3_, F3)
@@ -385,14 +439,16 @@ def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_r
 
 
 def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray,
-                   curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True
+                   curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True,
+                   pending: tuple[list, list] | None = None
                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
     """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`).
 
     ``grid``: :func:`speed_grid` of all rows; ``curve``: its :func:`phase_curve` if at hand;
     ``coarsen``: False keeps ``grid`` to the top (the rest of it is otherwise rebuilt for the rows
     still scanned, :func:`_evaluate_both`; then the brackets are those of the separate scans,
-    :func:`_brackets`, bit for bit).
+    :func:`_brackets`, bit for bit); ``pending``: with one film, two lists (P-SV, SH) receiving the
+    first scan's hunt for hidden pairs instead of running it (:func:`_assemble`).
     """
     if st.frac.size != 1:
         return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
@@ -400,8 +456,9 @@ def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndar
     rows = np.arange(rows_of.base.size)
     grid_l = _family_grid(st, "L", grid)
     FR, upR, FL, upL, grid, grid_l = _evaluate_both(st, grid, grid_l, rows_of, rows, need, curve, coarsen)
-    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
-            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
+    pR, pL = (None, None) if pending is None else pending
+    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR, pR)),
+            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL, pL)))
 
 
 def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: Rows, rows: np.ndarray,
