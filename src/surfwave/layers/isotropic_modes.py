@@ -252,8 +252,9 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
         grid = speed_grid(st, rows_of, 1, curve)
     # with one film the first scan's hunt for hidden pairs (isotropic_scan._hidden_pairs) is evaluated
     # with Newton's first round: if it finds nothing (no point of F's other sign, every minimum dropped
-    # as a near miss after that step) the brackets are those of the scan as it is; else all again
-    pend: tuple[list, list] | None = ([], []) if st.frac.size == 1 else None
+    # as a near miss after that step) the brackets are those of the scan as it is; else the brackets
+    # with the hunt run (from the same evaluated grid) are refined
+    pend: tuple[list, list, list] | None = ([], [], []) if st.frac.size == 1 else None
     bR, bL = _brackets_both(st, rows_of, modes, grid, curve, pending=pend)
     extra = _hunt_points(st, rows_of, pend) if pend is not None and (pend[0] or pend[1]) else None
     res = None
@@ -264,7 +265,8 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
             res = _newton(st, "RL", lo, hi, rows_of.both(), r, flo, fhi, c3, f3, extra)
         if res is not None:
             break
-        bR, bL = _brackets_both(st, rows_of, modes, grid, curve)
+        assert pend is not None
+        bR, bL = pend[2][0]()
         extra = None
     assert res is not None
     roots, vg = res
@@ -272,11 +274,11 @@ def both_families(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarr
     return [_table(n, r[~sh], roots[~sh], vg[~sh]), _table(n, r[sh] - n, roots[sh], vg[sh])]
 
 
-def _hunt_points(st: IsoStack, rows_of: Rows, pend: tuple[list, list]) -> Extra:
+def _hunt_points(st: IsoStack, rows_of: Rows, pend: tuple[list, list, list]) -> Extra:
     """The first points of the hunts ``pend`` (P-SV, SH: lists of (rows, speeds, F) of
     :func:`surfwave.layers.isotropic_scan._assemble`) as :data:`Extra`, with the test that they stop there."""
     pts = []
-    for p in pend:
+    for p in pend[:2]:
         if p:
             rr, cs, Fs = p[0]
             x = hunt_start(cs, Fs)

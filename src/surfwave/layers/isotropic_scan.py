@@ -440,15 +440,16 @@ def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_r
 
 def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray,
                    curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True,
-                   pending: tuple[list, list] | None = None
+                   pending: tuple[list, list, list] | None = None
                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
     """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`).
 
     ``grid``: :func:`speed_grid` of all rows; ``curve``: its :func:`phase_curve` if at hand;
     ``coarsen``: False keeps ``grid`` to the top (the rest of it is otherwise rebuilt for the rows
     still scanned, :func:`_evaluate_both`; then the brackets are those of the separate scans,
-    :func:`_brackets`, bit for bit); ``pending``: with one film, two lists (P-SV, SH) receiving the
-    first scan's hunt for hidden pairs instead of running it (:func:`_assemble`).
+    :func:`_brackets`, bit for bit); ``pending``: with one film, three lists: two (P-SV, SH) receive the
+    first scan's hunt for hidden pairs instead of running it (:func:`_assemble`), the third a
+    function returning the brackets with the hunt run (from the same evaluated grid).
     """
     if st.frac.size != 1:
         return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
@@ -456,9 +457,19 @@ def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndar
     rows = np.arange(rows_of.base.size)
     grid_l = _family_grid(st, "L", grid)
     FR, upR, FL, upL, grid, grid_l = _evaluate_both(st, grid, grid_l, rows_of, rows, need, curve, coarsen)
-    pR, pL = (None, None) if pending is None else pending
+    if pending is not None:
+        pending[2].append(lambda: _both_assembled(st, rows_of, rows, need, grid, grid_l, FR, upR, FL, upL))
+    pR, pL = (None, None) if pending is None else pending[:2]
     return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR, pR)),
             _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL, pL)))
+
+
+def _both_assembled(st: IsoStack, rows_of: Rows, rows: np.ndarray, need: float, grid: np.ndarray, grid_l: np.ndarray,
+                    FR: np.ndarray, upR: np.ndarray, FL: np.ndarray, upL: np.ndarray
+                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """The brackets of :func:`_brackets_both` (one film) from the evaluated grids of :func:`_evaluate_both`."""
+    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
+            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
 
 
 def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: Rows, rows: np.ndarray,
