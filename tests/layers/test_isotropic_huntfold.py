@@ -4,8 +4,9 @@ With one film, :func:`surfwave.layers.isotropic_modes.both_families` evaluates t
 :func:`surfwave.layers.isotropic_scan._hidden_pairs` in the same call as Newton's first round and
 keeps the brackets of the scan where :func:`surfwave.layers.isotropic_scan.hunt_settles` says the
 hunt finds nothing. Reference: the same call with the hunt run inside the scan as before (the
-fold switched off by dropping the ``pending`` lists), on seeded random one-film stacks whose hunts
-both stop after one step and go on; speeds, group velocities and counts must agree bit for bit.
+fold switched off by dropping the ``pending`` lists), on seeded random one-film stacks (``modes``
+given: only then is the hunt folded) whose hunts both stop after one step and go on; speeds, group
+velocities and counts must agree bit for bit.
 """
 from __future__ import annotations
 
@@ -25,11 +26,11 @@ def _mat(rng: np.random.Generator) -> dict:
 
 
 def test_folded_hunt_changes_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
-    """20 seeded random one-film stacks, rows in kh and in frequency, modes None / 1 / 2 / 3: both_families
+    """20 seeded random one-film stacks, rows in kh and in frequency, modes 1 / 2 / 3: both_families
     with the fold equals both_families with the hunt inside the scan (bit for bit); the sample holds
     hunts the fold keeps and hunts it hands back (so both routes are exercised). (hunt_settles made to
     accept every hunt fails here: a pair the hunt finds at its first step is lost.)"""
-    rng = np.random.default_rng(2026)
+    rng = np.random.default_rng(1)
     verdicts: list[bool] = []
     settles = im.hunt_settles
 
@@ -46,7 +47,7 @@ def test_folded_hunt_changes_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
         sub, film = _mat(rng), {**_mat(rng), "thickness": 1e-6}
         st = iso_stack(resolve_stack(sub, [film]))
         n = int(rng.integers(20, 120))
-        modes = [None, 1, 2, 3][int(rng.integers(4))]
+        modes = int(rng.integers(1, 4))
         for freq in (False, True):
             x = np.linspace(0.01, 1, n) * float(rng.uniform(1, 100))
             if freq:
