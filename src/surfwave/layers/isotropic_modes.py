@@ -8,6 +8,9 @@ refined together by a safeguarded Newton iteration in
 t = sqrt(1 - c^2 / c_lim^2) (c_lim the substrate's shear speed; the function is analytic in t up to
 c_lim, in c it has a square-root branch point there) with the exact derivative of
 :mod:`surfwave.layers.isotropic_deriv`, to a relative width :data:`C_TOL` in c.
+With one film and ``modes`` given, the first step of the scan's hunt for two roots in one cell is
+evaluated in the same call as Newton's first round (:func:`both_families`); where the hunt would
+have gone on or found a pair, the brackets with the hunt run are refined instead (the same answers).
 
 Group velocity: v_g = c + kh dc/dkh with dc/dkh = -F_kh / F_c, the exact derivatives of the
 secular function at the root (those of the last Newton evaluation; the positive normalisations of
