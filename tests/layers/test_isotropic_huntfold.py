@@ -2,7 +2,7 @@
 
 With one film, :func:`surfwave.layers.isotropic_modes.both_families` evaluates the first step of
 :func:`surfwave.layers.isotropic_scan._hidden_pairs` in the same call as Newton's first round and
-keeps the brackets of the scan where :func:`surfwave.layers.isotropic_scan.hunt_settles` says the
+keeps the brackets of the scan where :func:`surfwave.layers.isotropic_hunt.hunt_settles` says the
 hunt finds nothing. Reference: the same call with the hunt run inside the scan as before (the
 fold switched off by dropping the ``pending`` lists), on seeded random one-film stacks (``modes``
 given: only then is the hunt folded) whose hunts both stop after one step and go on; speeds, group

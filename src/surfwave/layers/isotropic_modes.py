@@ -24,6 +24,7 @@ import numpy as np
 
 from surfwave.layers.isotropic import IsoStack
 from surfwave.layers.isotropic_deriv import secular_d, secular_d_pair
+from surfwave.layers.isotropic_hunt import hunt_settles, hunt_start
 from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, public here as before)
     CHUNK,
     FLOOR,
@@ -37,8 +38,6 @@ from surfwave.layers.isotropic_scan import (  # noqa: F401  (the grid's names, p
     _at,
     _brackets,
     _brackets_both,
-    hunt_settles,
-    hunt_start,
     phase_curve,
     slowest_speed,
     speed_grid,
