@@ -442,11 +442,12 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
     up_r, up_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     # P-SV alone below j0 and the SH grid's first point on top of the chunk at j0, or chunks across
-    # j0 and that point alone: whichever takes fewer evaluations (with every row active)
+    # j0, that point on top of the chunk across it: whichever takes fewer evaluations (every row active)
     at_j0 = j0 < n_c and 1 - (-(n_c - j0) * n_r // CHUNK_ELEMENTS) <= -(-n_c * n_r // CHUNK_ELEMENTS)
-    if not at_j0:
+    if j0 >= n_c:                                                      # (no chunk reaches the SH grid)
         FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
         up_l[:] = 1
+    l0 = j0 < n_c                                                      # the SH grid's first point still to do
     act_r, act_l = np.arange(n_r), np.arange(n_r)
     top = float(rows_of.base[rows].max(initial=0.0))                  # the grid is for rows up to this base
     start = 0
@@ -465,7 +466,8 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         left = end - start
         stop = start - (-left // -(-left // most))                     # the rest in equal chunks
         sl = slice(start, stop)
-        first = int(at_j0 and start == j0)                             # the SH grid's first point on top
+        first = int(l0 and stop > j0)                                  # the SH grid's first point on top
+        l0 = l0 and not first
         speeds, r2 = grid[sl], sp_r.r2[0, 1, sl]
         if first:
             speeds, r2 = np.concatenate([grid_l[:1], speeds]), np.concatenate([sp_l.r2[0, 1, :1], r2])
@@ -474,10 +476,12 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         assert gb is not None
         if act_l.size and stop > j0:                                   # SH first: P-SV overwrites C_b
             a = max(start, j0)
-            blk = slice(a - start, None)                               # (the first point included)
+            # (the first point included: then a = j0)
+            blk = np.r_[0, a - start + 1:stop - start + 1] if first and a > start else slice(a - start, None)
             cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
             lo_l, hi_l = a - j0 + 1 - first, stop - j0 + 1
-            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kh[blk, cols], (Cb[blk, cols], Sb[blk, cols]))
+            kb, Cl, Sl = kh[blk], Cb[blk], Sb[blk]
+            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kb[:, cols], (Cl[:, cols], Sl[:, cols]))
             act_l = _record(FL, up_l, found_l, act_l, lo_l, hi_l, Fn, need)
         if act_r.size:
             cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
