@@ -210,8 +210,12 @@ def _evaluate(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: 
 
 
 def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: np.ndarray, need: float,
-              F: np.ndarray, upto: np.ndarray) -> tuple[np.ndarray, ...]:
-    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,))."""
+              F: np.ndarray, upto: np.ndarray, pending: list | None = None) -> tuple[np.ndarray, ...]:
+    """:func:`_scan`'s brackets from the evaluated F (n, r) (speed-major, valid below ``upto`` (r,)).
+
+    ``pending``: a list receiving the hunt's input (rows (m,), grid speeds and F (m, 3)) instead of
+    running :func:`_hidden_pairs`: the brackets are then those of a hunt that finds nothing.
+    """
     n_r, n_c = rows.size, grid.size
     pos = F > 0
     seen = np.arange(1, n_c)[:, None] < upto                           # cell j (c_j, c_j+1) evaluated
@@ -240,7 +244,10 @@ def _assemble(st: IsoStack, prefix: str, grid: np.ndarray, rows_of: Rows, rows: 
             lim[r1[nth]] = j1[nth]
             near = k2 <= lim[r2]
             k2, r2 = k2[near], r2[near]
-        if r2.size:
+        if r2.size and pending is not None:
+            cols = k2[:, None] + np.arange(3)
+            pending.append((rows[r2], grid[cols], F[cols, r2[:, None]]))
+        elif r2.size:
             cols = k2[:, None] + np.arange(3)
             c3_, F3 = grid[cols], F[cols, r2[:, None]]
             ok, x, fx = _hidden_pairs(st, prefix, rows_of, rows[r2], c3_, F3)
@@ -385,14 +392,17 @@ def _skipped(r: np.ndarray, lo: np.ndarray, r2: np.ndarray, hi2: np.ndarray, n_r
 
 
 def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndarray,
-                   curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True
+                   curve: tuple[np.ndarray, np.ndarray] | None = None, coarsen: bool = True,
+                   pending: tuple[list, list, list] | None = None
                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
     """:func:`_brackets` of P-SV and SH; with one film, both scans in one pass (:func:`_evaluate_both`).
 
     ``grid``: :func:`speed_grid` of all rows; ``curve``: its :func:`phase_curve` if at hand;
     ``coarsen``: False keeps ``grid`` to the top (the rest of it is otherwise rebuilt for the rows
     still scanned, :func:`_evaluate_both`; then the brackets are those of the separate scans,
-    :func:`_brackets`, bit for bit).
+    :func:`_brackets`, bit for bit); ``pending``: with one film, three lists: two (P-SV, SH) receive the
+    first scan's hunt for hidden pairs instead of running it (:func:`_assemble`), the third a
+    function returning the brackets with the hunt run (from the same evaluated grid).
     """
     if st.frac.size != 1:
         return _brackets(st, "R", rows_of, modes, grid), _brackets(st, "L", rows_of, modes, grid)
@@ -400,6 +410,17 @@ def _brackets_both(st: IsoStack, rows_of: Rows, modes: int | None, grid: np.ndar
     rows = np.arange(rows_of.base.size)
     grid_l = _family_grid(st, "L", grid)
     FR, upR, FL, upL, grid, grid_l = _evaluate_both(st, grid, grid_l, rows_of, rows, need, curve, coarsen)
+    if pending is not None:
+        pending[2].append(lambda: _both_assembled(st, rows_of, rows, need, grid, grid_l, FR, upR, FL, upL))
+    pR, pL = (None, None) if pending is None else pending[:2]
+    return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR, pR)),
+            _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL, pL)))
+
+
+def _both_assembled(st: IsoStack, rows_of: Rows, rows: np.ndarray, need: float, grid: np.ndarray, grid_l: np.ndarray,
+                    FR: np.ndarray, upR: np.ndarray, FL: np.ndarray, upL: np.ndarray
+                    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """The brackets of :func:`_brackets_both` (one film) from the evaluated grids of :func:`_evaluate_both`."""
     return (_rescan_dips(st, "R", rows_of, need, _assemble(st, "R", grid, rows_of, rows, need, FR, upR)),
             _rescan_dips(st, "L", rows_of, need, _assemble(st, "L", grid_l, rows_of, rows, need, FL, upL)))
 
@@ -421,11 +442,12 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
     up_r, up_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     found_r, found_l = np.zeros(n_r, dtype=int), np.zeros(n_r, dtype=int)
     # P-SV alone below j0 and the SH grid's first point on top of the chunk at j0, or chunks across
-    # j0 and that point alone: whichever takes fewer evaluations (with every row active)
+    # j0, that point on top of the chunk across it: whichever takes fewer evaluations (every row active)
     at_j0 = j0 < n_c and 1 - (-(n_c - j0) * n_r // CHUNK_ELEMENTS) <= -(-n_c * n_r // CHUNK_ELEMENTS)
-    if not at_j0:
+    if j0 >= n_c:                                                      # (no chunk reaches the SH grid)
         FL[0] = sh_block(st, sp_l.cut(slice(0, 1)), rows_of.grid_t(rows, grid_l[:1]))[0]
         up_l[:] = 1
+    l0 = j0 < n_c                                                      # the SH grid's first point still to do
     act_r, act_l = np.arange(n_r), np.arange(n_r)
     top = float(rows_of.base[rows].max(initial=0.0))                  # the grid is for rows up to this base
     start = 0
@@ -444,7 +466,8 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         left = end - start
         stop = start - (-left // -(-left // most))                     # the rest in equal chunks
         sl = slice(start, stop)
-        first = int(at_j0 and start == j0)                             # the SH grid's first point on top
+        first = int(l0 and stop > j0)                                  # the SH grid's first point on top
+        l0 = l0 and not first
         speeds, r2 = grid[sl], sp_r.r2[0, 1, sl]
         if first:
             speeds, r2 = np.concatenate([grid_l[:1], speeds]), np.concatenate([sp_l.r2[0, 1, :1], r2])
@@ -453,10 +476,12 @@ def _evaluate_both(st: IsoStack, grid: np.ndarray, grid_l: np.ndarray, rows_of: 
         assert gb is not None
         if act_l.size and stop > j0:                                   # SH first: P-SV overwrites C_b
             a = max(start, j0)
-            blk = slice(a - start, None)                               # (the first point included)
+            # (the first point included: then a = j0)
+            blk = np.r_[0, a - start + 1:stop - start + 1] if first and a > start else slice(a - start, None)
             cols = slice(None) if act_l.size == union.size else np.searchsorted(union, act_l)
             lo_l, hi_l = a - j0 + 1 - first, stop - j0 + 1
-            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kh[blk, cols], (Cb[blk, cols], Sb[blk, cols]))
+            kb, Cl, Sl = kh[blk], Cb[blk], Sb[blk]
+            Fn = sh_block(st, sp_l.cut(slice(lo_l, hi_l)), kb[:, cols], (Cl[:, cols], Sl[:, cols]))
             act_l = _record(FL, up_l, found_l, act_l, lo_l, hi_l, Fn, need)
         if act_r.size:
             cols = slice(None) if act_r.size == union.size else np.searchsorted(union, act_r)
