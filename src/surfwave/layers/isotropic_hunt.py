@@ -1,4 +1,8 @@
-"""The first step of the isotropic scan's hunt for two roots in one grid cell, apart from the scan.
+"""The isotropic scan's hunt for two roots in one grid cell: its parabolic step, and its first step apart.
+
+The step itself (:func:`vertex`, :func:`near_miss`, :func:`trial_point`, :func:`shrink`) is written
+once here and used by the hunt (:func:`surfwave.layers.isotropic_scan._hidden_pairs`) and by the two
+functions below.
 
 :func:`surfwave.layers.isotropic_scan._hidden_pairs` hunts each local minimum of |F| without a sign
 change by parabolic steps. :func:`hunt_start` gives the speeds of its first step, and
@@ -10,7 +14,46 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["hunt_settles", "hunt_start"]
+__all__ = ["hunt_settles", "hunt_start", "near_miss", "shrink", "trial_point", "vertex"]
+
+
+def vertex(cl: np.ndarray, cm: np.ndarray, ch: np.ndarray, gl: np.ndarray, gm: np.ndarray, gh: np.ndarray
+           ) -> np.ndarray:
+    """Speed of the vertex of the parabola through (cl, gl), (cm, gm), (ch, gh) (arrays, m/s; NaN if flat)."""
+    a, b = cm - cl, cm - ch
+    dh, dl = gm - gh, gm - gl
+    return cm - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
+
+
+def near_miss(cl: np.ndarray, cm: np.ndarray, ch: np.ndarray, gl: np.ndarray, gm: np.ndarray, gh: np.ndarray,
+              x: np.ndarray) -> np.ndarray:
+    """True where the parabola through the three points (vertex ``x``) puts its minimum above 0.7 gm:
+    a dip that does not reach zero, not two roots."""
+    a, b = cm - cl, cm - ch
+    curv = ((gl - gm) / a - (gh - gm) / b) / (a - b)
+    g_min = gm - curv * (cm - x) ** 2
+    return np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm)
+
+
+def trial_point(x: np.ndarray, cl: np.ndarray, cm: np.ndarray, ch: np.ndarray) -> np.ndarray:
+    """The hunt's next speed: the vertex ``x``, or a golden-section point of the wider side where the
+    vertex is not finite, outside (cl, ch) or within 1e-3 of the bracket from cm."""
+    a, b = cm - cl, cm - ch
+    gold = np.where(a > -b, cm - 0.382 * a, cm - 0.382 * b)
+    bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
+    return np.where(bad, gold, x)
+
+
+def shrink(cl: np.ndarray, cm: np.ndarray, ch: np.ndarray, gl: np.ndarray, gm: np.ndarray, gh: np.ndarray,
+           x: np.ndarray, gx: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The bracket (cl, cm, ch) and its values (gl, gm, gh) after F's value ``gx`` at ``x``: x becomes the
+    middle point where it is lower than gm, else the end on its side."""
+    better, left = gx < gm, x < cm
+    cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
+              np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
+    gl, gh = (np.where(better, np.where(left, gl, gm), np.where(left, gx, gl)),
+              np.where(better, np.where(left, gm, gh), np.where(left, gh, gx)))
+    return cl, np.where(better, x, cm), ch, gl, np.where(better, gx, gm), gh
 
 
 def hunt_start(cs: np.ndarray, Fs: np.ndarray) -> np.ndarray:
@@ -22,12 +65,8 @@ def hunt_start(cs: np.ndarray, Fs: np.ndarray) -> np.ndarray:
     s = np.sign(Fs[:, 1])
     (cl, cm, ch), (gl, gm, gh) = cs.T.copy(), (Fs * s[:, None]).T.copy()
     with np.errstate(all="ignore"):
-        a, b = cm - cl, cm - ch
-        dh, dl = gm - gh, gm - gl
-        x = cm - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
-    gold = np.where(a > -b, cm - 0.382 * a, cm - 0.382 * b)
-    bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
-    return np.where(bad, gold, x)
+        x = vertex(cl, cm, ch, gl, gm, gh)
+    return trial_point(x, cl, cm, ch)
 
 
 def hunt_settles(cs: np.ndarray, Fs: np.ndarray, x: np.ndarray, fx: np.ndarray) -> bool:
@@ -49,17 +88,7 @@ def hunt_settles(cs: np.ndarray, Fs: np.ndarray, x: np.ndarray, fx: np.ndarray) 
         if not bool(np.all(gx0 > tol) & np.all(np.abs(gx0 - gm) > tol)):   # no hit; the same side of gm
             return False
         gx = gx0 + np.array([[-1.0], [1.0]]) * tol                      # (2, m): both ends
-        better, left = gx0 < gm, x < cm
-        nl = np.where(better, np.where(left, cl, cm), np.where(left, x, cl))
-        nh = np.where(better, np.where(left, cm, ch), np.where(left, ch, x))
-        gl1 = np.where(better, np.where(left, gl, gm), np.where(left, gx, gl))
-        gh1 = np.where(better, np.where(left, gm, gh), np.where(left, gh, gx))
-        cm1, gm1 = np.where(better, x, cm), np.where(better, gx, gm)
+        nl, cm1, nh, gl1, gm1, gh1 = shrink(cl, cm, ch, gl, gm, gh, x, gx)
         live = nh - nl > 1e-9 * cm1
-        a, b = cm1 - nl, cm1 - nh
-        dh, dl = gm1 - gh1, gm1 - gl1
-        x1 = cm1 - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
-        curv = ((gl1 - gm1) / a - (gh1 - gm1) / b) / (a - b)
-        g_min = gm1 - curv * (cm1 - x1) ** 2
-        drop = np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm1)
+        drop = near_miss(nl, cm1, nh, gl1, gm1, gh1, vertex(nl, cm1, nh, gl1, gm1, gh1))
         return bool(np.all(drop | ~live))

@@ -73,6 +73,7 @@ from surfwave.layers.isotropic_grid import (  # noqa: F401  (the grid's names, p
     slowest_speed,
     speed_grid,
 )
+from surfwave.layers.isotropic_hunt import near_miss, shrink, trial_point, vertex
 
 __all__ = ["CHUNK", "CHUNK_ELEMENTS", "CHUNK_MIN", "FLOOR", "JUMP_ROWS", "N_BASE", "N_LOW", "N_TOP", "PAIR_STEPS",
            "PHASE_STEP", "RESCAN", "Rows", "phase_curve", "slowest_speed", "speed_grid"]
@@ -136,32 +137,21 @@ def _hidden_pairs(st: IsoStack, prefix: str, rows_of: Rows, r: np.ndarray, cs: n
         if idx.size == 0:
             break
         with np.errstate(all="ignore"):
-            a, b = cm - cl, cm - ch
-            dh, dl = gm - gh, gm - gl
-            x = cm - 0.5 * (a * a * dh - b * b * dl) / (a * dh - b * dl)
+            x = vertex(cl, cm, ch, gl, gm, gh)
             if step > 0:
                 # after one step the parabola models the dip: a minimum it puts well above zero is a
                 # near miss, not two roots
-                curv = ((gl - gm) / a - (gh - gm) / b) / (a - b)
-                g_min = gm - curv * (cm - x) ** 2                        # the parabola's minimum
-                keep = ~(np.isfinite(g_min) & (curv > 0) & (g_min > 0.7 * gm))
+                keep = ~near_miss(cl, cm, ch, gl, gm, gh, x)
                 if not keep.any():
                     break
                 if not keep.all():
-                    idx, cl, cm, ch, gl, gm, gh, a, b, x = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh, a, b, x))
-        gold = np.where(a > -b, cm - 0.382 * a, cm - 0.382 * b)
-        bad = ~np.isfinite(x) | (x <= cl) | (x >= ch) | (np.abs(x - cm) < 1e-3 * (ch - cl))
-        x = np.where(bad, gold, x)
+                    idx, cl, cm, ch, gl, gm, gh, x = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh, x))
+        x = trial_point(x, cl, cm, ch)
         gx = _at(st, prefix, rows_of, r[idx], x) * s[idx]
         hit = gx < 0
         if hit.any():
             found[idx[hit]], x_out[idx[hit]], f_out[idx[hit]] = True, x[hit], gx[hit] * s[idx[hit]]
-        better, left = gx < gm, x < cm
-        cl, ch = (np.where(better, np.where(left, cl, cm), np.where(left, x, cl)),
-                  np.where(better, np.where(left, cm, ch), np.where(left, ch, x)))
-        gl, gh = (np.where(better, np.where(left, gl, gm), np.where(left, gx, gl)),
-                  np.where(better, np.where(left, gm, gh), np.where(left, gh, gx)))
-        cm, gm = np.where(better, x, cm), np.where(better, gx, gm)
+        cl, cm, ch, gl, gm, gh = shrink(cl, cm, ch, gl, gm, gh, x, gx)
         keep = ~hit & (ch - cl > 1e-9 * cm)
         if not keep.all():
             idx, cl, cm, ch, gl, gm, gh = (v[keep] for v in (idx, cl, cm, ch, gl, gm, gh))
